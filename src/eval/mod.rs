@@ -1,0 +1,1 @@
+//! The evaluator: per-layer angles and fills for a model.

@@ -1,0 +1,35 @@
+//! rotlang: the infill rotation template language of 3D-printing slicers.
+//!
+//! ```
+//! let parse = rotlang::parse("+10L25%, -10l25%", rotlang::Target::Sparse);
+//! assert!(parse.diagnostics.is_empty());
+//! assert_eq!(parse.template.instructions.len(), 2);
+//! ```
+
+pub mod diagnostic;
+pub mod eval;
+pub mod format;
+pub mod ir;
+mod syntax;
+
+pub use diagnostic::{Diagnostic, Fix, Label, LineIndex, Severity, Span};
+pub use ir::*;
+
+/// The result of parsing: the template (with every instruction that could be read) and
+/// every diagnostic found. Parsing never fails as a whole.
+#[derive(Clone, Debug, Default)]
+pub struct Parse {
+    pub template: Template,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Parse {
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(Diagnostic::is_error)
+    }
+}
+
+/// Parse a template for the given target (sparse or solid infill).
+pub fn parse(text: &str, target: Target) -> Parse {
+    syntax::parse(text, target)
+}

@@ -10,6 +10,7 @@ pub mod diagnostic;
 pub mod eval;
 pub mod format;
 pub mod ir;
+mod lint;
 mod syntax;
 
 pub use diagnostic::{Diagnostic, Fix, Label, LineIndex, Severity, Span};

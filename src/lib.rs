@@ -6,6 +6,9 @@
 //! assert_eq!(parse.template.instructions.len(), 2);
 //! ```
 
+#[cfg(feature = "cli")]
+#[doc(hidden)]
+pub mod cli;
 pub mod diagnostic;
 pub mod eval;
 pub mod format;

@@ -262,7 +262,7 @@ impl Failure<'_> {
             let span = if word.len() > 1 && word.len() <= 12 { wspan } else { here };
             let shown = &self.text[span.start - self.offset..span.end - self.offset];
             return Diagnostic::error("rotlang::unknown-sign", format!("unknown sign `{shown}`"))
-                .with_primary(span, format!("expected {}", self.expected_words()))
+                .with_primary(span, "not a sign of the language")
                 .with_help(SIGNS_HELP);
         }
         let shown = if c.is_control() || c.is_whitespace() {

@@ -1,0 +1,92 @@
+//! Diagnostics: the library's diagnostics, moved to document positions.
+
+use rotlang::Severity;
+use tower_lsp_server::ls_types::{
+    Diagnostic, DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString, Uri,
+};
+
+use crate::document::{Document, Region};
+use crate::position::Positions;
+
+/// At most this many diagnostics per document: a 1 MB paste of garbage must not produce
+/// a million-entry notification that freezes the editor. The last one says what was cut.
+pub const MAX_DIAGNOSTICS: usize = 200;
+
+pub const SOURCE: &str = "rotlang";
+
+pub fn diagnostics(doc: &Document, uri: &Uri, pos: &Positions) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    if let Some((offset, message)) = &doc.json_error {
+        let range = pos.range(rotlang::Span::new(*offset, *offset));
+        out.push(Diagnostic {
+            range,
+            severity: Some(DiagnosticSeverity::ERROR),
+            code: Some(NumberOrString::String("rotlang-lsp::json-syntax".into())),
+            source: Some(SOURCE.into()),
+            message: format!("not valid JSON: {message}; templates after this point may be missed"),
+            ..Diagnostic::default()
+        });
+    }
+    let total: usize = doc.regions.iter().map(|r| r.parse.diagnostics.len()).sum();
+    for region in &doc.regions {
+        for d in &region.parse.diagnostics {
+            if out.len() >= MAX_DIAGNOSTICS {
+                out.push(truncated(total, pos));
+                return out;
+            }
+            out.push(convert(d, region, uri, pos));
+        }
+    }
+    out
+}
+
+/// One library diagnostic as an LSP diagnostic: the primary label is the range, the
+/// secondary labels are related information, the help goes under the message.
+pub fn convert(d: &rotlang::Diagnostic, region: &Region, uri: &Uri, pos: &Positions) -> Diagnostic {
+    let range = pos.range(region.doc_span(d.primary_span()));
+    let mut message = d.message.clone();
+    if let Some(primary) = d.labels.iter().find(|l| l.primary && !l.message.is_empty())
+        && primary.message != d.message
+    {
+        message.push_str(&format!(": {}", primary.message));
+    }
+    if let Some(help) = &d.help {
+        message.push_str(&format!("\nhelp: {help}"));
+    }
+    let related: Vec<_> = d
+        .labels
+        .iter()
+        .filter(|l| !l.primary)
+        .map(|l| DiagnosticRelatedInformation {
+            location: Location::new(uri.clone(), pos.range(region.doc_span(l.span))),
+            message: if l.message.is_empty() {
+                "related".into()
+            } else {
+                l.message.clone()
+            },
+        })
+        .collect();
+    Diagnostic {
+        range,
+        severity: Some(match d.severity {
+            Severity::Error => DiagnosticSeverity::ERROR,
+            Severity::Warning => DiagnosticSeverity::WARNING,
+        }),
+        code: Some(NumberOrString::String(d.code.to_string())),
+        source: Some(SOURCE.into()),
+        message,
+        related_information: (!related.is_empty()).then_some(related),
+        ..Diagnostic::default()
+    }
+}
+
+fn truncated(total: usize, pos: &Positions) -> Diagnostic {
+    Diagnostic {
+        range: pos.range(rotlang::Span::new(0, 0)),
+        severity: Some(DiagnosticSeverity::INFORMATION),
+        code: Some(NumberOrString::String("rotlang-lsp::too-many".into())),
+        source: Some(SOURCE.into()),
+        message: format!("{total} problems; only the first {MAX_DIAGNOSTICS} are shown"),
+        ..Diagnostic::default()
+    }
+}

@@ -1,0 +1,58 @@
+//! Inlay hints: after each instruction, the turn it resolves to on the model, such as
+//! `0°→22.5° over 50 layers` (its first run, where it first acts).
+
+use rotlang::Span;
+use tower_lsp_server::ls_types::{InlayHint, InlayHintKind, InlayHintLabel, InlayHintTooltip};
+
+use crate::document::Document;
+use crate::hover::turn_words;
+use crate::position::{Cursor, Positions};
+use crate::preview::Preview;
+use crate::settings::ModelSettings;
+
+/// Hints per request: an editor shows a screenful, not a megabyte's worth.
+pub const MAX_HINTS: usize = 1000;
+
+/// Hints for the instructions that end inside `range` (document bytes).
+pub fn inlay_hints(
+    doc: &Document,
+    range: Span,
+    model: &ModelSettings,
+    pos: &Positions,
+) -> Vec<InlayHint> {
+    let mut hints = Vec::new();
+    let mut cursor = Cursor::new(pos);
+    for region in &doc.regions {
+        if region.contents.end < range.start || region.contents.start > range.end {
+            continue;
+        }
+        let preview = Preview::compute(&region.parse.template, model);
+        for (i, ins) in region.parse.template.instructions.iter().enumerate() {
+            let end = region.doc_span(ins.span).end;
+            if end < range.start || end > range.end || ins.is_dummy() {
+                continue;
+            }
+            if hints.len() >= MAX_HINTS {
+                return hints;
+            }
+            let label = match preview.instructions.get(i).and_then(|p| p.first_run) {
+                Some(run) => turn_words(ins, run.from, run.to, run.layers),
+                None => "not reached".to_string(),
+            };
+            hints.push(InlayHint {
+                position: cursor.position(end),
+                label: InlayHintLabel::String(label),
+                kind: Some(InlayHintKind::TYPE),
+                text_edits: None,
+                tooltip: Some(InlayHintTooltip::String(format!(
+                    "first run on {}",
+                    model.describe()
+                ))),
+                padding_left: Some(true),
+                padding_right: Some(false),
+                data: None,
+            });
+        }
+    }
+    hints
+}

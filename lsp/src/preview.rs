@@ -1,0 +1,239 @@
+//! Previews: what the layers of a model get, summarised for hovers and inlay hints.
+//!
+//! The angles come from the library's evaluator through `for_each_layer`, the only function
+//! here that knows how evaluation is called. Everything else is a bounded summary of the
+//! stream: memory is O(instructions), whatever the number of layers.
+
+use rotlang::{Fill, Span, Template};
+
+use crate::settings::ModelSettings;
+
+/// Layers listed in the whole-template hover.
+pub const FIRST_LAYERS: usize = 24;
+/// Layers listed per instruction in its hover.
+pub const INSTRUCTION_SAMPLE: usize = 12;
+/// Width of the sparkline, in characters.
+pub const SPARKLINE_WIDTH: usize = 48;
+
+/// One evaluated layer, as the server needs it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PreviewLayer {
+    pub index: usize,
+    pub angle: f64,
+    pub fill: Fill,
+    pub instruction: Option<Span>,
+}
+
+/// Evaluate `template` on the model, layer by layer, bottom to top.
+///
+/// PLACEHOLDER until `rotlang::eval` lands: each instruction that is not a dummy governs
+/// one layer in turn (absolute angles set, relative ones turn). Replace the body with a
+/// call to `rotlang::eval::layers`; nothing else in the server changes.
+pub fn for_each_layer(template: &Template, model: &ModelSettings, mut f: impl FnMut(PreviewLayer)) {
+    let live: Vec<_> = template
+        .instructions
+        .iter()
+        .filter(|i| !i.is_dummy())
+        .collect();
+    let mut angle = 0.0;
+    for index in 0..model.layers {
+        let Some(instruction) = live.get(index % live.len().max(1)) else {
+            f(PreviewLayer {
+                index,
+                angle,
+                fill: Fill::Sparse,
+                instruction: None,
+            });
+            continue;
+        };
+        if instruction.is_relative() {
+            angle += instruction.degrees();
+        } else {
+            angle = instruction.degrees();
+        }
+        f(PreviewLayer {
+            index,
+            angle,
+            fill: instruction.fill(),
+            instruction: Some(instruction.span),
+        });
+    }
+}
+
+/// A contiguous block of layers governed by one instruction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Run {
+    pub first_layer: usize,
+    pub layers: usize,
+    /// The angle of the layer below the run (0 below the first layer): where a turn starts.
+    pub from: f64,
+    /// The angle of the run's last layer.
+    pub to: f64,
+}
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct InstructionPreview {
+    /// Layers governed in the whole model.
+    pub layers: usize,
+    /// The first run, where the instruction first acts.
+    pub first_run: Option<Run>,
+    /// The first layers it governs: (layer index, angle, fill).
+    pub sample: Vec<(usize, f64, Fill)>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Preview {
+    pub model: ModelSettings,
+    /// The first layers of the model: (angle, fill).
+    pub first: Vec<(f64, Fill)>,
+    /// Angles sampled evenly over the whole model, for the sparkline.
+    pub samples: Vec<f64>,
+    pub min: f64,
+    pub max: f64,
+    /// Per instruction, in the template's order.
+    pub instructions: Vec<InstructionPreview>,
+}
+
+impl Preview {
+    pub fn compute(template: &Template, model: &ModelSettings) -> Preview {
+        let n = template.instructions.len();
+        let mut instructions = vec![InstructionPreview::default(); n];
+        let mut first = Vec::new();
+        let mut samples = Vec::new();
+        let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+        let layers = model.layers.max(1);
+        let mut next_sample = 0;
+        let mut previous: (f64, Option<usize>) = (0.0, None);
+        for_each_layer(template, model, |layer| {
+            let angle = if layer.angle.is_finite() {
+                layer.angle
+            } else {
+                0.0
+            };
+            if first.len() < FIRST_LAYERS {
+                first.push((angle, layer.fill));
+            }
+            // Sample column c at layer ⌊c × layers / width⌋.
+            if layer.index >= next_sample && samples.len() < SPARKLINE_WIDTH {
+                samples.push(angle);
+                next_sample = (samples.len() * layers).div_ceil(SPARKLINE_WIDTH);
+            }
+            min = min.min(angle);
+            max = max.max(angle);
+            let which = layer.instruction.and_then(|span| index_of(template, span));
+            if let Some(i) = which
+                && let Some(p) = instructions.get_mut(i)
+            {
+                p.layers += 1;
+                if p.sample.len() < INSTRUCTION_SAMPLE {
+                    p.sample.push((layer.index, angle, layer.fill));
+                }
+                match &mut p.first_run {
+                    None => {
+                        p.first_run = Some(Run {
+                            first_layer: layer.index,
+                            layers: 1,
+                            from: previous.0,
+                            to: angle,
+                        })
+                    }
+                    Some(run)
+                        if previous.1 == Some(i) && run.first_layer + run.layers == layer.index =>
+                    {
+                        run.layers += 1;
+                        run.to = angle;
+                    }
+                    Some(_) => {}
+                }
+            }
+            previous = (angle, which);
+        });
+        if !min.is_finite() {
+            (min, max) = (0.0, 0.0);
+        }
+        Preview {
+            model: *model,
+            first,
+            samples,
+            min,
+            max,
+            instructions,
+        }
+    }
+
+    /// The sampled sequence as a Unicode sparkline, scaled between the lowest and highest
+    /// angle of the whole model.
+    pub fn sparkline(&self) -> String {
+        sparkline(&self.samples, self.min, self.max)
+    }
+}
+
+/// The instruction with exactly this span (instructions are in text order).
+fn index_of(template: &Template, span: Span) -> Option<usize> {
+    let i = template
+        .instructions
+        .partition_point(|ins| ins.span.start < span.start);
+    (template.instructions.get(i)?.span == span).then_some(i)
+}
+
+pub fn sparkline(values: &[f64], min: f64, max: f64) -> String {
+    const BARS: [char; 8] = ['▁', '▂', '▃', '▄', '▅', '▆', '▇', '█'];
+    let range = max - min;
+    values
+        .iter()
+        .map(|v| {
+            if range <= 1e-9 {
+                return BARS[0];
+            }
+            let level = ((v - min) / range * 7.0).round().clamp(0.0, 7.0);
+            BARS[level as usize]
+        })
+        .collect()
+}
+
+/// A number for people: at most two decimals, no trailing zeros, no `-0`.
+pub fn fmt_num(x: f64) -> String {
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    let r = (x * 100.0).round() / 100.0;
+    let s = format!("{r:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+/// An angle for people, with the degree sign.
+pub fn fmt_deg(x: f64) -> String {
+    format!("{}°", fmt_num(x))
+}
+
+/// A signed turn for people: `+22.5°`, `-10°`.
+pub fn fmt_turn(x: f64) -> String {
+    let s = fmt_deg(x);
+    if s.starts_with('-') || s == "0°" {
+        s
+    } else {
+        format!("+{s}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_read_well() {
+        assert_eq!(fmt_num(22.5), "22.5");
+        assert_eq!(fmt_num(0.451), "0.45");
+        assert_eq!(fmt_num(-0.001), "0");
+        assert_eq!(fmt_num(90.0), "90");
+        assert_eq!(fmt_turn(22.5), "+22.5°");
+        assert_eq!(fmt_turn(-10.0), "-10°");
+    }
+
+    #[test]
+    fn sparkline_scales() {
+        assert_eq!(sparkline(&[0.0, 45.0, 90.0], 0.0, 90.0), "▁▅█");
+        assert_eq!(sparkline(&[5.0, 5.0], 5.0, 5.0), "▁▁");
+    }
+}

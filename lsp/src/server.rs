@@ -1,0 +1,342 @@
+//! The protocol glue: state, capabilities, and one handler per request, each delegating
+//! to its feature module.
+
+use std::collections::HashMap;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::{Arc, Mutex, MutexGuard};
+
+use serde_json::Value;
+use tower_lsp_server::jsonrpc::{Error, Result};
+use tower_lsp_server::ls_types::*;
+use tower_lsp_server::{Client, LanguageServer, LspService, Server};
+
+use crate::document::{Document, Kind};
+use crate::position::{Encoding, Positions};
+use crate::settings::ModelSettings;
+use crate::{
+    code_actions, completion, diagnostics, formatting, hover, inlay_hints, semantic_tokens, symbols,
+};
+
+#[derive(Default)]
+struct State {
+    documents: HashMap<Uri, Arc<Document>>,
+    encoding: Encoding,
+    model: ModelSettings,
+    inlay_refresh: bool,
+}
+
+pub struct Backend {
+    client: Client,
+    state: Mutex<State>,
+}
+
+impl Backend {
+    pub fn new(client: Client) -> Backend {
+        Backend {
+            client,
+            state: Mutex::new(State::default()),
+        }
+    }
+
+    /// A panic in one handler must not take the state down with it for the others.
+    fn state(&self) -> MutexGuard<'_, State> {
+        self.state
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+    }
+
+    /// The document (shared, so no lock is held while computing), the encoding and model.
+    fn snapshot(&self, uri: &Uri) -> Option<(Arc<Document>, Encoding, ModelSettings)> {
+        let state = self.state();
+        let doc = state.documents.get(uri)?.clone();
+        Some((doc, state.encoding, state.model))
+    }
+
+    fn update_settings(&self, settings: &Value) -> Vec<String> {
+        self.state().model.update(settings)
+    }
+
+    async fn publish(&self, uri: Uri, doc: Arc<Document>, encoding: Encoding) {
+        let Some(diags) = guard(|| {
+            let pos = Positions::new(&doc.text, encoding);
+            diagnostics::diagnostics(&doc, &uri, &pos)
+        }) else {
+            return;
+        };
+        // A newer edit may have arrived while computing: it publishes its own.
+        let current = self.state().documents.get(&uri).map(|d| d.version);
+        if current == Some(doc.version) {
+            self.client
+                .publish_diagnostics(uri, diags, Some(doc.version))
+                .await;
+        }
+    }
+
+    async fn open(&self, uri: Uri, text: String, kind: Kind, version: i32) {
+        let Some(doc) = guard(|| Arc::new(Document::new(text, kind, version))) else {
+            return;
+        };
+        let encoding = {
+            let mut state = self.state();
+            state.documents.insert(uri.clone(), doc.clone());
+            state.encoding
+        };
+        self.publish(uri, doc, encoding).await;
+    }
+}
+
+/// Run a feature, turning a panic (a bug, never expected) into "no answer" instead of a
+/// dead server.
+fn guard<T>(f: impl FnOnce() -> T) -> Option<T> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(v) => Some(v),
+        Err(_) => {
+            eprintln!("rotlang-lsp: internal error (panic) while answering; see above");
+            None
+        }
+    }
+}
+
+fn internal() -> Error {
+    Error::internal_error()
+}
+
+impl LanguageServer for Backend {
+    async fn initialize(&self, params: InitializeParams) -> Result<InitializeResult> {
+        let offered = params
+            .capabilities
+            .general
+            .as_ref()
+            .and_then(|g| g.position_encodings.as_deref());
+        let encoding = Encoding::negotiate(offered);
+        let inlay_refresh = params
+            .capabilities
+            .workspace
+            .as_ref()
+            .and_then(|w| w.inlay_hint.as_ref())
+            .and_then(|i| i.refresh_support)
+            .unwrap_or(false);
+        {
+            let mut state = self.state();
+            state.encoding = encoding;
+            state.inlay_refresh = inlay_refresh;
+            if let Some(options) = &params.initialization_options {
+                let rejected = state.model.update(options);
+                if !rejected.is_empty() {
+                    eprintln!(
+                        "rotlang-lsp: ignored invalid settings: {}",
+                        rejected.join(", ")
+                    );
+                }
+            }
+        }
+        Ok(InitializeResult {
+            capabilities: capabilities(encoding),
+            server_info: Some(ServerInfo {
+                name: "rotlang-lsp".into(),
+                version: Some(env!("CARGO_PKG_VERSION").into()),
+            }),
+            offset_encoding: None,
+        })
+    }
+
+    async fn initialized(&self, _: InitializedParams) {}
+
+    async fn shutdown(&self) -> Result<()> {
+        Ok(())
+    }
+
+    async fn did_open(&self, params: DidOpenTextDocumentParams) {
+        let d = params.text_document;
+        let kind = Kind::detect(&d.language_id, d.uri.as_str());
+        self.open(d.uri, d.text, kind, d.version).await;
+    }
+
+    async fn did_change(&self, params: DidChangeTextDocumentParams) {
+        let uri = params.text_document.uri;
+        let Some((old, encoding, _)) = self.snapshot(&uri) else {
+            return; // a change to a document never opened: nothing to apply it to
+        };
+        // Full sync sends the whole text; ranged changes are applied too, in case a
+        // client sends them anyway.
+        let mut text: Option<String> = None;
+        for change in params.content_changes {
+            match change.range {
+                None => text = Some(change.text),
+                Some(range) => {
+                    let current = text.take().unwrap_or_else(|| old.text.clone());
+                    let span = Positions::new(&current, encoding).span(range);
+                    let mut next = current.clone();
+                    if let Some(span) = span {
+                        next.replace_range(span.range(), &change.text);
+                    }
+                    text = Some(next);
+                }
+            }
+        }
+        let Some(text) = text else { return };
+        self.open(uri, text, old.kind, params.text_document.version)
+            .await;
+    }
+
+    async fn did_close(&self, params: DidCloseTextDocumentParams) {
+        let uri = params.text_document.uri;
+        self.state().documents.remove(&uri);
+        // Clear what was shown: a closed document has no problems to display.
+        self.client.publish_diagnostics(uri, Vec::new(), None).await;
+    }
+
+    async fn did_change_configuration(&self, params: DidChangeConfigurationParams) {
+        let rejected = self.update_settings(&params.settings);
+        if !rejected.is_empty() {
+            self.client
+                .log_message(
+                    MessageType::WARNING,
+                    format!("rotlang: ignored invalid settings: {}", rejected.join(", ")),
+                )
+                .await;
+        }
+        if self.state().inlay_refresh {
+            // Hints depend on the model; the answer does not matter.
+            let _ = self.client.inlay_hint_refresh().await;
+        }
+    }
+
+    async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
+        let p = params.text_document_position_params;
+        let Some((doc, encoding, model)) = self.snapshot(&p.text_document.uri) else {
+            return Ok(None);
+        };
+        guard(|| {
+            let pos = Positions::new(&doc.text, encoding);
+            let offset = pos.offset(p.position)?;
+            hover::hover(&doc, offset, &model, &pos)
+        })
+        .ok_or_else(internal)
+    }
+
+    async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
+        let p = params.text_document_position;
+        let Some((doc, encoding, _)) = self.snapshot(&p.text_document.uri) else {
+            return Ok(None);
+        };
+        guard(|| {
+            let pos = Positions::new(&doc.text, encoding);
+            let offset = pos.offset(p.position)?;
+            // Insert exactly at the cursor (clamped, as the document knows it).
+            let at = pos.position(offset);
+            let items = completion::completion(&doc, offset, Range::new(at, at))?;
+            Some(CompletionResponse::Array(items))
+        })
+        .ok_or_else(internal)
+    }
+
+    async fn semantic_tokens_full(
+        &self,
+        params: SemanticTokensParams,
+    ) -> Result<Option<SemanticTokensResult>> {
+        let Some((doc, encoding, _)) = self.snapshot(&params.text_document.uri) else {
+            return Ok(None);
+        };
+        guard(|| {
+            let pos = Positions::new(&doc.text, encoding);
+            Some(SemanticTokensResult::Tokens(semantic_tokens::tokens(
+                &doc, &pos,
+            )))
+        })
+        .ok_or_else(internal)
+    }
+
+    async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
+        let Some((doc, encoding, _)) = self.snapshot(&params.text_document.uri) else {
+            return Ok(None);
+        };
+        guard(|| formatting::formatting(&doc, &Positions::new(&doc.text, encoding)))
+            .ok_or_else(internal)
+    }
+
+    async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
+        let Some((doc, encoding, model)) = self.snapshot(&params.text_document.uri) else {
+            return Ok(None);
+        };
+        guard(|| {
+            let pos = Positions::new(&doc.text, encoding);
+            let range = pos.span(params.range)?;
+            Some(inlay_hints::inlay_hints(&doc, range, &model, &pos))
+        })
+        .ok_or_else(internal)
+    }
+
+    async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
+        let uri = params.text_document.uri;
+        let Some((doc, encoding, _)) = self.snapshot(&uri) else {
+            return Ok(None);
+        };
+        guard(|| {
+            let pos = Positions::new(&doc.text, encoding);
+            let range = pos.span(params.range)?;
+            Some(code_actions::code_actions(&doc, &uri, range, &pos))
+        })
+        .ok_or_else(internal)
+    }
+
+    async fn document_symbol(
+        &self,
+        params: DocumentSymbolParams,
+    ) -> Result<Option<DocumentSymbolResponse>> {
+        let Some((doc, encoding, model)) = self.snapshot(&params.text_document.uri) else {
+            return Ok(None);
+        };
+        guard(|| {
+            let pos = Positions::new(&doc.text, encoding);
+            Some(DocumentSymbolResponse::Nested(symbols::symbols(
+                &doc, &model, &pos,
+            )))
+        })
+        .ok_or_else(internal)
+    }
+}
+
+pub fn capabilities(encoding: Encoding) -> ServerCapabilities {
+    ServerCapabilities {
+        position_encoding: Some(encoding.kind()),
+        text_document_sync: Some(TextDocumentSyncCapability::Options(
+            TextDocumentSyncOptions {
+                open_close: Some(true),
+                change: Some(TextDocumentSyncKind::FULL),
+                ..TextDocumentSyncOptions::default()
+            },
+        )),
+        hover_provider: Some(HoverProviderCapability::Simple(true)),
+        completion_provider: Some(CompletionOptions::default()),
+        semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+            SemanticTokensOptions {
+                legend: semantic_tokens::legend(),
+                full: Some(SemanticTokensFullOptions::Bool(true)),
+                range: None,
+                work_done_progress_options: WorkDoneProgressOptions::default(),
+            },
+        )),
+        document_formatting_provider: Some(OneOf::Left(true)),
+        inlay_hint_provider: Some(OneOf::Left(true)),
+        code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
+            code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
+            ..CodeActionOptions::default()
+        })),
+        document_symbol_provider: Some(OneOf::Left(true)),
+        ..ServerCapabilities::default()
+    }
+}
+
+/// Run the server on stdin/stdout until the client says `exit` or closes the stream.
+pub async fn run_stdio() {
+    crate::transport::serve(
+        tokio::io::stdin(),
+        tokio::io::stdout(),
+        |input, output| async move {
+            let (service, socket) = LspService::new(Backend::new);
+            Server::new(input, output, socket).serve(service).await;
+        },
+    )
+    .await;
+}

@@ -1,0 +1,210 @@
+//! A guard in front of tower-lsp-server's framing.
+//!
+//! tower-lsp-server stops reading for good after one undecodable message (its framed
+//! reader ends the stream after an error), so a single malformed JSON-RPC message would
+//! end the session. This layer reads the frames itself, forwards only messages tower can
+//! decode, and answers the rest with a JSON-RPC error; it also bounds message size.
+
+use std::io;
+
+use serde_json::{Value, json};
+use tokio::io::{AsyncBufReadExt, AsyncRead, AsyncReadExt, AsyncWrite, AsyncWriteExt, BufReader};
+use tokio::sync::mpsc;
+use tower_lsp_server::jsonrpc::{Request, Response};
+
+/// Larger messages are refused: no real document comes close, and the limit bounds memory.
+pub const MAX_MESSAGE: usize = 64 << 20;
+/// Header lines longer than this are garbage, not headers.
+const MAX_HEADER_LINE: u64 = 8 << 10;
+
+/// One framed message, or the reason a frame could not be read.
+enum Frame {
+    Body(Vec<u8>),
+    /// The frame was skipped (no length, too long); answer with this error.
+    Refused(&'static str),
+    Eof,
+}
+
+/// Read the next frame. Never fails on bad input: bad headers or sizes become `Refused`.
+async fn read_frame<R: AsyncRead + Unpin>(reader: &mut BufReader<R>) -> io::Result<Frame> {
+    let mut length: Option<usize> = None;
+    let mut bad_length = false;
+    let mut saw_header = false;
+    loop {
+        let mut line = Vec::new();
+        let n = (&mut *reader)
+            .take(MAX_HEADER_LINE)
+            .read_until(b'\n', &mut line)
+            .await?;
+        if n == 0 {
+            return Ok(Frame::Eof);
+        }
+        let text = String::from_utf8_lossy(&line);
+        let text = text.trim();
+        if text.is_empty() {
+            if saw_header {
+                break;
+            }
+            continue; // stray blank lines between messages
+        }
+        saw_header = true;
+        if let Some((name, value)) = text.split_once(':')
+            && name.trim().eq_ignore_ascii_case("content-length")
+        {
+            match value.trim().parse::<usize>() {
+                Ok(n) => length = Some(n),
+                Err(_) => bad_length = true,
+            }
+        }
+    }
+    let Some(length) = length.filter(|_| !bad_length) else {
+        return Ok(Frame::Refused("missing or invalid Content-Length header"));
+    };
+    if length > MAX_MESSAGE {
+        // Read past it so the next message is found where it starts.
+        tokio::io::copy(
+            &mut (&mut *reader).take(length as u64),
+            &mut tokio::io::sink(),
+        )
+        .await?;
+        return Ok(Frame::Refused("message too large"));
+    }
+    let mut body = vec![0; length];
+    reader.read_exact(&mut body).await?;
+    Ok(Frame::Body(body))
+}
+
+fn frame(body: &[u8]) -> Vec<u8> {
+    let mut out = format!("Content-Length: {}\r\n\r\n", body.len()).into_bytes();
+    out.extend_from_slice(body);
+    out
+}
+
+fn error_frame(id: Value, code: i64, message: &str) -> Vec<u8> {
+    let body = json!({"jsonrpc": "2.0", "id": id, "error": {"code": code, "message": message}});
+    frame(body.to_string().as_bytes())
+}
+
+/// Whether tower-lsp-server can decode this body (its message type is private, but it is
+/// exactly "a response or a request").
+fn decodable(body: &[u8]) -> bool {
+    serde_json::from_slice::<Response>(body).is_ok()
+        || serde_json::from_slice::<Request>(body).is_ok()
+}
+
+/// The error for a body tower cannot decode: Invalid Request when it is JSON (with its id,
+/// if it has one), Parse error otherwise.
+fn rejection(body: &[u8]) -> Vec<u8> {
+    match serde_json::from_slice::<Value>(body) {
+        Ok(value) => {
+            let id = value
+                .get("id")
+                .filter(|id| id.is_string() || id.is_number())
+                .cloned()
+                .unwrap_or(Value::Null);
+            error_frame(id, -32600, "Invalid request")
+        }
+        Err(_) => error_frame(Value::Null, -32700, "Parse error"),
+    }
+}
+
+/// Copy client messages to the server, answering the undecodable ones directly.
+async fn filter_input<R, W>(
+    input: R,
+    mut to_server: W,
+    replies: mpsc::Sender<Vec<u8>>,
+) -> io::Result<()>
+where
+    R: AsyncRead + Unpin,
+    W: AsyncWrite + Unpin,
+{
+    let mut reader = BufReader::new(input);
+    loop {
+        match read_frame(&mut reader).await? {
+            Frame::Eof => return Ok(()),
+            Frame::Refused(why) => {
+                eprintln!("rotlang-lsp: skipped a message: {why}");
+                let _ = replies.send(error_frame(Value::Null, -32700, why)).await;
+            }
+            Frame::Body(body) if decodable(&body) => {
+                to_server.write_all(&frame(&body)).await?;
+                to_server.flush().await?;
+            }
+            Frame::Body(body) => {
+                eprintln!("rotlang-lsp: skipped an undecodable message");
+                let _ = replies.send(rejection(&body)).await;
+            }
+        }
+    }
+}
+
+/// Copy the server's frames, whole, into the output queue; `None` marks the end.
+async fn pump_output<R: AsyncRead + Unpin>(from_server: R, out: mpsc::Sender<Option<Vec<u8>>>) {
+    let mut reader = BufReader::new(from_server);
+    while let Ok(Frame::Body(body)) = read_frame(&mut reader).await {
+        if out.send(Some(frame(&body))).await.is_err() {
+            return;
+        }
+    }
+    let _ = out.send(None).await;
+}
+
+/// Serve a language server over `input`/`output` with the guard in between. Returns when
+/// the server has finished (after `exit`, or at the end of input) and every reply is out.
+pub async fn serve<I, O, F, Fut>(input: I, mut output: O, run: F)
+where
+    I: AsyncRead + Unpin + Send + 'static,
+    O: AsyncWrite + Unpin,
+    F: FnOnce(tokio::io::DuplexStream, tokio::io::DuplexStream) -> Fut,
+    Fut: std::future::Future<Output = ()>,
+{
+    let (client_side, server_in) = tokio::io::duplex(1 << 16);
+    let (server_out, output_side) = tokio::io::duplex(1 << 16);
+    let (out_tx, mut out_rx) = mpsc::channel::<Option<Vec<u8>>>(64);
+    let (reply_tx, mut reply_rx) = mpsc::channel::<Vec<u8>>(64);
+
+    tokio::spawn(async move {
+        if let Err(e) = filter_input(input, client_side, reply_tx).await {
+            eprintln!("rotlang-lsp: input closed: {e}");
+        }
+    });
+    let errors_out = out_tx.clone();
+    tokio::spawn(async move {
+        while let Some(reply) = reply_rx.recv().await {
+            if errors_out.send(Some(reply)).await.is_err() {
+                return;
+            }
+        }
+    });
+    tokio::spawn(pump_output(output_side, out_tx));
+
+    let writer = async {
+        while let Some(Some(bytes)) = out_rx.recv().await {
+            if output.write_all(&bytes).await.is_err() || output.flush().await.is_err() {
+                return;
+            }
+        }
+    };
+    tokio::join!(run(server_in, server_out), writer);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tells_good_from_bad_messages() {
+        assert!(decodable(
+            br#"{"jsonrpc":"2.0","id":1,"method":"shutdown"}"#
+        ));
+        assert!(decodable(
+            br#"{"jsonrpc":"2.0","method":"initialized","params":{}}"#
+        ));
+        assert!(!decodable(br#"{"jsonrpc":"1.0","id":1,"method":"x"}"#));
+        assert!(!decodable(br#"{"foo":1}"#));
+        assert!(!decodable(b"{nope"));
+        assert!(!decodable(&[0xff, 0xfe]));
+        let r = String::from_utf8(rejection(br#"{"id":7,"x":1}"#)).unwrap();
+        assert!(r.contains(r#""id":7"#) && r.contains("-32600"), "{r}");
+    }
+}

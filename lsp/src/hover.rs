@@ -53,7 +53,9 @@ pub fn instruction_hover(
                 "Governs {} of the {} layers.",
                 p.layers, model.layers
             ));
-            if let Some(run) = p.first_run {
+            let mut budget = crate::preview::FIRST_RUN_BUDGET;
+            let run = crate::preview::first_run(&region.parse.template, index, model, &mut budget);
+            if let Some(run) = run.or(p.first_block) {
                 let last = run.first_layer + run.layers - 1;
                 let layers = if run.layers == 1 {
                     format!("layer {}", run.first_layer)
@@ -117,8 +119,19 @@ pub fn template_hover(region: &Region, preview: &Preview) -> String {
         out.push_str(", …");
     }
     out.push_str(&format!(
-        "\n\n`{}` from {} to {} over all {} layers\n",
-        preview.sparkline(),
+        "\n\n`{}` first {} layers\n",
+        preview.head_sparkline(),
+        preview.head.len()
+    ));
+    if model.layers > preview.head.len() {
+        out.push_str(&format!(
+            "\n`{}` all {} layers, sampled evenly\n",
+            preview.model_sparkline(),
+            model.layers
+        ));
+    }
+    out.push_str(&format!(
+        "\nAngles from {} to {} over all {} layers.\n",
         fmt_deg(preview.min),
         fmt_deg(preview.max),
         model.layers

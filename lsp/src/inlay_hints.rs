@@ -7,7 +7,7 @@ use tower_lsp_server::ls_types::{InlayHint, InlayHintKind, InlayHintLabel, Inlay
 use crate::document::Document;
 use crate::hover::turn_words;
 use crate::position::{Cursor, Positions};
-use crate::preview::Preview;
+use crate::preview::{FIRST_RUN_BUDGET, Preview, first_run};
 use crate::settings::ModelSettings;
 
 /// Hints per request: an editor shows a screenful, not a megabyte's worth.
@@ -22,6 +22,7 @@ pub fn inlay_hints(
 ) -> Vec<InlayHint> {
     let mut hints = Vec::new();
     let mut cursor = Cursor::new(pos);
+    let mut budget = FIRST_RUN_BUDGET;
     for region in &doc.regions {
         if region.contents.end < range.start || region.contents.start > range.end {
             continue;
@@ -35,7 +36,9 @@ pub fn inlay_hints(
             if hints.len() >= MAX_HINTS {
                 return hints;
             }
-            let label = match preview.instructions.get(i).and_then(|p| p.first_run) {
+            let run = first_run(&region.parse.template, i, model, &mut budget)
+                .or_else(|| preview.instructions.get(i).and_then(|p| p.first_block));
+            let label = match run {
                 Some(run) => turn_words(ins, run.from, run.to, run.layers),
                 None => "not reached".to_string(),
             };

@@ -24,12 +24,17 @@ pub struct PreviewLayer {
     pub instruction: Option<Span>,
 }
 
-/// Evaluate `template` on the model, layer by layer, bottom to top.
+/// Evaluate `template` on the model, layer by layer, bottom to top, while `f` returns
+/// `true`.
 ///
 /// PLACEHOLDER until `rotlang::eval` lands: each instruction that is not a dummy governs
 /// one layer in turn (absolute angles set, relative ones turn). Replace the body with a
 /// call to `rotlang::eval::layers`; nothing else in the server changes.
-pub fn for_each_layer(template: &Template, model: &ModelSettings, mut f: impl FnMut(PreviewLayer)) {
+pub fn for_each_layer(
+    template: &Template,
+    model: &ModelSettings,
+    mut f: impl FnMut(PreviewLayer) -> bool,
+) {
     let live: Vec<_> = template
         .instructions
         .iter()
@@ -38,12 +43,14 @@ pub fn for_each_layer(template: &Template, model: &ModelSettings, mut f: impl Fn
     let mut angle = 0.0;
     for index in 0..model.layers {
         let Some(instruction) = live.get(index % live.len().max(1)) else {
-            f(PreviewLayer {
+            if !f(PreviewLayer {
                 index,
                 angle,
                 fill: Fill::Sparse,
                 instruction: None,
-            });
+            }) {
+                return;
+            }
             continue;
         };
         if instruction.is_relative() {
@@ -51,13 +58,81 @@ pub fn for_each_layer(template: &Template, model: &ModelSettings, mut f: impl Fn
         } else {
             angle = instruction.degrees();
         }
-        f(PreviewLayer {
+        if !f(PreviewLayer {
             index,
             angle,
             fill: instruction.fill(),
             instruction: Some(instruction.span),
-        });
+        }) {
+            return;
+        }
     }
+}
+
+/// Layers evaluated in search of first runs, per request: bounds the cost of inlay hints
+/// on long templates over tall models.
+pub const FIRST_RUN_BUDGET: usize = 2_000_000;
+
+/// The first run of instruction `index`: the layers of its first range(s) before another
+/// instruction takes over, and the turn across them.
+///
+/// Provenance alone cannot tell where one range of an instruction ends and its next range
+/// begins (in `B!, +30` every layer after the shells is a new range of `+30`). So the
+/// template is evaluated with that instruction made one-time: it then acts exactly once,
+/// and the layers it governs are its first run. Evaluation stops at the run's end, and
+/// `budget` (layers) bounds the total work; `None` when it runs out or the instruction
+/// never acts.
+pub fn first_run(
+    template: &Template,
+    index: usize,
+    model: &ModelSettings,
+    budget: &mut usize,
+) -> Option<Run> {
+    let ins = template.instructions.get(index)?;
+    if ins.is_dummy() {
+        return None;
+    }
+    let mut once = template.clone();
+    let target = once.instructions.get_mut(index)?;
+    if target.one_time.is_none() {
+        target.one_time = Some(target.span);
+    }
+    let span = ins.span;
+    let mut run: Option<Run> = None;
+    let mut previous = 0.0;
+    let mut exhausted = false;
+    for_each_layer(&once, model, |layer| {
+        if *budget == 0 {
+            exhausted = true;
+            return false;
+        }
+        *budget -= 1;
+        let angle = if layer.angle.is_finite() {
+            layer.angle
+        } else {
+            0.0
+        };
+        let mine = layer.instruction == Some(span);
+        match (&mut run, mine) {
+            (None, true) => {
+                run = Some(Run {
+                    first_layer: layer.index,
+                    layers: 1,
+                    from: previous,
+                    to: angle,
+                })
+            }
+            (Some(r), true) => {
+                r.layers += 1;
+                r.to = angle;
+            }
+            (Some(_), false) => return false,
+            (None, false) => {}
+        }
+        previous = angle;
+        true
+    });
+    if exhausted { None } else { run }
 }
 
 /// A contiguous block of layers governed by one instruction.
@@ -75,8 +150,9 @@ pub struct Run {
 pub struct InstructionPreview {
     /// Layers governed in the whole model.
     pub layers: usize,
-    /// The first run, where the instruction first acts.
-    pub first_run: Option<Run>,
+    /// The first block of consecutive layers it governs. Several ranges of the same
+    /// instruction in a row merge here; `first_run` tells them apart.
+    pub first_block: Option<Run>,
     /// The first layers it governs: (layer index, angle, fill).
     pub sample: Vec<(usize, f64, Fill)>,
 }
@@ -86,7 +162,9 @@ pub struct Preview {
     pub model: ModelSettings,
     /// The first layers of the model: (angle, fill).
     pub first: Vec<(f64, Fill)>,
-    /// Angles sampled evenly over the whole model, for the sparkline.
+    /// The first `SPARKLINE_WIDTH` layers' angles, one per layer, for the sparkline.
+    pub head: Vec<f64>,
+    /// Angles sampled evenly over the whole model (when it is longer than `head`).
     pub samples: Vec<f64>,
     pub min: f64,
     pub max: f64,
@@ -99,6 +177,7 @@ impl Preview {
         let n = template.instructions.len();
         let mut instructions = vec![InstructionPreview::default(); n];
         let mut first = Vec::new();
+        let mut head = Vec::new();
         let mut samples = Vec::new();
         let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
         let layers = model.layers.max(1);
@@ -112,6 +191,9 @@ impl Preview {
             };
             if first.len() < FIRST_LAYERS {
                 first.push((angle, layer.fill));
+            }
+            if head.len() < SPARKLINE_WIDTH {
+                head.push(angle);
             }
             // Sample column c at layer ⌊c × layers / width⌋.
             if layer.index >= next_sample && samples.len() < SPARKLINE_WIDTH {
@@ -128,9 +210,9 @@ impl Preview {
                 if p.sample.len() < INSTRUCTION_SAMPLE {
                     p.sample.push((layer.index, angle, layer.fill));
                 }
-                match &mut p.first_run {
+                match &mut p.first_block {
                     None => {
-                        p.first_run = Some(Run {
+                        p.first_block = Some(Run {
                             first_layer: layer.index,
                             layers: 1,
                             from: previous.0,
@@ -147,6 +229,7 @@ impl Preview {
                 }
             }
             previous = (angle, which);
+            true
         });
         if !min.is_finite() {
             (min, max) = (0.0, 0.0);
@@ -154,6 +237,7 @@ impl Preview {
         Preview {
             model: *model,
             first,
+            head,
             samples,
             min,
             max,
@@ -161,9 +245,14 @@ impl Preview {
         }
     }
 
-    /// The sampled sequence as a Unicode sparkline, scaled between the lowest and highest
-    /// angle of the whole model.
-    pub fn sparkline(&self) -> String {
+    /// The first layers as a Unicode sparkline, one mark per layer, scaled between the
+    /// lowest and highest angle of the whole model.
+    pub fn head_sparkline(&self) -> String {
+        sparkline(&self.head, self.min, self.max)
+    }
+
+    /// The whole model sampled evenly (one mark per ⌈layers / width⌉ layers).
+    pub fn model_sparkline(&self) -> String {
         sparkline(&self.samples, self.min, self.max)
     }
 }

@@ -48,11 +48,14 @@ async fn read_frame<R: AsyncRead + Unpin>(reader: &mut BufReader<R>) -> io::Resu
             continue; // stray blank lines between messages
         }
         saw_header = true;
-        if let Some((name, value)) = text.split_once(':')
-            && name.trim().eq_ignore_ascii_case("content-length")
-        {
-            match value.trim().parse::<usize>() {
-                Ok(n) => length = Some(n),
+        // Found anywhere in the line, so that after a body shorter or longer than its
+        // declared length the next header is still recognised and the stream resyncs.
+        if let Some(at) = text.to_ascii_lowercase().find("content-length:") {
+            match text[at + "content-length:".len()..].trim().parse::<usize>() {
+                Ok(n) => {
+                    length = Some(n);
+                    bad_length = false;
+                }
                 Err(_) => bad_length = true,
             }
         }
@@ -92,6 +95,17 @@ fn decodable(body: &[u8]) -> bool {
         || serde_json::from_slice::<Request>(body).is_ok()
 }
 
+/// `$/` requests (with an id) must be answered with Method not found, but
+/// tower-lsp-server drops them silently, leaving the client waiting: answer here.
+fn dollar_request(body: &[u8]) -> Option<Vec<u8>> {
+    let request = serde_json::from_slice::<Request>(body).ok()?;
+    if !request.method().starts_with("$/") {
+        return None;
+    }
+    let id = serde_json::to_value(request.id()?).ok()?;
+    Some(error_frame(id, -32601, "Method not found"))
+}
+
 /// The error for a body tower cannot decode: Invalid Request when it is JSON (with its id,
 /// if it has one), Parse error otherwise.
 fn rejection(body: &[u8]) -> Vec<u8> {
@@ -125,6 +139,9 @@ where
             Frame::Refused(why) => {
                 eprintln!("rotlang-lsp: skipped a message: {why}");
                 let _ = replies.send(error_frame(Value::Null, -32700, why)).await;
+            }
+            Frame::Body(body) if let Some(reply) = dollar_request(&body) => {
+                let _ = replies.send(reply).await;
             }
             Frame::Body(body) if decodable(&body) => {
                 to_server.write_all(&frame(&body)).await?;
@@ -204,6 +221,11 @@ mod tests {
         assert!(!decodable(br#"{"foo":1}"#));
         assert!(!decodable(b"{nope"));
         assert!(!decodable(&[0xff, 0xfe]));
+        assert!(dollar_request(br#"{"jsonrpc":"2.0","id":3,"method":"$/x"}"#).is_some());
+        assert!(
+            dollar_request(br#"{"jsonrpc":"2.0","method":"$/cancelRequest","params":{"id":1}}"#)
+                .is_none()
+        );
         let r = String::from_utf8(rejection(br#"{"id":7,"x":1}"#)).unwrap();
         assert!(r.contains(r#""id":7"#) && r.contains("-32600"), "{r}");
     }

@@ -133,6 +133,11 @@ impl Lsp {
         }
     }
 
+    /// Forget messages already read but not yet asked for.
+    pub fn clear_backlog(&mut self) {
+        self.backlog.clear();
+    }
+
     /// Messages that arrive within `d`, without waiting for anything in particular.
     pub fn drain(&mut self, d: Duration) -> Vec<Value> {
         let deadline = Instant::now() + d;

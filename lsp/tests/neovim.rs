@@ -1,0 +1,57 @@
+//! End to end with a real editor: headless Neovim (Debian's 0.7.2) talks to the built
+//! `rotlang-lsp` through `vim.lsp.start_client`. `tests/nvim/run.sh` installs Neovim
+//! when it is missing and we are root (CI), and `tests/nvim/e2e.lua` drives the editor.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+use serde_json::Value;
+
+#[test]
+fn neovim_shows_the_diagnostic_clears_it_and_hovers() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/nvim");
+    let out = std::env::temp_dir().join(format!("rotlang-nvim-{}.json", std::process::id()));
+    let _ = std::fs::remove_file(&out);
+    let status = Command::new("bash")
+        .arg(dir.join("run.sh"))
+        .arg(env!("CARGO_BIN_EXE_rotlang-lsp"))
+        .arg(&out)
+        .stdin(Stdio::null())
+        .status()
+        .expect("run tests/nvim/run.sh");
+    if status.code() == Some(77) {
+        eprintln!("SKIPPED: Neovim is not available (see the message above)");
+        return;
+    }
+    assert!(status.success(), "run.sh failed: {status}");
+    let text = std::fs::read_to_string(&out).expect("e2e.lua wrote its result");
+    let _ = std::fs::remove_file(&out);
+    let r: Value = serde_json::from_str(&text).expect("result JSON");
+    assert_eq!(r["ok"], true, "{r:#}");
+    assert_eq!(r["got_diagnostic"], true, "{r:#}");
+    let d = &r["diagnostic"];
+    assert!(
+        d["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("unknown sign `X`"),
+        "{r:#}"
+    );
+    // `0, +30X5`: the X is at byte (and UTF-16) column 6.
+    assert_eq!(
+        (d["lnum"].as_i64(), d["col"].as_i64(), d["end_col"].as_i64()),
+        (Some(0), Some(6), Some(7)),
+        "{r:#}"
+    );
+    assert_eq!(d["severity"], 1, "an error");
+    assert_eq!(
+        r["cleared"], true,
+        "fixing the text clears the diagnostic: {r:#}"
+    );
+    let hover = r["hover"].as_str().unwrap_or("");
+    assert!(
+        hover.contains("`+22.5/50%` turns +22.5° linearly over the next 50% of the object height"),
+        "{hover}"
+    );
+    assert!(hover.contains("Model: 100 layers × 0.2 mm"), "{hover}");
+}

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# End-to-end run with a real editor: headless Neovim starts rotlang-lsp through
+# `vim.lsp.start_client` (the 0.7 API), opens a bad .rot file, waits for the
+# diagnostic, fixes the text, sees the diagnostics cleared, and hovers (e2e.lua).
+#
+# Usage: run.sh PATH/TO/rotlang-lsp RESULT.json
+# Installs Debian's `neovim` when `nvim` is missing and we are root (as in CI);
+# otherwise exits 77 ("skipped") with a message saying why.
+set -euo pipefail
+
+server=${1:?usage: run.sh SERVER RESULT.json}
+out=${2:?usage: run.sh SERVER RESULT.json}
+here=$(cd "$(dirname "$0")" && pwd)
+
+if ! command -v nvim >/dev/null 2>&1; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        echo "run.sh: installing neovim (Debian package)" >&2
+        export DEBIAN_FRONTEND=noninteractive
+        apt-get update -qq >&2
+        apt-get install -y -qq neovim >&2
+    else
+        echo "SKIPPED: nvim is not installed and installing it needs root (apt-get install neovim)"
+        exit 77
+    fi
+fi
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# -u NONE -i NONE -n: no user config, no shada, no swap: the run sees only e2e.lua.
+# The timeout is a last resort: e2e.lua bounds each wait itself and always quits.
+ROTLANG_LSP="$server" ROTLANG_OUT="$out" ROTLANG_DIR="$work" \
+    timeout 120 nvim --headless -u NONE -i NONE -n -c "luafile $here/e2e.lua" </dev/null

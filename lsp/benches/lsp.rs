@@ -1,1 +1,90 @@
-fn main() {}
+//! Diagnostics and hover for a 10 KB OrcaSlicer profile (target: under 10 ms together).
+//!
+//! Run with `cargo bench -p rotlang-lsp`. Each benchmark starts from the document text,
+//! as the server does on every change (full sync): scan, unescape, parse, convert.
+
+use std::str::FromStr;
+
+use rotlang_lsp::document::{Document, Kind};
+use rotlang_lsp::position::{Encoding, Positions};
+use rotlang_lsp::settings::ModelSettings;
+use rotlang_lsp::{diagnostics, hover};
+use tower_lsp_server::ls_types::Uri;
+
+fn main() {
+    divan::main();
+}
+
+/// A process preset of about 10 KB: many ordinary settings, the two templates (one with
+/// an escaped degree sign and a mistake, so diagnostics have work to do).
+fn profile() -> String {
+    let mut fields = vec![
+        r#"  "type": "process""#.to_string(),
+        r#"  "name": "0.20mm Standard @rotlang \u00b0""#.to_string(),
+        r#"  "sparse_infill_rotate_template": "+10L25%, -10l25%, -10L25%, +10l25%, B!, +30/5mm, 45\u00b0""#.to_string(),
+        r#"  "solid_infill_rotate_template": "0, 90, +15#10, 30X""#.to_string(),
+    ];
+    let mut i = 0;
+    while fields.iter().map(|f| f.len() + 2).sum::<usize>() < 10_000 {
+        fields.push(format!(r#"  "setting_number_{i}": ["0.2", "0.4", "{i}"]"#));
+        fields.push(format!(
+            r#"  "description_{i}": "a \"quoted\" value with \\ escapes""#
+        ));
+        i += 1;
+    }
+    format!("{{\n{}\n}}\n", fields.join(",\n"))
+}
+
+#[divan::bench]
+fn diagnostics_10kb(bencher: divan::Bencher) {
+    let text = profile();
+    assert!((10_000..11_000).contains(&text.len()), "{}", text.len());
+    let uri = Uri::from_str("file:///tmp/profile.json").expect("uri");
+    bencher.bench(|| {
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let pos = Positions::new(&doc.text, Encoding::Utf16);
+        let diags = diagnostics::diagnostics(&doc, &uri, &pos);
+        assert_eq!(diags.len(), 2);
+        diags
+    });
+}
+
+#[divan::bench]
+fn hover_instruction_10kb(bencher: divan::Bencher) {
+    let text = profile();
+    let at = text.find("-10l25%").expect("instruction") + 2;
+    let model = ModelSettings::default();
+    bencher.bench(|| {
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let pos = Positions::new(&doc.text, Encoding::Utf16);
+        hover::hover(&doc, at, &model, &pos).expect("a hover")
+    });
+}
+
+#[divan::bench]
+fn hover_template_10kb(bencher: divan::Bencher) {
+    let text = profile();
+    let at = text.find(", B!").expect("separator") + 1;
+    let model = ModelSettings::default();
+    bencher.bench(|| {
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let pos = Positions::new(&doc.text, Encoding::Utf16);
+        hover::hover(&doc, at, &model, &pos).expect("a hover")
+    });
+}
+
+/// Both, as one keystroke costs: the change (diagnostics) and the hover that follows.
+#[divan::bench]
+fn diagnostics_and_hover_10kb(bencher: divan::Bencher) {
+    let text = profile();
+    let at = text.find("-10l25%").expect("instruction") + 2;
+    let uri = Uri::from_str("file:///tmp/profile.json").expect("uri");
+    let model = ModelSettings::default();
+    bencher.bench(|| {
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let pos = Positions::new(&doc.text, Encoding::Utf16);
+        let diags = diagnostics::diagnostics(&doc, &uri, &pos);
+        let hover = hover::hover(&doc, at, &model, &pos);
+        (diags, hover)
+    });
+}

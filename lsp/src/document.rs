@@ -14,19 +14,25 @@ pub enum Kind {
 }
 
 impl Kind {
-    /// From the client's `languageId`, then the file extension. Unknown documents are
-    /// treated as `.rot`, since the client chose to send them to this server.
-    pub fn detect(language_id: &str, uri: &str) -> Kind {
+    /// From the client's `languageId`, then the file extension. `None` for documents that
+    /// are neither (a client that sends every plain-text file gets no diagnostics on them).
+    pub fn detect(language_id: &str, uri: &str) -> Option<Kind> {
         match language_id {
-            "json" | "jsonc" => return Kind::Json,
-            "rotlang" | "rot" => return Kind::Rot,
+            "json" | "jsonc" => return Some(Kind::Json),
+            "rotlang" | "rot" => return Some(Kind::Rot),
             _ => {}
         }
-        let path = uri.split(['?', '#']).next().unwrap_or(uri);
-        if path.to_ascii_lowercase().ends_with(".json") {
-            Kind::Json
+        let path = uri
+            .split(['?', '#'])
+            .next()
+            .unwrap_or(uri)
+            .to_ascii_lowercase();
+        if path.ends_with(".json") {
+            Some(Kind::Json)
+        } else if path.ends_with(".rot") {
+            Some(Kind::Rot)
         } else {
-            Kind::Rot
+            None
         }
     }
 }

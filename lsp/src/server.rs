@@ -23,26 +23,47 @@ struct State {
     encoding: Encoding,
     model: ModelSettings,
     inlay_refresh: bool,
+    /// The client answers `workspace/configuration` (the pull model).
+    pull_configuration: bool,
 }
 
 pub struct Backend {
     client: Client,
-    state: Mutex<State>,
+    state: Arc<Mutex<State>>,
 }
 
 impl Backend {
     pub fn new(client: Client) -> Backend {
         Backend {
             client,
-            state: Mutex::new(State::default()),
+            state: Arc::new(Mutex::new(State::default())),
         }
     }
 
-    /// A panic in one handler must not take the state down with it for the others.
     fn state(&self) -> MutexGuard<'_, State> {
-        self.state
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner())
+        lock(&self.state)
+    }
+
+    /// Ask the client for the `rotlang` section (clients that push settings through
+    /// didChangeConfiguration send nothing useful there, and VS Code-style clients send
+    /// `null` and expect a pull). Spawned, so a client that never answers blocks nothing.
+    fn pull_configuration(&self) {
+        if !self.state().pull_configuration {
+            return;
+        }
+        let client = self.client.clone();
+        let state = self.state.clone();
+        tokio::spawn(async move {
+            let item = ConfigurationItem {
+                scope_uri: None,
+                section: Some("rotlang".into()),
+            };
+            if let Ok(values) = client.configuration(vec![item]).await
+                && let Some(value) = values.first()
+            {
+                lock(&state).model.update(value);
+            }
+        });
     }
 
     /// The document (shared, so no lock is held while computing), the encoding and model.
@@ -85,6 +106,13 @@ impl Backend {
     }
 }
 
+fn lock(state: &Mutex<State>) -> MutexGuard<'_, State> {
+    // A panic in one handler must not take the state down with it for the others.
+    state
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
 /// Run a feature, turning a panic (a bug, never expected) into "no answer" instead of a
 /// dead server.
 fn guard<T>(f: impl FnOnce() -> T) -> Option<T> {
@@ -109,6 +137,12 @@ impl LanguageServer for Backend {
             .as_ref()
             .and_then(|g| g.position_encodings.as_deref());
         let encoding = Encoding::negotiate(offered);
+        let pull_configuration = params
+            .capabilities
+            .workspace
+            .as_ref()
+            .and_then(|w| w.configuration)
+            .unwrap_or(false);
         let inlay_refresh = params
             .capabilities
             .workspace
@@ -120,6 +154,7 @@ impl LanguageServer for Backend {
             let mut state = self.state();
             state.encoding = encoding;
             state.inlay_refresh = inlay_refresh;
+            state.pull_configuration = pull_configuration;
             if let Some(options) = &params.initialization_options {
                 let rejected = state.model.update(options);
                 if !rejected.is_empty() {
@@ -140,7 +175,9 @@ impl LanguageServer for Backend {
         })
     }
 
-    async fn initialized(&self, _: InitializedParams) {}
+    async fn initialized(&self, _: InitializedParams) {
+        self.pull_configuration();
+    }
 
     async fn shutdown(&self) -> Result<()> {
         Ok(())
@@ -148,7 +185,9 @@ impl LanguageServer for Backend {
 
     async fn did_open(&self, params: DidOpenTextDocumentParams) {
         let d = params.text_document;
-        let kind = Kind::detect(&d.language_id, d.uri.as_str());
+        let Some(kind) = Kind::detect(&d.language_id, d.uri.as_str()) else {
+            return; // not a template file: requests on it answer null
+        };
         self.open(d.uri, d.text, kind, d.version).await;
     }
 
@@ -187,6 +226,9 @@ impl LanguageServer for Backend {
     }
 
     async fn did_change_configuration(&self, params: DidChangeConfigurationParams) {
+        if params.settings.is_null() {
+            self.pull_configuration();
+        }
         let rejected = self.update_settings(&params.settings);
         if !rejected.is_empty() {
             self.client

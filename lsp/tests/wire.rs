@@ -261,6 +261,56 @@ fn the_model_comes_from_settings() {
     );
 }
 
+#[test]
+fn the_model_can_be_pulled_with_workspace_configuration() {
+    let mut lsp = Lsp::spawn();
+    lsp.configuration = json!({"layers": 7, "layerHeight": 0.25});
+    lsp.result(
+        "initialize",
+        json!({"capabilities": {"workspace": {"configuration": true}}}),
+    );
+    lsp.notify("initialized", json!({}));
+    let request = lsp.wait(|m| m["method"] == "workspace/configuration");
+    assert_eq!(request["params"]["items"][0]["section"], "rotlang");
+    lsp.open(ROT, "rotlang", "0, 90");
+    // The answer is applied as soon as it arrives; allow the server a moment.
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
+    loop {
+        let h = hover_text(&mut lsp, ROT, 0, 2);
+        if h.contains("Model: 7 layers × 0.25 mm") {
+            break;
+        }
+        assert!(std::time::Instant::now() < deadline, "{h}");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    // A push of `null` (the pull model's "something changed") pulls again.
+    lsp.configuration = json!({"layers": 9});
+    lsp.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": null}),
+    );
+    lsp.wait(|m| m["method"] == "workspace/configuration");
+}
+
+#[test]
+fn other_documents_are_left_alone() {
+    let mut lsp = Lsp::start();
+    let uri = "file:///tmp/notes.txt";
+    lsp.notify(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": uri, "languageId": "plaintext", "version": 1, "text": "+30X"}}),
+    );
+    assert_eq!(hover_text(&mut lsp, uri, 0, 1), "");
+    // A `.rot` file is recognised by its extension whatever the language id.
+    let diags = lsp.open("file:///tmp/by-extension.rot", "plaintext", "+30X");
+    assert_eq!(diags.len(), 1);
+    let published = lsp.drain(std::time::Duration::from_millis(200));
+    assert!(
+        !published.iter().any(|m| m["params"]["uri"] == uri),
+        "{published:?}"
+    );
+}
+
 /// Decode the delta-encoded semantic tokens into (line, col, len, type, modifiers).
 fn decode(
     data: &[Value],

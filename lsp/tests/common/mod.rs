@@ -21,6 +21,8 @@ pub struct Lsp {
     next_id: i64,
     /// Messages read while waiting for something else.
     backlog: VecDeque<Value>,
+    /// The answer to the server's `workspace/configuration` requests (one per item).
+    pub configuration: Value,
 }
 
 impl Lsp {
@@ -54,6 +56,7 @@ impl Lsp {
             rx,
             next_id: 1,
             backlog: VecDeque::new(),
+            configuration: Value::Null,
         }
     }
 
@@ -108,7 +111,8 @@ impl Lsp {
     }
 
     /// The next message matching `pred` (from the backlog first), within the timeout.
-    /// Requests from the server (e.g. `workspace/configuration`) are answered with null.
+    /// Requests from the server are answered: `workspace/configuration` with
+    /// `self.configuration`, anything else with null.
     pub fn wait(&mut self, pred: impl Fn(&Value) -> bool) -> Value {
         if let Some(i) = self.backlog.iter().position(&pred) {
             return self.backlog.remove(i).expect("backlog entry");
@@ -119,8 +123,12 @@ impl Lsp {
             match self.rx.recv_timeout(left) {
                 Ok(m) => {
                     if m.get("method").is_some() && m.get("id").is_some() {
-                        let reply = json!({"jsonrpc": "2.0", "id": m["id"], "result": null});
-                        self.send(&reply);
+                        let result = if m["method"] == "workspace/configuration" {
+                            json!([self.configuration])
+                        } else {
+                            Value::Null
+                        };
+                        self.send(&json!({"jsonrpc": "2.0", "id": m["id"], "result": result}));
                     }
                     if pred(&m) {
                         return m;

@@ -92,6 +92,9 @@ pub fn first_run(
     if ins.is_dummy() {
         return None;
     }
+    // The copy costs one unit per instruction: on a 1 MB template only a few first runs
+    // are computed this way, and the rest fall back to the first block.
+    *budget = budget.checked_sub(template.instructions.len())?;
     let mut once = template.clone();
     let target = once.instructions.get_mut(index)?;
     if target.one_time.is_none() {

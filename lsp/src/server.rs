@@ -203,13 +203,11 @@ impl LanguageServer for Backend {
             match change.range {
                 None => text = Some(change.text),
                 Some(range) => {
-                    let current = text.take().unwrap_or_else(|| old.text.clone());
-                    let span = Positions::new(&current, encoding).span(range);
-                    let mut next = current.clone();
-                    if let Some(span) = span {
-                        next.replace_range(span.range(), &change.text);
+                    let mut current = text.take().unwrap_or_else(|| old.text.clone());
+                    if let Some(span) = Positions::new(&current, encoding).span(range) {
+                        current.replace_range(span.range(), &change.text);
                     }
-                    text = Some(next);
+                    text = Some(current);
                 }
             }
         }

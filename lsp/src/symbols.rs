@@ -5,7 +5,7 @@ use tower_lsp_server::ls_types::{DocumentSymbol, SymbolKind};
 
 use crate::document::{Document, Region};
 use crate::hover::describe;
-use crate::position::Positions;
+use crate::position::{Cursor, Positions};
 use crate::settings::ModelSettings;
 
 /// Symbols per document: an outline of a 1 MB template is no use past this.
@@ -41,12 +41,18 @@ fn instructions(
     budget: &mut usize,
 ) -> Vec<DocumentSymbol> {
     let mut out = Vec::new();
+    // Instructions come in text order: the cursor keeps a one-line 1 MB template linear.
+    let mut cursor = Cursor::new(pos);
     for ins in &region.parse.template.instructions {
         if *budget == 0 || ins.span.is_empty() {
             break;
         }
         *budget -= 1;
-        let range = pos.range(region.doc_span(ins.span));
+        let span = region.doc_span(ins.span);
+        let range = tower_lsp_server::ls_types::Range::new(
+            cursor.position(span.start),
+            cursor.position(span.end),
+        );
         let name = region.text.get(ins.span.range()).unwrap_or("?").to_string();
         out.push(symbol(
             name,

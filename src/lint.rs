@@ -26,19 +26,21 @@ pub(crate) fn check(
         angle_range(ins, out);
         zero_count(ins, out);
         dummy(text, ins, out);
-        if let (Some(j), Some(a)) = (ins.joint, &ins.angle)
+        // A joint or flip shapes a turn; an absolute angle has none to shape.
+        let shape = ins
+            .joint
+            .map(|j| (j.span, format!("the joint `{}`", j.value.symbol())))
+            .or(ins.flip.map(|f| (f, "the flip `-`".to_owned())));
+        if let (Some((span, what)), Some(a)) = (shape, &ins.angle)
             && a.sign.is_none()
             && ins.dummy.is_none()
         {
             out.push(
                 Diagnostic::warning(
                     "rotlang::joint-on-absolute-angle",
-                    format!(
-                        "the joint `{}` has no effect on an absolute angle",
-                        j.value.symbol()
-                    ),
+                    format!("{what} has no effect on an absolute angle"),
                 )
-                .with_primary(j.span, "this shape is never used")
+                .with_primary(span, "this shape is never used")
                 .with_secondary(a.span, "an absolute angle stays constant over its range")
                 .with_help(format!(
                     "to turn by {} over the range, write `+{}`",

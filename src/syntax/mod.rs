@@ -123,6 +123,26 @@ fn chunk_error(
             "did you mean `{joined}`? A space ends an instruction"
         ));
     }
+    // `+30/1,5mm`: a decimal comma, read as a separator.
+    if let Some(prev) = previous
+        && prev.span.end + 1 == chunk.span.start
+        && text.as_bytes().get(prev.span.end) == Some(&b',')
+        && prev.text.ends_with(|c: char| c.is_ascii_digit())
+        && chunk.text.starts_with(|c: char| c.is_ascii_digit())
+        && RotParser::parse(Rule::instruction, &format!("{}.{}", prev.text, chunk.text)).is_ok()
+    {
+        let comma = Span::new(prev.span.end, chunk.span.start);
+        return Diagnostic::error(
+            "rotlang::decimal-comma",
+            "a comma separates instructions; decimals use a dot",
+        )
+        .with_primary(
+            comma,
+            format!("did you mean `{}.{}`?", prev.text, chunk.text),
+        )
+        .with_secondary(chunk.span, "read as an instruction of its own")
+        .with_fix("write a decimal point", comma, ".");
+    }
     let pos = match err.location {
         InputLocation::Pos(p) => p,
         InputLocation::Span((s, _)) => s,

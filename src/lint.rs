@@ -3,6 +3,7 @@
 
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::*;
+use crate::syntax::Sink;
 use crate::syntax::split::Chunk;
 
 pub(crate) fn check(
@@ -10,7 +11,7 @@ pub(crate) fn check(
     template: &Template,
     chunks: &[Chunk<'_>],
     target: Target,
-    out: &mut Vec<Diagnostic>,
+    out: &mut Sink,
 ) {
     for ins in &template.instructions {
         if target == Target::Solid
@@ -86,7 +87,7 @@ fn fmt_deg(d: f64) -> String {
     format!("{}°", (d * 1e6).round() / 1e6)
 }
 
-fn angle_range(ins: &Instruction, out: &mut Vec<Diagnostic>) {
+fn angle_range(ins: &Instruction, out: &mut Sink) {
     let Some(a) = &ins.angle else { return };
     let d = a.degrees();
     if a.sign.is_none() && !(0.0..=360.0).contains(&d) {
@@ -107,7 +108,7 @@ fn angle_range(ins: &Instruction, out: &mut Vec<Diagnostic>) {
     }
 }
 
-fn zero_count(ins: &Instruction, out: &mut Vec<Diagnostic>) {
+fn zero_count(ins: &Instruction, out: &mut Sink) {
     let Some(c) = ins.count else { return };
     let zero = match c.kind {
         CountKind::Layers(n) => n < 1.0,
@@ -124,7 +125,7 @@ fn zero_count(ins: &Instruction, out: &mut Vec<Diagnostic>) {
     }
 }
 
-fn dummy(text: &str, ins: &Instruction, out: &mut Vec<Diagnostic>) {
+fn dummy(text: &str, ins: &Instruction, out: &mut Sink) {
     let Some(star) = ins.dummy else { return };
     if let Some(r) = ins.repeat {
         out.push(

@@ -10,9 +10,12 @@ use serde_json::Value;
 /// More layers than any printer makes; previews cost time per layer, so they stop here.
 pub const MAX_LAYERS: usize = 1_000_000;
 const MAX_SHELLS: u32 = 10_000;
+const MIN_HEIGHT: f64 = 0.001;
+const MAX_HEIGHT: f64 = 1000.0;
 
-/// The model previews are evaluated on. The default is the documentation's 20 mm cube:
-/// 100 layers of 0.2 mm, no shells.
+/// The model previews are evaluated on. The default is the documentation's 20 mm cube as
+/// the library defines it (`Model::cube20`): 100 layers of 0.2 mm, 3 bottom and 4 top
+/// shell layers (OrcaSlicer's defaults, what `B` and `T` count).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ModelSettings {
     pub layers: usize,
@@ -28,8 +31,8 @@ impl Default for ModelSettings {
             layers: 100,
             layer_height: 0.2,
             first_layer_height: None,
-            bottom_shell_layers: 0,
-            top_shell_layers: 0,
+            bottom_shell_layers: 3,
+            top_shell_layers: 4,
         }
     }
 }

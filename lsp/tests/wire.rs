@@ -178,7 +178,10 @@ fn hover_on_an_instruction_describes_it_and_its_layers() {
     assert!(h.contains("`+22.5N50%` turns +22.5° along a sine (vertical connection) over the next 50% of the object height"), "{h}");
     assert!(h.contains("Governs"), "{h}");
     assert!(h.contains("Layers: 1: "), "layers it governs, listed: {h}");
-    assert!(h.contains("Model: 100 layers × 0.2 mm (20 mm tall)"), "{h}");
+    assert!(
+        h.contains("Model: 100 layers × 0.2 mm (20 mm tall), shells B = 3, T = 4"),
+        "{h}"
+    );
 
     let (text, line, col, _) = cursor("+22.5/5$00%");
     lsp.change(ROT, 2, &text);
@@ -559,7 +562,7 @@ fn inlay_hints_show_the_resolved_turn() {
         .iter()
         .map(|h| h["label"].as_str().unwrap())
         .collect();
-    assert_eq!(labels, ["0° for 1 layer", "0°→30° over 1 layer"]);
+    assert_eq!(labels, ["0° for 3 layers", "0°→30° over 1 layer"]);
 }
 
 #[test]

@@ -200,7 +200,7 @@ fn hover_on_an_instruction_describes_it_and_its_layers() {
     lsp.change(ROT, 4, &text);
     let h = hover_text(&mut lsp, ROT, line, col);
     assert!(
-        h.contains("keeps the current direction over the next B = 0 bottom shell layers"),
+        h.contains("keeps the current direction over the next B = 3 bottom shell layers"),
         "{h}"
     );
     assert!(h.contains("one-time"), "{h}");

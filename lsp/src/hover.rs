@@ -19,7 +19,17 @@ pub fn hover(
     model: &ModelSettings,
     pos: &Positions,
 ) -> Option<Hover> {
-    let (region, at) = doc.region_at(offset)?;
+    // On a template key in a profile, the hover is about its template.
+    let on_key = || {
+        doc.regions
+            .iter()
+            .find(|r| {
+                r.key_span
+                    .is_some_and(|k| k.start <= offset && offset <= k.end)
+            })
+            .map(|r| (r, usize::MAX))
+    };
+    let (region, at) = doc.region_at(offset).or_else(on_key)?;
     let preview = Preview::compute(&region.parse.template, model);
     let (markdown, span) = match region.instruction_at(at) {
         Some((i, ins)) => (
@@ -176,6 +186,9 @@ pub fn describe(ins: &Instruction, model: &ModelSettings) -> String {
             if n == 1 { "" } else { "s" },
             fmt_turn(deg * n as f64)
         )
+    } else if ins.joint.is_none() && ins.count.is_none() {
+        // One layer has no shape to speak of.
+        format!("turns {} in one layer", fmt_turn(deg))
     } else {
         format!("turns {} {} {range}", fmt_turn(deg), ins.shape().meaning())
     };

@@ -195,7 +195,7 @@ fn hover_on_an_instruction_describes_it_and_its_layers() {
     let (text, line, col, _) = cursor("B!, +3$00");
     lsp.change(ROT, 3, &text);
     let h = hover_text(&mut lsp, ROT, line, col);
-    assert!(h.contains("`+30` turns +30° linearly for one layer"), "{h}");
+    assert!(h.contains("`+30` turns +30° in one layer."), "{h}");
     let (text, line, col, _) = cursor("$0B!, +30");
     lsp.change(ROT, 4, &text);
     let h = hover_text(&mut lsp, ROT, line, col);
@@ -231,7 +231,12 @@ fn hover_between_instructions_shows_the_sequence() {
     // In a JSON profile, outside the template strings there is nothing to say.
     let doc = r#"{"sparse_infill_rotate_template": "0, 90"}"#;
     lsp.open(JSON, "json", doc);
-    assert_eq!(hover_text(&mut lsp, JSON, 0, 3), "");
+    assert_eq!(hover_text(&mut lsp, JSON, 0, 0), "");
+    let h = hover_text(&mut lsp, JSON, 0, 5);
+    assert!(
+        h.contains("**sparse_infill_rotate_template** `0, 90`"),
+        "on the key: {h}"
+    );
     let h = hover_text(&mut lsp, JSON, 0, doc.find("90").unwrap() as u32 - 1);
     assert!(
         h.contains("**sparse_infill_rotate_template** `0, 90`"),

@@ -94,6 +94,25 @@ fn rot_diagnostics_appear_and_clear() {
 }
 
 #[test]
+fn ranged_changes_are_applied_too() {
+    // The server asks for full sync, but applies ranged changes if a client sends them.
+    let mut lsp = Lsp::start();
+    lsp.open(ROT, "rotlang", "0, α+30X");
+    lsp.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": ROT, "version": 2},
+               "contentChanges": [{"range": range(0, 3, 0, 4), "text": ""},
+                                  {"range": range(0, 6, 0, 7), "text": "/5"}]}),
+    );
+    assert!(lsp.diagnostics(ROT, Some(2)).is_empty());
+    let symbols = lsp.result(
+        "textDocument/documentSymbol",
+        json!({"textDocument": {"uri": ROT}}),
+    );
+    assert_eq!(symbols[1]["name"], "+30/5");
+}
+
+#[test]
 fn json_profile_diagnostics_land_on_the_right_characters() {
     let mut lsp = Lsp::start();
     // `\u002b` is `+`, `\"` an inch sign: the template is `0, +30X5` and `+1/2"`.

@@ -130,11 +130,11 @@ fn whole(value: &Value, min: u64, max: u64) -> Option<usize> {
     (min..=max).contains(&n).then_some(n as usize)
 }
 
-/// A layer height in millimetres: positive, finite and not absurd.
+/// A layer height in millimetres, within the evaluator's limits (0.001 – 1000 mm).
 fn height(value: &Value) -> Option<f64> {
     value
         .as_f64()
-        .filter(|h| h.is_finite() && *h > 0.0 && *h <= 100.0)
+        .filter(|h| h.is_finite() && (MIN_HEIGHT..=MAX_HEIGHT).contains(h))
 }
 
 #[cfg(test)]
@@ -154,6 +154,8 @@ mod tests {
         assert_eq!(rejected, vec!["layers".to_string()]);
         assert_eq!((m.layers, m.bottom_shell_layers), (10, 3));
         assert!(!m.update(&json!({"layerHeight": -1})).is_empty());
+        assert!(!m.update(&json!({"layerHeight": 0.0005})).is_empty());
+        assert_eq!(m.layer_height, 0.3);
         assert!(m.update(&json!(null)).is_empty());
     }
 }

@@ -67,9 +67,11 @@ fn unit_suggestion(word: &str) -> Option<&'static str> {
         "l" | "layer" | "layers" => return Some("#"),
         _ => {}
     }
+    // An exact match first: `CM` is `cm`, although it is also one edit away from `mm`.
     ["mm", "cm"]
         .into_iter()
-        .find(|u| near(&lower, u) || lower == *u)
+        .find(|u| lower == *u)
+        .or_else(|| ["mm", "cm"].into_iter().find(|u| near(&lower, u)))
 }
 
 impl Failure<'_> {
@@ -113,6 +115,28 @@ impl Failure<'_> {
             return self.at_end();
         };
         let here = self.abs(pos, pos + c.len_utf8());
+
+        // `*2.5`, `*1e3`: a repeat count is a whole number of runs.
+        let digits_start = text[..pos]
+            .trim_end_matches(|d: char| d.is_ascii_digit())
+            .len();
+        if prev_digit && matches!(c, '.' | 'e' | 'E') && text[..digits_start].ends_with('*') {
+            let len = rest
+                .bytes()
+                .take_while(|b| b.is_ascii_alphanumeric() || matches!(b, b'.' | b'+' | b'-'))
+                .count();
+            let len = rest[..len]
+                .trim_end_matches(|ch: char| !ch.is_ascii_digit())
+                .len()
+                .max(1);
+            return Diagnostic::error(
+                "rotlang::repeat-not-whole",
+                "a repeat count `*ℤ` is a whole number",
+            )
+            .with_primary(self.abs(digits_start, pos + len), "not a whole number")
+            .with_secondary(self.abs(digits_start - 1, digits_start), "a repeat count")
+            .with_help("`*3` runs the instruction 3 times in a row; write whole digits only");
+        }
 
         // Numbers written in ways the language does not read.
         if c == '.' {
@@ -169,6 +193,8 @@ impl Failure<'_> {
             && !text[..pos].contains(|c: char| {
                 Joint::from_symbol(c).is_some() || c == '-' || c == '!' || c == '%' || c == ':'
             })
+            // `+30m3` is the monotonic sign in lower case, not metres (handled below).
+            && !(unit == "m" && self.parses_with(pos, 1, "M"))
         {
             let span = self.abs(pos, pos + unit.len());
             return Diagnostic::error("rotlang::unit-after-angle", format!("the unit `{unit}` follows an angle, not a count"))
@@ -180,7 +206,36 @@ impl Failure<'_> {
                 .with_primary(self.abs(0, 2), "two signs")
                 .with_help("`+30` turns counter-clockwise, `-30` clockwise");
         }
+        // A misspelt unit right after a count's number (`5CM`, `5layers`), checked before
+        // the signs: its first letter may also be a sign (`M`, `l`).
+        if c.is_ascii_alphabetic() {
+            let start = text[..pos]
+                .trim_end_matches(|ch: char| ch.is_ascii_alphabetic())
+                .len();
+            let word = self.word_at(start);
+            if text[..start].ends_with(|ch: char| ch.is_ascii_digit())
+                && word.len() >= 2
+                && let Some(u) = unit_suggestion(word)
+                    .filter(|u| *u != word && self.parses_with(start, word.len(), u))
+            {
+                return self.unknown_unit(start, word, u);
+            }
+        }
+
         // Units in the wrong place.
+        // `#` and `%` are units too: after `B`/`T` they are the same mistake as `mm`.
+        let unit_here = if matches!(c, '#' | '%') {
+            Some(&rest[..1])
+        } else {
+            is_unit_start(rest)
+        };
+        if let Some(unit) = unit_here.filter(|_| matches!(prev, Some('B' | 'T'))) {
+            let span = self.abs(pos, pos + unit.len());
+            return Diagnostic::error("rotlang::unit-after-shell-count", "`B` and `T` count layers and take no unit")
+                .with_primary(span, "a unit after a shell count")
+                .with_fix("remove the unit", span, "")
+                .with_help("`B` is the number of bottom shell layers, `T` of top shell layers; for a length write a number, as in `+30/2mm`");
+        }
         if let Some(unit) = is_unit_start(rest).filter(|_| !prev_digit) {
             let span = self.abs(pos, pos + unit.len());
             if matches!(prev, Some('B' | 'T')) {
@@ -317,19 +372,9 @@ impl Failure<'_> {
         if c.is_ascii_alphabetic() {
             let wspan = self.abs(pos, pos + word.len());
             // A "did you mean" is offered only when the corrected instruction parses.
-            let parses = |replacement: &str, len: usize| {
-                let fixed = format!("{}{}{}", &text[..pos], replacement, &text[pos + len..]);
-                RotParser::parse(Rule::instruction, &fixed).is_ok()
-            };
+            let parses = |replacement: &str, len: usize| self.parses_with(pos, len, replacement);
             if prev_digit && let Some(u) = unit_suggestion(word).filter(|u| parses(u, word.len())) {
-                let unit = Unit::from_symbol(u).map_or("", Unit::meaning);
-                return Diagnostic::error(
-                    "rotlang::unknown-unit",
-                    format!("unknown length unit `{word}`"),
-                )
-                .with_primary(wspan, format!("did you mean `{u}` ({unit})?"))
-                .with_fix(format!("write `{u}`"), wspan, u)
-                .with_help("length units: `mm cm m ' \" # %`");
+                return self.unknown_unit(pos, word, u);
             }
             let upper = c.to_ascii_uppercase();
             if c.is_ascii_lowercase() && parses(&upper.to_string(), 1) {
@@ -367,8 +412,37 @@ impl Failure<'_> {
         .with_help("templates use ASCII digits and signs, separated by commas or spaces")
     }
 
+    /// Whether the instruction parses with `len` bytes at `pos` replaced.
+    fn parses_with(&self, pos: usize, len: usize, replacement: &str) -> bool {
+        let fixed = format!(
+            "{}{}{}",
+            &self.text[..pos],
+            replacement,
+            &self.text[pos + len..]
+        );
+        RotParser::parse(Rule::instruction, &fixed).is_ok()
+    }
+
+    fn unknown_unit(&self, pos: usize, word: &str, u: &str) -> Diagnostic {
+        let wspan = self.abs(pos, pos + word.len());
+        let unit = Unit::from_symbol(u).map_or("", Unit::meaning);
+        Diagnostic::error(
+            "rotlang::unknown-unit",
+            format!("unknown length unit `{word}`"),
+        )
+        .with_primary(wspan, format!("did you mean `{u}` ({unit})?"))
+        .with_fix(format!("write `{u}`"), wspan, u)
+        .with_help("length units: `mm cm m ' \" # %`")
+    }
+
     fn at_end(&self) -> Diagnostic {
         let end = self.text.len();
+        // `+10/-`, `30-`: a flip with nothing after it (a lone `-` is an unfinished angle).
+        if self.text.ends_with('-') && end > 1 {
+            return Diagnostic::error("rotlang::flip-without-count", "a flip `-` needs a count after it")
+                .with_primary(self.abs(end - 1, end), "nothing to flip over")
+                .with_help("the flip reverses the shape over its count, as in `+22.5u-50%`; remove the `-` or add a count");
+        }
         let span = self.abs(
             end.saturating_sub(
                 self.text[..end]

@@ -323,7 +323,7 @@ fn huge_numbers_and_counts() {
         "1e999%".to_owned(),
         "1:1e999".to_owned(),
         "1e999:1".to_owned(),
-        format!("{big}"),
+        big.clone(),
         format!("+{big}"),
         format!("+30/{big}"),
         format!("+30*{big}"),

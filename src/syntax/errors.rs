@@ -116,6 +116,13 @@ impl Failure<'_> {
         };
         let here = self.abs(pos, pos + c.len_utf8());
 
+        // `"0, 90"`: a template copied with its quotes.
+        if pos == 0 && matches!(c, '"' | '\'' | '`') {
+            return Diagnostic::error("rotlang::quoted-template", "a template is written without quotes")
+                .with_primary(here, "a quote")
+                .with_fix("remove the quote", here, "")
+                .with_help("write the template's text alone: `0, 90`, not `\"0, 90\"`; `'` and `\"` are units (feet and inches) after a count");
+        }
         // `*2.5`, `*1e3`: a repeat count is a whole number of runs.
         let digits_start = text[..pos]
             .trim_end_matches(|d: char| d.is_ascii_digit())
@@ -220,6 +227,41 @@ impl Failure<'_> {
             {
                 return self.unknown_unit(start, word, u);
             }
+        }
+
+        // `1:2%`, `+30/1:2mm`: a fraction is already a share of a turn or of the height.
+        let number_start = text[..pos]
+            .trim_end_matches(|d: char| d.is_ascii_digit() || d == '.')
+            .len();
+        let after_fraction = prev_digit && text[..number_start].ends_with(':');
+        let unit_or_percent = if matches!(c, '%' | '#') {
+            Some(&rest[..1])
+        } else {
+            is_unit_start(rest)
+        };
+        if let Some(unit) = unit_or_percent.filter(|_| after_fraction) {
+            let colon = number_start - 1;
+            let frac_start = text[..colon]
+                .trim_end_matches(|d: char| d.is_ascii_digit() || d == '.')
+                .len();
+            let span = self.abs(pos, pos + unit.len());
+            let fraction = self.abs(frac_start, pos);
+            let is_angle = matches!(&text[..frac_start], "" | "+" | "-");
+            let d = if is_angle {
+                Diagnostic::error(
+                    "rotlang::unit-after-fraction",
+                    "an angle is written `α:β` or `α%`, not both",
+                )
+                .with_primary(span, format!("`{unit}` after a fraction of a turn"))
+                .with_secondary(fraction, "already a fraction of a full turn")
+                .with_help("`1:4` and `25%` are both a quarter turn (90°)")
+            } else {
+                Diagnostic::error("rotlang::unit-after-fraction", "a fraction of the height `ℍ:ℕ` takes no unit")
+                    .with_primary(span, format!("`{unit}` after a fraction of the height"))
+                    .with_secondary(fraction, "already a share of the object height")
+                    .with_help("`+30/1:2` turns over half the height; for a length write a number and a unit, as in `+30/10mm`")
+            };
+            return d.with_fix(format!("remove `{unit}`"), span, "");
         }
 
         // Units in the wrong place.
@@ -338,6 +380,13 @@ impl Failure<'_> {
                 .with_primary(here, "a runtime mark here")
                 .with_help("`*`, `*ℤ` and `!` come right after the angle or at the very end of the instruction");
         }
+        if c == ':' && text[..number_start].ends_with(':') && prev_digit {
+            let first = number_start - 1;
+            return Diagnostic::error("rotlang::bad-fraction", "a fraction has one `:`")
+                .with_primary(here, "a second `:`")
+                .with_secondary(self.abs(first, first + 1), "the fraction's `:`")
+                .with_help("`a:b` is a/b: `1:4` is a quarter turn as an angle, or a quarter of the height as a count");
+        }
         if c == ':' {
             return Diagnostic::error(
                 "rotlang::bad-fraction",
@@ -356,6 +405,17 @@ impl Failure<'_> {
             .with_primary(here, "a semicolon")
             .with_fix("use a comma", here, ",");
         }
+        if c == '\u{feff}' {
+            return Diagnostic::error(
+                "rotlang::byte-order-mark",
+                "an invisible byte-order mark (U+FEFF) is in the template",
+            )
+            .with_primary(here, "a byte-order mark")
+            .with_fix("remove the byte-order mark", here, "")
+            .with_help(
+                "some editors write it at the start of a file; save the file as UTF-8 without BOM",
+            );
+        }
         if c == '°' {
             return Diagnostic::error("rotlang::degree-sign", "angles are written without `°`")
                 .with_primary(here, "a degree sign")
@@ -363,6 +423,29 @@ impl Failure<'_> {
                 .with_help("every angle is in degrees already: write `+30`, not `+30°`");
         }
         if c.is_ascii_digit() {
+            let len = rest
+                .bytes()
+                .take_while(|b| b.is_ascii_digit() || *b == b'.')
+                .count();
+            let number = self.abs(pos, pos + len);
+            if matches!(prev, Some('B' | 'T')) {
+                let shell = self.abs(pos - 1, pos);
+                return Diagnostic::error("rotlang::two-counts", "an instruction has one count")
+                    .with_primary(number, "a second count")
+                    .with_secondary(shell, format!("the count is already `{}`", &text[pos - 1..pos]))
+                    .with_help("`B` and `T` are the numbers of bottom and top shell layers; write either one of them or a number");
+            }
+            let before_unit = ["mm", "cm", "m", "'", "\"", "%", "#"]
+                .into_iter()
+                .find(|u| {
+                    text[..pos].ends_with(u)
+                        && text[..pos - u.len()].ends_with(|d: char| d.is_ascii_digit())
+                });
+            if let Some(unit) = before_unit {
+                return Diagnostic::error("rotlang::misplaced-number", format!("a number after the unit `{unit}`"))
+                    .with_primary(number, "an extra number")
+                    .with_help("a count is a number then its unit (`+30/5mm`); after the unit only a trailing `*` or `!` may follow");
+            }
             return Diagnostic::error("rotlang::misplaced-number", "a number is out of place here")
                 .with_primary(self.abs(pos, pos + rest.bytes().take_while(|b| b.is_ascii_digit() || *b == b'.').count()), "an extra number")
                 .with_help(format!(

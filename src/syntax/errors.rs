@@ -74,6 +74,26 @@ fn unit_suggestion(word: &str) -> Option<&'static str> {
         .or_else(|| ["mm", "cm"].into_iter().find(|u| near(&lower, u)))
 }
 
+/// The ASCII character a typographic or full-width look-alike stands for.
+fn look_alike(c: char) -> Option<char> {
+    Some(match c {
+        '\u{2212}' | '\u{2010}' | '\u{2011}' | '\u{2013}' | '\u{2014}' | '\u{FF0D}' => '-',
+        '\u{FF0B}' => '+',
+        '\u{FF0C}' | '\u{3001}' => ',',
+        '\u{FF0E}' => '.',
+        '\u{FF1A}' => ':',
+        '\u{FF05}' => '%',
+        '\u{FF0F}' | '\u{2215}' | '\u{2044}' => '/',
+        '\u{2032}' | '\u{2018}' | '\u{2019}' => '\'',
+        '\u{2033}' | '\u{201C}' | '\u{201D}' => '"',
+        '\u{00D7}' | '\u{FF0A}' => '*',
+        '\u{FF01}' => '!',
+        '\u{FF03}' => '#',
+        '\u{FF10}'..='\u{FF19}' => char::from(b'0' + (c as u32 - 0xFF10) as u8),
+        _ => return None,
+    })
+}
+
 impl Failure<'_> {
     fn abs(&self, start: usize, end: usize) -> Span {
         Span::new(self.offset + start, self.offset + end)
@@ -117,7 +137,12 @@ impl Failure<'_> {
         let here = self.abs(pos, pos + c.len_utf8());
 
         // `"0, 90"`: a template copied with its quotes.
-        if pos == 0 && matches!(c, '"' | '\'' | '`') {
+        if pos == 0
+            && matches!(
+                c,
+                '"' | '\'' | '`' | '\u{201C}' | '\u{201D}' | '\u{2018}' | '\u{2019}' | '«' | '»'
+            )
+        {
             return Diagnostic::error("rotlang::quoted-template", "a template is written without quotes")
                 .with_primary(here, "a quote")
                 .with_fix("remove the quote", here, "")
@@ -481,6 +506,15 @@ impl Failure<'_> {
             return Diagnostic::error("rotlang::unknown-sign", format!("unknown sign `{shown}`"))
                 .with_primary(span, "not a sign of the language")
                 .with_help(SIGNS_HELP);
+        }
+        if let Some(ascii) = look_alike(c) {
+            return Diagnostic::error(
+                "rotlang::look-alike-character",
+                format!("`{c}` (U+{:04X}) looks like `{ascii}` but is not", c as u32),
+            )
+            .with_primary(here, format!("did you mean `{ascii}`?"))
+            .with_fix(format!("write `{ascii}`"), here, ascii.to_string())
+            .with_help("templates are plain ASCII; word processors and some keyboards substitute look-alike characters");
         }
         let shown = if c.is_control() || c.is_whitespace() {
             format!("U+{:04X}", c as u32)

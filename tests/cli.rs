@@ -399,3 +399,46 @@ fn fmt_check_conflicts_with_write() {
         ["fmt", "--check", "--write", "0"]
     );
 }
+
+#[test]
+fn check_empty_stdin_is_the_empty_template() {
+    golden!("check_stdin_empty", 0, ["check"], Some(""));
+}
+
+#[test]
+fn check_json_from_stdin() {
+    golden!(
+        "check_json_stdin",
+        1,
+        ["check", "--format", "json"],
+        Some("+30°\n+10+20\n")
+    );
+}
+
+#[test]
+fn no_colour_without_a_terminal_even_without_no_color() {
+    let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(["check", "+30X5, 400"])
+        .env_remove("NO_COLOR")
+        .env_remove("CLICOLOR_FORCE")
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(!out.stdout.contains(&0x1b), "escape codes in piped output");
+    assert!(!out.stderr.contains(&0x1b), "escape codes in piped output");
+}
+
+#[test]
+fn colour_when_asked() {
+    let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(["check", "--color", "always", "+30X5"])
+        .env_remove("NO_COLOR")
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert!(
+        out.stdout.contains(&0x1b),
+        "--color always colours piped output"
+    );
+}

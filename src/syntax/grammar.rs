@@ -14,6 +14,7 @@ pub(crate) fn rule_name(rule: Rule) -> &'static str {
         Rule::EOI => "the end of the instruction",
         Rule::template => "a template",
         Rule::instruction => "an instruction",
+        Rule::item => "an instruction",
         Rule::instruction_body => "an instruction",
         Rule::separator => "a separator (`,` or a space)",
         Rule::signs => "a solid or joint sign",

@@ -69,20 +69,37 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
     let mut instructions = Vec::with_capacity(split.chunks.len());
     let mut empties = split.empties.iter().peekable();
     let mut previous: Option<Chunk<'_>> = None;
+    // Fast path: a valid template parses in one pest call (per-call set-up dominates the
+    // cost of short instructions). Its items are exactly the chunks; when it fails, each
+    // chunk is parsed on its own for its own diagnostics.
+    let mut items = RotParser::parse(Rule::template, text)
+        .into_iter()
+        .flatten()
+        .flat_map(|t| t.into_inner())
+        .filter(|p| p.as_rule() == Rule::item);
     for chunk in &split.chunks {
         while let Some(span) = empties.next_if(|s| s.start < chunk.span.start) {
             sink.push(empty_instruction(*span, previous.is_some()));
         }
-        match RotParser::parse(Rule::instruction, chunk.text) {
-            Ok(mut pairs) => {
-                if let Some(pair) = pairs.next() {
-                    let mut lowerer = lower::Lowerer {
-                        offset: chunk.span.start,
-                        diagnostics: &mut sink,
-                    };
-                    if let Some(ins) = lowerer.instruction(pair) {
-                        instructions.push(ins);
-                    }
+        let parsed = match items.next() {
+            Some(item) if Span::new(item.as_span().start(), item.as_span().end()) == chunk.span => {
+                Ok((item, 0))
+            }
+            _ => RotParser::parse(Rule::instruction, chunk.text)
+                .map(|mut pairs| (pairs.next(), chunk.span.start))
+                .and_then(|(pair, offset)| {
+                    pair.map(|p| (p, offset))
+                        .ok_or_else(|| unreachable_error(chunk.text))
+                }),
+        };
+        match parsed {
+            Ok((pair, offset)) => {
+                let mut lowerer = lower::Lowerer {
+                    offset,
+                    diagnostics: &mut sink,
+                };
+                if let Some(ins) = lowerer.instruction(pair) {
+                    instructions.push(ins);
                 }
             }
             // Past the cap a failure is only counted: diagnosing it would cost time and
@@ -98,6 +115,17 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
         template,
         diagnostics: sink.finish(),
     }
+}
+
+/// pest always returns the rule's pair on success; should it not, the instruction is
+/// reported rather than silently dropped.
+fn unreachable_error(text: &str) -> pest::error::Error<Rule> {
+    pest::error::Error::new_from_pos(
+        ErrorVariant::CustomError {
+            message: "no instruction read".into(),
+        },
+        pest::Position::from_start(text),
+    )
 }
 
 fn empty_instruction(span: Span, after_instruction: bool) -> Diagnostic {
@@ -121,23 +149,26 @@ fn chunk_error(
     previous: Option<&Chunk<'_>>,
     err: pest::error::Error<Rule>,
 ) -> Diagnostic {
-    // `+30/50 %`: a unit split off its count by a space.
-    if let Some(prev) = previous.filter(|_| chunk.after_space_only)
+    // `+30/50 %`, `+30/5,%`: a unit split off its count by a separator.
+    if let Some(prev) = previous
         && prev.text.ends_with(|c: char| c.is_ascii_digit())
         && ["%", "mm", "cm", "m", "'", "\""].contains(&chunk.text)
     {
         let gap = Span::new(prev.span.end, chunk.span.start);
         let joined = format!("{}{}", prev.text, chunk.text);
+        let what = if chunk.after_space_only {
+            "space"
+        } else {
+            "separator"
+        };
         return Diagnostic::error(
             "rotlang::space-before-unit",
             format!("the unit `{}` is cut off from its number", chunk.text),
         )
         .with_primary(chunk.span, "a unit on its own")
-        .with_secondary(gap, "this space separates instructions")
-        .with_fix("remove the space", gap, "")
-        .with_help(format!(
-            "did you mean `{joined}`? A space ends an instruction"
-        ));
+        .with_secondary(gap, format!("this {what} ends the instruction"))
+        .with_fix(format!("remove the {what}"), gap, "")
+        .with_help(format!("did you mean `{joined}`?"));
     }
     // `+30/1,5mm`: a decimal comma, read as a separator.
     if let Some(prev) = previous

@@ -108,7 +108,11 @@ impl Angle {
     /// Degrees, with the sign applied.
     pub fn degrees(&self) -> f64 {
         let d = self.value.degrees();
-        if self.sign == Some(Sign::Minus) { -d } else { d }
+        if self.sign == Some(Sign::Minus) {
+            -d
+        } else {
+            d
+        }
     }
 }
 

@@ -1,0 +1,309 @@
+//! The state machine of SEMANTICS.md sections 3, 4 and 6: ranges, walks and runs.
+//!
+//! One [`Engine`] steps through the layers bottom to top. Its memory is O(instructions):
+//! a prepared copy of each instruction and the links of the cycle of live positions.
+//! Nothing is ever looped over or allocated per count, so `*1000000000` or a 1e6 mm
+//! length cost no more than a plain instruction.
+
+use super::model::{Cursor, Model};
+use super::{Layer, Options, random, shape::shape};
+use crate::diagnostic::Span;
+use crate::ir::{CountKind, Fill, Instruction, Joint, Template, Unit};
+use std::sync::Arc;
+
+/// Mid-layer ties (`m[i]` equal to a range end up to rounding) go to the current range.
+const TIE: f64 = 1e-6;
+
+/// Every angle, turn and height the engine keeps stays within ±LIMIT, so that no sum or
+/// product can overflow to infinity and no NaN can be born (`inf - inf`, `0 × inf`).
+/// Only absurd input (a 400-digit angle, `*1e300` counts) ever reaches the bound.
+const LIMIT: f64 = 1e300;
+
+#[inline]
+fn finite(x: f64) -> f64 {
+    if x.is_nan() {
+        0.0
+    } else {
+        x.clamp(-LIMIT, LIMIT)
+    }
+}
+
+/// How far an instruction's range reaches, resolved against the model.
+#[derive(Clone, Copy, Debug)]
+enum Extent {
+    /// The layer where the range starts, alone.
+    OneLayer,
+    /// `n ≥ 1` whole layers (a float, so that `/1e30` stays representable).
+    Layers(f64),
+    /// A height in mm above the bottom of the starting layer.
+    Length(f64),
+}
+
+/// An instruction prepared for evaluation: everything the engine needs, in the form
+/// it needs it, computed once per evaluation instead of once per layer.
+#[derive(Clone, Copy, Debug)]
+struct Step {
+    span: Span,
+    /// `α`, the angle in degrees.
+    alpha: f64,
+    relative: bool,
+    dummy: bool,
+    one_time: bool,
+    runs: u64,
+    joint: Joint,
+    flipped: bool,
+    fill: Fill,
+    extent: Extent,
+    /// The turn `d` a relative set-up makes (section 3, "The turn").
+    turn: f64,
+}
+
+impl Step {
+    fn new(instruction: &Instruction, model: &Model) -> Step {
+        let alpha = finite(instruction.degrees());
+        let shells = |n: u32| Some(f64::from(n));
+        // A count of layers, if the instruction counts layers.
+        let layers = match instruction.count.map(|c| c.kind) {
+            Some(CountKind::Layers(n)) => Some(n),
+            Some(CountKind::Bottom) => shells(model.bottom_shells()),
+            Some(CountKind::Top) => shells(model.top_shells()),
+            _ => None,
+        };
+        let length = instruction.count.and_then(|c| match c.kind {
+            CountKind::Length { value, unit } => Some(match unit.millimetres() {
+                Some(mm) => value * mm,
+                None if unit == Unit::StandardLayers => value * model.layer_height(),
+                // `%` of the object height.
+                None => value / 100.0 * model.object_height(),
+            }),
+            CountKind::HeightFraction { num, den } => Some(num / den * model.object_height()),
+            _ => None,
+        });
+        let (extent, turn) = match (layers, length) {
+            (_, Some(length)) => (Extent::Length(finite(length)), alpha),
+            // A count that is 0 (or nonsense: negative, NaN) is one layer turning by α.
+            (Some(n), _) if n > 0.0 => {
+                let whole = n.floor();
+                // One α per layer when no joint spreads the turn: `+30B` turns 30° per layer.
+                let turn = if instruction.joint.is_none() {
+                    finite(alpha * whole)
+                } else {
+                    alpha
+                };
+                (Extent::Layers(whole.max(1.0)), turn)
+            }
+            _ => (Extent::OneLayer, alpha),
+        };
+        Step {
+            span: instruction.span,
+            alpha,
+            relative: instruction.is_relative(),
+            dummy: instruction.is_dummy(),
+            one_time: instruction.is_one_time(),
+            runs: instruction.runs(),
+            joint: instruction.shape(),
+            flipped: instruction.is_flipped(),
+            fill: instruction.fill(),
+            extent,
+            turn,
+        }
+    }
+}
+
+/// The evaluation state after some layers. Cloning it is a checkpoint.
+#[derive(Clone, Debug)]
+pub(crate) struct Engine {
+    /// Shared, so that a checkpoint costs O(instructions) words, not a copy of the steps.
+    steps: Arc<[Step]>,
+    /// The live (not spent) positions form a circular doubly linked list: a walk skips
+    /// spent one-time instructions in O(1). A removed position keeps its `next`, so the
+    /// walk can still step off an instruction it has just spent.
+    next: Vec<usize>,
+    prev: Vec<usize>,
+    live: usize,
+    cursor: usize,
+    /// `stamp[c] == walk`: position `c` was set up by the current walk (section 4's
+    /// "already set up" rule, which makes every walk end).
+    stamp: Vec<u64>,
+    walk: u64,
+    base: f64,
+    seed: u64,
+    // The current range (section 3).
+    zs: f64,
+    ze: f64,
+    a0: f64,
+    d: f64,
+    joint: Joint,
+    flipped: bool,
+    fill: Fill,
+    governing: Option<Span>,
+    /// The instruction whose runs are left, and how many.
+    current: usize,
+    runs_left: u64,
+}
+
+impl Engine {
+    pub fn new(template: &Template, model: &Model, options: Options) -> Engine {
+        let steps: Arc<[Step]> = template
+            .instructions
+            .iter()
+            .map(|i| Step::new(i, model))
+            .collect();
+        let n = steps.len();
+        Engine {
+            next: (0..n).map(|c| (c + 1) % n).collect(),
+            prev: (0..n).map(|c| (c + n - 1) % n).collect(),
+            live: n,
+            cursor: 0,
+            stamp: vec![0; n],
+            walk: 0,
+            steps,
+            base: finite(options.base),
+            seed: options.seed,
+            // The empty range before layer 0 ends at b[0] = 0.
+            zs: 0.0,
+            ze: 0.0,
+            a0: 0.0,
+            d: 0.0,
+            joint: Joint::Linear,
+            flipped: false,
+            fill: Fill::Sparse,
+            governing: None,
+            current: 0,
+            runs_left: 0,
+        }
+    }
+
+    /// The layer the cursor stands on. Layers must come bottom to top, one by one.
+    #[inline]
+    pub fn layer(&mut self, at: &Cursor, model: &Model) -> Layer {
+        let (bottom, top) = (at.bottom, at.top);
+        if (bottom + top) / 2.0 > self.ze + TIE {
+            self.zs = bottom;
+            if self.runs_left > 0 {
+                // Section 6: the run plays again, measured afresh from here, same a0 and d.
+                self.runs_left -= 1;
+                let extent = self
+                    .steps
+                    .get(self.current)
+                    .map_or(Extent::OneLayer, |s| s.extent);
+                self.ze = measure(extent, at, model);
+            } else {
+                self.start_range(at, model);
+            }
+        }
+        let progress = if self.ze > self.zs {
+            let p = (top - self.zs) / (self.ze - self.zs);
+            // `clamp` keeps NaN; `max` then `min` maps it to 0 instead.
+            p.max(0.0).min(1.0)
+        } else {
+            1.0
+        };
+        let p = if self.flipped {
+            1.0 - progress
+        } else {
+            progress
+        };
+        let seed = self.seed;
+        let s = shape(self.joint, p, self.flipped, || random::unit(seed, at.index));
+        Layer {
+            index: at.index,
+            bottom,
+            top,
+            angle: finite(self.base + self.a0 + self.d * s),
+            fill: self.fill,
+            instruction: self.governing,
+        }
+    }
+
+    /// Section 3 step 1 without runs left: this layer alone, then a walk.
+    fn start_range(&mut self, at: &Cursor, model: &Model) {
+        self.ze = at.top;
+        self.fill = Fill::Sparse;
+        self.governing = None;
+        self.runs_left = 0;
+        if self.live == 0 {
+            // Everything is spent: the layer holds. Keeping the previous range's shape and
+            // flip over this one-layer range shows exactly `a0 + d × shape(end)`.
+            return;
+        }
+        self.joint = Joint::Linear;
+        self.flipped = false;
+        self.walk += 1;
+        loop {
+            let c = self.cursor;
+            if self.stamp[c] == self.walk {
+                break;
+            }
+            self.stamp[c] = self.walk;
+            let dummy = self.set_up(c, at, model);
+            if self.live == 0 {
+                break;
+            }
+            self.cursor = self.next[c];
+            // A set range ends the walk; after a dummy it goes on, but not past the wrap.
+            if !dummy || self.cursor == 0 {
+                break;
+            }
+        }
+    }
+
+    /// Sets up the instruction at position `c`; returns whether it was a dummy.
+    fn set_up(&mut self, c: usize, at: &Cursor, model: &Model) -> bool {
+        let step = self.steps[c];
+        self.a0 = finite(self.a0 + self.d);
+        self.d = 0.0;
+        if step.one_time {
+            self.spend(c);
+        }
+        self.governing = Some(step.span);
+        if step.dummy {
+            // A dummy sets no range; its relative angle waits in `d` for the next commit.
+            if step.relative {
+                self.d = step.alpha;
+            } else {
+                self.a0 = step.alpha;
+            }
+            return true;
+        }
+        if step.relative {
+            self.d = step.turn;
+        } else {
+            self.a0 = step.alpha;
+        }
+        self.joint = step.joint;
+        self.flipped = step.flipped;
+        self.fill = step.fill;
+        self.current = c;
+        self.runs_left = step.runs.saturating_sub(1);
+        self.ze = measure(step.extent, at, model);
+        false
+    }
+
+    fn spend(&mut self, c: usize) {
+        let (p, n) = (self.prev[c], self.next[c]);
+        self.next[p] = n;
+        self.prev[n] = p;
+        self.live -= 1;
+    }
+}
+
+/// The end `ze` of a range of the given extent that starts at the cursor's layer.
+fn measure(extent: Extent, at: &Cursor, model: &Model) -> f64 {
+    match extent {
+        Extent::OneLayer => at.top,
+        Extent::Length(length) => finite(at.bottom + length),
+        Extent::Layers(n) => {
+            let layers = model.len() as f64;
+            let j = at.index as f64 + n - 1.0;
+            if j >= layers - 1.0 {
+                // Past the top, standard layers extend the range (`j − L`, as OrcaSlicer
+                // counts; SEMANTICS.md section 3).
+                finite(model.last_top() + (j - layers).max(0.0) * model.layer_height())
+            } else {
+                // `j < L - 1` here, so the cast is exact.
+                model.top_at(at, j as usize)
+            }
+        }
+    }
+}

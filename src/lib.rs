@@ -6,10 +6,14 @@
 //! assert_eq!(parse.template.instructions.len(), 2);
 //! ```
 
+#[cfg(feature = "cli")]
+#[doc(hidden)]
+pub mod cli;
 pub mod diagnostic;
 pub mod eval;
 pub mod format;
 pub mod ir;
+mod lint;
 mod syntax;
 
 pub use diagnostic::{Diagnostic, Fix, Label, LineIndex, Severity, Span};

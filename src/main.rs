@@ -1,1 +1,59 @@
-fn main() {}
+//! The `rotlang` command.
+
+use std::io::Write;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use rotlang::cli;
+
+/// rotlang: check, format and expand infill rotation templates.
+///
+/// A template tells the slicer which direction the infill lines run on every layer
+/// (OrcaSlicer's sparse_infill_rotate_template and solid_infill_rotate_template):
+/// `0, 90` alternates 0° and 90°; `+30/50%` turns 30° linearly over half the height;
+/// `B!, +30` holds the bottom shell layers, then turns 30° per layer.
+#[derive(Parser, Debug)]
+#[command(name = "rotlang", version, propagate_version = true, after_help = "\
+Examples:
+  rotlang check '+10L25%, -10l25%'
+  rotlang fmt '0 90  +30/50%'
+Run `rotlang help COMMAND` for a command's options and examples.")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Report errors and warnings in templates, with the characters at fault.
+    Check(cli::check::CheckArgs),
+    /// Print templates in canonical form (or check that they are).
+    Fmt(cli::fmt::FmtArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::new(stdout.lock());
+    let mut err = std::io::stderr();
+    let result = match &cli.command {
+        Command::Check(args) => cli::check::run(args, &mut out),
+        Command::Fmt(args) => cli::fmt::run(args, &mut out, &mut err),
+    };
+    let flushed = out.flush();
+    match result {
+        Ok(code) => {
+            if let Err(e) = flushed
+                && e.kind() != std::io::ErrorKind::BrokenPipe
+            {
+                let _ = writeln!(err, "rotlang: cannot write output: {e}");
+                return ExitCode::from(2);
+            }
+            ExitCode::from(code as u8)
+        }
+        Err(e) => {
+            let _ = writeln!(err, "rotlang: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,73 @@
+//! `rotlang fmt`: the canonical form of templates.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use super::{ColorArg, TargetArg, UsageError, gather, render_human};
+
+#[derive(clap::Args, Debug)]
+#[command(after_long_help = "\
+The canonical form puts `, ` between instructions and keeps each instruction's
+text as written, so formatting never changes what a template means. Templates
+with errors are not formatted: their diagnostics are shown instead.
+
+Examples:
+  rotlang fmt '0 90  +30/50%'            prints `0, 90, +30/50%`
+  rotlang fmt --file a.rot --write       rewrites a.rot in place
+  rotlang fmt --check --file a.rot       exit 1 if a.rot is not canonical (for CI)
+
+Exit status: 0 when done (or, with --check, already canonical), 1 on a template
+with errors or, with --check, one that would change; 2 on a usage error.")]
+pub struct FmtArgs {
+    /// Templates to format. Put `--` before a template that begins with `-`.
+    #[arg(value_name = "TEMPLATE", allow_negative_numbers = true)]
+    pub templates: Vec<String>,
+    /// Format a template file. Repeatable.
+    #[arg(long = "file", short = 'f', value_name = "PATH")]
+    pub files: Vec<PathBuf>,
+    /// Print nothing; exit 1 if any input is not in canonical form.
+    #[arg(long, conflicts_with = "write")]
+    pub check: bool,
+    /// Rewrite files in place instead of printing (templates from arguments are printed).
+    #[arg(long)]
+    pub write: bool,
+    /// Which setting the templates are for.
+    #[arg(long, value_enum, default_value_t)]
+    pub target: TargetArg,
+    /// Colour diagnostics.
+    #[arg(long, value_enum, default_value_t)]
+    pub color: ColorArg,
+}
+
+pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
+    let inputs = gather(&args.templates, &args.files)?;
+    let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    let mut code = 0;
+    for input in &inputs {
+        let parse = crate::parse(&input.text, args.target.into());
+        if parse.has_errors() {
+            let report = render_human(&[(input, &parse.diagnostics)], args.color.enabled(false));
+            err.write_all(report.as_bytes()).map_err(io)?;
+            writeln!(err, "{}: not formatted: fix the errors first", input.name).map_err(io)?;
+            code = 1;
+            continue;
+        }
+        let formatted = crate::format::canonical(&input.text, &parse.template);
+        // A file keeps one trailing newline; the template itself is the rest.
+        let current = input.text.strip_suffix('\n').map_or(input.text.as_str(), |t| t.strip_suffix('\r').unwrap_or(t));
+        if args.check {
+            if current != formatted {
+                writeln!(err, "{}: not in canonical form (would be `{formatted}`)", input.name).map_err(io)?;
+                code = 1;
+            }
+        } else if let (true, Some(path)) = (args.write, &input.path) {
+            if current != formatted {
+                std::fs::write(path, format!("{formatted}\n"))
+                    .map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
+            }
+        } else {
+            writeln!(out, "{formatted}").map_err(io)?;
+        }
+    }
+    Ok(code)
+}

@@ -1,0 +1,218 @@
+//! The command-line front end: reading inputs and rendering diagnostics.
+//!
+//! Lives in the library (behind the `cli` feature) so integration tests and the binary
+//! share one implementation; `src/main.rs` only dispatches.
+
+pub mod check;
+pub mod fmt;
+
+use std::io::{IsTerminal, Read};
+use std::path::{Path, PathBuf};
+
+use codespan_reporting::diagnostic as cs;
+use codespan_reporting::files::SimpleFiles;
+use codespan_reporting::term::{self, termcolor};
+
+use crate::diagnostic::{Diagnostic, LineIndex, Severity};
+use crate::Target;
+
+/// The largest input read (a template file or stdin). Templates are a few bytes; this
+/// bounds memory on a mistaken `--file /dev/zero`.
+pub const MAX_INPUT_BYTES: u64 = 16 * 1024 * 1024;
+
+/// One template to work on, with the name reports give it.
+#[derive(Clone, Debug)]
+pub struct Input {
+    pub name: String,
+    pub text: String,
+    pub path: Option<PathBuf>,
+}
+
+/// A usage error: exit code 2.
+#[derive(Debug)]
+pub struct UsageError(pub String);
+
+impl std::fmt::Display for UsageError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum TargetArg {
+    /// `sparse_infill_rotate_template`: solid signs allowed
+    #[default]
+    Sparse,
+    /// `solid_infill_rotate_template`: solid signs are errors
+    Solid,
+}
+
+impl From<TargetArg> for Target {
+    fn from(t: TargetArg) -> Target {
+        match t {
+            TargetArg::Sparse => Target::Sparse,
+            TargetArg::Solid => Target::Solid,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum ColorArg {
+    /// Colour when writing to a terminal and NO_COLOR is unset
+    #[default]
+    Auto,
+    Always,
+    Never,
+}
+
+impl ColorArg {
+    /// Whether to colour output written to stdout (`stdout == true`) or stderr.
+    pub fn enabled(self, stdout: bool) -> bool {
+        match self {
+            ColorArg::Always => true,
+            ColorArg::Never => false,
+            ColorArg::Auto => {
+                let tty = if stdout {
+                    std::io::stdout().is_terminal()
+                } else {
+                    std::io::stderr().is_terminal()
+                };
+                tty && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+            }
+        }
+    }
+}
+
+/// Reads a file (bounded), turning bytes that are not UTF-8 into U+FFFD so they get a
+/// diagnostic instead of a crash.
+pub fn read_file(path: &Path) -> Result<String, UsageError> {
+    let file = std::fs::File::open(path).map_err(|e| UsageError(format!("cannot read {}: {e}", path.display())))?;
+    read_bounded(file, &path.display().to_string())
+}
+
+fn read_bounded(reader: impl Read, name: &str) -> Result<String, UsageError> {
+    let mut bytes = Vec::new();
+    reader
+        .take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| UsageError(format!("cannot read {name}: {e}")))?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(UsageError(format!(
+            "{name} is larger than {} MiB; a template is a line of text",
+            MAX_INPUT_BYTES / 1024 / 1024
+        )));
+    }
+    Ok(match String::from_utf8(bytes) {
+        Ok(s) => s,
+        Err(e) => String::from_utf8_lossy(e.as_bytes()).into_owned(),
+    })
+}
+
+/// Templates from arguments, then files; stdin when there are neither.
+pub fn gather(templates: &[String], files: &[PathBuf]) -> Result<Vec<Input>, UsageError> {
+    let mut inputs: Vec<Input> = templates
+        .iter()
+        .enumerate()
+        .map(|(i, t)| Input {
+            name: if templates.len() == 1 { "<template>".into() } else { format!("<template {}>", i + 1) },
+            text: t.clone(),
+            path: None,
+        })
+        .collect();
+    for path in files {
+        inputs.push(Input {
+            name: path.display().to_string(),
+            text: read_file(path)?,
+            path: Some(path.clone()),
+        });
+    }
+    if inputs.is_empty() {
+        let stdin = std::io::stdin();
+        if stdin.is_terminal() {
+            return Err(UsageError(
+                "no template given: pass one as an argument, with --file PATH, or on stdin".into(),
+            ));
+        }
+        inputs.push(Input {
+            name: "<stdin>".into(),
+            text: read_bounded(stdin.lock(), "stdin")?,
+            path: None,
+        });
+    }
+    Ok(inputs)
+}
+
+/// Renders diagnostics of many inputs as one terminal report (codespan-reporting).
+pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String {
+    let mut files = SimpleFiles::new();
+    let mut buffer = if color { termcolor::Buffer::ansi() } else { termcolor::Buffer::no_color() };
+    let config = term::Config::default();
+    for (input, diagnostics) in reports {
+        let id = files.add(input.name.clone(), input.text.clone());
+        for d in diagnostics.iter() {
+            // A rendering failure (it cannot happen with spans from our parser) must not
+            // lose the rest of the report; fall back to the message alone.
+            if term::emit_to_write_style(&mut buffer, &config, &files, &to_codespan(id, d)).is_err() {
+                use std::io::Write;
+                let _ = writeln!(buffer, "{}[{}]: {}", d.severity.as_str(), d.code, d.message);
+            }
+        }
+    }
+    String::from_utf8_lossy(buffer.as_slice()).into_owned()
+}
+
+fn to_codespan(id: usize, d: &Diagnostic) -> cs::Diagnostic<usize> {
+    let base = match d.severity {
+        Severity::Error => cs::Diagnostic::error(),
+        Severity::Warning => cs::Diagnostic::warning(),
+    };
+    let labels = d
+        .labels
+        .iter()
+        .map(|l| {
+            let label = if l.primary {
+                cs::Label::primary(id, l.span.range())
+            } else {
+                cs::Label::secondary(id, l.span.range())
+            };
+            label.with_message(&l.message)
+        })
+        .collect();
+    let mut notes: Vec<String> = d.help.iter().map(|h| format!("help: {h}")).collect();
+    if let Some(fix) = &d.fix {
+        let with = if fix.replacement.is_empty() { String::new() } else { format!(": `{}`", fix.replacement) };
+        notes.push(format!("fix: {}{with}", fix.title));
+    }
+    base.with_code(d.code)
+        .with_message(&d.message)
+        .with_labels(labels)
+        .with_notes(notes)
+}
+
+/// One diagnostic as the JSON object of `--format json`.
+pub fn diagnostic_json(text: &str, index: &LineIndex<'_>, d: &Diagnostic) -> serde_json::Value {
+    let span = d.primary_span();
+    let (line, column) = index.line_col(span.start);
+    let _ = text;
+    serde_json::json!({
+        "code": d.code,
+        "severity": d.severity.as_str(),
+        "message": d.message,
+        "start": span.start,
+        "end": span.end,
+        "line": line,
+        "column": column,
+        "help": d.help,
+        "labels": d.labels.iter().map(|l| serde_json::json!({
+            "start": l.span.start, "end": l.span.end, "message": l.message, "primary": l.primary,
+        })).collect::<Vec<_>>(),
+        "fix": d.fix.as_ref().map(|f| serde_json::json!({
+            "title": f.title, "start": f.span.start, "end": f.span.end, "replacement": f.replacement,
+        })),
+    })
+}
+
+/// Plain one-line-per-diagnostic rendering, for places where a full report would be noise.
+pub fn render_diagnostics(input: &Input, diagnostics: &[Diagnostic], color: bool) -> String {
+    render_human(&[(input, diagnostics)], color)
+}

@@ -1,0 +1,125 @@
+//! Checks on the IR: errors that depend on the target, and warnings for templates that
+//! are legal but most likely not what was meant.
+
+use crate::diagnostic::{Diagnostic, Span};
+use crate::ir::*;
+use crate::syntax::split::Chunk;
+
+pub(crate) fn check(text: &str, template: &Template, chunks: &[Chunk<'_>], target: Target, out: &mut Vec<Diagnostic>) {
+    for ins in &template.instructions {
+        if target == Target::Solid
+            && let Some(s) = ins.solid
+        {
+            out.push(
+                Diagnostic::error("rotlang::solid-sign-in-solid-template", format!("the solid sign `{}` has no meaning in a solid infill template", s.value.symbol()))
+                    .with_primary(s.span, "a solid sign")
+                    .with_fix("remove the solid sign", s.span, "")
+                    .with_help("solid signs (`D S O M R`) put solid layers into sparse infill; use them in `sparse_infill_rotate_template`"),
+            );
+        }
+        angle_range(ins, out);
+        zero_count(ins, out);
+        dummy(text, ins, out);
+        if let (Some(j), Some(a)) = (ins.joint, &ins.angle)
+            && a.sign.is_none()
+            && ins.dummy.is_none()
+        {
+            out.push(
+                Diagnostic::warning("rotlang::joint-on-absolute-angle", format!("the joint `{}` has no effect on an absolute angle", j.value.symbol()))
+                    .with_primary(j.span, "this shape is never used")
+                    .with_secondary(a.span, "an absolute angle stays constant over its range")
+                    .with_help(format!("to turn by {} over the range, write `+{}`", fmt_deg(a.degrees()), &text[a.span.range()])),
+            );
+        }
+    }
+    // `+30 /50%`: a space splits what looks like one instruction into two.
+    for pair in chunks.windows(2) {
+        let (prev, next) = (pair[0], pair[1]);
+        if next.after_space_only
+            && prev.text.ends_with(|c: char| c.is_ascii_digit() || c == '%')
+            && next.text.starts_with(|c: char| Joint::from_symbol(c).is_some() && c != '#')
+        {
+            let gap = Span::new(prev.span.end, next.span.start);
+            out.push(
+                Diagnostic::warning("rotlang::space-splits-instruction", format!("`{}` starts a new instruction", next.text))
+                    .with_primary(next.span, "read as an instruction of its own (a turn of 0°)")
+                    .with_secondary(gap, "because of this space")
+                    .with_fix("join the two", gap, "")
+                    .with_help(format!("did you mean `{}{}`? Otherwise separate them with a comma", prev.text, next.text)),
+            );
+        }
+    }
+}
+
+fn fmt_deg(d: f64) -> String {
+    format!("{}°", (d * 1e6).round() / 1e6)
+}
+
+fn angle_range(ins: &Instruction, out: &mut Vec<Diagnostic>) {
+    let Some(a) = &ins.angle else { return };
+    let d = a.degrees();
+    if a.sign.is_none() && !(0.0..=360.0).contains(&d) {
+        let wrapped = d.rem_euclid(360.0);
+        out.push(
+            Diagnostic::warning("rotlang::angle-out-of-range", format!("the absolute angle {} is outside 0–360°", fmt_deg(d)))
+                .with_primary(a.span, format!("the same direction as {}", fmt_deg(wrapped)))
+                .with_help("absolute angles are directions from 0 to 360; for a turn, write a sign (`+`)"),
+        );
+    }
+}
+
+fn zero_count(ins: &Instruction, out: &mut Vec<Diagnostic>) {
+    let Some(c) = ins.count else { return };
+    let zero = match c.kind {
+        CountKind::Layers(n) => n < 1.0,
+        CountKind::Length { value, .. } => value == 0.0,
+        CountKind::HeightFraction { num, .. } => num == 0.0,
+        CountKind::Bottom | CountKind::Top => false,
+    };
+    if zero && ins.dummy.is_none() {
+        out.push(
+            Diagnostic::warning("rotlang::zero-count", "a count below one layer covers just one layer")
+                .with_primary(c.span, "this range is a single layer")
+                .with_help("write the number of layers (or the length) the turn should take, or leave the count out"),
+        );
+    }
+}
+
+fn dummy(text: &str, ins: &Instruction, out: &mut Vec<Diagnostic>) {
+    let Some(star) = ins.dummy else { return };
+    if let Some(r) = ins.repeat {
+        out.push(
+            Diagnostic::error("rotlang::dummy-and-repeat", "an instruction cannot be both a dummy and repeated")
+                .with_primary(star, "a dummy mark")
+                .with_secondary(r.span, "a repeat count")
+                .with_help("a dummy (`*`) sets an angle without taking layers; `*ℤ` runs the instruction ℤ times: keep one"),
+        );
+        return;
+    }
+    // The parts a dummy ignores: everything after its `*`, and, for a trailing `*`, the
+    // shape and count too (a dummy takes no layers).
+    let ignored: Vec<Span> = [
+        ins.solid.map(|s| s.span),
+        ins.joint.map(|j| j.span),
+        ins.flip,
+        ins.count.map(|c| c.span),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    if let (Some(first), Some(last)) = (ignored.first(), ignored.last()) {
+        let span = first.cover(*last);
+        out.push(
+            Diagnostic::warning("rotlang::dummy-ignores-range", "a dummy takes no layers: its shape and count are ignored")
+                .with_primary(span, format!("`{}` is ignored", &text[span.range()]))
+                .with_secondary(star, "this makes the instruction a dummy")
+                .with_help("remove the `*` to turn over the range, or remove the range"),
+        );
+    } else if ins.is_relative() && ins.degrees() == 0.0 {
+        out.push(
+            Diagnostic::warning("rotlang::dummy-without-effect", "this dummy never changes the angle")
+                .with_primary(ins.span, "a turn of 0° that takes no layers")
+                .with_help("a dummy sets an angle (`30*`) or a turn (`+30*`) for the next instruction"),
+        );
+    }
+}

@@ -1,0 +1,297 @@
+//! Turning pest's "expected …" at a position into a diagnostic a person can act on.
+//!
+//! pest tells where the grammar stopped and which rules it tried there; the character at
+//! that place and the text before it tell which mistake it most likely is.
+
+use pest::Parser;
+
+use super::grammar::{RotParser, Rule, rule_name};
+use crate::diagnostic::{Diagnostic, Span};
+use crate::ir::{Joint, Solid, Unit};
+
+/// Context of a failed instruction.
+pub(crate) struct Failure<'a> {
+    /// The instruction's text.
+    pub text: &'a str,
+    /// Its byte offset in the template.
+    pub offset: usize,
+    /// Where the grammar stopped, relative to `text`.
+    pub pos: usize,
+    /// The rules pest expected there.
+    pub expected: Vec<Rule>,
+}
+
+const SIGNS_HELP: &str = "after the angle come, in order: a runtime mark (`*`, `*ℤ`, `!`), a solid sign \
+(`D S O M R`), a joint sign (`/ N n Z z $ L l U u Q q ~ ^ | #`), a flip `-`, a count (`ℕ`, `B`, `T`), \
+a length unit (`mm cm m ' \" # %`) and a trailing `*` or `!`";
+
+fn is_unit_start(rest: &str) -> Option<&'static str> {
+    ["mm", "cm", "'", "\"", "m"]
+        .into_iter()
+        .find(|u| rest.starts_with(u))
+}
+
+/// Edit distance ≤ 1 (one substitution, insertion or deletion) between short ASCII words.
+fn near(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len().abs_diff(b.len()) > 1 {
+        return false;
+    }
+    let (mut i, mut j, mut edits) = (0, 0, 0);
+    while i < a.len() && j < b.len() {
+        if a[i] == b[j] {
+            i += 1;
+            j += 1;
+            continue;
+        }
+        edits += 1;
+        match a.len().cmp(&b.len()) {
+            std::cmp::Ordering::Less => j += 1,
+            std::cmp::Ordering::Greater => i += 1,
+            std::cmp::Ordering::Equal => {
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    edits + (a.len() - i) + (b.len() - j) <= 1
+}
+
+/// A unit a misspelt or foreign unit word most likely meant.
+fn unit_suggestion(word: &str) -> Option<&'static str> {
+    let lower = word.to_ascii_lowercase();
+    match lower.as_str() {
+        "in" | "inch" | "inches" => return Some("\""),
+        "ft" | "foot" | "feet" => return Some("'"),
+        "mms" | "mil" => return Some("mm"),
+        "l" | "layer" | "layers" => return Some("#"),
+        _ => {}
+    }
+    ["mm", "cm"].into_iter().find(|u| near(&lower, u) || lower == *u)
+}
+
+impl Failure<'_> {
+    fn abs(&self, start: usize, end: usize) -> Span {
+        Span::new(self.offset + start, self.offset + end)
+    }
+
+    fn expected_words(&self) -> String {
+        let mut names: Vec<&str> = self.expected.iter().map(|r| rule_name(*r)).collect();
+        names.dedup();
+        match names.len() {
+            0 => "something else".to_owned(),
+            1 => names[0].to_owned(),
+            n => format!("{} or {}", names[..n - 1].join(", "), names[n - 1]),
+        }
+    }
+
+    /// The alphabetic run starting at `pos`.
+    fn word_at(&self, pos: usize) -> &str {
+        let rest = &self.text[pos..];
+        let len = rest
+            .char_indices()
+            .find(|(_, c)| !c.is_ascii_alphabetic())
+            .map_or(rest.len(), |(i, _)| i);
+        &rest[..len]
+    }
+
+    /// The instruction text before `pos`, with numbers' digits ignored: the signs already
+    /// read.
+    fn earlier_signs(&self, pos: usize) -> impl Iterator<Item = (usize, char)> + '_ {
+        self.text[..pos].char_indices()
+    }
+
+    pub fn diagnose(&self) -> Diagnostic {
+        let text = self.text;
+        let pos = self.pos.min(text.len());
+        let rest = &text[pos..];
+        let prev = text[..pos].chars().next_back();
+        let prev_digit = prev.is_some_and(|c| c.is_ascii_digit());
+        let Some(c) = rest.chars().next() else {
+            return self.at_end();
+        };
+        let here = self.abs(pos, pos + c.len_utf8());
+
+        // Numbers written in ways the language does not read.
+        if c == '.' {
+            let next_digit = rest[1..].starts_with(|d: char| d.is_ascii_digit());
+            if !prev_digit && next_digit {
+                return Diagnostic::error("rotlang::leading-dot", "a number cannot start with `.`")
+                    .with_primary(here, "write a 0 before the dot")
+                    .with_fix("write `0.`", self.abs(pos, pos), "0")
+                    .with_help("numbers are written `0.5`, not `.5`");
+            }
+            if prev_digit && !next_digit {
+                return Diagnostic::error("rotlang::trailing-dot", "a number cannot end with `.`")
+                    .with_primary(here, "nothing follows the dot")
+                    .with_fix("remove the `.`", here, "")
+                    .with_help("write `10` or `10.5`, not `10.`");
+            }
+            return Diagnostic::error("rotlang::bad-number", "a number has at most one `.`")
+                .with_primary(here, "a second decimal point")
+                .with_help("numbers are digits with an optional fractional part: `22.5`");
+        }
+        let word = self.word_at(pos);
+        if ["inf", "infinity", "nan"].contains(&word.to_ascii_lowercase().as_str()) {
+            return Diagnostic::error("rotlang::number-not-finite", format!("`{word}` is not a number rotlang reads"))
+                .with_primary(self.abs(pos, pos + word.len()), "not a finite number")
+                .with_help("angles, counts and lengths are finite decimal numbers such as `22.5`");
+        }
+
+        // Units in the wrong place.
+        if let Some(unit) = is_unit_start(rest).filter(|_| !prev_digit) {
+            let span = self.abs(pos, pos + unit.len());
+            if matches!(prev, Some('B' | 'T')) {
+                return Diagnostic::error("rotlang::unit-after-shell-count", "`B` and `T` count layers and take no unit")
+                    .with_primary(span, "a unit after a shell count")
+                    .with_fix("remove the unit", span, "")
+                    .with_help("`B` is the number of bottom shell layers, `T` of top shell layers; for a length write a number, as in `+30/2mm`");
+            }
+            return Diagnostic::error("rotlang::unit-without-count", format!("the unit `{unit}` needs a number before it"))
+                .with_primary(span, "no count before this unit")
+                .with_help(format!("write how many, as in `+30/10{unit}`"));
+        }
+        if c == '%' && !prev_digit {
+            return Diagnostic::error("rotlang::unit-without-count", "the unit `%` needs a number before it")
+                .with_primary(here, "no count before this unit")
+                .with_help("write how much of the height, as in `+30/50%`");
+        }
+
+        // Signs out of order, or doubled.
+        if let Some(j) = Joint::from_symbol(c) {
+            let earlier = self.earlier_signs(pos).find(|&(_, e)| Joint::from_symbol(e).is_some() && !(e == '#' && prev_digit));
+            if let Some((i, first)) = earlier.filter(|_| !prev_digit) {
+                return Diagnostic::error("rotlang::two-joints", "an instruction has at most one joint sign")
+                    .with_primary(here, format!("a second joint `{}`", j.symbol()))
+                    .with_secondary(self.abs(i, i + first.len_utf8()), "the first joint")
+                    .with_help("keep the one shape you want; to chain shapes, write two instructions: `+10/5, +10N5`");
+            }
+            return Diagnostic::error("rotlang::misplaced-sign", format!("the joint sign `{c}` is out of place"))
+                .with_primary(here, "a joint here")
+                .with_help(format!("the joint comes before the flip and the count, as in `+30{c}5`; {SIGNS_HELP}"));
+        }
+        if let Some(s) = Solid::from_symbol(c) {
+            if let Some((i, first)) = self.earlier_signs(pos).find(|&(_, e)| Solid::from_symbol(e).is_some()) {
+                return Diagnostic::error("rotlang::two-solid-signs", "an instruction has at most one solid sign")
+                    .with_primary(here, format!("a second solid sign `{}`", s.symbol()))
+                    .with_secondary(self.abs(i, i + first.len_utf8()), "the first solid sign");
+            }
+            return Diagnostic::error("rotlang::misplaced-sign", format!("the solid sign `{c}` is out of place"))
+                .with_primary(here, "a solid sign here")
+                .with_help(format!("the solid sign comes right after the angle (and its runtime mark), as in `+30{c}3`; {SIGNS_HELP}"));
+        }
+        if matches!(c, 'B' | 'T') {
+            return Diagnostic::error("rotlang::misplaced-sign", format!("the count `{c}` is out of place"))
+                .with_primary(here, "a count here")
+                .with_help(format!("an instruction has one count, before its unit; {SIGNS_HELP}"));
+        }
+        if c == '+' {
+            return Diagnostic::error("rotlang::missing-separator", "a `+` can only begin an instruction")
+                .with_primary(here, "a new instruction starts here")
+                .with_fix("separate the instructions with `, `", self.abs(pos, pos), ", ")
+                .with_help("separate instructions with a comma or a space: `+10, +20`");
+        }
+        if c == '-' {
+            let nothing_after = !rest[1..].starts_with(|d: char| d.is_ascii_digit() || d == 'B' || d == 'T');
+            if nothing_after {
+                return Diagnostic::error("rotlang::flip-without-count", "a flip `-` needs a count after it")
+                    .with_primary(here, "nothing to flip over")
+                    .with_help("the flip reverses the shape over its count, as in `+22.5u-50%`; remove the `-` or add a count");
+            }
+            return Diagnostic::error("rotlang::misplaced-sign", "the flip `-` is out of place")
+                .with_primary(here, "a flip here")
+                .with_help(format!("the flip comes after the joint and right before the count; {SIGNS_HELP}"));
+        }
+        if matches!(c, '*' | '!') {
+            return Diagnostic::error("rotlang::misplaced-sign", format!("`{c}` is out of place"))
+                .with_primary(here, "a runtime mark here")
+                .with_help("`*`, `*ℤ` and `!` come right after the angle or at the very end of the instruction");
+        }
+        if c == ':' {
+            return Diagnostic::error("rotlang::bad-fraction", "a fraction needs a number on each side of `:`")
+                .with_primary(here, "an incomplete fraction")
+                .with_help("`1:4` is a quarter turn as an angle, or a quarter of the height as a count");
+        }
+        if c == ';' {
+            return Diagnostic::error("rotlang::unexpected-character", "instructions are separated by commas, not `;`")
+                .with_primary(here, "a semicolon")
+                .with_fix("use a comma", here, ",");
+        }
+        if c == '°' {
+            return Diagnostic::error("rotlang::degree-sign", "angles are written without `°`")
+                .with_primary(here, "a degree sign")
+                .with_fix("remove the `°`", here, "")
+                .with_help("every angle is in degrees already: write `+30`, not `+30°`");
+        }
+        if c.is_ascii_digit() {
+            return Diagnostic::error("rotlang::misplaced-number", "a number is out of place here")
+                .with_primary(self.abs(pos, pos + rest.bytes().take_while(|b| b.is_ascii_digit() || *b == b'.').count()), "an extra number")
+                .with_help(format!(
+                    "a count needs a joint, a flip, the angle's `%` or a `!` before it (`+30/5`); {SIGNS_HELP}"
+                ));
+        }
+        if c.is_ascii_alphabetic() {
+            let wspan = self.abs(pos, pos + word.len());
+            // A "did you mean" is offered only when the corrected instruction parses.
+            let parses = |replacement: &str, len: usize| {
+                let fixed = format!("{}{}{}", &text[..pos], replacement, &text[pos + len..]);
+                RotParser::parse(Rule::instruction, &fixed).is_ok()
+            };
+            if prev_digit
+                && let Some(u) = unit_suggestion(word).filter(|u| parses(u, word.len()))
+            {
+                let unit = Unit::from_symbol(u).map_or("", Unit::meaning);
+                return Diagnostic::error("rotlang::unknown-unit", format!("unknown length unit `{word}`"))
+                    .with_primary(wspan, format!("did you mean `{u}` ({unit})?"))
+                    .with_fix(format!("write `{u}`"), wspan, u)
+                    .with_help("length units: `mm cm m ' \" # %`");
+            }
+            let upper = c.to_ascii_uppercase();
+            if c.is_ascii_lowercase() && parses(&upper.to_string(), 1) {
+                let what = match Solid::from_symbol(upper) {
+                    Some(s) => s.meaning(),
+                    None if upper == 'B' => "the bottom shell layer count",
+                    None if upper == 'T' => "the top shell layer count",
+                    None => "a sign",
+                };
+                return Diagnostic::error("rotlang::unknown-sign", format!("unknown sign `{c}`"))
+                    .with_primary(here, format!("did you mean `{upper}` ({what})?"))
+                    .with_fix(format!("write `{upper}`"), here, upper.to_string())
+                    .with_help("signs are case-sensitive");
+            }
+            let span = if word.len() > 1 && word.len() <= 12 { wspan } else { here };
+            let shown = &self.text[span.start - self.offset..span.end - self.offset];
+            return Diagnostic::error("rotlang::unknown-sign", format!("unknown sign `{shown}`"))
+                .with_primary(span, "not a sign of the language")
+                .with_help(SIGNS_HELP);
+        }
+        let shown = if c.is_control() || c.is_whitespace() {
+            format!("U+{:04X}", c as u32)
+        } else {
+            format!("`{c}` (U+{:04X})", c as u32)
+        };
+        Diagnostic::error("rotlang::unexpected-character", format!("unexpected character {shown}"))
+            .with_primary(here, format!("expected {}", self.expected_words()))
+            .with_help("templates use ASCII digits and signs, separated by commas or spaces")
+    }
+
+    fn at_end(&self) -> Diagnostic {
+        let end = self.text.len();
+        let span = self.abs(end.saturating_sub(self.text[..end].chars().next_back().map_or(0, char::len_utf8)), end);
+        Diagnostic::error("rotlang::incomplete", "the instruction ends too early")
+            .with_primary(span, format!("expected {} after this", self.expected_words()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::near;
+
+    #[test]
+    fn near_is_one_edit() {
+        assert!(near("cn", "cm"));
+        assert!(near("mmm", "mm"));
+        assert!(near("c", "cm"));
+        assert!(!near("xyz", "mm"));
+    }
+}

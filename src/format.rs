@@ -35,7 +35,10 @@ mod tests {
     #[test]
     fn canonical_separators() {
         assert_eq!(format("0 90", Target::Sparse).as_deref(), Some("0, 90"));
-        assert_eq!(format("  +10L25%,-10l25%\n\n#5 ,", Target::Sparse).as_deref(), Some("+10L25%, -10l25%, #5"));
+        assert_eq!(
+            format("  +10L25%,-10l25%\n\n#5 ,", Target::Sparse).as_deref(),
+            Some("+10L25%, -10l25%, #5")
+        );
         assert_eq!(format("10,,20", Target::Sparse).as_deref(), Some("10, 20"));
         assert_eq!(format("", Target::Sparse).as_deref(), Some(""));
         assert_eq!(format("+30X5", Target::Sparse), None);

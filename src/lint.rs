@@ -5,7 +5,13 @@ use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::*;
 use crate::syntax::split::Chunk;
 
-pub(crate) fn check(text: &str, template: &Template, chunks: &[Chunk<'_>], target: Target, out: &mut Vec<Diagnostic>) {
+pub(crate) fn check(
+    text: &str,
+    template: &Template,
+    chunks: &[Chunk<'_>],
+    target: Target,
+    out: &mut Vec<Diagnostic>,
+) {
     for ins in &template.instructions {
         if target == Target::Solid
             && let Some(s) = ins.solid
@@ -25,10 +31,20 @@ pub(crate) fn check(text: &str, template: &Template, chunks: &[Chunk<'_>], targe
             && ins.dummy.is_none()
         {
             out.push(
-                Diagnostic::warning("rotlang::joint-on-absolute-angle", format!("the joint `{}` has no effect on an absolute angle", j.value.symbol()))
-                    .with_primary(j.span, "this shape is never used")
-                    .with_secondary(a.span, "an absolute angle stays constant over its range")
-                    .with_help(format!("to turn by {} over the range, write `+{}`", fmt_deg(a.degrees()), &text[a.span.range()])),
+                Diagnostic::warning(
+                    "rotlang::joint-on-absolute-angle",
+                    format!(
+                        "the joint `{}` has no effect on an absolute angle",
+                        j.value.symbol()
+                    ),
+                )
+                .with_primary(j.span, "this shape is never used")
+                .with_secondary(a.span, "an absolute angle stays constant over its range")
+                .with_help(format!(
+                    "to turn by {} over the range, write `+{}`",
+                    fmt_deg(a.degrees()),
+                    &text[a.span.range()]
+                )),
             );
         }
     }
@@ -36,16 +52,29 @@ pub(crate) fn check(text: &str, template: &Template, chunks: &[Chunk<'_>], targe
     for pair in chunks.windows(2) {
         let (prev, next) = (pair[0], pair[1]);
         if next.after_space_only
-            && prev.text.ends_with(|c: char| c.is_ascii_digit() || c == '%')
-            && next.text.starts_with(|c: char| Joint::from_symbol(c).is_some() && c != '#')
+            && prev
+                .text
+                .ends_with(|c: char| c.is_ascii_digit() || c == '%')
+            && next
+                .text
+                .starts_with(|c: char| Joint::from_symbol(c).is_some() && c != '#')
         {
             let gap = Span::new(prev.span.end, next.span.start);
             out.push(
-                Diagnostic::warning("rotlang::space-splits-instruction", format!("`{}` starts a new instruction", next.text))
-                    .with_primary(next.span, "read as an instruction of its own (a turn of 0°)")
-                    .with_secondary(gap, "because of this space")
-                    .with_fix("join the two", gap, "")
-                    .with_help(format!("did you mean `{}{}`? Otherwise separate them with a comma", prev.text, next.text)),
+                Diagnostic::warning(
+                    "rotlang::space-splits-instruction",
+                    format!("`{}` starts a new instruction", next.text),
+                )
+                .with_primary(
+                    next.span,
+                    "read as an instruction of its own (a turn of 0°)",
+                )
+                .with_secondary(gap, "because of this space")
+                .with_fix("join the two", gap, "")
+                .with_help(format!(
+                    "did you mean `{}{}`? Otherwise separate them with a comma",
+                    prev.text, next.text
+                )),
             );
         }
     }
@@ -61,9 +90,17 @@ fn angle_range(ins: &Instruction, out: &mut Vec<Diagnostic>) {
     if a.sign.is_none() && !(0.0..=360.0).contains(&d) {
         let wrapped = d.rem_euclid(360.0);
         out.push(
-            Diagnostic::warning("rotlang::angle-out-of-range", format!("the absolute angle {} is outside 0–360°", fmt_deg(d)))
-                .with_primary(a.span, format!("the same direction as {}", fmt_deg(wrapped)))
-                .with_help("absolute angles are directions from 0 to 360; for a turn, write a sign (`+`)"),
+            Diagnostic::warning(
+                "rotlang::angle-out-of-range",
+                format!("the absolute angle {} is outside 0–360°", fmt_deg(d)),
+            )
+            .with_primary(
+                a.span,
+                format!("the same direction as {}", fmt_deg(wrapped)),
+            )
+            .with_help(
+                "absolute angles are directions from 0 to 360; for a turn, write a sign (`+`)",
+            ),
         );
     }
 }
@@ -110,16 +147,22 @@ fn dummy(text: &str, ins: &Instruction, out: &mut Vec<Diagnostic>) {
     if let (Some(first), Some(last)) = (ignored.first(), ignored.last()) {
         let span = first.cover(*last);
         out.push(
-            Diagnostic::warning("rotlang::dummy-ignores-range", "a dummy takes no layers: its shape and count are ignored")
-                .with_primary(span, format!("`{}` is ignored", &text[span.range()]))
-                .with_secondary(star, "this makes the instruction a dummy")
-                .with_help("remove the `*` to turn over the range, or remove the range"),
+            Diagnostic::warning(
+                "rotlang::dummy-ignores-range",
+                "a dummy takes no layers: its shape and count are ignored",
+            )
+            .with_primary(span, format!("`{}` is ignored", &text[span.range()]))
+            .with_secondary(star, "this makes the instruction a dummy")
+            .with_help("remove the `*` to turn over the range, or remove the range"),
         );
     } else if ins.is_relative() && ins.degrees() == 0.0 {
         out.push(
-            Diagnostic::warning("rotlang::dummy-without-effect", "this dummy never changes the angle")
-                .with_primary(ins.span, "a turn of 0° that takes no layers")
-                .with_help("a dummy sets an angle (`30*`) or a turn (`+30*`) for the next instruction"),
+            Diagnostic::warning(
+                "rotlang::dummy-without-effect",
+                "this dummy never changes the angle",
+            )
+            .with_primary(ins.span, "a turn of 0° that takes no layers")
+            .with_help("a dummy sets an angle (`30*`) or a turn (`+30*`) for the next instruction"),
         );
     }
 }

@@ -13,11 +13,16 @@ use rotlang::cli;
 /// `0, 90` alternates 0° and 90°; `+30/50%` turns 30° linearly over half the height;
 /// `B!, +30` holds the bottom shell layers, then turns 30° per layer.
 #[derive(Parser, Debug)]
-#[command(name = "rotlang", version, propagate_version = true, after_help = "\
+#[command(
+    name = "rotlang",
+    version,
+    propagate_version = true,
+    after_help = "\
 Examples:
   rotlang check '+10L25%, -10l25%'
   rotlang fmt '0 90  +30/50%'
-Run `rotlang help COMMAND` for a command's options and examples.")]
+Run `rotlang help COMMAND` for a command's options and examples."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

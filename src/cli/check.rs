@@ -49,27 +49,42 @@ pub enum Format {
 /// Runs the check; returns the exit code.
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     let inputs = gather(&args.templates, &args.files)?;
-    let parses: Vec<_> = inputs.iter().map(|i| crate::parse(&i.text, args.target.into())).collect();
-    let failed = |p: &crate::Parse| p.has_errors() || (args.deny_warnings && !p.diagnostics.is_empty());
+    let parses: Vec<_> = inputs
+        .iter()
+        .map(|i| crate::parse(&i.text, args.target.into()))
+        .collect();
+    let failed =
+        |p: &crate::Parse| p.has_errors() || (args.deny_warnings && !p.diagnostics.is_empty());
     let code = i32::from(parses.iter().any(failed));
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     match args.format {
         Format::Json => {
             for (input, parse) in inputs.iter().zip(&parses) {
                 let index = LineIndex::new(&input.text);
-                let diagnostics: Vec<_> =
-                    parse.diagnostics.iter().map(|d| diagnostic_json(&input.text, &index, d)).collect();
+                let diagnostics: Vec<_> = parse
+                    .diagnostics
+                    .iter()
+                    .map(|d| diagnostic_json(&input.text, &index, d))
+                    .collect();
                 let obj = serde_json::json!({"input": input.text, "name": input.name, "diagnostics": diagnostics});
                 writeln!(out, "{obj}").map_err(io)?;
             }
         }
         Format::Human => {
-            let reports: Vec<(&Input, &[crate::Diagnostic])> =
-                inputs.iter().zip(&parses).map(|(i, p)| (i, p.diagnostics.as_slice())).collect();
+            let reports: Vec<(&Input, &[crate::Diagnostic])> = inputs
+                .iter()
+                .zip(&parses)
+                .map(|(i, p)| (i, p.diagnostics.as_slice()))
+                .collect();
             let color = args.color.enabled(true);
-            out.write_all(render_human(&reports, color).as_bytes()).map_err(io)?;
-            let errors: usize = parses.iter().map(|p| p.diagnostics.iter().filter(|d| d.is_error()).count()).sum();
-            let warnings: usize = parses.iter().map(|p| p.diagnostics.len()).sum::<usize>() - errors;
+            out.write_all(render_human(&reports, color).as_bytes())
+                .map_err(io)?;
+            let errors: usize = parses
+                .iter()
+                .map(|p| p.diagnostics.iter().filter(|d| d.is_error()).count())
+                .sum();
+            let warnings: usize =
+                parses.iter().map(|p| p.diagnostics.len()).sum::<usize>() - errors;
             let summary = summary(inputs.len(), errors, warnings);
             writeln!(out, "{summary}").map_err(io)?;
         }
@@ -78,12 +93,26 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
 }
 
 fn summary(inputs: usize, errors: usize, warnings: usize) -> String {
-    let what = if inputs == 1 { "1 template".to_owned() } else { format!("{inputs} templates") };
-    let plural = |n: usize, w: &str| if n == 1 { format!("1 {w}") } else { format!("{n} {w}s") };
+    let what = if inputs == 1 {
+        "1 template".to_owned()
+    } else {
+        format!("{inputs} templates")
+    };
+    let plural = |n: usize, w: &str| {
+        if n == 1 {
+            format!("1 {w}")
+        } else {
+            format!("{n} {w}s")
+        }
+    };
     match (errors, warnings) {
         (0, 0) => format!("ok: {what}, no problems"),
         (0, w) => format!("ok: {what}, {}", plural(w, "warning")),
         (e, 0) => format!("failed: {what}, {}", plural(e, "error")),
-        (e, w) => format!("failed: {what}, {}, {}", plural(e, "error"), plural(w, "warning")),
+        (e, w) => format!(
+            "failed: {what}, {}, {}",
+            plural(e, "error"),
+            plural(w, "warning")
+        ),
     }
 }

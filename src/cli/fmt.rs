@@ -54,10 +54,18 @@ pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i
         }
         let formatted = crate::format::canonical(&input.text, &parse.template);
         // A file keeps one trailing newline; the template itself is the rest.
-        let current = input.text.strip_suffix('\n').map_or(input.text.as_str(), |t| t.strip_suffix('\r').unwrap_or(t));
+        let current = input
+            .text
+            .strip_suffix('\n')
+            .map_or(input.text.as_str(), |t| t.strip_suffix('\r').unwrap_or(t));
         if args.check {
             if current != formatted {
-                writeln!(err, "{}: not in canonical form (would be `{formatted}`)", input.name).map_err(io)?;
+                writeln!(
+                    err,
+                    "{}: not in canonical form (would be `{formatted}`)",
+                    input.name
+                )
+                .map_err(io)?;
                 code = 1;
             }
         } else if let (true, Some(path)) = (args.write, &input.path) {

@@ -13,8 +13,8 @@ use codespan_reporting::diagnostic as cs;
 use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::{self, termcolor};
 
-use crate::diagnostic::{Diagnostic, LineIndex, Severity};
 use crate::Target;
+use crate::diagnostic::{Diagnostic, LineIndex, Severity};
 
 /// The largest input read (a template file or stdin). Templates are a few bytes; this
 /// bounds memory on a mistaken `--file /dev/zero`.
@@ -86,7 +86,8 @@ impl ColorArg {
 /// Reads a file (bounded), turning bytes that are not UTF-8 into U+FFFD so they get a
 /// diagnostic instead of a crash.
 pub fn read_file(path: &Path) -> Result<String, UsageError> {
-    let file = std::fs::File::open(path).map_err(|e| UsageError(format!("cannot read {}: {e}", path.display())))?;
+    let file = std::fs::File::open(path)
+        .map_err(|e| UsageError(format!("cannot read {}: {e}", path.display())))?;
     read_bounded(file, &path.display().to_string())
 }
 
@@ -114,7 +115,11 @@ pub fn gather(templates: &[String], files: &[PathBuf]) -> Result<Vec<Input>, Usa
         .iter()
         .enumerate()
         .map(|(i, t)| Input {
-            name: if templates.len() == 1 { "<template>".into() } else { format!("<template {}>", i + 1) },
+            name: if templates.len() == 1 {
+                "<template>".into()
+            } else {
+                format!("<template {}>", i + 1)
+            },
             text: t.clone(),
             path: None,
         })
@@ -145,14 +150,19 @@ pub fn gather(templates: &[String], files: &[PathBuf]) -> Result<Vec<Input>, Usa
 /// Renders diagnostics of many inputs as one terminal report (codespan-reporting).
 pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String {
     let mut files = SimpleFiles::new();
-    let mut buffer = if color { termcolor::Buffer::ansi() } else { termcolor::Buffer::no_color() };
+    let mut buffer = if color {
+        termcolor::Buffer::ansi()
+    } else {
+        termcolor::Buffer::no_color()
+    };
     let config = term::Config::default();
     for (input, diagnostics) in reports {
         let id = files.add(input.name.clone(), input.text.clone());
         for d in diagnostics.iter() {
             // A rendering failure (it cannot happen with spans from our parser) must not
             // lose the rest of the report; fall back to the message alone.
-            if term::emit_to_write_style(&mut buffer, &config, &files, &to_codespan(id, d)).is_err() {
+            if term::emit_to_write_style(&mut buffer, &config, &files, &to_codespan(id, d)).is_err()
+            {
                 use std::io::Write;
                 let _ = writeln!(buffer, "{}[{}]: {}", d.severity.as_str(), d.code, d.message);
             }
@@ -180,7 +190,11 @@ fn to_codespan(id: usize, d: &Diagnostic) -> cs::Diagnostic<usize> {
         .collect();
     let mut notes: Vec<String> = d.help.iter().map(|h| format!("help: {h}")).collect();
     if let Some(fix) = &d.fix {
-        let with = if fix.replacement.is_empty() { String::new() } else { format!(": `{}`", fix.replacement) };
+        let with = if fix.replacement.is_empty() {
+            String::new()
+        } else {
+            format!(": `{}`", fix.replacement)
+        };
         notes.push(format!("fix: {}{with}", fix.title));
     }
     base.with_code(d.code)

@@ -67,7 +67,9 @@ fn unit_suggestion(word: &str) -> Option<&'static str> {
         "l" | "layer" | "layers" => return Some("#"),
         _ => {}
     }
-    ["mm", "cm"].into_iter().find(|u| near(&lower, u) || lower == *u)
+    ["mm", "cm"]
+        .into_iter()
+        .find(|u| near(&lower, u) || lower == *u)
 }
 
 impl Failure<'_> {
@@ -133,9 +135,12 @@ impl Failure<'_> {
         }
         let word = self.word_at(pos);
         if ["inf", "infinity", "nan"].contains(&word.to_ascii_lowercase().as_str()) {
-            return Diagnostic::error("rotlang::number-not-finite", format!("`{word}` is not a number rotlang reads"))
-                .with_primary(self.abs(pos, pos + word.len()), "not a finite number")
-                .with_help("angles, counts and lengths are finite decimal numbers such as `22.5`");
+            return Diagnostic::error(
+                "rotlang::number-not-finite",
+                format!("`{word}` is not a number rotlang reads"),
+            )
+            .with_primary(self.abs(pos, pos + word.len()), "not a finite number")
+            .with_help("angles, counts and lengths are finite decimal numbers such as `22.5`");
         }
 
         // Units in the wrong place.
@@ -147,52 +152,84 @@ impl Failure<'_> {
                     .with_fix("remove the unit", span, "")
                     .with_help("`B` is the number of bottom shell layers, `T` of top shell layers; for a length write a number, as in `+30/2mm`");
             }
-            return Diagnostic::error("rotlang::unit-without-count", format!("the unit `{unit}` needs a number before it"))
-                .with_primary(span, "no count before this unit")
-                .with_help(format!("write how many, as in `+30/10{unit}`"));
+            return Diagnostic::error(
+                "rotlang::unit-without-count",
+                format!("the unit `{unit}` needs a number before it"),
+            )
+            .with_primary(span, "no count before this unit")
+            .with_help(format!("write how many, as in `+30/10{unit}`"));
         }
         if c == '%' && !prev_digit {
-            return Diagnostic::error("rotlang::unit-without-count", "the unit `%` needs a number before it")
-                .with_primary(here, "no count before this unit")
-                .with_help("write how much of the height, as in `+30/50%`");
+            return Diagnostic::error(
+                "rotlang::unit-without-count",
+                "the unit `%` needs a number before it",
+            )
+            .with_primary(here, "no count before this unit")
+            .with_help("write how much of the height, as in `+30/50%`");
         }
 
         // Signs out of order, or doubled.
         if let Some(j) = Joint::from_symbol(c) {
-            let earlier = self.earlier_signs(pos).find(|&(_, e)| Joint::from_symbol(e).is_some() && !(e == '#' && prev_digit));
+            let earlier = self
+                .earlier_signs(pos)
+                .find(|&(_, e)| Joint::from_symbol(e).is_some() && !(e == '#' && prev_digit));
             if let Some((i, first)) = earlier.filter(|_| !prev_digit) {
                 return Diagnostic::error("rotlang::two-joints", "an instruction has at most one joint sign")
                     .with_primary(here, format!("a second joint `{}`", j.symbol()))
                     .with_secondary(self.abs(i, i + first.len_utf8()), "the first joint")
                     .with_help("keep the one shape you want; to chain shapes, write two instructions: `+10/5, +10N5`");
             }
-            return Diagnostic::error("rotlang::misplaced-sign", format!("the joint sign `{c}` is out of place"))
-                .with_primary(here, "a joint here")
-                .with_help(format!("the joint comes before the flip and the count, as in `+30{c}5`; {SIGNS_HELP}"));
+            return Diagnostic::error(
+                "rotlang::misplaced-sign",
+                format!("the joint sign `{c}` is out of place"),
+            )
+            .with_primary(here, "a joint here")
+            .with_help(format!(
+                "the joint comes before the flip and the count, as in `+30{c}5`; {SIGNS_HELP}"
+            ));
         }
         if let Some(s) = Solid::from_symbol(c) {
-            if let Some((i, first)) = self.earlier_signs(pos).find(|&(_, e)| Solid::from_symbol(e).is_some()) {
-                return Diagnostic::error("rotlang::two-solid-signs", "an instruction has at most one solid sign")
-                    .with_primary(here, format!("a second solid sign `{}`", s.symbol()))
-                    .with_secondary(self.abs(i, i + first.len_utf8()), "the first solid sign");
+            if let Some((i, first)) = self
+                .earlier_signs(pos)
+                .find(|&(_, e)| Solid::from_symbol(e).is_some())
+            {
+                return Diagnostic::error(
+                    "rotlang::two-solid-signs",
+                    "an instruction has at most one solid sign",
+                )
+                .with_primary(here, format!("a second solid sign `{}`", s.symbol()))
+                .with_secondary(self.abs(i, i + first.len_utf8()), "the first solid sign");
             }
             return Diagnostic::error("rotlang::misplaced-sign", format!("the solid sign `{c}` is out of place"))
                 .with_primary(here, "a solid sign here")
                 .with_help(format!("the solid sign comes right after the angle (and its runtime mark), as in `+30{c}3`; {SIGNS_HELP}"));
         }
         if matches!(c, 'B' | 'T') {
-            return Diagnostic::error("rotlang::misplaced-sign", format!("the count `{c}` is out of place"))
-                .with_primary(here, "a count here")
-                .with_help(format!("an instruction has one count, before its unit; {SIGNS_HELP}"));
+            return Diagnostic::error(
+                "rotlang::misplaced-sign",
+                format!("the count `{c}` is out of place"),
+            )
+            .with_primary(here, "a count here")
+            .with_help(format!(
+                "an instruction has one count, before its unit; {SIGNS_HELP}"
+            ));
         }
         if c == '+' {
-            return Diagnostic::error("rotlang::missing-separator", "a `+` can only begin an instruction")
-                .with_primary(here, "a new instruction starts here")
-                .with_fix("separate the instructions with `, `", self.abs(pos, pos), ", ")
-                .with_help("separate instructions with a comma or a space: `+10, +20`");
+            return Diagnostic::error(
+                "rotlang::missing-separator",
+                "a `+` can only begin an instruction",
+            )
+            .with_primary(here, "a new instruction starts here")
+            .with_fix(
+                "separate the instructions with `, `",
+                self.abs(pos, pos),
+                ", ",
+            )
+            .with_help("separate instructions with a comma or a space: `+10, +20`");
         }
         if c == '-' {
-            let nothing_after = !rest[1..].starts_with(|d: char| d.is_ascii_digit() || d == 'B' || d == 'T');
+            let nothing_after =
+                !rest[1..].starts_with(|d: char| d.is_ascii_digit() || d == 'B' || d == 'T');
             if nothing_after {
                 return Diagnostic::error("rotlang::flip-without-count", "a flip `-` needs a count after it")
                     .with_primary(here, "nothing to flip over")
@@ -200,7 +237,9 @@ impl Failure<'_> {
             }
             return Diagnostic::error("rotlang::misplaced-sign", "the flip `-` is out of place")
                 .with_primary(here, "a flip here")
-                .with_help(format!("the flip comes after the joint and right before the count; {SIGNS_HELP}"));
+                .with_help(format!(
+                    "the flip comes after the joint and right before the count; {SIGNS_HELP}"
+                ));
         }
         if matches!(c, '*' | '!') {
             return Diagnostic::error("rotlang::misplaced-sign", format!("`{c}` is out of place"))
@@ -208,14 +247,22 @@ impl Failure<'_> {
                 .with_help("`*`, `*ℤ` and `!` come right after the angle or at the very end of the instruction");
         }
         if c == ':' {
-            return Diagnostic::error("rotlang::bad-fraction", "a fraction needs a number on each side of `:`")
-                .with_primary(here, "an incomplete fraction")
-                .with_help("`1:4` is a quarter turn as an angle, or a quarter of the height as a count");
+            return Diagnostic::error(
+                "rotlang::bad-fraction",
+                "a fraction needs a number on each side of `:`",
+            )
+            .with_primary(here, "an incomplete fraction")
+            .with_help(
+                "`1:4` is a quarter turn as an angle, or a quarter of the height as a count",
+            );
         }
         if c == ';' {
-            return Diagnostic::error("rotlang::unexpected-character", "instructions are separated by commas, not `;`")
-                .with_primary(here, "a semicolon")
-                .with_fix("use a comma", here, ",");
+            return Diagnostic::error(
+                "rotlang::unexpected-character",
+                "instructions are separated by commas, not `;`",
+            )
+            .with_primary(here, "a semicolon")
+            .with_fix("use a comma", here, ",");
         }
         if c == '°' {
             return Diagnostic::error("rotlang::degree-sign", "angles are written without `°`")
@@ -237,14 +284,15 @@ impl Failure<'_> {
                 let fixed = format!("{}{}{}", &text[..pos], replacement, &text[pos + len..]);
                 RotParser::parse(Rule::instruction, &fixed).is_ok()
             };
-            if prev_digit
-                && let Some(u) = unit_suggestion(word).filter(|u| parses(u, word.len()))
-            {
+            if prev_digit && let Some(u) = unit_suggestion(word).filter(|u| parses(u, word.len())) {
                 let unit = Unit::from_symbol(u).map_or("", Unit::meaning);
-                return Diagnostic::error("rotlang::unknown-unit", format!("unknown length unit `{word}`"))
-                    .with_primary(wspan, format!("did you mean `{u}` ({unit})?"))
-                    .with_fix(format!("write `{u}`"), wspan, u)
-                    .with_help("length units: `mm cm m ' \" # %`");
+                return Diagnostic::error(
+                    "rotlang::unknown-unit",
+                    format!("unknown length unit `{word}`"),
+                )
+                .with_primary(wspan, format!("did you mean `{u}` ({unit})?"))
+                .with_fix(format!("write `{u}`"), wspan, u)
+                .with_help("length units: `mm cm m ' \" # %`");
             }
             let upper = c.to_ascii_uppercase();
             if c.is_ascii_lowercase() && parses(&upper.to_string(), 1) {
@@ -259,7 +307,11 @@ impl Failure<'_> {
                     .with_fix(format!("write `{upper}`"), here, upper.to_string())
                     .with_help("signs are case-sensitive");
             }
-            let span = if word.len() > 1 && word.len() <= 12 { wspan } else { here };
+            let span = if word.len() > 1 && word.len() <= 12 {
+                wspan
+            } else {
+                here
+            };
             let shown = &self.text[span.start - self.offset..span.end - self.offset];
             return Diagnostic::error("rotlang::unknown-sign", format!("unknown sign `{shown}`"))
                 .with_primary(span, "not a sign of the language")
@@ -270,16 +322,29 @@ impl Failure<'_> {
         } else {
             format!("`{c}` (U+{:04X})", c as u32)
         };
-        Diagnostic::error("rotlang::unexpected-character", format!("unexpected character {shown}"))
-            .with_primary(here, format!("expected {}", self.expected_words()))
-            .with_help("templates use ASCII digits and signs, separated by commas or spaces")
+        Diagnostic::error(
+            "rotlang::unexpected-character",
+            format!("unexpected character {shown}"),
+        )
+        .with_primary(here, format!("expected {}", self.expected_words()))
+        .with_help("templates use ASCII digits and signs, separated by commas or spaces")
     }
 
     fn at_end(&self) -> Diagnostic {
         let end = self.text.len();
-        let span = self.abs(end.saturating_sub(self.text[..end].chars().next_back().map_or(0, char::len_utf8)), end);
-        Diagnostic::error("rotlang::incomplete", "the instruction ends too early")
-            .with_primary(span, format!("expected {} after this", self.expected_words()))
+        let span = self.abs(
+            end.saturating_sub(
+                self.text[..end]
+                    .chars()
+                    .next_back()
+                    .map_or(0, char::len_utf8),
+            ),
+            end,
+        );
+        Diagnostic::error("rotlang::incomplete", "the instruction ends too early").with_primary(
+            span,
+            format!("expected {} after this", self.expected_words()),
+        )
     }
 }
 

@@ -31,17 +31,25 @@ impl Lowerer<'_> {
         let v: f64 = pair.as_str().parse().ok()?;
         if !v.is_finite() {
             self.diagnostics.push(
-                Diagnostic::error("rotlang::number-not-finite", format!("this {what} is too large to represent"))
-                    .with_primary(span, "beyond any floating-point number")
-                    .with_help(format!("the largest {what} accepted is {max:e}")),
+                Diagnostic::error(
+                    "rotlang::number-not-finite",
+                    format!("this {what} is too large to represent"),
+                )
+                .with_primary(span, "beyond any floating-point number")
+                .with_help(format!("the largest {what} accepted is {max:e}")),
             );
             return None;
         }
         if v > max {
             self.diagnostics.push(
-                Diagnostic::error("rotlang::number-too-large", format!("this {what} is absurdly large"))
-                    .with_primary(span, format!("larger than {max:e}"))
-                    .with_help(format!("the largest {what} accepted is {max:e}; no printer goes further")),
+                Diagnostic::error(
+                    "rotlang::number-too-large",
+                    format!("this {what} is absurdly large"),
+                )
+                .with_primary(span, format!("larger than {max:e}"))
+                .with_help(format!(
+                    "the largest {what} accepted is {max:e}; no printer goes further"
+                )),
             );
             return None;
         }
@@ -59,10 +67,13 @@ impl Lowerer<'_> {
         let (num, den) = (num?, den?);
         if den == 0.0 {
             self.diagnostics.push(
-                Diagnostic::error("rotlang::zero-denominator", format!("a {what} cannot have 0 below the line"))
-                    .with_primary(b_span, "this divides by zero")
-                    .with_secondary(span, format!("in this {what}"))
-                    .with_help("`a:b` means a/b; `1:4` is a quarter"),
+                Diagnostic::error(
+                    "rotlang::zero-denominator",
+                    format!("a {what} cannot have 0 below the line"),
+                )
+                .with_primary(b_span, "this divides by zero")
+                .with_secondary(span, format!("in this {what}"))
+                .with_help("`a:b` means a/b; `1:4` is a quarter"),
             );
             return None;
         }
@@ -130,14 +141,22 @@ impl Lowerer<'_> {
         for part in pair.into_inner() {
             match part.as_rule() {
                 Rule::sign => {
-                    sign = Some(if part.as_str() == "-" { Sign::Minus } else { Sign::Plus });
+                    sign = Some(if part.as_str() == "-" {
+                        Sign::Minus
+                    } else {
+                        Sign::Plus
+                    });
                 }
                 Rule::angle_degrees => {
                     value = Some(AngleValue::Degrees(self.number(&part, MAX_ANGLE, "angle")?));
                 }
                 Rule::angle_percent => {
                     let n = part.into_inner().next()?;
-                    value = Some(AngleValue::Percent(self.number(&n, MAX_ANGLE / 3.6, "angle")?));
+                    value = Some(AngleValue::Percent(self.number(
+                        &n,
+                        MAX_ANGLE / 3.6,
+                        "angle",
+                    )?));
                 }
                 Rule::angle_fraction => {
                     let (a, b) = self.fraction(part, "fraction of a turn")?;
@@ -165,10 +184,13 @@ impl Lowerer<'_> {
             Rule::bang => {
                 if let Some(first) = ins.one_time {
                     self.diagnostics.push(
-                        Diagnostic::warning("rotlang::duplicate-mark", "the instruction is already one-time")
-                            .with_primary(span, "a second `!`")
-                            .with_secondary(first, "made one-time here")
-                            .with_fix("remove the second `!`", span, ""),
+                        Diagnostic::warning(
+                            "rotlang::duplicate-mark",
+                            "the instruction is already one-time",
+                        )
+                        .with_primary(span, "a second `!`")
+                        .with_secondary(first, "made one-time here")
+                        .with_fix("remove the second `!`", span, ""),
                     );
                 } else {
                     ins.one_time = Some(span);
@@ -208,9 +230,16 @@ impl Lowerer<'_> {
                     None => {
                         if ins.dummy.is_some() {
                             self.diagnostics.push(
-                                Diagnostic::warning("rotlang::duplicate-mark", "the instruction is already a dummy")
-                                    .with_primary(span, "a second `*`")
-                                    .with_fix("remove the second `*`", span, ""),
+                                Diagnostic::warning(
+                                    "rotlang::duplicate-mark",
+                                    "the instruction is already a dummy",
+                                )
+                                .with_primary(span, "a second `*`")
+                                .with_fix(
+                                    "remove the second `*`",
+                                    span,
+                                    "",
+                                ),
                             );
                         }
                         ins.dummy.get_or_insert(span);

@@ -23,10 +23,21 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
     let mut instructions = Vec::with_capacity(split.chunks.len());
     for span in &split.empties {
         diagnostics.push(
-            Diagnostic::warning("rotlang::empty-instruction", "an empty instruction is ignored")
-                .with_primary(*span, "nothing between these separators")
-                .with_fix("remove the extra separator", *span, if instructions_before(&split.chunks, *span) { ", " } else { "" })
-                .with_help("OrcaSlicer reads an empty instruction as `0`; rotlang ignores it"),
+            Diagnostic::warning(
+                "rotlang::empty-instruction",
+                "an empty instruction is ignored",
+            )
+            .with_primary(*span, "nothing between these separators")
+            .with_fix(
+                "remove the extra separator",
+                *span,
+                if instructions_before(&split.chunks, *span) {
+                    ", "
+                } else {
+                    ""
+                },
+            )
+            .with_help("OrcaSlicer reads an empty instruction as `0`; rotlang ignores it"),
         );
     }
     let mut previous: Option<Chunk<'_>> = None;
@@ -71,9 +82,15 @@ fn cap(diagnostics: &mut Vec<Diagnostic>) {
     let last = diagnostics[MAX_DIAGNOSTICS - 1].primary_span();
     diagnostics.truncate(MAX_DIAGNOSTICS);
     let d = if errors {
-        Diagnostic::error("rotlang::too-many-diagnostics", format!("{more} more diagnostics not shown"))
+        Diagnostic::error(
+            "rotlang::too-many-diagnostics",
+            format!("{more} more diagnostics not shown"),
+        )
     } else {
-        Diagnostic::warning("rotlang::too-many-diagnostics", format!("{more} more diagnostics not shown"))
+        Diagnostic::warning(
+            "rotlang::too-many-diagnostics",
+            format!("{more} more diagnostics not shown"),
+        )
     };
     diagnostics.push(
         d.with_primary(Span::new(last.end, last.end), "and more after this")
@@ -82,7 +99,12 @@ fn cap(diagnostics: &mut Vec<Diagnostic>) {
 }
 
 /// The diagnostic for an instruction the grammar rejects.
-fn chunk_error(text: &str, chunk: &Chunk<'_>, previous: Option<&Chunk<'_>>, err: pest::error::Error<Rule>) -> Diagnostic {
+fn chunk_error(
+    text: &str,
+    chunk: &Chunk<'_>,
+    previous: Option<&Chunk<'_>>,
+    err: pest::error::Error<Rule>,
+) -> Diagnostic {
     // `+30/50 %`: a unit split off its count by a space.
     if let Some(prev) = previous.filter(|_| chunk.after_space_only)
         && prev.text.ends_with(|c: char| c.is_ascii_digit())
@@ -90,11 +112,16 @@ fn chunk_error(text: &str, chunk: &Chunk<'_>, previous: Option<&Chunk<'_>>, err:
     {
         let gap = Span::new(prev.span.end, chunk.span.start);
         let joined = format!("{}{}", prev.text, chunk.text);
-        return Diagnostic::error("rotlang::space-before-unit", format!("the unit `{}` is cut off from its number", chunk.text))
-            .with_primary(chunk.span, "a unit on its own")
-            .with_secondary(gap, "this space separates instructions")
-            .with_fix("remove the space", gap, "")
-            .with_help(format!("did you mean `{joined}`? A space ends an instruction"));
+        return Diagnostic::error(
+            "rotlang::space-before-unit",
+            format!("the unit `{}` is cut off from its number", chunk.text),
+        )
+        .with_primary(chunk.span, "a unit on its own")
+        .with_secondary(gap, "this space separates instructions")
+        .with_fix("remove the space", gap, "")
+        .with_help(format!(
+            "did you mean `{joined}`? A space ends an instruction"
+        ));
     }
     let pos = match err.location {
         InputLocation::Pos(p) => p,

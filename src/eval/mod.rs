@@ -163,3 +163,6 @@ impl<'a> Evaluator<'a> {
         self.last
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -140,6 +140,7 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The layer at `index`, or `None` past the top of the model.
+    #[inline]
     pub fn layer(&mut self, index: usize) -> Option<Layer> {
         if index >= self.stream.model.len() {
             return None;
@@ -153,14 +154,22 @@ impl<'a> Evaluator<'a> {
             let checkpoint = self.checkpoints.get(index / self.spacing)?;
             self.stream = checkpoint.clone();
         }
-        while self.stream.position() <= index {
-            let position = self.stream.position();
-            if position % self.spacing == 0 && position / self.spacing == self.checkpoints.len() {
-                self.checkpoints.push(self.stream.clone());
-            }
-            self.last = self.stream.next();
+        while self.stream.position() < index {
+            self.record_checkpoint();
+            self.stream.next();
         }
+        self.record_checkpoint();
+        self.last = self.stream.next();
         self.last
+    }
+
+    /// Snapshots the stream if it stands on the next checkpoint not yet recorded.
+    #[inline]
+    fn record_checkpoint(&mut self) {
+        // `checkpoints.len() * spacing` is the next position due: no division per layer.
+        if self.stream.position() == self.checkpoints.len().saturating_mul(self.spacing) {
+            self.checkpoints.push(self.stream.clone());
+        }
     }
 }
 

@@ -194,8 +194,8 @@ impl Engine {
         }
         let progress = if self.ze > self.zs {
             let p = (top - self.zs) / (self.ze - self.zs);
-            // `clamp` keeps NaN; `max` then `min` maps it to 0 instead.
-            p.max(0.0).min(1.0)
+            // Heights are finite and bounded, so NaN cannot arise; the guard costs nothing.
+            if p.is_nan() { 0.0 } else { p.clamp(0.0, 1.0) }
         } else {
             1.0
         };

@@ -3,6 +3,7 @@
 
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::*;
+use crate::syntax::Sink;
 use crate::syntax::split::Chunk;
 
 pub(crate) fn check(
@@ -10,7 +11,7 @@ pub(crate) fn check(
     template: &Template,
     chunks: &[Chunk<'_>],
     target: Target,
-    out: &mut Vec<Diagnostic>,
+    out: &mut Sink,
 ) {
     for ins in &template.instructions {
         if target == Target::Solid
@@ -26,19 +27,21 @@ pub(crate) fn check(
         angle_range(ins, out);
         zero_count(ins, out);
         dummy(text, ins, out);
-        if let (Some(j), Some(a)) = (ins.joint, &ins.angle)
+        // A joint or flip shapes a turn; an absolute angle has none to shape.
+        let shape = ins
+            .joint
+            .map(|j| (j.span, format!("the joint `{}`", j.value.symbol())))
+            .or(ins.flip.map(|f| (f, "the flip `-`".to_owned())));
+        if let (Some((span, what)), Some(a)) = (shape, &ins.angle)
             && a.sign.is_none()
             && ins.dummy.is_none()
         {
             out.push(
                 Diagnostic::warning(
                     "rotlang::joint-on-absolute-angle",
-                    format!(
-                        "the joint `{}` has no effect on an absolute angle",
-                        j.value.symbol()
-                    ),
+                    format!("{what} has no effect on an absolute angle"),
                 )
-                .with_primary(j.span, "this shape is never used")
+                .with_primary(span, "this shape is never used")
                 .with_secondary(a.span, "an absolute angle stays constant over its range")
                 .with_help(format!(
                     "to turn by {} over the range, write `+{}`",
@@ -84,7 +87,7 @@ fn fmt_deg(d: f64) -> String {
     format!("{}°", (d * 1e6).round() / 1e6)
 }
 
-fn angle_range(ins: &Instruction, out: &mut Vec<Diagnostic>) {
+fn angle_range(ins: &Instruction, out: &mut Sink) {
     let Some(a) = &ins.angle else { return };
     let d = a.degrees();
     if a.sign.is_none() && !(0.0..=360.0).contains(&d) {
@@ -105,7 +108,7 @@ fn angle_range(ins: &Instruction, out: &mut Vec<Diagnostic>) {
     }
 }
 
-fn zero_count(ins: &Instruction, out: &mut Vec<Diagnostic>) {
+fn zero_count(ins: &Instruction, out: &mut Sink) {
     let Some(c) = ins.count else { return };
     let zero = match c.kind {
         CountKind::Layers(n) => n < 1.0,
@@ -122,7 +125,7 @@ fn zero_count(ins: &Instruction, out: &mut Vec<Diagnostic>) {
     }
 }
 
-fn dummy(text: &str, ins: &Instruction, out: &mut Vec<Diagnostic>) {
+fn dummy(text: &str, ins: &Instruction, out: &mut Sink) {
     let Some(star) = ins.dummy else { return };
     if let Some(r) = ins.repeat {
         out.push(

@@ -158,11 +158,28 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
     };
     let config = term::Config::default();
     for (input, diagnostics) in reports {
-        let id = files.add(input.name.clone(), input.text.clone());
+        let long = input.text.lines().any(|l| l.len() > LONG_LINE);
+        let id = files.add(
+            input.name.clone(),
+            if long {
+                String::new()
+            } else {
+                input.text.clone()
+            },
+        );
         for d in diagnostics.iter() {
+            let (file, d) = if long {
+                // A 1 MB one-line template would be printed whole under every diagnostic:
+                // show a window around the diagnostic instead.
+                let (name, excerpt, d) = excerpt(input, d);
+                (files.add(name, excerpt), d)
+            } else {
+                (id, d.clone())
+            };
             // A rendering failure (it cannot happen with spans from our parser) must not
             // lose the rest of the report; fall back to the message alone.
-            if term::emit_to_write_style(&mut buffer, &config, &files, &to_codespan(id, d)).is_err()
+            if term::emit_to_write_style(&mut buffer, &config, &files, &to_codespan(file, &d))
+                .is_err()
             {
                 use std::io::Write;
                 let _ = writeln!(buffer, "{}[{}]: {}", d.severity.as_str(), d.code, d.message);
@@ -170,6 +187,41 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
         }
     }
     String::from_utf8_lossy(buffer.as_slice()).into_owned()
+}
+
+/// Lines longer than this are shown as a window around each diagnostic.
+const LONG_LINE: usize = 400;
+
+/// A window of the input around a diagnostic's labels, and the diagnostic moved into it.
+fn excerpt(input: &Input, d: &Diagnostic) -> (String, String, Diagnostic) {
+    let text = &input.text;
+    let primary = d.primary_span();
+    let start = crate::diagnostic::floor_char_boundary(text, primary.start.saturating_sub(60));
+    let mut end = (primary.end + 60).min(text.len());
+    while !text.is_char_boundary(end) {
+        end += 1;
+    }
+    let mut moved = d.clone();
+    // Labels outside the window are dropped; the primary one is always inside.
+    moved
+        .labels
+        .retain(|l| l.span.start >= start && l.span.end <= end);
+    for l in &mut moved.labels {
+        l.span = crate::Span::new(l.span.start - start, l.span.end - start);
+    }
+    if moved
+        .fix
+        .as_ref()
+        .is_some_and(|f| f.span.start < start || f.span.end > end)
+    {
+        moved.fix = None;
+    } else if let Some(f) = &mut moved.fix {
+        f.span = crate::Span::new(f.span.start - start, f.span.end - start);
+    }
+    let index = LineIndex::new(text);
+    let (line, col) = index.line_col(start);
+    let name = format!("{} (excerpt from line {line}, column {col})", input.name);
+    (name, text[start..end].to_owned(), moved)
 }
 
 fn to_codespan(id: usize, d: &Diagnostic) -> cs::Diagnostic<usize> {

@@ -143,6 +143,43 @@ impl Failure<'_> {
             .with_help("angles, counts and lengths are finite decimal numbers such as `22.5`");
         }
 
+        if ["deg", "degs", "degree", "degrees"].contains(&word.to_ascii_lowercase().as_str()) {
+            let span = self.abs(pos, pos + word.len());
+            return Diagnostic::error(
+                "rotlang::degree-sign",
+                format!("angles are written without `{word}`"),
+            )
+            .with_primary(span, "a unit of angle")
+            .with_fix(format!("remove `{word}`"), span, "")
+            .with_help("every angle is in degrees already: write `+30`, not `+30deg`");
+        }
+        if let Some(unit) = is_unit_start(rest).or(rest.starts_with('%').then_some("%"))
+            && let Some(before) = ["mm", "cm", "m", "'", "\"", "%", "#"]
+                .into_iter()
+                .find(|u| text[..pos].ends_with(u))
+            && text[..pos - before.len()].ends_with(|d: char| d.is_ascii_digit())
+        {
+            let span = self.abs(pos, pos + unit.len());
+            return Diagnostic::error("rotlang::two-units", "a count has one length unit")
+                .with_primary(span, format!("a second unit after `{before}`"))
+                .with_fix("remove the second unit", span, "")
+                .with_help("length units: `mm cm m ' \" # %`");
+        }
+        if let Some(unit) = is_unit_start(rest).filter(|_| prev_digit)
+            && !text[..pos].contains(|c: char| {
+                Joint::from_symbol(c).is_some() || c == '-' || c == '!' || c == '%' || c == ':'
+            })
+        {
+            let span = self.abs(pos, pos + unit.len());
+            return Diagnostic::error("rotlang::unit-after-angle", format!("the unit `{unit}` follows an angle, not a count"))
+                .with_primary(span, "a length unit right after the angle")
+                .with_help(format!("a length needs a joint (or a flip) before its count: `+30/10{unit}` turns 30° over 10{unit}"));
+        }
+        if c == '-' && pos == 1 && text.starts_with(['+', '-']) {
+            return Diagnostic::error("rotlang::two-signs", "an angle has one sign")
+                .with_primary(self.abs(0, 2), "two signs")
+                .with_help("`+30` turns counter-clockwise, `-30` clockwise");
+        }
         // Units in the wrong place.
         if let Some(unit) = is_unit_start(rest).filter(|_| !prev_digit) {
             let span = self.abs(pos, pos + unit.len());

@@ -16,7 +16,7 @@ pub(crate) const MAX_ANGLE: f64 = 1e9;
 pub(crate) struct Lowerer<'d> {
     /// Byte offset of the instruction in the template.
     pub offset: usize,
-    pub diagnostics: &'d mut Vec<Diagnostic>,
+    pub diagnostics: &'d mut super::Sink,
 }
 
 impl Lowerer<'_> {

@@ -17,85 +17,101 @@ use split::Chunk;
 /// produce a million reports.
 pub const MAX_DIAGNOSTICS: usize = 100;
 
+/// Collects diagnostics up to `MAX_DIAGNOSTICS` and counts the rest, so memory stays
+/// bounded whatever the input.
+#[derive(Default)]
+pub(crate) struct Sink {
+    list: Vec<Diagnostic>,
+    dropped: usize,
+}
+
+impl Sink {
+    pub fn full(&self) -> bool {
+        self.list.len() >= MAX_DIAGNOSTICS
+    }
+
+    pub fn push(&mut self, d: Diagnostic) {
+        if self.full() {
+            self.dropped += 1;
+        } else {
+            self.list.push(d);
+        }
+    }
+
+    /// The diagnostics in source order, with a last one saying how many were dropped.
+    fn finish(mut self) -> Vec<Diagnostic> {
+        self.list
+            .sort_by_key(|d| (d.primary_span().start, std::cmp::Reverse(d.severity)));
+        if self.dropped > 0 {
+            let more = self.dropped;
+            let last = self
+                .list
+                .last()
+                .map_or(Span::default(), Diagnostic::primary_span);
+            let message = format!("{more} more diagnostics not shown");
+            let d = if self.list.iter().any(Diagnostic::is_error) {
+                Diagnostic::error("rotlang::too-many-diagnostics", message)
+            } else {
+                Diagnostic::warning("rotlang::too-many-diagnostics", message)
+            };
+            self.list.push(
+                d.with_primary(Span::new(last.end, last.end), "and more after this")
+                    .with_help("fix the ones above first; the rest are often the same mistake"),
+            );
+        }
+        self.list
+    }
+}
+
 pub(crate) fn parse(text: &str, target: Target) -> Parse {
     let split = split::split(text);
-    let mut diagnostics = Vec::new();
+    let mut sink = Sink::default();
     let mut instructions = Vec::with_capacity(split.chunks.len());
-    for span in &split.empties {
-        diagnostics.push(
-            Diagnostic::warning(
-                "rotlang::empty-instruction",
-                "an empty instruction is ignored",
-            )
-            .with_primary(*span, "nothing between these separators")
-            .with_fix(
-                "remove the extra separator",
-                *span,
-                if instructions_before(&split.chunks, *span) {
-                    ", "
-                } else {
-                    ""
-                },
-            )
-            .with_help("OrcaSlicer reads an empty instruction as `0`; rotlang ignores it"),
-        );
-    }
+    let mut empties = split.empties.iter().peekable();
     let mut previous: Option<Chunk<'_>> = None;
     for chunk in &split.chunks {
+        while let Some(span) = empties.next_if(|s| s.start < chunk.span.start) {
+            sink.push(empty_instruction(*span, previous.is_some()));
+        }
         match RotParser::parse(Rule::instruction, chunk.text) {
             Ok(mut pairs) => {
                 if let Some(pair) = pairs.next() {
                     let mut lowerer = lower::Lowerer {
                         offset: chunk.span.start,
-                        diagnostics: &mut diagnostics,
+                        diagnostics: &mut sink,
                     };
                     if let Some(ins) = lowerer.instruction(pair) {
                         instructions.push(ins);
                     }
                 }
             }
-            Err(err) => diagnostics.push(chunk_error(text, chunk, previous.as_ref(), err)),
+            // Past the cap a failure is only counted: diagnosing it would cost time and
+            // memory for a report nobody sees.
+            Err(_) if sink.full() => sink.dropped += 1,
+            Err(err) => sink.push(chunk_error(text, chunk, previous.as_ref(), err)),
         }
         previous = Some(*chunk);
     }
     let template = Template { instructions };
-    crate::lint::check(text, &template, &split.chunks, target, &mut diagnostics);
-    diagnostics.sort_by_key(|d| (d.primary_span().start, std::cmp::Reverse(d.severity)));
-    cap(&mut diagnostics);
+    crate::lint::check(text, &template, &split.chunks, target, &mut sink);
     Parse {
         template,
-        diagnostics,
+        diagnostics: sink.finish(),
     }
 }
 
-fn instructions_before(chunks: &[Chunk<'_>], span: Span) -> bool {
-    chunks.first().is_some_and(|c| c.span.end <= span.start)
-}
-
-/// Keeps the first `MAX_DIAGNOSTICS` and says how many more there were.
-fn cap(diagnostics: &mut Vec<Diagnostic>) {
-    if diagnostics.len() <= MAX_DIAGNOSTICS {
-        return;
-    }
-    let more = diagnostics.len() - MAX_DIAGNOSTICS;
-    let errors = diagnostics.iter().any(Diagnostic::is_error);
-    let last = diagnostics[MAX_DIAGNOSTICS - 1].primary_span();
-    diagnostics.truncate(MAX_DIAGNOSTICS);
-    let d = if errors {
-        Diagnostic::error(
-            "rotlang::too-many-diagnostics",
-            format!("{more} more diagnostics not shown"),
-        )
-    } else {
-        Diagnostic::warning(
-            "rotlang::too-many-diagnostics",
-            format!("{more} more diagnostics not shown"),
-        )
-    };
-    diagnostics.push(
-        d.with_primary(Span::new(last.end, last.end), "and more after this")
-            .with_help("fix the ones above first; the rest are often the same mistake"),
-    );
+fn empty_instruction(span: Span, after_instruction: bool) -> Diagnostic {
+    Diagnostic::warning(
+        "rotlang::empty-instruction",
+        "an empty instruction is ignored",
+    )
+    .with_primary(span, "nothing between these separators")
+    .with_fix(
+        "remove the extra separator",
+        span,
+        if after_instruction { ", " } else { "" },
+    )
+    .with_help("OrcaSlicer reads an empty instruction as `0`; rotlang ignores it")
 }
 
 /// The diagnostic for an instruction the grammar rejects.
@@ -122,6 +138,26 @@ fn chunk_error(
         .with_help(format!(
             "did you mean `{joined}`? A space ends an instruction"
         ));
+    }
+    // `+30/1,5mm`: a decimal comma, read as a separator.
+    if let Some(prev) = previous
+        && prev.span.end + 1 == chunk.span.start
+        && text.as_bytes().get(prev.span.end) == Some(&b',')
+        && prev.text.ends_with(|c: char| c.is_ascii_digit())
+        && chunk.text.starts_with(|c: char| c.is_ascii_digit())
+        && RotParser::parse(Rule::instruction, &format!("{}.{}", prev.text, chunk.text)).is_ok()
+    {
+        let comma = Span::new(prev.span.end, chunk.span.start);
+        return Diagnostic::error(
+            "rotlang::decimal-comma",
+            "a comma separates instructions; decimals use a dot",
+        )
+        .with_primary(
+            comma,
+            format!("did you mean `{}.{}`?", prev.text, chunk.text),
+        )
+        .with_secondary(chunk.span, "read as an instruction of its own")
+        .with_fix("write a decimal point", comma, ".");
     }
     let pos = match err.location {
         InputLocation::Pos(p) => p,

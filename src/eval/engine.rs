@@ -61,38 +61,36 @@ struct Step {
 impl Step {
     fn new(instruction: &Instruction, model: &Model) -> Step {
         let alpha = finite(instruction.degrees());
-        let shells = |n: u32| Some(f64::from(n));
-        // A count of layers, if the instruction counts layers.
-        let layers = match instruction.count.map(|c| c.kind) {
-            Some(CountKind::Layers(n)) => Some(n),
-            Some(CountKind::Bottom) => shells(model.bottom_shells()),
-            Some(CountKind::Top) => shells(model.top_shells()),
-            _ => None,
-        };
-        let length = instruction.count.and_then(|c| match c.kind {
-            CountKind::Length { value, unit } => Some(match unit.millimetres() {
-                Some(mm) => value * mm,
-                None if unit == Unit::StandardLayers => value * model.layer_height(),
-                // `%` of the object height.
-                None => value / 100.0 * model.object_height(),
-            }),
-            CountKind::HeightFraction { num, den } => Some(num / den * model.object_height()),
-            _ => None,
-        });
-        let (extent, turn) = match (layers, length) {
-            (_, Some(length)) => (Extent::Length(finite(length)), alpha),
-            // A count that is 0 (or nonsense: negative, NaN) is one layer turning by α.
-            (Some(n), _) if n > 0.0 => {
-                let whole = n.floor();
-                // One α per layer when no joint spreads the turn: `+30B` turns 30° per layer.
-                let turn = if instruction.joint.is_none() {
-                    finite(alpha * whole)
-                } else {
-                    alpha
-                };
-                (Extent::Layers(whole.max(1.0)), turn)
+        // A count of `n` layers (section 3); 0, or nonsense (negative, NaN) from a
+        // hand-built IR, is one layer turning by α.
+        let counted = |n: f64| {
+            if n.is_nan() || n <= 0.0 {
+                return (Extent::OneLayer, alpha);
             }
-            _ => (Extent::OneLayer, alpha),
+            let whole = n.floor();
+            // One α per layer when no joint spreads the turn: `+30B` turns 30° per layer.
+            let turn = if instruction.joint.is_none() {
+                finite(alpha * whole)
+            } else {
+                alpha
+            };
+            (Extent::Layers(whole.max(1.0)), turn)
+        };
+        let length = |mm: f64| (Extent::Length(finite(mm)), alpha);
+        let (extent, turn) = match instruction.count.map(|c| c.kind) {
+            None => (Extent::OneLayer, alpha),
+            Some(CountKind::Layers(n)) => counted(n),
+            Some(CountKind::Bottom) => counted(f64::from(model.bottom_shells())),
+            Some(CountKind::Top) => counted(f64::from(model.top_shells())),
+            Some(CountKind::Length { value, unit }) => length(match unit {
+                Unit::StandardLayers => value * model.layer_height(),
+                // The object height is computed only when a template asks for it.
+                Unit::PercentOfHeight => value / 100.0 * model.object_height(),
+                fixed => value * fixed.millimetres().unwrap_or(1.0),
+            }),
+            Some(CountKind::HeightFraction { num, den }) => {
+                length(num / den * model.object_height())
+            }
         };
         Step {
             span: instruction.span,

@@ -119,7 +119,7 @@ impl std::iter::FusedIterator for Layers<'_> {}
 /// Costs: asking for increasing indices is amortised O(1) per layer (the stream just moves
 /// on). A layer below the last one asked for restarts from the nearest checkpoint: the
 /// evaluator keeps a snapshot every `max(1024, 32 × instructions)` layers as it passes,
-/// so going back costs at most that many layers, and the snapshots take well under one
+/// so going back costs at most that many layers, and the snapshots take under one
 /// byte per layer.
 #[derive(Clone, Debug)]
 pub struct Evaluator<'a> {

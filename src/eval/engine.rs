@@ -1,9 +1,10 @@
 //! The state machine of SEMANTICS.md sections 3, 4 and 6: ranges, walks and runs.
 //!
 //! One [`Engine`] steps through the layers bottom to top. Its memory is O(instructions):
-//! a prepared copy of each instruction and the links of the cycle of live positions.
-//! Nothing is ever looped over or allocated per count, so `*1000000000` or a 1e6 mm
-//! length cost no more than a plain instruction.
+//! a prepared copy of each instruction, the links of the cycle of live positions and the
+//! remembered walks. Nothing is ever looped over or allocated per count, so `*1000000000`
+//! or a 1e6 mm length cost no more than a plain instruction, and a walk across many
+//! dummies is paid once, not per layer: time is O(layers + instructions × spent ones).
 
 use super::model::{Cursor, Model};
 use super::{Layer, Options, random, shape::shape};
@@ -124,6 +125,12 @@ pub(crate) struct Engine {
     /// "already set up" rule, which makes every walk end).
     stamp: Vec<u64>,
     walk: u64,
+    /// `chains[c]`: what a walk starting at position `c` does, valid while `spent` (the
+    /// number of instructions spent so far) is the one recorded with it. A walk is a
+    /// function of the cursor and of which instructions are live, so a long run of
+    /// dummies is crossed once, not on every layer.
+    chains: Vec<Option<(usize, Chain)>>,
+    spent: usize,
     base: f64,
     seed: u64,
     // The current range (section 3).
@@ -155,6 +162,8 @@ impl Engine {
             cursor: 0,
             stamp: vec![0; n],
             walk: 0,
+            chains: vec![None; n],
+            spent: 0,
             steps,
             base: finite(options.base),
             seed: options.seed,
@@ -215,6 +224,7 @@ impl Engine {
     }
 
     /// Section 3 step 1 without runs left: this layer alone, then a walk.
+    #[inline]
     fn start_range(&mut self, at: &Cursor, model: &Model) {
         self.ze = at.top;
         self.fill = Fill::Sparse;
@@ -227,27 +237,104 @@ impl Engine {
         }
         self.joint = Joint::Linear;
         self.flipped = false;
-        self.walk += 1;
-        loop {
-            let c = self.cursor;
-            if self.stamp[c] == self.walk {
-                break;
+        let start = self.cursor;
+        if self.steps.get(start).is_some_and(|s| !s.dummy) {
+            // The common walk: one instruction that sets a range.
+            self.set_up(start, at, model);
+            if self.live > 0 {
+                self.cursor = self.next[start];
             }
-            self.stamp[c] = self.walk;
-            let dummy = self.set_up(c, at, model);
-            if self.live == 0 {
-                break;
+            return;
+        }
+        let chain = match self.chains.get(start) {
+            Some(&Some((spent, chain))) if spent == self.spent => chain,
+            _ => self.walk_dummies(start),
+        };
+        if let Some(effect) = chain.dummies {
+            self.a0 = finite(match effect.reset {
+                Some(alpha) => alpha + effect.offset,
+                None => self.a0 + self.d + effect.offset,
+            });
+            self.d = effect.d;
+            self.governing = self.steps.get(effect.last).map(|s| s.span);
+        }
+        match chain.then {
+            Then::SetUp(c) => {
+                self.set_up(c, at, model);
+                if self.live > 0 {
+                    self.cursor = self.next[c];
+                }
             }
-            self.cursor = self.next[c];
-            // A set range ends the walk; after a dummy it goes on, but not past the wrap.
-            if !dummy || self.cursor == 0 {
-                break;
-            }
+            Then::Stop(c) => self.cursor = c,
+            Then::Exhausted => {}
         }
     }
 
-    /// Sets up the instruction at position `c`; returns whether it was a dummy.
-    fn set_up(&mut self, c: usize, at: &Cursor, model: &Model) -> bool {
+    /// Walks from `start` over the dummies (section 4), spending the one-time ones, and
+    /// returns their combined effect and how the walk ends. Remembers the result when no
+    /// dummy was spent, since the same walk will then happen again.
+    fn walk_dummies(&mut self, start: usize) -> Chain {
+        self.walk += 1;
+        let spent_before = self.spent;
+        let mut dummies: Option<Dummies> = None;
+        let mut c = start;
+        let then = loop {
+            // `c` is live here.
+            if self.stamp[c] == self.walk {
+                break Then::Stop(c);
+            }
+            let step = self.steps[c];
+            if !step.dummy {
+                break Then::SetUp(c);
+            }
+            self.stamp[c] = self.walk;
+            // Each dummy commits (`a0 += d`), then sets `a0` (absolute) or `d` (relative).
+            let effect = dummies.get_or_insert(Dummies {
+                reset: None,
+                offset: 0.0,
+                d: 0.0,
+                last: c,
+            });
+            if effect.last != c {
+                // The commit of a `d` this walk set; the first commit adds the outer `d`.
+                effect.offset = finite(effect.offset + effect.d);
+            }
+            effect.last = c;
+            if step.relative {
+                effect.d = step.alpha;
+            } else {
+                *effect = Dummies {
+                    reset: Some(step.alpha),
+                    offset: 0.0,
+                    d: 0.0,
+                    last: c,
+                };
+            }
+            if step.one_time {
+                self.spend(c);
+                if self.live == 0 {
+                    break Then::Exhausted;
+                }
+            }
+            c = self.next[c];
+            // After a dummy the walk goes on, but not past the wrap to a live first position.
+            if c == 0 {
+                break Then::Stop(c);
+            }
+        };
+        let chain = Chain { dummies, then };
+        if self.spent == spent_before
+            && let Some(slot) = self.chains.get_mut(start)
+        {
+            *slot = Some((spent_before, chain));
+        }
+        chain
+    }
+
+    /// Sets up the instruction (not a dummy) at position `c`: commits the previous turn
+    /// and starts the instruction's range.
+    #[inline]
+    fn set_up(&mut self, c: usize, at: &Cursor, model: &Model) {
         let step = self.steps[c];
         self.a0 = finite(self.a0 + self.d);
         self.d = 0.0;
@@ -255,15 +342,6 @@ impl Engine {
             self.spend(c);
         }
         self.governing = Some(step.span);
-        if step.dummy {
-            // A dummy sets no range; its relative angle waits in `d` for the next commit.
-            if step.relative {
-                self.d = step.alpha;
-            } else {
-                self.a0 = step.alpha;
-            }
-            return true;
-        }
         if step.relative {
             self.d = step.turn;
         } else {
@@ -275,7 +353,6 @@ impl Engine {
         self.current = c;
         self.runs_left = step.runs.saturating_sub(1);
         self.ze = measure(step.extent, at, model);
-        false
     }
 
     fn spend(&mut self, c: usize) {
@@ -283,7 +360,41 @@ impl Engine {
         self.next[p] = n;
         self.prev[n] = p;
         self.live -= 1;
+        self.spent += 1;
     }
+}
+
+/// What one walk does (section 4): cross some dummies, then set up an instruction or stop.
+#[derive(Clone, Copy, Debug)]
+struct Chain {
+    dummies: Option<Dummies>,
+    then: Then,
+}
+
+/// The combined effect of the dummies a walk sets up, as a function of the `(a0, d)` it
+/// finds: `a0` becomes `reset + offset`, or `a0 + d + offset` when no dummy was absolute;
+/// `d` becomes `d`. Summing the dummies' turns first (instead of one commit at a time)
+/// can differ in the last bits only.
+#[derive(Clone, Copy, Debug)]
+struct Dummies {
+    /// The angle of the last absolute dummy, which discards everything before it.
+    reset: Option<f64>,
+    /// The turns committed after the reset (or after the outer `a0 + d`).
+    offset: f64,
+    /// The last dummy's relative angle, left uncommitted (0 if it was absolute).
+    d: f64,
+    /// The position of the last dummy: it governs a layer the walk sets no range for.
+    last: usize,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Then {
+    /// Set up the instruction at this position (not a dummy); the walk ends after it.
+    SetUp(usize),
+    /// Stop with the cursor here.
+    Stop(usize),
+    /// Every instruction is spent.
+    Exhausted,
 }
 
 /// The end `ze` of a range of the given extent that starts at the cursor's layer.

@@ -118,8 +118,8 @@ impl std::iter::FusedIterator for Layers<'_> {}
 ///
 /// Costs: asking for increasing indices is amortised O(1) per layer (the stream just moves
 /// on). A layer below the last one asked for restarts from the nearest checkpoint: the
-/// evaluator keeps a snapshot every `max(1024, 32 × instructions)` layers as it passes,
-/// so going back costs at most that many layers, and the snapshots take under one
+/// evaluator keeps a snapshot every `max(1024, 128 × instructions)` layers as it passes,
+/// so going back costs at most that many layers, and the snapshots take about one
 /// byte per layer.
 #[derive(Clone, Debug)]
 pub struct Evaluator<'a> {
@@ -135,7 +135,7 @@ impl<'a> Evaluator<'a> {
             stream: layers(template, model, options),
             last: None,
             checkpoints: Vec::new(),
-            spacing: template.instructions.len().saturating_mul(32).max(1024),
+            spacing: template.instructions.len().saturating_mul(128).max(1024),
         }
     }
 

@@ -362,3 +362,95 @@ fn hand_built_nonsense_stays_finite() {
         assert!(all.iter().all(|l| l.angle.is_finite()), "{chunk:?}");
     }
 }
+
+/// Sections 3 and 4 transcribed literally for instructions without counts or joints
+/// (every range one layer): the oracle for the walk, whose engine version is optimised.
+fn naive_walk(template: &Template, layers: usize) -> Vec<f64> {
+    let instructions = &template.instructions;
+    let n = instructions.len();
+    let mut spent = vec![false; n];
+    let (mut cursor, mut a0, mut d, mut runs_left) = (0, 0.0, 0.0, 0);
+    let mut out = Vec::new();
+    for _ in 0..layers {
+        if runs_left > 0 {
+            runs_left -= 1;
+        } else if spent.iter().any(|s| !s) {
+            runs_left = 0;
+            let mut set_up = vec![false; n];
+            let mut last_dummy = false;
+            loop {
+                if !spent[cursor] {
+                    if set_up[cursor] {
+                        break;
+                    }
+                    set_up[cursor] = true;
+                    let i = &instructions[cursor];
+                    a0 += d;
+                    d = 0.0;
+                    spent[cursor] = i.is_one_time();
+                    if i.is_relative() {
+                        d = i.degrees();
+                    } else {
+                        a0 = i.degrees();
+                    }
+                    last_dummy = i.is_dummy();
+                    if !last_dummy {
+                        runs_left = i.runs() - 1;
+                    }
+                }
+                cursor = (cursor + 1) % n;
+                if spent.iter().all(|&s| s) || (!spent[cursor] && (!last_dummy || cursor == 0)) {
+                    break;
+                }
+            }
+        }
+        // Every range is one layer: progress 1, linear.
+        out.push(a0 + d);
+    }
+    out
+}
+
+#[test]
+fn walks_match_the_literal_rules() {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = |m: u64| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state % m
+    };
+    let model = Model::uniform(60, 0.2, None).unwrap();
+    for _ in 0..3000 {
+        let mut text = String::new();
+        for k in 0..1 + next(9) {
+            if k > 0 {
+                text.push_str(", ");
+            }
+            text.push_str(["", "+", "-"][next(3) as usize]);
+            text.push_str(&(next(50) * 5).to_string());
+            text.push_str(["", "", "*", "*", "*!", "!", "*2", "*3"][next(8) as usize]);
+        }
+        let t = template(&text);
+        let expected = naive_walk(&t, model.len());
+        let got: Vec<f64> = layers(&t, &model, Options::default())
+            .map(|l| l.angle)
+            .collect();
+        assert!(
+            got.iter().zip(&expected).all(|(a, b)| (a - b).abs() < 1e-9),
+            "{text:?}:\n got {got:?}\n expected {expected:?}"
+        );
+    }
+}
+
+#[test]
+fn long_chains_of_dummies_cost_o1_per_layer() {
+    // 20,000 dummies between two turns: every other walk crosses all of them.
+    let text = format!("+1, {}, -1*!, 5", vec!["+1*"; 20_000].join(", "));
+    let t = template(&text);
+    let model = Model::uniform(200_000, 0.2, None).unwrap();
+    let start = std::time::Instant::now();
+    let last = layers(&t, &model, Options::default()).last().unwrap();
+    assert!(last.angle.is_finite());
+    // A walk per layer over every dummy would be 2e9 set-ups: minutes, not this.
+    assert!(start.elapsed().as_secs() < 10, "{:?}", start.elapsed());
+}

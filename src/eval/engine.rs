@@ -238,15 +238,12 @@ impl Engine {
         self.joint = Joint::Linear;
         self.flipped = false;
         let start = self.cursor;
-        if self.steps.get(start).is_some_and(|s| !s.dummy) {
-            // The common walk: one instruction that sets a range.
-            self.set_up(start, at, model);
-            if self.live > 0 {
-                self.cursor = self.next[start];
-            }
-            return;
-        }
         let chain = match self.chains.get(start) {
+            // The common walk: one instruction that sets a range.
+            _ if self.steps.get(start).is_some_and(|s| !s.dummy) => Chain {
+                dummies: None,
+                then: Then::SetUp(start),
+            },
             Some(&Some((spent, chain))) if spent == self.spent => chain,
             _ => self.walk_dummies(start),
         };

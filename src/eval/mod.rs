@@ -27,6 +27,11 @@
 //!     assert!(layer.angle.is_finite());
 //! }
 //! assert_eq!(slicer.layer(4).map(|l| l.angle), Some(45.0 + 25.0));
+//!
+//! // Adaptive layer heights, as the slicer computed them.
+//! let adaptive = Model::from_heights(vec![0.3, 0.2, 0.15, 0.15, 0.2, 0.25], 0.2)?;
+//! let last = eval::layers(&template, &adaptive, Options::default()).last();
+//! assert_eq!(last.map(|l| (l.index, l.angle)), Some((5, 5.0)));
 //! # Ok::<(), rotlang::eval::ModelError>(())
 //! ```
 

@@ -202,24 +202,21 @@ fn report(input: &Input, diagnostics: &[crate::Diagnostic], color: ColorArg) -> 
 
 /// The model the options describe (exit 2 on any problem, with the reason).
 fn model(args: &ExpandArgs) -> Result<Model, UsageError> {
-    let model = if let Some(path) = &args.model {
-        model_file(path)?
-    } else if args.layers.is_some() || args.height.is_some() {
-        let h = args.layer_height.unwrap_or(0.2);
-        let built = match (args.layers, args.height) {
-            (Some(layers), _) => Model::uniform(layers, h, args.first_layer_height),
-            (None, Some(height)) => Model::from_total_height(height, h, args.first_layer_height),
-            (None, None) => unreachable!("checked by the branch condition"),
-        };
-        built.map_err(|e| UsageError(format!("invalid model: {e}")))?
-    } else if args.layer_height.is_some() || args.first_layer_height.is_some() {
-        return Err(UsageError(
-            "--layer-height and --first-layer-height need --layers N or --height MM \
-             (without them the model is the 20 mm cube)"
-                .into(),
-        ));
-    } else {
-        Model::cube20()
+    let h = args.layer_height.unwrap_or(0.2);
+    let h0 = args.first_layer_height;
+    let invalid = |e: eval::ModelError| UsageError(format!("invalid model: {e}"));
+    let model = match (&args.model, args.layers, args.height) {
+        (Some(path), _, _) => model_file(path)?,
+        (None, Some(layers), _) => Model::uniform(layers, h, h0).map_err(invalid)?,
+        (None, None, Some(height)) => Model::from_total_height(height, h, h0).map_err(invalid)?,
+        (None, None, None) if args.layer_height.is_some() || h0.is_some() => {
+            return Err(UsageError(
+                "--layer-height and --first-layer-height need --layers N or --height MM \
+                 (without them the model is the 20 mm cube)"
+                    .into(),
+            ));
+        }
+        (None, None, None) => Model::cube20(),
     };
     let (bottom, top) = (
         args.bottom_shell_layers.unwrap_or(model.bottom_shells()),

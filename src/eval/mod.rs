@@ -39,7 +39,6 @@ mod engine;
 mod model;
 mod random;
 mod shape;
-mod trig;
 
 pub use model::{MAX_LAYER_HEIGHT, MAX_LAYERS, MIN_LAYER_HEIGHT, Model, ModelError};
 

@@ -105,7 +105,8 @@ fn shuffled(len: usize, mut state: u64) -> Vec<usize> {
     order
 }
 
-/// Random access in increasing and in shuffled order must equal the stream, bitwise.
+/// Internal iteration, and random access in increasing and in shuffled order, must equal
+/// the stream, bitwise.
 fn check_random_access(
     template: &Template,
     model: &Model,
@@ -113,6 +114,14 @@ fn check_random_access(
     stream: &[Layer],
 ) -> Result<(), String> {
     let same = |a: &Layer, b: &Layer| a == b && a.angle.to_bits() == b.angle.to_bits();
+    // Internal iteration (`fold`, behind `sum`, `for_each`, `last`) has its own loop.
+    let folded = eval::layers(template, model, options).fold(Vec::new(), |mut all, layer| {
+        all.push(layer);
+        all
+    });
+    if folded.len() != stream.len() || folded.iter().zip(stream).any(|(a, b)| !same(a, b)) {
+        return Err("fold differs from next".into());
+    }
     let mut evaluator = Evaluator::new(template, model, options);
     for expected in stream {
         match evaluator.layer(expected.index) {

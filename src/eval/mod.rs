@@ -110,6 +110,26 @@ impl Iterator for Layers<'_> {
         Some(layer)
     }
 
+    /// Internal iteration (`sum`, `for_each`, `last`, `count`, ...): the engine and the
+    /// cursor are moved into locals, so the compiler keeps them in registers across
+    /// layers instead of going through `self` on every call.
+    #[inline]
+    fn fold<B, F: FnMut(B, Layer) -> B>(self, init: B, mut f: F) -> B {
+        let Layers {
+            model,
+            mut engine,
+            mut at,
+        } = self;
+        let len = model.len();
+        let mut acc = init;
+        while at.index < len {
+            let layer = engine.layer(&at, model);
+            at.advance_in(model);
+            acc = f(acc, layer);
+        }
+        acc
+    }
+
     fn size_hint(&self) -> (usize, Option<usize>) {
         let left = self.model.len().saturating_sub(self.at.index);
         (left, Some(left))

@@ -67,9 +67,31 @@ fn unit_suggestion(word: &str) -> Option<&'static str> {
         "l" | "layer" | "layers" => return Some("#"),
         _ => {}
     }
+    // An exact match first: `CM` is `cm`, although it is also one edit away from `mm`.
     ["mm", "cm"]
         .into_iter()
-        .find(|u| near(&lower, u) || lower == *u)
+        .find(|u| lower == *u)
+        .or_else(|| ["mm", "cm"].into_iter().find(|u| near(&lower, u)))
+}
+
+/// The ASCII character a typographic or full-width look-alike stands for.
+fn look_alike(c: char) -> Option<char> {
+    Some(match c {
+        '\u{2212}' | '\u{2010}' | '\u{2011}' | '\u{2013}' | '\u{2014}' | '\u{FF0D}' => '-',
+        '\u{FF0B}' => '+',
+        '\u{FF0C}' | '\u{3001}' => ',',
+        '\u{FF0E}' => '.',
+        '\u{FF1A}' => ':',
+        '\u{FF05}' => '%',
+        '\u{FF0F}' | '\u{2215}' | '\u{2044}' => '/',
+        '\u{2032}' | '\u{2018}' | '\u{2019}' => '\'',
+        '\u{2033}' | '\u{201C}' | '\u{201D}' => '"',
+        '\u{00D7}' | '\u{FF0A}' => '*',
+        '\u{FF01}' => '!',
+        '\u{FF03}' => '#',
+        '\u{FF10}'..='\u{FF19}' => char::from(b'0' + (c as u32 - 0xFF10) as u8),
+        _ => return None,
+    })
 }
 
 impl Failure<'_> {
@@ -113,6 +135,40 @@ impl Failure<'_> {
             return self.at_end();
         };
         let here = self.abs(pos, pos + c.len_utf8());
+
+        // `"0, 90"`: a template copied with its quotes.
+        if pos == 0
+            && matches!(
+                c,
+                '"' | '\'' | '`' | '\u{201C}' | '\u{201D}' | '\u{2018}' | '\u{2019}' | '«' | '»'
+            )
+        {
+            return Diagnostic::error("rotlang::quoted-template", "a template is written without quotes")
+                .with_primary(here, "a quote")
+                .with_fix("remove the quote", here, "")
+                .with_help("write the template's text alone: `0, 90`, not `\"0, 90\"`; `'` and `\"` are units (feet and inches) after a count");
+        }
+        // `*2.5`, `*1e3`: a repeat count is a whole number of runs.
+        let digits_start = text[..pos]
+            .trim_end_matches(|d: char| d.is_ascii_digit())
+            .len();
+        if prev_digit && matches!(c, '.' | 'e' | 'E') && text[..digits_start].ends_with('*') {
+            let len = rest
+                .bytes()
+                .take_while(|b| b.is_ascii_alphanumeric() || matches!(b, b'.' | b'+' | b'-'))
+                .count();
+            let len = rest[..len]
+                .trim_end_matches(|ch: char| !ch.is_ascii_digit())
+                .len()
+                .max(1);
+            return Diagnostic::error(
+                "rotlang::repeat-not-whole",
+                "a repeat count `*ℤ` is a whole number",
+            )
+            .with_primary(self.abs(digits_start, pos + len), "not a whole number")
+            .with_secondary(self.abs(digits_start - 1, digits_start), "a repeat count")
+            .with_help("`*3` runs the instruction 3 times in a row; write whole digits only");
+        }
 
         // Numbers written in ways the language does not read.
         if c == '.' {
@@ -169,6 +225,8 @@ impl Failure<'_> {
             && !text[..pos].contains(|c: char| {
                 Joint::from_symbol(c).is_some() || c == '-' || c == '!' || c == '%' || c == ':'
             })
+            // `+30m3` is the monotonic sign in lower case, not metres (handled below).
+            && !(unit == "m" && self.parses_with(pos, 1, "M"))
         {
             let span = self.abs(pos, pos + unit.len());
             return Diagnostic::error("rotlang::unit-after-angle", format!("the unit `{unit}` follows an angle, not a count"))
@@ -180,7 +238,71 @@ impl Failure<'_> {
                 .with_primary(self.abs(0, 2), "two signs")
                 .with_help("`+30` turns counter-clockwise, `-30` clockwise");
         }
+        // A misspelt unit right after a count's number (`5CM`, `5layers`), checked before
+        // the signs: its first letter may also be a sign (`M`, `l`).
+        if c.is_ascii_alphabetic() {
+            let start = text[..pos]
+                .trim_end_matches(|ch: char| ch.is_ascii_alphabetic())
+                .len();
+            let word = self.word_at(start);
+            if text[..start].ends_with(|ch: char| ch.is_ascii_digit())
+                && word.len() >= 2
+                && let Some(u) = unit_suggestion(word)
+                    .filter(|u| *u != word && self.parses_with(start, word.len(), u))
+            {
+                return self.unknown_unit(start, word, u);
+            }
+        }
+
+        // `1:2%`, `+30/1:2mm`: a fraction is already a share of a turn or of the height.
+        let number_start = text[..pos]
+            .trim_end_matches(|d: char| d.is_ascii_digit() || d == '.')
+            .len();
+        let after_fraction = prev_digit && text[..number_start].ends_with(':');
+        let unit_or_percent = if matches!(c, '%' | '#') {
+            Some(&rest[..1])
+        } else {
+            is_unit_start(rest)
+        };
+        if let Some(unit) = unit_or_percent.filter(|_| after_fraction) {
+            let colon = number_start - 1;
+            let frac_start = text[..colon]
+                .trim_end_matches(|d: char| d.is_ascii_digit() || d == '.')
+                .len();
+            let span = self.abs(pos, pos + unit.len());
+            let fraction = self.abs(frac_start, pos);
+            let is_angle = matches!(&text[..frac_start], "" | "+" | "-");
+            let d = if is_angle {
+                Diagnostic::error(
+                    "rotlang::unit-after-fraction",
+                    "an angle is written `α:β` or `α%`, not both",
+                )
+                .with_primary(span, format!("`{unit}` after a fraction of a turn"))
+                .with_secondary(fraction, "already a fraction of a full turn")
+                .with_help("`1:4` and `25%` are both a quarter turn (90°)")
+            } else {
+                Diagnostic::error("rotlang::unit-after-fraction", "a fraction of the height `ℍ:ℕ` takes no unit")
+                    .with_primary(span, format!("`{unit}` after a fraction of the height"))
+                    .with_secondary(fraction, "already a share of the object height")
+                    .with_help("`+30/1:2` turns over half the height; for a length write a number and a unit, as in `+30/10mm`")
+            };
+            return d.with_fix(format!("remove `{unit}`"), span, "");
+        }
+
         // Units in the wrong place.
+        // `#` and `%` are units too: after `B`/`T` they are the same mistake as `mm`.
+        let unit_here = if matches!(c, '#' | '%') {
+            Some(&rest[..1])
+        } else {
+            is_unit_start(rest)
+        };
+        if let Some(unit) = unit_here.filter(|_| matches!(prev, Some('B' | 'T'))) {
+            let span = self.abs(pos, pos + unit.len());
+            return Diagnostic::error("rotlang::unit-after-shell-count", "`B` and `T` count layers and take no unit")
+                .with_primary(span, "a unit after a shell count")
+                .with_fix("remove the unit", span, "")
+                .with_help("`B` is the number of bottom shell layers, `T` of top shell layers; for a length write a number, as in `+30/2mm`");
+        }
         if let Some(unit) = is_unit_start(rest).filter(|_| !prev_digit) {
             let span = self.abs(pos, pos + unit.len());
             if matches!(prev, Some('B' | 'T')) {
@@ -283,6 +405,13 @@ impl Failure<'_> {
                 .with_primary(here, "a runtime mark here")
                 .with_help("`*`, `*ℤ` and `!` come right after the angle or at the very end of the instruction");
         }
+        if c == ':' && text[..number_start].ends_with(':') && prev_digit {
+            let first = number_start - 1;
+            return Diagnostic::error("rotlang::bad-fraction", "a fraction has one `:`")
+                .with_primary(here, "a second `:`")
+                .with_secondary(self.abs(first, first + 1), "the fraction's `:`")
+                .with_help("`a:b` is a/b: `1:4` is a quarter turn as an angle, or a quarter of the height as a count");
+        }
         if c == ':' {
             return Diagnostic::error(
                 "rotlang::bad-fraction",
@@ -301,6 +430,17 @@ impl Failure<'_> {
             .with_primary(here, "a semicolon")
             .with_fix("use a comma", here, ",");
         }
+        if c == '\u{feff}' {
+            return Diagnostic::error(
+                "rotlang::byte-order-mark",
+                "an invisible byte-order mark (U+FEFF) is in the template",
+            )
+            .with_primary(here, "a byte-order mark")
+            .with_fix("remove the byte-order mark", here, "")
+            .with_help(
+                "some editors write it at the start of a file; save the file as UTF-8 without BOM",
+            );
+        }
         if c == '°' {
             return Diagnostic::error("rotlang::degree-sign", "angles are written without `°`")
                 .with_primary(here, "a degree sign")
@@ -308,6 +448,29 @@ impl Failure<'_> {
                 .with_help("every angle is in degrees already: write `+30`, not `+30°`");
         }
         if c.is_ascii_digit() {
+            let len = rest
+                .bytes()
+                .take_while(|b| b.is_ascii_digit() || *b == b'.')
+                .count();
+            let number = self.abs(pos, pos + len);
+            if matches!(prev, Some('B' | 'T')) {
+                let shell = self.abs(pos - 1, pos);
+                return Diagnostic::error("rotlang::two-counts", "an instruction has one count")
+                    .with_primary(number, "a second count")
+                    .with_secondary(shell, format!("the count is already `{}`", &text[pos - 1..pos]))
+                    .with_help("`B` and `T` are the numbers of bottom and top shell layers; write either one of them or a number");
+            }
+            let before_unit = ["mm", "cm", "m", "'", "\"", "%", "#"]
+                .into_iter()
+                .find(|u| {
+                    text[..pos].ends_with(u)
+                        && text[..pos - u.len()].ends_with(|d: char| d.is_ascii_digit())
+                });
+            if let Some(unit) = before_unit {
+                return Diagnostic::error("rotlang::misplaced-number", format!("a number after the unit `{unit}`"))
+                    .with_primary(number, "an extra number")
+                    .with_help("a count is a number then its unit (`+30/5mm`); after the unit only a trailing `*` or `!` may follow");
+            }
             return Diagnostic::error("rotlang::misplaced-number", "a number is out of place here")
                 .with_primary(self.abs(pos, pos + rest.bytes().take_while(|b| b.is_ascii_digit() || *b == b'.').count()), "an extra number")
                 .with_help(format!(
@@ -317,19 +480,9 @@ impl Failure<'_> {
         if c.is_ascii_alphabetic() {
             let wspan = self.abs(pos, pos + word.len());
             // A "did you mean" is offered only when the corrected instruction parses.
-            let parses = |replacement: &str, len: usize| {
-                let fixed = format!("{}{}{}", &text[..pos], replacement, &text[pos + len..]);
-                RotParser::parse(Rule::instruction, &fixed).is_ok()
-            };
+            let parses = |replacement: &str, len: usize| self.parses_with(pos, len, replacement);
             if prev_digit && let Some(u) = unit_suggestion(word).filter(|u| parses(u, word.len())) {
-                let unit = Unit::from_symbol(u).map_or("", Unit::meaning);
-                return Diagnostic::error(
-                    "rotlang::unknown-unit",
-                    format!("unknown length unit `{word}`"),
-                )
-                .with_primary(wspan, format!("did you mean `{u}` ({unit})?"))
-                .with_fix(format!("write `{u}`"), wspan, u)
-                .with_help("length units: `mm cm m ' \" # %`");
+                return self.unknown_unit(pos, word, u);
             }
             let upper = c.to_ascii_uppercase();
             if c.is_ascii_lowercase() && parses(&upper.to_string(), 1) {
@@ -354,6 +507,15 @@ impl Failure<'_> {
                 .with_primary(span, "not a sign of the language")
                 .with_help(SIGNS_HELP);
         }
+        if let Some(ascii) = look_alike(c) {
+            return Diagnostic::error(
+                "rotlang::look-alike-character",
+                format!("`{c}` (U+{:04X}) looks like `{ascii}` but is not", c as u32),
+            )
+            .with_primary(here, format!("did you mean `{ascii}`?"))
+            .with_fix(format!("write `{ascii}`"), here, ascii.to_string())
+            .with_help("templates are plain ASCII; word processors and some keyboards substitute look-alike characters");
+        }
         let shown = if c.is_control() || c.is_whitespace() {
             format!("U+{:04X}", c as u32)
         } else {
@@ -367,8 +529,37 @@ impl Failure<'_> {
         .with_help("templates use ASCII digits and signs, separated by commas or spaces")
     }
 
+    /// Whether the instruction parses with `len` bytes at `pos` replaced.
+    fn parses_with(&self, pos: usize, len: usize, replacement: &str) -> bool {
+        let fixed = format!(
+            "{}{}{}",
+            &self.text[..pos],
+            replacement,
+            &self.text[pos + len..]
+        );
+        RotParser::parse(Rule::instruction, &fixed).is_ok()
+    }
+
+    fn unknown_unit(&self, pos: usize, word: &str, u: &str) -> Diagnostic {
+        let wspan = self.abs(pos, pos + word.len());
+        let unit = Unit::from_symbol(u).map_or("", Unit::meaning);
+        Diagnostic::error(
+            "rotlang::unknown-unit",
+            format!("unknown length unit `{word}`"),
+        )
+        .with_primary(wspan, format!("did you mean `{u}` ({unit})?"))
+        .with_fix(format!("write `{u}`"), wspan, u)
+        .with_help("length units: `mm cm m ' \" # %`")
+    }
+
     fn at_end(&self) -> Diagnostic {
         let end = self.text.len();
+        // `+10/-`, `30-`: a flip with nothing after it (a lone `-` is an unfinished angle).
+        if self.text.ends_with('-') && end > 1 {
+            return Diagnostic::error("rotlang::flip-without-count", "a flip `-` needs a count after it")
+                .with_primary(self.abs(end - 1, end), "nothing to flip over")
+                .with_help("the flip reverses the shape over its count, as in `+22.5u-50%`; remove the `-` or add a count");
+        }
         let span = self.abs(
             end.saturating_sub(
                 self.text[..end]

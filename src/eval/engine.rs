@@ -119,17 +119,16 @@ pub(crate) struct Engine {
     /// walk can still step off an instruction it has just spent.
     next: Vec<usize>,
     prev: Vec<usize>,
-    live: usize,
     cursor: usize,
     /// `stamp[c] == walk`: position `c` was set up by the current walk (section 4's
     /// "already set up" rule, which makes every walk end).
     stamp: Vec<u64>,
     walk: u64,
-    /// `chains[c]`: what a walk starting at position `c` does, valid while `spent` (the
-    /// number of instructions spent so far) is the one recorded with it. A walk is a
-    /// function of the cursor and of which instructions are live, so a long run of
-    /// dummies is crossed once, not on every layer.
+    /// `chains[c]`: what a walk starting at position `c` does, valid while `spent` is the
+    /// one recorded with it. A walk is a function of the cursor and of which instructions
+    /// are live, so a long run of dummies is crossed once, not on every layer.
     chains: Vec<Option<(usize, Chain)>>,
+    /// How many one-time instructions are spent.
     spent: usize,
     base: f64,
     seed: u64,
@@ -158,7 +157,6 @@ impl Engine {
         Engine {
             next: (0..n).map(|c| (c + 1) % n).collect(),
             prev: (0..n).map(|c| (c + n - 1) % n).collect(),
-            live: n,
             cursor: 0,
             stamp: vec![0; n],
             walk: 0,
@@ -232,7 +230,7 @@ impl Engine {
         self.fill = Fill::Sparse;
         self.governing = None;
         self.runs_left = 0;
-        if self.live == 0 {
+        if self.all_spent() {
             // Everything is spent: the layer holds. Keeping the previous range's shape and
             // flip over this one-layer range shows exactly `a0 + d × shape(end)`.
             return;
@@ -260,7 +258,7 @@ impl Engine {
         match chain.then {
             Then::SetUp(c) => {
                 self.set_up(c, at, model);
-                if self.live > 0 {
+                if !self.all_spent() {
                     self.cursor = self.next[c];
                 }
             }
@@ -311,7 +309,7 @@ impl Engine {
             }
             if step.one_time {
                 self.spend(c);
-                if self.live == 0 {
+                if self.all_spent() {
                     break Then::Exhausted;
                 }
             }
@@ -354,11 +352,14 @@ impl Engine {
         self.ze = measure(step.extent, at, model);
     }
 
+    fn all_spent(&self) -> bool {
+        self.spent == self.steps.len()
+    }
+
     fn spend(&mut self, c: usize) {
         let (p, n) = (self.prev[c], self.next[c]);
         self.next[p] = n;
         self.prev[n] = p;
-        self.live -= 1;
         self.spent += 1;
     }
 }

@@ -15,7 +15,7 @@ use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::{self, termcolor};
 
 use crate::Target;
-use crate::diagnostic::{Diagnostic, LineIndex, Severity};
+use crate::diagnostic::{Diagnostic, LineIndex, Severity, floor_char_boundary};
 
 /// The largest input read (a template file or stdin). Templates are a few bytes; this
 /// bounds memory on a mistaken `--file /dev/zero`.
@@ -159,19 +159,21 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
     let config = term::Config::default();
     for (input, diagnostics) in reports {
         let long = input.text.lines().any(|l| l.len() > LONG_LINE);
+        let index = LineIndex::new(&input.text);
         let id = files.add(
             input.name.clone(),
             if long {
                 String::new()
             } else {
-                input.text.clone()
+                visible(&input.text)
             },
         );
         for d in diagnostics.iter() {
             let (file, d) = if long {
                 // A 1 MB one-line template would be printed whole under every diagnostic:
                 // show a window around the diagnostic instead.
-                let (name, excerpt, d) = excerpt(input, d);
+                let (name, excerpt, d) = excerpt(input, &index, d);
+                let excerpt = visible(&excerpt);
                 (files.add(name, excerpt), d)
             } else {
                 (id, d.clone())
@@ -192,22 +194,27 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
 /// Lines longer than this are shown as a window around each diagnostic.
 const LONG_LINE: usize = 400;
 
-/// A window of the input around a diagnostic's labels, and the diagnostic moved into it.
-fn excerpt(input: &Input, d: &Diagnostic) -> (String, String, Diagnostic) {
+/// A window of the input around a diagnostic's primary label (itself cut to a few dozen
+/// bytes), and the diagnostic moved into it.
+fn excerpt(input: &Input, index: &LineIndex<'_>, d: &Diagnostic) -> (String, String, Diagnostic) {
     let text = &input.text;
     let primary = d.primary_span();
-    let start = crate::diagnostic::floor_char_boundary(text, primary.start.saturating_sub(60));
-    let mut end = (primary.end + 60).min(text.len());
-    while !text.is_char_boundary(end) {
-        end += 1;
-    }
+    let start = floor_char_boundary(text, primary.start.saturating_sub(60));
+    let end = ceil_char_boundary(text, primary.end.min(primary.start + 120) + 60);
+    let clip = |s: crate::Span| {
+        let (a, b) = (s.start.clamp(start, end), s.end.clamp(start, end));
+        crate::Span::new(
+            ceil_char_boundary(text, a) - start,
+            floor_char_boundary(text, b).max(ceil_char_boundary(text, a)) - start,
+        )
+    };
     let mut moved = d.clone();
     // Labels outside the window are dropped; the primary one is always inside.
     moved
         .labels
-        .retain(|l| l.span.start >= start && l.span.end <= end);
+        .retain(|l| l.primary || (l.span.end > start && l.span.start < end));
     for l in &mut moved.labels {
-        l.span = crate::Span::new(l.span.start - start, l.span.end - start);
+        l.span = clip(l.span);
     }
     if moved
         .fix
@@ -216,12 +223,36 @@ fn excerpt(input: &Input, d: &Diagnostic) -> (String, String, Diagnostic) {
     {
         moved.fix = None;
     } else if let Some(f) = &mut moved.fix {
-        f.span = crate::Span::new(f.span.start - start, f.span.end - start);
+        f.span = clip(f.span);
     }
-    let index = LineIndex::new(text);
     let (line, col) = index.line_col(start);
     let name = format!("{} (excerpt from line {line}, column {col})", input.name);
     (name, text[start..end].to_owned(), moved)
+}
+
+fn ceil_char_boundary(text: &str, offset: usize) -> usize {
+    let mut o = offset.min(text.len());
+    while !text.is_char_boundary(o) {
+        o += 1;
+    }
+    o
+}
+
+/// The text as shown under a diagnostic: control characters (a NUL, an escape) would be
+/// invisible or would drive the terminal, so each becomes a `?` of the same byte length.
+fn visible(text: &str) -> String {
+    if !text.contains(|c: char| c.is_control() && !matches!(c, '\n' | '\t' | '\r')) {
+        return text.to_owned();
+    }
+    text.chars()
+        .map(|c| {
+            if c.is_control() && !matches!(c, '\n' | '\t' | '\r') {
+                "?".repeat(c.len_utf8())
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 fn to_codespan(id: usize, d: &Diagnostic) -> cs::Diagnostic<usize> {
@@ -243,12 +274,7 @@ fn to_codespan(id: usize, d: &Diagnostic) -> cs::Diagnostic<usize> {
         .collect();
     let mut notes: Vec<String> = d.help.iter().map(|h| format!("help: {h}")).collect();
     if let Some(fix) = &d.fix {
-        let with = if fix.replacement.is_empty() {
-            String::new()
-        } else {
-            format!(": `{}`", fix.replacement)
-        };
-        notes.push(format!("fix: {}{with}", fix.title));
+        notes.push(format!("fix: {}", fix.title));
     }
     base.with_code(d.code)
         .with_message(&d.message)

@@ -170,6 +170,21 @@ impl Failure<'_> {
             .with_help("`*3` runs the instruction 3 times in a row; write whole digits only");
         }
 
+        let word = self.word_at(pos);
+        // `+30/5e`: an exponent with no digits.
+        if prev_digit && matches!(c, 'e' | 'E') && word.len() == 1 {
+            let len = 1 + usize::from(rest[1..].starts_with(['+', '-']));
+            return Diagnostic::error("rotlang::bad-number", "an exponent needs digits")
+                .with_primary(self.abs(pos, pos + len), "no digits after the exponent")
+                .with_help("write `1e3` for 1000, or leave the exponent out");
+        }
+        // `[0, 90]`, `(+30/5)`: brackets are not part of the language.
+        if matches!(c, '[' | ']' | '(' | ')' | '{' | '}' | '<' | '>') {
+            return Diagnostic::error("rotlang::bracket", format!("`{c}` is not part of the language"))
+                .with_primary(here, "a bracket")
+                .with_fix("remove the bracket", here, "")
+                .with_help("a template is instructions separated by commas or spaces, with nothing around them: `0, 90`");
+        }
         // Numbers written in ways the language does not read.
         if c == '.' {
             let next_digit = rest[1..].starts_with(|d: char| d.is_ascii_digit());
@@ -189,7 +204,6 @@ impl Failure<'_> {
                 .with_primary(here, "a second decimal point")
                 .with_help("numbers are digits with an optional fractional part: `22.5`");
         }
-        let word = self.word_at(pos);
         if ["inf", "infinity", "nan"].contains(&word.to_ascii_lowercase().as_str()) {
             return Diagnostic::error(
                 "rotlang::number-not-finite",
@@ -332,7 +346,7 @@ impl Failure<'_> {
             let earlier = self
                 .earlier_signs(pos)
                 .find(|&(_, e)| Joint::from_symbol(e).is_some() && !(e == '#' && prev_digit));
-            if let Some((i, first)) = earlier.filter(|_| !prev_digit) {
+            if let Some((i, first)) = earlier {
                 return Diagnostic::error("rotlang::two-joints", "an instruction has at most one joint sign")
                     .with_primary(here, format!("a second joint `{}`", j.symbol()))
                     .with_secondary(self.abs(i, i + first.len_utf8()), "the first joint")
@@ -364,6 +378,20 @@ impl Failure<'_> {
                 .with_help(format!("the solid sign comes right after the angle (and its runtime mark), as in `+30{c}3`; {SIGNS_HELP}"));
         }
         if matches!(c, 'B' | 'T') {
+            // Only a count can stand right before a misplaced `B`/`T` (`30B` is legal).
+            let first = if matches!(prev, Some('B' | 'T')) {
+                Some(self.abs(pos - 1, pos))
+            } else if prev_digit {
+                Some(self.abs(digits_start, pos))
+            } else {
+                None
+            };
+            if let Some(first) = first {
+                return Diagnostic::error("rotlang::two-counts", "an instruction has one count")
+                    .with_primary(here, "a second count")
+                    .with_secondary(first, "the count")
+                    .with_help("`B` and `T` are the numbers of bottom and top shell layers; write either one of them or a number");
+            }
             return Diagnostic::error(
                 "rotlang::misplaced-sign",
                 format!("the count `{c}` is out of place"),
@@ -525,8 +553,8 @@ impl Failure<'_> {
             "rotlang::unexpected-character",
             format!("unexpected character {shown}"),
         )
-        .with_primary(here, format!("expected {}", self.expected_words()))
-        .with_help("templates use ASCII digits and signs, separated by commas or spaces")
+        .with_primary(here, "not part of the language")
+        .with_help("templates are digits and the signs `+ - % : * ! / # | $ ~ ^ ' \"`, letters `D S O M R N n Z z L l U u Q q B T m c`, separated by commas or spaces")
     }
 
     /// Whether the instruction parses with `len` bytes at `pos` replaced.

@@ -121,23 +121,26 @@ fn chunk_error(
     previous: Option<&Chunk<'_>>,
     err: pest::error::Error<Rule>,
 ) -> Diagnostic {
-    // `+30/50 %`: a unit split off its count by a space.
-    if let Some(prev) = previous.filter(|_| chunk.after_space_only)
+    // `+30/50 %`, `+30/5,%`: a unit split off its count by a separator.
+    if let Some(prev) = previous
         && prev.text.ends_with(|c: char| c.is_ascii_digit())
         && ["%", "mm", "cm", "m", "'", "\""].contains(&chunk.text)
     {
         let gap = Span::new(prev.span.end, chunk.span.start);
         let joined = format!("{}{}", prev.text, chunk.text);
+        let what = if chunk.after_space_only {
+            "space"
+        } else {
+            "separator"
+        };
         return Diagnostic::error(
             "rotlang::space-before-unit",
             format!("the unit `{}` is cut off from its number", chunk.text),
         )
         .with_primary(chunk.span, "a unit on its own")
-        .with_secondary(gap, "this space separates instructions")
-        .with_fix("remove the space", gap, "")
-        .with_help(format!(
-            "did you mean `{joined}`? A space ends an instruction"
-        ));
+        .with_secondary(gap, format!("this {what} ends the instruction"))
+        .with_fix(format!("remove the {what}"), gap, "")
+        .with_help(format!("did you mean `{joined}`?"));
     }
     // `+30/1,5mm`: a decimal comma, read as a separator.
     if let Some(prev) = previous

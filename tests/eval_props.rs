@@ -164,7 +164,7 @@ proptest! {
 /// The generator writes the language, not noise: every template it makes parses cleanly,
 /// so the property above exercises the evaluator on meaningful input.
 #[test]
-fn generated_templates_are_mostly_well_formed() {
+fn generated_templates_are_well_formed() {
     use proptest::strategy::ValueTree;
     use proptest::test_runner::TestRunner;
     let mut runner = TestRunner::deterministic();

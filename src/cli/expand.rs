@@ -54,7 +54,8 @@ pub struct ExpandArgs {
         long,
         value_name = "MM",
         help_heading = "Model",
-        conflicts_with = "model"
+        conflicts_with = "model",
+        allow_negative_numbers = true
     )]
     pub height: Option<f64>,
     /// The standard layer height h in mm, with --layers or --height [default: 0.2].
@@ -63,7 +64,8 @@ pub struct ExpandArgs {
         long,
         value_name = "MM",
         help_heading = "Model",
-        conflicts_with = "model"
+        conflicts_with = "model",
+        allow_negative_numbers = true
     )]
     pub layer_height: Option<f64>,
     /// The first layer's height in mm, with --layers or --height [default: the layer height].
@@ -71,7 +73,8 @@ pub struct ExpandArgs {
         long,
         value_name = "MM",
         help_heading = "Model",
-        conflicts_with = "model"
+        conflicts_with = "model",
+        allow_negative_numbers = true
     )]
     pub first_layer_height: Option<f64>,
     /// A model from a JSON file: {"layer_heights": [...], "layer_height": H,

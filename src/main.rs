@@ -21,6 +21,7 @@ use rotlang::cli;
 Examples:
   rotlang check '+10L25%, -10l25%'
   rotlang fmt '0 90  +30/50%'
+  rotlang expand '+10L25%, -10l25%' --layers 200 --layer-height 0.1
 Run `rotlang help COMMAND` for a command's options and examples."
 )]
 struct Cli {
@@ -34,6 +35,8 @@ enum Command {
     Check(cli::check::CheckArgs),
     /// Print templates in canonical form (or check that they are).
     Fmt(cli::fmt::FmtArgs),
+    /// Print the angle and fill of every layer of a model.
+    Expand(cli::expand::ExpandArgs),
 }
 
 fn main() -> ExitCode {
@@ -44,6 +47,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Check(args) => cli::check::run(args, &mut out),
         Command::Fmt(args) => cli::fmt::run(args, &mut out, &mut err),
+        Command::Expand(args) => cli::expand::run(args, &mut out, &mut err),
     };
     let flushed = out.flush();
     match result {

@@ -442,3 +442,128 @@ fn colour_when_asked() {
         "--color always colours piped output"
     );
 }
+
+// ── expand ──────────────────────────────────────────────────────────────────────────────
+
+#[test]
+fn expand_default_cube_table() {
+    let (golden, code) = run(&["expand", "5, 10!, +20"], None);
+    assert_eq!(code, 0);
+    // 100 layers of the documentation's cube, after a header line.
+    let stdout = golden.split("----- stdout -----\n").nth(1).unwrap();
+    let rows: Vec<&str> = stdout
+        .lines()
+        .take_while(|l| !l.starts_with("-----"))
+        .collect();
+    assert_eq!(rows.len(), 101, "{golden}");
+    let angles: Vec<&str> = rows[1..8]
+        .iter()
+        .map(|r| r.split_whitespace().nth(3).unwrap())
+        .collect();
+    // The documented sequence: 5, 10, 30, 5, 25, 5, 25.
+    assert_eq!(
+        angles,
+        [
+            "5.0000", "10.0000", "30.0000", "5.0000", "25.0000", "5.0000", "25.0000"
+        ]
+    );
+}
+
+#[test]
+fn expand_uniform_model_csv() {
+    golden!(
+        "expand_uniform_csv",
+        0,
+        [
+            "expand",
+            "+10L25%, -10l25%",
+            "--layers",
+            "8",
+            "--layer-height",
+            "0.25",
+            "--first-layer-height",
+            "0.3",
+            "--format",
+            "csv",
+            "--wrap",
+            "360"
+        ]
+    );
+}
+
+#[test]
+fn expand_height_json_with_solid_layers() {
+    golden!(
+        "expand_height_json",
+        0,
+        [
+            "expand",
+            "#2, +15R",
+            "--height",
+            "1.2",
+            "--layer-height",
+            "0.2",
+            "--format",
+            "json"
+        ]
+    );
+}
+
+#[test]
+fn expand_model_file_and_stdin_template() {
+    let dir = TempDir::new("expand");
+    let model = dir.file(
+        "model.json",
+        r#"{"layer_heights": [0.3, 0.2, 0.2, 0.2], "layer_height": 0.2, "bottom_shell_layers": 2, "top_shell_layers": 1}"#,
+    );
+    let (golden, code) = run(
+        &[
+            "expand",
+            "--model",
+            model.to_str().unwrap(),
+            "--format",
+            "csv",
+        ],
+        Some("B!, +30\n"),
+    );
+    let golden = golden.replace(&dir.0.display().to_string(), "[TMP]");
+    insta::assert_snapshot!("expand_model_file_stdin", golden);
+    assert_eq!(code, 0);
+}
+
+#[test]
+fn expand_negative_template_after_double_dash() {
+    golden!(
+        "expand_negative",
+        0,
+        [
+            "expand",
+            "--layers",
+            "3",
+            "--layer-height",
+            "0.2",
+            "--",
+            "-50%Z1cm"
+        ]
+    );
+}
+
+#[test]
+fn expand_errors_and_bad_models() {
+    golden!("expand_template_error", 1, ["expand", "+30X5, 10,,20"]);
+    golden!(
+        "expand_warning_proceeds",
+        0,
+        ["expand", "400", "--layers", "2", "--layer-height", "0.2"]
+    );
+    golden!(
+        "expand_no_layers",
+        2,
+        ["expand", "0", "--layers", "0", "--layer-height", "0.2"]
+    );
+    golden!(
+        "expand_bad_height",
+        2,
+        ["expand", "0", "--layers", "3", "--layer-height", "-0.2"]
+    );
+}

@@ -4,6 +4,7 @@
 //! share one implementation; `src/main.rs` only dispatches.
 
 pub mod check;
+pub mod expand;
 pub mod fmt;
 
 use std::io::{IsTerminal, Read};

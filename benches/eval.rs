@@ -1,0 +1,75 @@
+//! Evaluator benchmarks (divan): `cargo bench --bench eval`.
+//!
+//! Targets: parse + expand 10,000 layers under 200 µs; under 20 ns per layer at 100k and
+//! 1M layers, with 1M costing at most 12× 100k (no super-linear work).
+
+use divan::counter::ItemsCount;
+use divan::{Bencher, black_box};
+use rotlang::Target;
+use rotlang::eval::{self, Evaluator, Model, Options};
+
+fn main() {
+    divan::main();
+}
+
+const TEMPLATE: &str = "5, 10!, +20, +10L25%, -10l25%";
+
+/// Consumes every layer so that nothing is optimised away.
+fn checksum(layers: impl Iterator<Item = eval::Layer>) -> f64 {
+    layers.fold(0.0, |acc, l| acc + l.angle)
+}
+
+/// The whole job of a slicer for one object: parse, then expand 10,000 layers.
+#[divan::bench]
+fn parse_and_expand_10k(bencher: Bencher) {
+    let model = Model::uniform(10_000, 0.2, None).expect("model");
+    let _ = model.object_height(); // a property of the model, computed once per model
+    bencher.counter(ItemsCount::new(10_000usize)).bench(|| {
+        let parse = rotlang::parse(black_box(TEMPLATE), Target::Sparse);
+        checksum(eval::layers(&parse.template, &model, Options::default()))
+    });
+}
+
+/// Streaming cost per layer on large uniform models.
+#[divan::bench(args = [100_000, 1_000_000])]
+fn stream(bencher: Bencher, layers: usize) {
+    let model = Model::uniform(layers, 0.2, Some(0.3)).expect("model");
+    let template = rotlang::parse(TEMPLATE, Target::Sparse).template;
+    let _ = model.object_height();
+    bencher.counter(ItemsCount::new(layers)).bench(|| {
+        checksum(eval::layers(
+            black_box(&template),
+            &model,
+            Options::default(),
+        ))
+    });
+}
+
+/// The slicer's access pattern: `Evaluator::layer(i)` for i = 0, 1, 2, ...
+#[divan::bench(args = [100_000, 1_000_000])]
+fn random_access_increasing(bencher: Bencher, layers: usize) {
+    let model = Model::uniform(layers, 0.2, Some(0.3)).expect("model");
+    let template = rotlang::parse(TEMPLATE, Target::Sparse).template;
+    let _ = model.object_height();
+    bencher.counter(ItemsCount::new(layers)).bench(|| {
+        let mut evaluator = Evaluator::new(black_box(&template), &model, Options::default());
+        (0..layers)
+            .filter_map(|i| evaluator.layer(i))
+            .fold(0.0, |acc, l| acc + l.angle)
+    });
+}
+
+/// A model given as a list of heights (adaptive layer heights).
+#[divan::bench(args = [100_000])]
+fn stream_listed_heights(bencher: Bencher, layers: usize) {
+    let heights: Vec<f64> = (0..layers).map(|i| 0.1 + 0.02 * (i % 8) as f64).collect();
+    let model = Model::from_heights(heights, 0.2).expect("model");
+    let template = rotlang::parse(TEMPLATE, Target::Sparse).template;
+    bencher.counter(ItemsCount::new(layers)).bench(|| {
+        checksum(eval::layers(
+            black_box(&template),
+            &model,
+            Options::default(),
+        ))
+    });
+}

@@ -1,0 +1,359 @@
+//! The model: the layers of one object, the standard layer height and the shell counts.
+//!
+//! Layer bounds are running sums in double precision (`b[i+1] = t[i] = b[i] + height[i]`),
+//! exactly as SEMANTICS.md section 1 defines them. A model given as a list stores those
+//! sums; a uniform model stores three numbers and recomputes the same sums on the fly, so
+//! both kinds give bitwise identical bounds for the same heights.
+
+use std::fmt;
+use std::sync::OnceLock;
+
+/// Layers thinner than one micrometre cannot come from a slicer (heights are scaled
+/// integers there) and would drown in the evaluator's 1e-6 mm tie tolerance.
+pub const MIN_LAYER_HEIGHT: f64 = 0.001;
+/// A layer taller than a metre is not a print; the bound keeps every sum finite.
+pub const MAX_LAYER_HEIGHT: f64 = 1000.0;
+/// A hundred million layers is ten kilometres of 0.1 mm layers: anything above is a typo.
+pub const MAX_LAYERS: usize = 100_000_000;
+
+/// Why a model could not be built.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ModelError {
+    /// The model has no layers.
+    NoLayers,
+    /// A layer height is zero, negative, not finite, or outside the sane range.
+    LayerHeight { index: usize, value: f64 },
+    /// The standard layer height is zero, negative, not finite, or outside the sane range.
+    StandardLayerHeight(f64),
+    /// The first layer height is zero, negative, not finite, or outside the sane range.
+    FirstLayerHeight(f64),
+    /// The object height is zero, negative or not finite.
+    ObjectHeight(f64),
+    /// More layers than [`MAX_LAYERS`].
+    TooManyLayers(f64),
+}
+
+impl fmt::Display for ModelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let range = format!("between {MIN_LAYER_HEIGHT} and {MAX_LAYER_HEIGHT} mm");
+        match self {
+            ModelError::NoLayers => f.write_str("the model has no layers"),
+            ModelError::LayerHeight { index, value } => {
+                write!(
+                    f,
+                    "layer {index} has height {value}; a layer height must be {range}"
+                )
+            }
+            ModelError::StandardLayerHeight(v) => {
+                write!(f, "the layer height is {v}; it must be {range}")
+            }
+            ModelError::FirstLayerHeight(v) => {
+                write!(f, "the first layer height is {v}; it must be {range}")
+            }
+            ModelError::ObjectHeight(v) => {
+                write!(
+                    f,
+                    "the object height is {v}; it must be a positive number of mm"
+                )
+            }
+            ModelError::TooManyLayers(n) => {
+                write!(
+                    f,
+                    "the model would have {n} layers; at most {MAX_LAYERS} are supported"
+                )
+            }
+        }
+    }
+}
+
+impl std::error::Error for ModelError {}
+
+fn valid_height(h: f64) -> bool {
+    (MIN_LAYER_HEIGHT..=MAX_LAYER_HEIGHT).contains(&h)
+}
+
+#[derive(Clone, Debug)]
+enum Heights {
+    /// `tops[i] = t[i]`, the running sums of the given heights.
+    List(Vec<f64>),
+    /// `layers` layers: the first of height `first`, every other of height `rest`.
+    /// `last_top` is `t[last]`, computed on first use by the same running sum (O(layers)
+    /// time once, O(1) memory).
+    Uniform {
+        layers: usize,
+        first: f64,
+        rest: f64,
+        last_top: OnceLock<f64>,
+    },
+}
+
+/// The layers of one object, bottom to top, with the profile values the template refers
+/// to: the standard layer height `h` and the bottom/top shell layer counts `B` and `T`.
+#[derive(Clone, Debug)]
+pub struct Model {
+    heights: Heights,
+    layer_height: f64,
+    bottom_shells: u32,
+    top_shells: u32,
+}
+
+/// OrcaSlicer's default shell counts, used until [`Model::with_shells`] says otherwise.
+const DEFAULT_BOTTOM_SHELLS: u32 = 3;
+const DEFAULT_TOP_SHELLS: u32 = 4;
+
+impl Model {
+    /// A model from the height of every layer (bottom to top) and the standard layer
+    /// height `h`. Shell counts default to 3 bottom and 4 top (OrcaSlicer's defaults).
+    pub fn from_heights(layer_heights: Vec<f64>, layer_height: f64) -> Result<Model, ModelError> {
+        if !valid_height(layer_height) {
+            return Err(ModelError::StandardLayerHeight(layer_height));
+        }
+        if layer_heights.is_empty() {
+            return Err(ModelError::NoLayers);
+        }
+        if layer_heights.len() > MAX_LAYERS {
+            return Err(ModelError::TooManyLayers(layer_heights.len() as f64));
+        }
+        // Turn the heights into running sums in place: no second buffer.
+        let mut tops = layer_heights;
+        let mut sum = 0.0;
+        for (index, slot) in tops.iter_mut().enumerate() {
+            let value = *slot;
+            if !valid_height(value) {
+                return Err(ModelError::LayerHeight { index, value });
+            }
+            sum += value;
+            *slot = sum;
+        }
+        Ok(Model {
+            heights: Heights::List(tops),
+            layer_height,
+            bottom_shells: DEFAULT_BOTTOM_SHELLS,
+            top_shells: DEFAULT_TOP_SHELLS,
+        })
+    }
+
+    /// `layers` layers of `layer_height`, the first one of `first_layer_height` if given.
+    /// Stores no per-layer data: a million layers take as much memory as ten.
+    pub fn uniform(
+        layers: usize,
+        layer_height: f64,
+        first_layer_height: Option<f64>,
+    ) -> Result<Model, ModelError> {
+        if !valid_height(layer_height) {
+            return Err(ModelError::StandardLayerHeight(layer_height));
+        }
+        let first = first_layer_height.unwrap_or(layer_height);
+        if !valid_height(first) {
+            return Err(ModelError::FirstLayerHeight(first));
+        }
+        if layers == 0 {
+            return Err(ModelError::NoLayers);
+        }
+        if layers > MAX_LAYERS {
+            return Err(ModelError::TooManyLayers(layers as f64));
+        }
+        Ok(Model {
+            heights: Heights::Uniform {
+                layers,
+                first,
+                rest: layer_height,
+                last_top: OnceLock::new(),
+            },
+            layer_height,
+            bottom_shells: DEFAULT_BOTTOM_SHELLS,
+            top_shells: DEFAULT_TOP_SHELLS,
+        })
+    }
+
+    /// A uniform model tall enough for an object of `height` mm: the first layer, then as
+    /// many standard layers as it takes to reach `height` (the last one may overshoot;
+    /// a shortfall of up to 1e-6 layer is forgiven so that `20 / 0.2` gives 100 layers).
+    pub fn from_total_height(
+        height: f64,
+        layer_height: f64,
+        first_layer_height: Option<f64>,
+    ) -> Result<Model, ModelError> {
+        if !(height.is_finite() && height > 0.0) {
+            return Err(ModelError::ObjectHeight(height));
+        }
+        if !valid_height(layer_height) {
+            return Err(ModelError::StandardLayerHeight(layer_height));
+        }
+        let first = first_layer_height.unwrap_or(layer_height);
+        if !valid_height(first) {
+            return Err(ModelError::FirstLayerHeight(first));
+        }
+        let rest = ((height - first) / layer_height - 1e-6).ceil().max(0.0);
+        let layers = 1.0 + rest;
+        if layers > MAX_LAYERS as f64 {
+            return Err(ModelError::TooManyLayers(layers));
+        }
+        // `layers` is a whole number in 1..=MAX_LAYERS here, so the cast is exact.
+        Model::uniform(layers as usize, layer_height, first_layer_height)
+    }
+
+    /// The same model with the given bottom (`B`) and top (`T`) shell layer counts.
+    pub fn with_shells(self, bottom: u32, top: u32) -> Model {
+        Model {
+            bottom_shells: bottom,
+            top_shells: top,
+            ..self
+        }
+    }
+
+    /// The documentation's reference model (models.json `cube20`): a 20 mm cube of
+    /// 100 layers of 0.2 mm, 3 bottom and 4 top shell layers.
+    pub fn cube20() -> Model {
+        Model {
+            heights: Heights::Uniform {
+                layers: 100,
+                first: 0.2,
+                rest: 0.2,
+                last_top: OnceLock::new(),
+            },
+            layer_height: 0.2,
+            bottom_shells: 3,
+            top_shells: 4,
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        match &self.heights {
+            Heights::List(tops) => tops.len(),
+            Heights::Uniform { layers, .. } => *layers,
+        }
+    }
+
+    /// Always false: a model has at least one layer.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The standard layer height `h` (mm).
+    pub fn layer_height(&self) -> f64 {
+        self.layer_height
+    }
+
+    pub fn bottom_shells(&self) -> u32 {
+        self.bottom_shells
+    }
+
+    pub fn top_shells(&self) -> u32 {
+        self.top_shells
+    }
+
+    /// The object height `H`: the sum of the layer heights rounded to whole micrometres.
+    /// O(1) for a list; O(layers) on the first call for a uniform model.
+    pub fn object_height(&self) -> f64 {
+        (self.last_top() * 1000.0).round() / 1000.0
+    }
+
+    /// The bottom and top of layer `index` (mm), or `None` past the top.
+    /// O(1) for a list; O(index) for a uniform model (the running sum is walked so that
+    /// the result is bitwise the one the evaluator streams).
+    pub fn layer_bounds(&self, index: usize) -> Option<(f64, f64)> {
+        match &self.heights {
+            Heights::List(tops) => {
+                let top = *tops.get(index)?;
+                let bottom = match index.checked_sub(1) {
+                    Some(below) => tops.get(below).copied().unwrap_or(0.0),
+                    None => 0.0,
+                };
+                Some((bottom, top))
+            }
+            Heights::Uniform { layers, .. } => {
+                if index >= *layers {
+                    return None;
+                }
+                let mut cursor = Cursor::new(self);
+                for _ in 0..index {
+                    cursor.advance_in(self);
+                }
+                Some((cursor.bottom, cursor.top))
+            }
+        }
+    }
+
+    /// `t[last]`, the top of the highest layer.
+    pub(crate) fn last_top(&self) -> f64 {
+        match &self.heights {
+            Heights::List(tops) => tops.last().copied().unwrap_or(0.0),
+            Heights::Uniform {
+                layers,
+                first,
+                rest,
+                last_top,
+            } => *last_top.get_or_init(|| {
+                let mut t = 0.0 + first;
+                for _ in 1..*layers {
+                    t += rest;
+                }
+                t
+            }),
+        }
+    }
+
+    /// `t[j]` for a `j` at or above the layer a cursor stands on, by the same running sum
+    /// the cursor will follow. O(1) for a list, O(j - cursor) for a uniform model; the
+    /// evaluator asks only for the end of a range it is about to walk through anyway.
+    pub(crate) fn top_at(&self, cursor: &Cursor, j: usize) -> f64 {
+        match &self.heights {
+            Heights::List(tops) => tops.get(j).copied().unwrap_or_else(|| self.last_top()),
+            Heights::Uniform { layers, rest, .. } => {
+                if j + 1 >= *layers {
+                    return self.last_top();
+                }
+                let mut t = cursor.top;
+                for _ in cursor.index..j {
+                    t += rest;
+                }
+                t
+            }
+        }
+    }
+}
+
+impl Default for Model {
+    /// [`Model::cube20`].
+    fn default() -> Self {
+        Model::cube20()
+    }
+}
+
+/// Walks the layers of a model bottom to top, keeping the running sums.
+#[derive(Clone, Debug)]
+pub(crate) struct Cursor {
+    pub index: usize,
+    pub bottom: f64,
+    pub top: f64,
+}
+
+impl Cursor {
+    /// At layer 0.
+    pub fn new(model: &Model) -> Cursor {
+        let top = match &model.heights {
+            Heights::List(tops) => tops.first().copied().unwrap_or(0.0),
+            Heights::Uniform { first, .. } => 0.0 + first,
+        };
+        Cursor {
+            index: 0,
+            bottom: 0.0,
+            top,
+        }
+    }
+
+    /// To the next layer. Past the top it keeps adding standard layers, harmlessly.
+    #[inline]
+    pub fn advance_in(&mut self, model: &Model) {
+        self.index += 1;
+        self.bottom = self.top;
+        self.top = match &model.heights {
+            Heights::List(tops) => match tops.get(self.index) {
+                Some(&t) => t,
+                None => self.bottom + model.layer_height,
+            },
+            Heights::Uniform { rest, .. } => self.bottom + rest,
+        };
+    }
+}

@@ -1,9 +1,11 @@
 //! Previews: what the layers of a model get, summarised for hovers and inlay hints.
 //!
-//! The angles come from the library's evaluator through `for_each_layer`, the only function
-//! here that knows how evaluation is called. Everything else is a bounded summary of the
-//! stream: memory is O(instructions), whatever the number of layers.
+//! The angles come from the library's evaluator (`rotlang::eval`) through
+//! `for_each_layer`, the only function here that knows how evaluation is called.
+//! Everything else is a bounded summary of the stream: memory is O(instructions), whatever
+//! the number of layers.
 
+use rotlang::eval::{self, Model, Options};
 use rotlang::{Fill, Span, Template};
 
 use crate::settings::ModelSettings;
@@ -24,46 +26,28 @@ pub struct PreviewLayer {
     pub instruction: Option<Span>,
 }
 
-/// Evaluate `template` on the model, layer by layer, bottom to top, while `f` returns
-/// `true`.
-///
-/// PLACEHOLDER until `rotlang::eval` lands: each instruction that is not a dummy governs
-/// one layer in turn (absolute angles set, relative ones turn). Replace the body with a
-/// call to `rotlang::eval::layers`; nothing else in the server changes.
+/// Evaluate `template` on the model with the library's evaluator, layer by layer, bottom
+/// to top, while `f` returns `true`. The only function here that knows how evaluation is
+/// called.
 pub fn for_each_layer(
     template: &Template,
     model: &ModelSettings,
     mut f: impl FnMut(PreviewLayer) -> bool,
 ) {
-    let live: Vec<_> = template
-        .instructions
-        .iter()
-        .filter(|i| !i.is_dummy())
-        .collect();
-    let mut angle = 0.0;
-    for index in 0..model.layers {
-        let Some(instruction) = live.get(index % live.len().max(1)) else {
-            if !f(PreviewLayer {
-                index,
-                angle,
-                fill: Fill::Sparse,
-                instruction: None,
-            }) {
-                return;
-            }
-            continue;
-        };
-        if instruction.is_relative() {
-            angle += instruction.degrees();
-        } else {
-            angle = instruction.degrees();
-        }
-        if !f(PreviewLayer {
-            index,
-            angle,
-            fill: instruction.fill(),
-            instruction: Some(instruction.span),
-        }) {
+    // Settings are validated with the evaluator's own limits, so this fails only if those
+    // change; then there is simply nothing to preview.
+    let Ok(m) = Model::uniform(model.layers, model.layer_height, model.first_layer_height) else {
+        return;
+    };
+    let m = m.with_shells(model.bottom_shell_layers, model.top_shell_layers);
+    for layer in eval::layers(template, &m, Options::default()) {
+        let go_on = f(PreviewLayer {
+            index: layer.index,
+            angle: layer.angle,
+            fill: layer.fill,
+            instruction: layer.instruction,
+        });
+        if !go_on {
             return;
         }
     }

@@ -7,11 +7,11 @@
 
 use serde_json::Value;
 
-/// More layers than any printer makes; previews cost time per layer, so they stop here.
+/// More layers than any printer makes; previews cost time per layer, so they stop here
+/// (well below the evaluator's own limit).
 pub const MAX_LAYERS: usize = 1_000_000;
 const MAX_SHELLS: u32 = 10_000;
-const MIN_HEIGHT: f64 = 0.001;
-const MAX_HEIGHT: f64 = 1000.0;
+use rotlang::eval::{MAX_LAYER_HEIGHT as MAX_HEIGHT, MIN_LAYER_HEIGHT as MIN_HEIGHT};
 
 /// The model previews are evaluated on. The default is the documentation's 20 mm cube as
 /// the library defines it (`Model::cube20`): 100 layers of 0.2 mm, 3 bottom and 4 top

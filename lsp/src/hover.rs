@@ -7,7 +7,7 @@ use tower_lsp_server::ls_types::{Hover, HoverContents, MarkupContent, MarkupKind
 
 use crate::document::{Document, Region};
 use crate::position::Positions;
-use crate::preview::{Preview, fmt_deg, fmt_num, fmt_turn};
+use crate::preview::{Preview, Run, SPARKLINE_WIDTH, fmt_deg, fmt_num, fmt_turn};
 use crate::settings::ModelSettings;
 
 /// Longest template or instruction text quoted in a hover.
@@ -72,10 +72,7 @@ pub fn instruction_hover(
                 } else {
                     format!("layers {}–{last}", run.first_layer)
                 };
-                out.push_str(&format!(
-                    " First: {layers}, {}.",
-                    turn_words(ins, run.from, run.to, run.layers)
-                ));
+                out.push_str(&format!(" First: {layers}, {}.", turn_words(ins, &run)));
             }
             out.push_str("\n\n");
             let list: Vec<String> = p
@@ -135,9 +132,10 @@ pub fn template_hover(region: &Region, preview: &Preview) -> String {
     ));
     if model.layers > preview.head.len() {
         out.push_str(&format!(
-            "\n`{}` all {} layers, sampled evenly\n",
+            "\n`{}` all {} layers, each mark the mean of about {} layers\n",
             preview.model_sparkline(),
-            model.layers
+            model.layers,
+            (model.layers + SPARKLINE_WIDTH / 2) / SPARKLINE_WIDTH
         ));
     }
     out.push_str(&format!(
@@ -274,16 +272,24 @@ fn range_words(ins: &Instruction, model: &ModelSettings) -> String {
     }
 }
 
-/// `0° → 22.5° over 50 layers`, or `30° for 1 layer` when the angle does not move.
-pub fn turn_words(ins: &Instruction, from: f64, to: f64, layers: usize) -> String {
+/// `0°→22.5° over 50 layers` (from the angle below the run to its last layer), or
+/// `30° for 1 layer` when the angle does not move. A flipped run starts at its end angle,
+/// so it is shown from its first layer: `27°→0° over 10 layers`.
+pub fn turn_words(ins: &Instruction, run: &Run) -> String {
+    let layers = run.layers;
     let plural = if layers == 1 { "" } else { "s" };
-    if !ins.is_relative() || (to - from).abs() < 1e-9 {
-        format!("{} for {layers} layer{plural}", fmt_deg(to))
+    let from = if ins.is_flipped() {
+        run.first
+    } else {
+        run.from
+    };
+    if !ins.is_relative() || (run.to - from).abs() < 1e-9 {
+        format!("{} for {layers} layer{plural}", fmt_deg(run.to))
     } else {
         format!(
             "{}→{} over {layers} layer{plural}",
             fmt_deg(from),
-            fmt_deg(to)
+            fmt_deg(run.to)
         )
     }
 }

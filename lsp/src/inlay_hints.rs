@@ -39,7 +39,7 @@ pub fn inlay_hints(
             let run = first_run(&region.parse.template, i, model, &mut budget)
                 .or_else(|| preview.instructions.get(i).and_then(|p| p.first_block));
             let label = match run {
-                Some(run) => turn_words(ins, run.from, run.to, run.layers),
+                Some(run) => turn_words(ins, &run),
                 None => "not reached".to_string(),
             };
             hints.push(InlayHint {

@@ -106,6 +106,7 @@ pub fn first_run(
                     first_layer: layer.index,
                     layers: 1,
                     from: previous,
+                    first: angle,
                     to: angle,
                 })
             }
@@ -129,6 +130,8 @@ pub struct Run {
     pub layers: usize,
     /// The angle of the layer below the run (0 below the first layer): where a turn starts.
     pub from: f64,
+    /// The angle of the run's first layer.
+    pub first: f64,
     /// The angle of the run's last layer.
     pub to: f64,
 }
@@ -151,8 +154,10 @@ pub struct Preview {
     pub first: Vec<(f64, Fill)>,
     /// The first `SPARKLINE_WIDTH` layers' angles, one per layer, for the sparkline.
     pub head: Vec<f64>,
-    /// Angles sampled evenly over the whole model (when it is longer than `head`).
-    pub samples: Vec<f64>,
+    /// The whole model in `SPARKLINE_WIDTH` buckets of consecutive layers, each the mean
+    /// angle of its layers. Means, not samples: sampling a `0, 90` alternation every
+    /// other-but-one layer draws blocks that are not there.
+    pub means: Vec<f64>,
     pub min: f64,
     pub max: f64,
     /// Per instruction, in the template's order.
@@ -165,10 +170,10 @@ impl Preview {
         let mut instructions = vec![InstructionPreview::default(); n];
         let mut first = Vec::new();
         let mut head = Vec::new();
-        let mut samples = Vec::new();
+        let mut means = Vec::new();
         let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
         let layers = model.layers.max(1);
-        let mut next_sample = 0;
+        let mut buckets = vec![(0.0, 0usize); SPARKLINE_WIDTH.min(layers)];
         let mut previous: (f64, Option<usize>) = (0.0, None);
         for_each_layer(template, model, |layer| {
             let angle = if layer.angle.is_finite() {
@@ -183,9 +188,10 @@ impl Preview {
                 head.push(angle);
             }
             // Sample column c at layer ⌊c × layers / width⌋.
-            if layer.index >= next_sample && samples.len() < SPARKLINE_WIDTH {
-                samples.push(angle);
-                next_sample = (samples.len() * layers).div_ceil(SPARKLINE_WIDTH);
+            let bucket = layer.index.saturating_mul(buckets.len()) / layers;
+            if let Some((sum, n)) = buckets.get_mut(bucket) {
+                *sum += angle;
+                *n += 1;
             }
             min = min.min(angle);
             max = max.max(angle);
@@ -203,6 +209,7 @@ impl Preview {
                             first_layer: layer.index,
                             layers: 1,
                             from: previous.0,
+                            first: angle,
                             to: angle,
                         })
                     }
@@ -218,6 +225,12 @@ impl Preview {
             previous = (angle, which);
             true
         });
+        means.extend(
+            buckets
+                .iter()
+                .filter(|(_, n)| *n > 0)
+                .map(|&(sum, n)| sum / n as f64),
+        );
         if !min.is_finite() {
             (min, max) = (0.0, 0.0);
         }
@@ -225,7 +238,7 @@ impl Preview {
             model: *model,
             first,
             head,
-            samples,
+            means,
             min,
             max,
             instructions,
@@ -238,9 +251,9 @@ impl Preview {
         sparkline(&self.head, self.min, self.max)
     }
 
-    /// The whole model sampled evenly (one mark per ⌈layers / width⌉ layers).
+    /// The whole model, one mark per bucket of consecutive layers (their mean angle).
     pub fn model_sparkline(&self) -> String {
-        sparkline(&self.samples, self.min, self.max)
+        sparkline(&self.means, self.min, self.max)
     }
 }
 

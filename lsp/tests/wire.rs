@@ -240,7 +240,10 @@ fn hover_between_instructions_shows_the_sequence() {
         h.contains("`▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█` first 48 layers"),
         "sparkline: {h}"
     );
-    assert!(h.contains("all 100 layers, sampled evenly"), "{h}");
+    assert!(
+        h.contains("all 100 layers, each mark the mean of about 2 layers"),
+        "{h}"
+    );
     assert!(
         h.contains("Angles from 0° to 90° over all 100 layers."),
         "{h}"

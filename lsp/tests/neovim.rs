@@ -53,5 +53,10 @@ fn neovim_shows_the_diagnostic_clears_it_and_hovers() {
         hover.contains("`+22.5/50%` turns +22.5° linearly over the next 50% of the object height"),
         "{hover}"
     );
+    assert!(
+        hover.contains("First: layers 6–55, 30°→52.5° over 50 layers."),
+        "{hover}"
+    );
+    assert!(hover.contains("Layers: 6: 30.45°, 7: 30.9°"), "{hover}");
     assert!(hover.contains("Model: 100 layers × 0.2 mm"), "{hover}");
 }

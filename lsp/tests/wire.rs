@@ -590,6 +590,14 @@ fn inlay_hints_show_the_resolved_turn() {
         .map(|h| h["label"].as_str().unwrap())
         .collect();
     assert_eq!(labels, ["0° for 3 layers", "0°→30° over 1 layer"]);
+
+    // A flipped range starts at its end angle.
+    lsp.change(ROT, 3, "+30/-10#");
+    let hints = lsp.result(
+        "textDocument/inlayHint",
+        json!({"textDocument": {"uri": ROT}, "range": range(0, 0, 0, 8)}),
+    );
+    assert_eq!(hints[0]["label"], "27°→0° over 10 layers");
 }
 
 #[test]

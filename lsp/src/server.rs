@@ -61,7 +61,15 @@ impl Backend {
             if let Ok(values) = client.configuration(vec![item]).await
                 && let Some(value) = values.first()
             {
-                lock(&state).model.update(value);
+                let refresh = {
+                    let mut state = lock(&state);
+                    state.model.update(value);
+                    state.inlay_refresh
+                };
+                if refresh {
+                    // Hints depend on the model; the answer does not matter.
+                    let _ = client.inlay_hint_refresh().await;
+                }
             }
         });
     }

@@ -202,7 +202,28 @@ where
             }
         }
     };
-    tokio::join!(run(server_in, server_out), writer);
+    join(run(server_in, server_out), writer).await;
+}
+
+/// Drives two futures to completion on this task. (tokio's `join!` sits behind its
+/// `macros` feature, which would bring in tokio-macros and a second major version of syn.)
+async fn join(a: impl std::future::Future<Output = ()>, b: impl std::future::Future<Output = ()>) {
+    let (mut a, mut b) = (std::pin::pin!(a), std::pin::pin!(b));
+    let (mut a_done, mut b_done) = (false, false);
+    std::future::poll_fn(|cx| {
+        if !a_done {
+            a_done = a.as_mut().poll(cx).is_ready();
+        }
+        if !b_done {
+            b_done = b.as_mut().poll(cx).is_ready();
+        }
+        if a_done && b_done {
+            std::task::Poll::Ready(())
+        } else {
+            std::task::Poll::Pending
+        }
+    })
+    .await
 }
 
 #[cfg(test)]

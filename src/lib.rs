@@ -9,6 +9,9 @@
 #[cfg(feature = "cli")]
 #[doc(hidden)]
 pub mod cli;
+// pest_derive without its "std" feature generates code that names `alloc`.
+extern crate alloc;
+
 pub mod diagnostic;
 pub mod eval;
 pub mod format;

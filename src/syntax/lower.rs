@@ -56,13 +56,17 @@ impl Lowerer<'_> {
         Some(v)
     }
 
-    /// Two numbers `a:b` with `b ≠ 0`.
-    fn fraction(&mut self, pair: Pair<'_, Rule>, what: &str) -> Option<(f64, f64)> {
-        let span = self.span(&pair);
-        let mut it = pair.into_inner();
-        let (a, b) = (it.next()?, it.next()?);
+    /// `a:b` from the numerator's pair and the `:b` tail's, with `b ≠ 0`.
+    fn fraction(
+        &mut self,
+        a: &Pair<'_, Rule>,
+        tail: Pair<'_, Rule>,
+        what: &str,
+    ) -> Option<(f64, f64)> {
+        let span = self.span(a).cover(self.span(&tail));
+        let b = tail.into_inner().next()?;
         let b_span = self.span(&b);
-        let num = self.number(&a, MAX_COUNT, what);
+        let num = self.number(a, MAX_COUNT, what);
         let den = self.number(&b, MAX_COUNT, what);
         let (num, den) = (num?, den?);
         if den == 0.0 {
@@ -137,6 +141,7 @@ impl Lowerer<'_> {
     fn angle(&mut self, pair: Pair<'_, Rule>) -> Option<Angle> {
         let span = self.span(&pair);
         let mut sign = None;
+        let mut number = None;
         let mut value = None;
         for part in pair.into_inner() {
             match part.as_rule() {
@@ -147,25 +152,28 @@ impl Lowerer<'_> {
                         Sign::Plus
                     });
                 }
-                Rule::angle_degrees => {
-                    value = Some(AngleValue::Degrees(self.number(&part, MAX_ANGLE, "angle")?));
-                }
-                Rule::angle_percent => {
-                    let n = part.into_inner().next()?;
+                Rule::number => number = Some(part),
+                Rule::percent => {
+                    let n = number.take()?;
                     value = Some(AngleValue::Percent(self.number(
                         &n,
                         MAX_ANGLE / 3.6,
                         "angle",
                     )?));
                 }
-                Rule::angle_fraction => {
-                    let (a, b) = self.fraction(part, "fraction of a turn")?;
+                Rule::turn_fraction => {
+                    let n = number.take()?;
+                    let (a, b) = self.fraction(&n, part, "fraction of a turn")?;
                     value = Some(AngleValue::Fraction(a, b));
                 }
                 _ => {}
             }
         }
-        let value = value?;
+        let value = match (value, number) {
+            (Some(v), _) => v,
+            (None, Some(n)) => AngleValue::Degrees(self.number(&n, MAX_ANGLE, "angle")?),
+            (None, None) => return None,
+        };
         if !value.degrees().is_finite() || value.degrees().abs() > MAX_ANGLE {
             self.diagnostics.push(
                 Diagnostic::error("rotlang::number-too-large", "this angle is absurdly large")
@@ -253,28 +261,22 @@ impl Lowerer<'_> {
 
     fn count(&mut self, pair: Pair<'_, Rule>) -> Option<Count> {
         let span = self.span(&pair);
-        let inner = pair.into_inner().next()?;
-        let kind = match inner.as_rule() {
-            Rule::shell_count => {
-                if inner.as_str() == "B" {
-                    CountKind::Bottom
-                } else {
-                    CountKind::Top
-                }
-            }
-            Rule::height_fraction => {
-                let (num, den) = self.fraction(inner, "fraction of the height")?;
+        let mut parts = pair.into_inner();
+        let first = parts.next()?;
+        let kind = match (first.as_rule(), parts.next()) {
+            (Rule::shell_count, _) if first.as_str() == "B" => CountKind::Bottom,
+            (Rule::shell_count, _) => CountKind::Top,
+            (Rule::number, None) => CountKind::Layers(self.number(&first, MAX_COUNT, "count")?),
+            (Rule::number, Some(tail)) if tail.as_rule() == Rule::height_fraction => {
+                let (num, den) = self.fraction(&first, tail, "fraction of the height")?;
                 CountKind::HeightFraction { num, den }
             }
-            Rule::length => {
-                let mut it = inner.into_inner();
-                let (n, u) = (it.next()?, it.next()?);
-                let value = self.number(&n, MAX_COUNT, "length")?;
-                let unit = Unit::from_symbol(u.as_str())?;
-                CountKind::Length { value, unit }
-            }
-            Rule::layer_count => {
-                CountKind::Layers(self.number(&inner.into_inner().next()?, MAX_COUNT, "count")?)
+            (Rule::number, Some(unit)) => {
+                let value = self.number(&first, MAX_COUNT, "length")?;
+                CountKind::Length {
+                    value,
+                    unit: Unit::from_symbol(unit.as_str())?,
+                }
             }
             _ => return None,
         };

@@ -17,6 +17,9 @@ use split::Chunk;
 /// produce a million reports.
 pub const MAX_DIAGNOSTICS: usize = 100;
 
+/// The most text parsed in one pest call on the fast path.
+const BATCH_BYTES: usize = 16 * 1024;
+
 /// Collects diagnostics up to `MAX_DIAGNOSTICS` and counts the rest, so memory stays
 /// bounded whatever the input.
 #[derive(Default)]
@@ -69,45 +72,61 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
     let mut instructions = Vec::with_capacity(split.chunks.len());
     let mut empties = split.empties.iter().peekable();
     let mut previous: Option<Chunk<'_>> = None;
-    // Fast path: a valid template parses in one pest call (per-call set-up dominates the
-    // cost of short instructions). Its items are exactly the chunks; when it fails, each
-    // chunk is parsed on its own for its own diagnostics.
-    let mut items = RotParser::parse(Rule::template, text)
-        .into_iter()
-        .flatten()
-        .flat_map(|t| t.into_inner())
-        .filter(|p| p.as_rule() == Rule::item);
-    for chunk in &split.chunks {
-        while let Some(span) = empties.next_if(|s| s.start < chunk.span.start) {
-            sink.push(empty_instruction(*span, previous.is_some()));
+    // Fast path: valid text parses in one pest call per batch of instructions (per-call
+    // set-up dominates the cost of short instructions; batches keep pest's token queue in
+    // cache on megabyte templates). A batch's items are exactly its chunks; when a batch
+    // fails, each of its chunks is parsed on its own for its own diagnostics.
+    let chunks = &split.chunks;
+    let mut first = 0;
+    while first < chunks.len() {
+        let start = chunks[first].span.start;
+        let mut end = first + 1;
+        while end < chunks.len() && chunks[end].span.end - start <= BATCH_BYTES {
+            end += 1;
         }
-        let parsed = match items.next() {
-            Some(item) if Span::new(item.as_span().start(), item.as_span().end()) == chunk.span => {
-                Ok((item, 0))
+        let batch = &chunks[first..end];
+        let batch_text = &text[start..batch[batch.len() - 1].span.end];
+        let mut items = RotParser::parse(Rule::template, batch_text)
+            .into_iter()
+            .flatten()
+            .flat_map(|t| t.into_inner())
+            .filter(|p| p.as_rule() == Rule::item);
+        for chunk in batch {
+            while let Some(span) = empties.next_if(|s| s.start < chunk.span.start) {
+                sink.push(empty_instruction(*span, previous.is_some()));
             }
-            _ => RotParser::parse(Rule::instruction, chunk.text)
-                .map(|mut pairs| (pairs.next(), chunk.span.start))
-                .and_then(|(pair, offset)| {
-                    pair.map(|p| (p, offset))
-                        .ok_or_else(|| unreachable_error(chunk.text))
-                }),
-        };
-        match parsed {
-            Ok((pair, offset)) => {
-                let mut lowerer = lower::Lowerer {
-                    offset,
-                    diagnostics: &mut sink,
-                };
-                if let Some(ins) = lowerer.instruction(pair) {
-                    instructions.push(ins);
+            let parsed = match items.next() {
+                Some(item)
+                    if Span::new(item.as_span().start(), item.as_span().end()).shift(start)
+                        == chunk.span =>
+                {
+                    Ok((item, start))
                 }
+                _ => RotParser::parse(Rule::instruction, chunk.text)
+                    .map(|mut pairs| (pairs.next(), chunk.span.start))
+                    .and_then(|(pair, offset)| {
+                        pair.map(|p| (p, offset))
+                            .ok_or_else(|| unreachable_error(chunk.text))
+                    }),
+            };
+            match parsed {
+                Ok((pair, offset)) => {
+                    let mut lowerer = lower::Lowerer {
+                        offset,
+                        diagnostics: &mut sink,
+                    };
+                    if let Some(ins) = lowerer.instruction(pair) {
+                        instructions.push(ins);
+                    }
+                }
+                // Past the cap a failure is only counted: diagnosing it would cost time
+                // and memory for a report nobody sees.
+                Err(_) if sink.full() => sink.dropped += 1,
+                Err(err) => sink.push(chunk_error(text, chunk, previous.as_ref(), err)),
             }
-            // Past the cap a failure is only counted: diagnosing it would cost time and
-            // memory for a report nobody sees.
-            Err(_) if sink.full() => sink.dropped += 1,
-            Err(err) => sink.push(chunk_error(text, chunk, previous.as_ref(), err)),
+            previous = Some(*chunk);
         }
-        previous = Some(*chunk);
+        first = end;
     }
     let template = Template { instructions };
     crate::lint::check(text, &template, &split.chunks, target, &mut sink);

@@ -64,7 +64,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
                 let diagnostics: Vec<_> = parse
                     .diagnostics
                     .iter()
-                    .map(|d| diagnostic_json(&input.text, &index, d))
+                    .map(|d| diagnostic_json(&index, d))
                     .collect();
                 let obj = serde_json::json!({"input": input.text, "name": input.name, "diagnostics": diagnostics});
                 writeln!(out, "{obj}").map_err(io)?;

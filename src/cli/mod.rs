@@ -283,10 +283,9 @@ fn to_codespan(id: usize, d: &Diagnostic) -> cs::Diagnostic<usize> {
 }
 
 /// One diagnostic as the JSON object of `--format json`.
-pub fn diagnostic_json(text: &str, index: &LineIndex<'_>, d: &Diagnostic) -> serde_json::Value {
+pub fn diagnostic_json(index: &LineIndex<'_>, d: &Diagnostic) -> serde_json::Value {
     let span = d.primary_span();
     let (line, column) = index.line_col(span.start);
-    let _ = text;
     serde_json::json!({
         "code": d.code,
         "severity": d.severity.as_str(),

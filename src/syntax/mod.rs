@@ -217,7 +217,6 @@ fn chunk_error(
         ErrorVariant::ParsingError { positives, .. } => positives,
         ErrorVariant::CustomError { .. } => Vec::new(),
     };
-    let _ = text;
     errors::Failure {
         text: chunk.text,
         offset: chunk.span.start,

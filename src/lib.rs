@@ -27,7 +27,10 @@ pub use ir::*;
 #[derive(Clone, Debug, Default)]
 pub struct Parse {
     pub template: Template,
+    /// At most `MAX_DIAGNOSTICS` (100), then one `rotlang::too-many-diagnostics` entry.
     pub diagnostics: Vec<Diagnostic>,
+    /// How many diagnostics were found beyond the cap and not kept.
+    pub omitted: usize,
 }
 
 impl Parse {

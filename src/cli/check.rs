@@ -79,13 +79,25 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
             let color = args.color.enabled(true);
             out.write_all(render_human(&reports, color).as_bytes())
                 .map_err(io)?;
-            let errors: usize = parses
-                .iter()
-                .map(|p| p.diagnostics.iter().filter(|d| d.is_error()).count())
-                .sum();
-            let warnings: usize =
-                parses.iter().map(|p| p.diagnostics.len()).sum::<usize>() - errors;
-            let summary = summary(inputs.len(), errors, warnings);
+            // The "N more not shown" entry is a note about others, not one more problem.
+            let shown = |p: &&crate::Diagnostic| p.code != "rotlang::too-many-diagnostics";
+            let count = |error: bool| -> usize {
+                parses
+                    .iter()
+                    .map(|p| {
+                        p.diagnostics
+                            .iter()
+                            .filter(shown)
+                            .filter(|d| d.is_error() == error)
+                            .count()
+                    })
+                    .sum()
+            };
+            let omitted: usize = parses.iter().map(|p| p.omitted).sum();
+            let mut summary = summary(inputs.len(), count(true), count(false));
+            if omitted > 0 {
+                summary.push_str(&format!(" shown, {omitted} more not shown"));
+            }
             writeln!(out, "{summary}").map_err(io)?;
         }
     }

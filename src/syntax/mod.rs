@@ -42,7 +42,7 @@ impl Sink {
     }
 
     /// The diagnostics in source order, with a last one saying how many were dropped.
-    fn finish(mut self) -> Vec<Diagnostic> {
+    fn finish(mut self) -> (Vec<Diagnostic>, usize) {
         self.list
             .sort_by_key(|d| (d.primary_span().start, std::cmp::Reverse(d.severity)));
         if self.dropped > 0 {
@@ -62,7 +62,7 @@ impl Sink {
                     .with_help("fix the ones above first; the rest are often the same mistake"),
             );
         }
-        self.list
+        (self.list, self.dropped)
     }
 }
 
@@ -130,9 +130,11 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
     }
     let template = Template { instructions };
     crate::lint::check(text, &template, &split.chunks, target, &mut sink);
+    let (diagnostics, omitted) = sink.finish();
     Parse {
         template,
-        diagnostics: sink.finish(),
+        diagnostics,
+        omitted,
     }
 }
 

@@ -67,8 +67,30 @@ impl Sink {
 }
 
 pub(crate) fn parse(text: &str, target: Target) -> Parse {
-    let split = split::split(text);
     let mut sink = Sink::default();
+    // `"0, 90"`: a template copied with its quotes. One diagnostic for the pair, and the
+    // inside is read as the template it surely is.
+    let split = match quoted(text) {
+        Some((open, close)) => {
+            let inner = Span::new(open.end, close.start);
+            sink.push(
+                Diagnostic::error(
+                    "rotlang::quoted-template",
+                    "a template is written without quotes",
+                )
+                .with_primary(open, "an opening quote")
+                .with_secondary(close, "its closing quote")
+                .with_fix(
+                    "remove the quotes",
+                    open.cover(close),
+                    text[inner.range()].to_owned(),
+                )
+                .with_help("write the template's text alone: `0, 90`, not `\"0, 90\"`"),
+            );
+            split::split(&text[inner.range()]).shifted(inner.start)
+        }
+        None => split::split(text),
+    };
     let mut instructions = Vec::with_capacity(split.chunks.len());
     let mut empties = split.empties.iter().peekable();
     let mut previous: Option<Chunk<'_>> = None;
@@ -136,6 +158,31 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
         diagnostics,
         omitted,
     }
+}
+
+/// The spans of a pair of quotes around the whole template (separators aside).
+fn quoted(text: &str) -> Option<(Span, Span)> {
+    let start = text.len() - text.trim_start_matches(split::is_separator).len();
+    let end = text.trim_end_matches(split::is_separator).len();
+    let body = text.get(start..end)?;
+    let open = body.chars().next()?;
+    let close = body[open.len_utf8()..].chars().next_back()?;
+    let pair = matches!(
+        (open, close),
+        ('"', '"')
+            | ('\'', '\'')
+            | ('`', '`')
+            | ('\u{201C}', '\u{201D}')
+            | ('\u{2018}', '\u{2019}')
+            | ('«', '»')
+            | ('\u{201E}', '\u{201C}')
+    );
+    pair.then(|| {
+        (
+            Span::new(start, start + open.len_utf8()),
+            Span::new(end - close.len_utf8(), end),
+        )
+    })
 }
 
 /// pest always returns the rule's pair on success; should it not, the instruction is

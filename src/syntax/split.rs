@@ -20,6 +20,20 @@ pub(crate) struct Split<'a> {
     pub empties: Vec<Span>,
 }
 
+impl Split<'_> {
+    /// The same split with every span moved right by `offset` bytes (for a split of a
+    /// slice of the template).
+    pub fn shifted(mut self, offset: usize) -> Self {
+        for c in &mut self.chunks {
+            c.span = c.span.shift(offset);
+        }
+        for e in &mut self.empties {
+            *e = e.shift(offset);
+        }
+        self
+    }
+}
+
 pub(crate) fn is_separator(c: char) -> bool {
     matches!(c, ',' | ' ' | '\t' | '\r' | '\n')
 }

@@ -298,6 +298,15 @@ pub fn floor_char_boundary(text: &str, offset: usize) -> usize {
     o
 }
 
+/// The smallest char boundary at or above `offset` (clamped to the text).
+pub fn ceil_char_boundary(text: &str, offset: usize) -> usize {
+    let mut o = offset.min(text.len());
+    while !text.is_char_boundary(o) {
+        o += 1;
+    }
+    o
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -15,7 +15,7 @@ use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::{self, termcolor};
 
 use crate::Target;
-use crate::diagnostic::{Diagnostic, LineIndex, Severity, floor_char_boundary};
+use crate::diagnostic::{Diagnostic, LineIndex, Severity, ceil_char_boundary, floor_char_boundary};
 
 /// The largest input read (a template file or stdin). Templates are a few bytes; this
 /// bounds memory on a mistaken `--file /dev/zero`.
@@ -228,14 +228,6 @@ fn excerpt(input: &Input, index: &LineIndex<'_>, d: &Diagnostic) -> (String, Str
     let (line, col) = index.line_col(start);
     let name = format!("{} (excerpt from line {line}, column {col})", input.name);
     (name, text[start..end].to_owned(), moved)
-}
-
-fn ceil_char_boundary(text: &str, offset: usize) -> usize {
-    let mut o = offset.min(text.len());
-    while !text.is_char_boundary(o) {
-        o += 1;
-    }
-    o
 }
 
 /// The text as shown under a diagnostic: control characters (a NUL, an escape) would be

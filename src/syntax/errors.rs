@@ -119,8 +119,8 @@ impl Failure<'_> {
         &rest[..len]
     }
 
-    /// The instruction text before `pos`, with numbers' digits ignored: the signs already
-    /// read.
+    /// The characters before `pos` with their offsets; callers look for an earlier sign
+    /// among them (no digit is a sign, so numbers never match).
     fn earlier_signs(&self, pos: usize) -> impl Iterator<Item = (usize, char)> + '_ {
         self.text[..pos].char_indices()
     }

@@ -17,6 +17,7 @@ pub mod eval;
 pub mod format;
 pub mod ir;
 mod lint;
+pub mod number;
 mod syntax;
 
 pub use diagnostic::{Diagnostic, Fix, Label, LineIndex, Severity, Span};

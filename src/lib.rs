@@ -14,6 +14,7 @@ extern crate alloc;
 
 pub mod diagnostic;
 pub mod eval;
+pub mod explain;
 pub mod format;
 pub mod ir;
 mod lint;

@@ -48,7 +48,14 @@
 ;;;###autoload
 (define-derived-mode rotlang-json-mode js-mode "JSON"
   "JSON slicer profiles whose rotate templates rotlang-lsp checks.
-A mode of its own, so that JavaScript buffers keep their own language server.")
+A mode of its own, so that JavaScript buffers keep their own language server."
+  ;; As in `rot-mode': an instruction inside a template string is one symbol, for eglot's
+  ;; completion.  Outside strings JSON has only numbers and punctuation, so nothing else
+  ;; changes; `/' and `*' keep their comment flags for .jsonc comments.
+  (dolist (c (string-to-list "+-!$~^|#%:.'"))
+    (modify-syntax-entry c "_"))
+  (modify-syntax-entry ?/ "_ 124b")
+  (modify-syntax-entry ?* "_ 23"))
 
 ;; Slicer profiles: every .json/.jsonc file here.  If you use another JSON server, narrow
 ;; the pattern to your profile folders, e.g. "/OrcaSlicer/.*\\.json\\'".

@@ -85,4 +85,13 @@ fn emacs_eglot_diagnoses_clears_hovers_and_completes() {
         (Some(2), Some(col)),
         "{r:#}"
     );
+
+    // Completion inside the template string: `+30/5c` completes to `+30/5cm`.
+    let candidates = r["json_candidates"].as_array().expect("json candidates");
+    assert!(candidates.iter().any(|c| c == "+30/5cm"), "{r:#}");
+    assert_eq!(
+        r["json_completed"],
+        "{\n  \"sparse_infill_rotate_template\": \"0, +30/5cm\"\n}\n",
+        "{r:#}"
+    );
 }

@@ -95,6 +95,23 @@
   (flymake-start)
   (e2e-wait (lambda () (flymake-diagnostics)))
   (e2e-put 'json_diagnostics (vconcat (e2e-diagnostics)))
+
+  ;; 6. Completion inside the profile's template string, after `+30/5c'.
+  (e2e-change "{\n  \"sparse_infill_rotate_template\": \"0, +30/5c\"\n}\n")
+  (goto-char (point-min))
+  (search-forward "+30/5c")
+  (let* ((capf (eglot-completion-at-point))
+         (start (nth 0 capf)) (end (nth 1 capf)) (table (nth 2 capf))
+         (exit (plist-get (nthcdr 3 capf) :exit-function))
+         (candidates (all-completions (buffer-substring start (point)) table))
+         (cm (cl-find "+30/5cm" candidates :test #'string=)))
+    (e2e-put 'json_candidates (vconcat (mapcar #'substring-no-properties candidates)))
+    (when cm
+      (delete-region start end)
+      (goto-char start)
+      (insert cm)
+      (funcall exit cm 'finished)
+      (e2e-put 'json_completed (buffer-substring-no-properties (point-min) (point-max)))))
   (eglot-shutdown-all))
 
 (let ((ok (condition-case err

@@ -47,9 +47,15 @@ fn emacs_eglot_diagnoses_clears_hovers_and_completes() {
         d["message"], "rotlang [rotlang::unknown-sign]: unknown sign `X`",
         "{r:#}"
     );
-    assert_eq!((d["line"].as_i64(), d["col"].as_i64(), d["end_col"].as_i64()), (Some(0), Some(6), Some(7)));
+    assert_eq!(
+        (d["line"].as_i64(), d["col"].as_i64(), d["end_col"].as_i64()),
+        (Some(0), Some(6), Some(7))
+    );
     assert_eq!(d["type"], "eglot-error");
-    assert_eq!(r["cleared"], true, "fixing the text clears the diagnostic: {r:#}");
+    assert_eq!(
+        r["cleared"], true,
+        "fixing the text clears the diagnostic: {r:#}"
+    );
 
     // eglot 1.9 without markdown-mode asks for plain text, and gets it; the model is the
     // one set in `eglot-workspace-configuration` (40 layers of 0.3 mm).
@@ -90,8 +96,7 @@ fn emacs_eglot_diagnoses_clears_hovers_and_completes() {
     let candidates = r["json_candidates"].as_array().expect("json candidates");
     assert!(candidates.iter().any(|c| c == "+30/5cm"), "{r:#}");
     assert_eq!(
-        r["json_completed"],
-        "{\n  \"sparse_infill_rotate_template\": \"0, +30/5cm\"\n}\n",
+        r["json_completed"], "{\n  \"sparse_infill_rotate_template\": \"0, +30/5cm\"\n}\n",
         "{r:#}"
     );
 }

@@ -41,6 +41,14 @@ fn vscode_extension_grammar_matches_the_parser_and_packages() {
     }
     assert!(status.success(), "scripts/ensure npm-ci failed: {status}");
 
+    // The client is not run inside VS Code here (there is none); at least it must parse.
+    let check = Command::new("node")
+        .args(["--check", "extension.js"])
+        .current_dir(&ext)
+        .status()
+        .expect("node --check");
+    assert!(check.success(), "extension.js does not parse");
+
     let output = Command::new("node")
         .args(["--test", "test/grammar.test.js"])
         .current_dir(&ext)
@@ -66,7 +74,12 @@ fn vscode_extension_grammar_matches_the_parser_and_packages() {
     let _ = std::fs::remove_file(&vsix);
     let vsce = ext.join("node_modules/.bin/vsce");
     let output = Command::new(&vsce)
-        .args(["package", "--allow-missing-repository", "--skip-license", "--out"])
+        .args([
+            "package",
+            "--allow-missing-repository",
+            "--skip-license",
+            "--out",
+        ])
         .arg(&vsix)
         .current_dir(&ext)
         .stdin(Stdio::null())

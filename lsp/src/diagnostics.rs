@@ -28,14 +28,28 @@ pub fn diagnostics(doc: &Document, uri: &Uri, pos: &Positions) -> Vec<Diagnostic
         });
     }
     let total: usize = doc.regions.iter().map(|r| r.parse.diagnostics.len()).sum();
-    for region in &doc.regions {
-        for d in &region.parse.diagnostics {
-            if out.len() >= MAX_DIAGNOSTICS {
-                out.push(truncated(total, pos));
-                return out;
-            }
-            out.push(convert(d, region, uri, pos));
+    // Past the cap errors go first: an error must never hide behind warnings (a
+    // formatter refuses the document, and the user must see why).
+    let all = || {
+        doc.regions
+            .iter()
+            .flat_map(|r| r.parse.diagnostics.iter().map(move |d| (r, d)))
+    };
+    let ordered: Box<dyn Iterator<Item = _>> = if out.len() + total > MAX_DIAGNOSTICS {
+        Box::new(
+            all()
+                .filter(|(_, d)| d.is_error())
+                .chain(all().filter(|(_, d)| !d.is_error())),
+        )
+    } else {
+        Box::new(all())
+    };
+    for (region, d) in ordered {
+        if out.len() >= MAX_DIAGNOSTICS {
+            out.push(truncated(total, pos));
+            return out;
         }
+        out.push(convert(d, region, uri, pos));
     }
     out
 }

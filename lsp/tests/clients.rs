@@ -192,6 +192,18 @@ fn jsonc_profiles_accept_comments_and_trailing_commas() {
         .collect();
     assert_eq!(syntax.len(), 1, "{diags:#?}");
     assert_eq!(syntax[0]["range"]["start"]["line"], 0);
+
+    // A JSON file that names no template key is not a profile: whatever its syntax
+    // (VS Code's settings.json has comments), nothing is reported.
+    let settings = "{\n  // my settings\n  \"editor.fontSize\": 14,\n}\n";
+    assert!(
+        lsp.open("file:///tmp/settings.json", "jsonc", settings)
+            .is_empty()
+    );
+    assert!(
+        lsp.open("file:///tmp/broken.json", "json", "{\"a\": [1, 2,")
+            .is_empty()
+    );
 }
 
 fn hover_with(format: Value) -> Value {

@@ -321,6 +321,24 @@ fn settings_register_warn_once_and_fall_back_to_defaults() {
     );
     assert!(hover_text(&mut lsp, ROT, 0, 0).contains("Model: 100 layers"));
 
+    // Pulled settings are checked too; the VS Code extension's own keys (`server.path`,
+    // `trace.server`) in the same section are not settings of the server, and no error.
+    let mut lsp = Lsp::spawn();
+    lsp.configuration = json!({"layers": "many", "server": {"path": "rotlang-lsp"},
+                               "trace": {"server": "off"}});
+    lsp.result(
+        "initialize",
+        json!({"capabilities": {"workspace": {"configuration": true}}}),
+    );
+    lsp.notify("initialized", json!({}));
+    let log = lsp.wait(|m| m["method"] == "window/logMessage");
+    let message = log["params"]["message"].as_str().unwrap();
+    assert!(message.contains("layers = \"many\""), "{message}");
+    assert!(
+        !message.contains("server") && !message.contains("trace"),
+        "{message}"
+    );
+
     // Without dynamic registration, nothing is registered.
     let (mut lsp, _) = Lsp::start_with(json!({}), Value::Null);
     lsp.open(ROT, "rotlang", "0");

@@ -103,6 +103,13 @@ fn completion_replaces_the_instruction_typed_so_far_as_eglot_expects() {
         Some("0, *+30")
     );
 
+    // A pasted blob without separators is not copied into every item.
+    let blob = format!("+{}$0", "9".repeat(100_000));
+    let (_, items) = complete(&mut lsp, ROT, "rotlang", &blob);
+    let slash = item(&items, "/");
+    assert_eq!(slash["textEdit"]["newText"], "/");
+    assert_eq!(slash["textEdit"]["range"], range(0, 100_001, 0, 100_001));
+
     // In a profile the edit is in document coordinates, its text escaped.
     let uri = "file:///tmp/clients.json";
     let (text, items) = complete(

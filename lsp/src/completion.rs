@@ -44,6 +44,9 @@ const MARKS: [(&str, &str, &str); 6] = [
     ("T", "top shells", "count: the number of top shell layers"),
 ];
 
+/// Longer "instructions" (a paste without separators) are not copied into the items.
+const MAX_INSTRUCTION: usize = 256;
+
 /// All items for a template of this target. `None` outside any template (in a JSON
 /// profile, anywhere but the template strings).
 pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<CompletionItem>> {
@@ -51,10 +54,15 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
     // The instruction under the cursor: between the separators around it (instructions
     // never contain one).
     const SEPARATORS: [char; 5] = [',', ' ', '\t', '\r', '\n'];
-    let start = region.text[..at].rfind(SEPARATORS).map_or(0, |i| i + 1);
-    let end = region.text[at..]
+    let mut start = region.text[..at].rfind(SEPARATORS).map_or(0, |i| i + 1);
+    let mut end = region.text[at..]
         .find(SEPARATORS)
         .map_or(region.text.len(), |i| at + i);
+    if end - start > MAX_INSTRUCTION {
+        // No instruction is this long; a pasted blob must not be copied into every item
+        // (34 copies of a megabyte). Insert at the cursor instead.
+        (start, end) = (at, at);
+    }
     let (typed, after) = (&region.text[start..at], &region.text[at..end]);
     let range = Range::new(
         pos.position(region.map.to_doc(start)),

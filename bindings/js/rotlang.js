@@ -184,6 +184,13 @@ export function version() {
   return readJson(ex).version;
 }
 
+/** The signs that may follow an angle: `{ sign, kind, meaning }` (for completion). */
+export function signs() {
+  const ex = exportsOrThrow();
+  ex.rotlang_signs();
+  return readJson(ex);
+}
+
 /** Every diagnostic of a template (errors and warnings); never throws for a bad template. */
 export function check(text, options = {}) {
   return call('rotlang_check', text, options);

@@ -175,3 +175,37 @@ pub fn fill_code(fill: Fill) -> u8 {
         Fill::Rectilinear => 5,
     }
 }
+
+/// Every sign that may follow an angle, with its kind and meaning (for completion).
+pub fn signs() -> Value {
+    use rotlang::{Joint, Solid, Unit};
+    let mut out = Vec::new();
+    for c in "/NnZz$LlUuQq~^|#".chars() {
+        if let Some(j) = Joint::from_symbol(c) {
+            out.push(json!({ "sign": c.to_string(), "kind": "joint", "meaning": format!("turn {}", j.meaning()) }));
+        }
+    }
+    for c in "DSOMR".chars() {
+        if let Some(s) = Solid::from_symbol(c) {
+            out.push(json!({ "sign": c.to_string(), "kind": "solid", "meaning": format!("the layers are {}", s.meaning()) }));
+        }
+    }
+    for u in ["mm", "cm", "m", "'", "\"", "#", "%"] {
+        if let Some(unit) = Unit::from_symbol(u) {
+            out.push(json!({ "sign": u, "kind": "unit", "meaning": unit.meaning() }));
+        }
+    }
+    for (sign, meaning) in [
+        ("!", "run once for the whole model (one-time)"),
+        ("*", "a dummy: sets the start angle without taking a layer"),
+        ("B", "count: the bottom shell layers"),
+        ("T", "count: the top shell layers"),
+        (
+            "-",
+            "flip: run the shape from the end angle back to the start",
+        ),
+    ] {
+        out.push(json!({ "sign": sign, "kind": "mark", "meaning": meaning }));
+    }
+    Value::Array(out)
+}

@@ -79,6 +79,11 @@ pub extern "C" fn rotlang_version() -> i32 {
     finish(Ok(api::version()))
 }
 
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_signs() -> i32 {
+    finish(Ok(api::signs()))
+}
+
 /// # Safety
 /// Each (pointer, length) pair must be readable memory (from `rotlang_alloc`), or a
 /// length of 0.

@@ -34,6 +34,8 @@ pub fn check(text: &str, req: &Request) -> Result<Value, Failure> {
         "diagnostics": diagnostics::to_json(text, &parse.diagnostics),
         "hasErrors": parse.has_errors(),
         "omitted": parse.omitted,
+        "errors": parse.errors,
+        "warnings": parse.warnings,
         "instructions": instruction_spans(text, &parse),
     }))
 }
@@ -69,21 +71,37 @@ pub fn expand(
         .iter()
         .map(|i| i.span.start)
         .collect();
-    // The stream, skipped to `from` (no checkpoints kept, unlike `Evaluator`), folded
-    // internally (`for_each`), the evaluator's fast path.
-    eval::layers(&parse.template, &model, options)
-        .skip(from)
-        .take(n)
-        .for_each(|layer| {
-            out.angles.push(layer.angle);
-            out.fills.push(fill_code(layer.fill));
-            out.instructions.push(match layer.instruction {
-                Some(span) => starts
-                    .binary_search(&span.start)
-                    .map_or(-1, |i| i32::try_from(i).unwrap_or(-1)),
-                None => -1,
-            });
+    // Runs of layers share an instruction: the last lookup is remembered.
+    let mut last: Option<(usize, i32)> = None;
+    let mut push = |layer: eval::Layer| {
+        out.angles.push(layer.angle);
+        out.fills.push(fill_code(layer.fill));
+        out.instructions.push(match layer.instruction {
+            Some(span) => match last {
+                Some((start, index)) if start == span.start => index,
+                _ => {
+                    let index = starts
+                        .binary_search(&span.start)
+                        .map_or(-1, |i| i32::try_from(i).unwrap_or(-1));
+                    last = Some((span.start, index));
+                    index
+                }
+            },
+            None => -1,
         });
+    };
+    // The stream (no checkpoints kept, unlike `Evaluator`), moved on to `from`. Up to the
+    // top it is folded internally (`for_each`), the evaluator's fast path; `take` would
+    // step it one `next` at a time.
+    let mut stream = eval::layers(&parse.template, &model, options);
+    if from > 0 {
+        stream.nth(from - 1);
+    }
+    if to == model.len() {
+        stream.for_each(&mut push);
+    } else {
+        stream.take(n).for_each(&mut push);
+    }
     Ok(json!({
         "layers": model.len(),
         "from": from,
@@ -97,7 +115,7 @@ pub fn expand(
 fn parse_clean(text: &str, target: Target) -> Result<Parse, Failure> {
     let parse = rotlang::parse(text, target);
     if parse.has_errors() {
-        let errors = parse.diagnostics.iter().filter(|d| d.is_error()).count();
+        let errors = parse.errors;
         let first = parse
             .diagnostics
             .iter()
@@ -158,7 +176,7 @@ fn model_json(model: &Model) -> Value {
     json!({
         "layers": model.len(),
         "layerHeight": model.layer_height(),
-        "height": model.object_height(),
+        "height": rotlang::number::round_height(model.object_height()),
         "bottomShells": model.bottom_shells(),
         "topShells": model.top_shells(),
     })

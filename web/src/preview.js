@@ -41,6 +41,6 @@ export function previewSvg(angle, { pattern = 'lines', density = 15, shape = 'sq
   return `<svg xmlns="http://www.w3.org/2000/svg" class="preview" viewBox="${-h} ${-h} ${2 * h} ${2 * h}" role="img" aria-label="Infill lines at ${Number(angle.toFixed(4))}°">`
     + `<defs><clipPath id="outline">${outline}</clipPath></defs>`
     + `<g class="outline">${outline}</g>`
-    + `<g class="infill" clip-path="url(#outline)" stroke-width="${LINE_WIDTH}" data-angle="${angle}">${lines.join('')}</g>`
+    + `<g class="infill" clip-path="url(#outline)" stroke-width="${(LINE_WIDTH * 0.7).toFixed(2)}" data-angle="${angle}">${lines.join('')}</g>`
     + `</svg>`;
 }

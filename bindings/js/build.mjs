@@ -14,6 +14,16 @@ const root = resolve(here, '../..');
 const targetDir = process.env.CARGO_TARGET_DIR
   ? resolve(root, process.env.CARGO_TARGET_DIR)
   : join(root, 'target');
+// The wasm target (rustup's), added when missing, as scripts/ensure does for the tests.
+try {
+  const installed = execFileSync('rustup', ['target', 'list', '--installed'], { encoding: 'utf8' });
+  if (!installed.split('\n').includes('wasm32-unknown-unknown')) {
+    console.error('build.mjs: rustup target add wasm32-unknown-unknown');
+    execFileSync('rustup', ['target', 'add', 'wasm32-unknown-unknown'], { stdio: 'inherit' });
+  }
+} catch (e) {
+  if (e.code !== 'ENOENT') throw e; // no rustup: let cargo say what is missing
+}
 execFileSync('cargo', [
   'build', '--profile', 'wasm', '--target', 'wasm32-unknown-unknown', '-p', 'rotlang-wasm',
   ...process.argv.slice(2),

@@ -7,6 +7,7 @@ import { defaultKeymap, history, historyKeymap } from '@codemirror/commands';
 import { setDiagnostics, lintKeymap } from '@codemirror/lint';
 import { autocompletion, completionKeymap } from '@codemirror/autocomplete';
 import { MAX_TEMPLATE } from './limits.js';
+import { templateLanguage } from './highlight.js';
 
 const setGoverning = StateEffect.define();
 const governing = StateField.define({
@@ -51,6 +52,7 @@ export function createEditor(host, text, hooks) {
       drawSelection(),
       highlightActiveLine(),
       EditorView.lineWrapping,
+      templateLanguage,
       governing,
       autocompletion({ override: [completeSigns], activateOnTyping: true }),
       hoverTooltip((view, pos) => {

@@ -13,6 +13,7 @@ pub mod cli;
 extern crate alloc;
 
 pub mod diagnostic;
+pub mod dialect;
 pub mod eval;
 pub mod format;
 pub mod ir;

@@ -462,13 +462,19 @@ pub fn capabilities(encoding: Encoding) -> ServerCapabilities {
 
 /// Run the server on stdin/stdout until the client says `exit` or closes the stream.
 pub async fn run_stdio() {
-    crate::transport::serve(
-        tokio::io::stdin(),
-        tokio::io::stdout(),
-        |input, output| async move {
-            let (service, socket) = LspService::new(Backend::new);
-            Server::new(input, output, socket).serve(service).await;
-        },
-    )
+    serve(tokio::io::stdin(), tokio::io::stdout()).await;
+}
+
+/// Run the server on any pair of byte streams, behind the framing guard: stdio in
+/// `run_stdio`, in-memory buffers in the fuzz target `lsp_framing`.
+pub async fn serve<I, O>(input: I, output: O)
+where
+    I: tokio::io::AsyncRead + Unpin + Send + 'static,
+    O: tokio::io::AsyncWrite + Unpin,
+{
+    crate::transport::serve(input, output, |input, output| async move {
+        let (service, socket) = LspService::new(Backend::new);
+        Server::new(input, output, socket).serve(service).await;
+    })
     .await;
 }

@@ -99,6 +99,11 @@ pub struct ExpandArgs {
     /// The seed of the random joints `~` and `^`: the same seed gives the same angles.
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub seed: u64,
+    /// `rotlang`: the language as documented; `orcaslicer`: exactly the angles OrcaSlicer
+    /// computes, for any text (valid or not); where it hangs, crashes or yields NaN the
+    /// layers are reported on stderr and the angles stay finite.
+    #[arg(long, value_name = "DIALECT", default_value_t)]
+    pub dialect: eval::Dialect,
     /// Wrap the printed angles: `none` (90, 180, 270, 360, 450, ...), `360` (into
     /// [0, 360)), or `180` (into [0, 180): infill lines at θ and θ+180° are the same lines).
     #[arg(long, value_enum, default_value_t)]
@@ -176,6 +181,15 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         .into_iter()
         .next()
         .ok_or_else(|| UsageError("no template given".into()))?;
+    let options = Options {
+        base: args.base,
+        seed: args.seed,
+    };
+    if args.dialect == eval::Dialect::OrcaSlicer {
+        return super::dialect::expand(&input.text, &model, options, err, |layers| {
+            write_layers(layers, &input.text, args, out)
+        });
+    }
     let parse = crate::parse(&input.text, args.target.into());
     let write_error = |e: std::io::Error| UsageError(format!("cannot write to stderr: {e}"));
     if !parse.diagnostics.is_empty() {
@@ -185,10 +199,6 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     if parse.has_errors() {
         return Ok(1);
     }
-    let options = Options {
-        base: args.base,
-        seed: args.seed,
-    };
     let layers = eval::layers(&parse.template, &model, options);
     match write_layers(layers, &input.text, args, out) {
         Ok(()) => Ok(0),
@@ -245,7 +255,7 @@ fn model_file(path: &Path) -> Result<Model, UsageError> {
 
 /// Writes every layer as it is evaluated: memory stays constant however many layers.
 fn write_layers(
-    layers: eval::Layers<'_>,
+    layers: impl ExactSizeIterator<Item = Layer>,
     text: &str,
     args: &ExpandArgs,
     out: &mut dyn Write,

@@ -4,6 +4,7 @@
 //! share one implementation; `src/main.rs` only dispatches.
 
 pub mod check;
+mod dialect;
 pub mod expand;
 pub mod fmt;
 

@@ -47,65 +47,82 @@ pub(crate) fn instruction(text: &str, ins: &Instruction, target: Target, out: &m
     }
 }
 
-/// Warnings about separators: `+30 /50%`.
-pub(crate) fn spacing(chunks: &[Chunk<'_>], out: &mut Sink) {
-    // `+30 /50%`: a space splits what looks like one instruction into two.
-    for (i, pair) in chunks.windows(2).enumerate() {
-        let (prev, next) = (pair[0], pair[1]);
-        // A joint (`+30 /50%`), a lone `#` unit (`+30/5 #`) or a repeat count
-        // (`+45/10 *2`) cut off by a space; `#14` on its own is a documented form.
-        let cut_off = next
-            .text
-            .starts_with(|c: char| Joint::from_symbol(c).is_some() && c != '#')
-            || next.text == "#"
-            || (next.text.starts_with('*')
-                && next.text[1..].starts_with(|c: char| c.is_ascii_digit()));
-        if next.after_space_only
-            && prev
-                .text
-                .ends_with(|c: char| c.is_ascii_digit() || c == '%')
-            && cut_off
-        {
-            // `+30 / 50%`: a lone joint with its count cut off too: join all three.
-            let count = chunks.get(i + 2).filter(|c| {
-                next.text.len() == 1
-                    && next.text != "#"
-                    && c.after_space_only
-                    && c.text.starts_with(|ch: char| {
-                        ch.is_ascii_digit() || matches!(ch, '-' | 'B' | 'T')
-                    })
-            });
-            let end = count.map_or(next.span.start, |c| c.span.start);
-            let gap = Span::new(prev.span.end, end);
-            let joined = match count {
-                Some(c) => format!("{}{}{}", prev.text, next.text, c.text),
-                None => format!("{}{}", prev.text, next.text),
-            };
-            let mut d = Diagnostic::warning(
-                "rotlang::space-splits-instruction",
-                format!("`{}` starts a new instruction", next.text),
-            )
-            .with_primary(
-                next.span,
-                "read as an instruction of its own (a turn of 0°)",
-            )
-            .with_secondary(
-                Span::new(prev.span.end, next.span.start),
-                "because of this space",
-            );
-            if let Some(c) = count {
-                d = d.with_secondary(c.span, "and this one too").with_fix(
-                    "join the three",
-                    gap,
-                    next.text,
-                );
-            } else {
-                d = d.with_fix("join the two", gap, "");
-            }
-            out.push(d.with_help(format!(
-                "did you mean `{joined}`? Otherwise separate them with a comma"
-            )));
+/// Warnings about separators (`+30 /50%`), on chunks as they stream by: a pair of
+/// neighbours is looked at once the chunk after them is known.
+#[derive(Default)]
+pub(crate) struct Spacing<'a> {
+    window: [Option<Chunk<'a>>; 2],
+}
+
+impl<'a> Spacing<'a> {
+    pub fn push(&mut self, chunk: Chunk<'a>, out: &mut Sink) {
+        if let [Some(prev), Some(next)] = self.window {
+            pair(prev, next, Some(chunk), out);
         }
+        self.window = [self.window[1], Some(chunk)];
+    }
+
+    pub fn finish(self, out: &mut Sink) {
+        if let [Some(prev), Some(next)] = self.window {
+            pair(prev, next, None, out);
+        }
+    }
+}
+
+/// `+30 /50%`: a space splits what looks like one instruction into two. `after` is the
+/// chunk after `next`, if any.
+fn pair(prev: Chunk<'_>, next: Chunk<'_>, after: Option<Chunk<'_>>, out: &mut Sink) {
+    // A joint (`+30 /50%`), a lone `#` unit (`+30/5 #`) or a repeat count
+    // (`+45/10 *2`) cut off by a space; `#14` on its own is a documented form.
+    let cut_off = next
+        .text
+        .starts_with(|c: char| Joint::from_symbol(c).is_some() && c != '#')
+        || next.text == "#"
+        || (next.text.starts_with('*') && next.text[1..].starts_with(|c: char| c.is_ascii_digit()));
+    if next.after_space_only
+        && prev
+            .text
+            .ends_with(|c: char| c.is_ascii_digit() || c == '%')
+        && cut_off
+    {
+        // `+30 / 50%`: a lone joint with its count cut off too: join all three.
+        let count = after.filter(|c| {
+            next.text.len() == 1
+                && next.text != "#"
+                && c.after_space_only
+                && c.text
+                    .starts_with(|ch: char| ch.is_ascii_digit() || matches!(ch, '-' | 'B' | 'T'))
+        });
+        let end = count.map_or(next.span.start, |c| c.span.start);
+        let gap = Span::new(prev.span.end, end);
+        let joined = match count {
+            Some(c) => format!("{}{}{}", prev.text, next.text, c.text),
+            None => format!("{}{}", prev.text, next.text),
+        };
+        let mut d = Diagnostic::warning(
+            "rotlang::space-splits-instruction",
+            format!("`{}` starts a new instruction", next.text),
+        )
+        .with_primary(
+            next.span,
+            "read as an instruction of its own (a turn of 0°)",
+        )
+        .with_secondary(
+            Span::new(prev.span.end, next.span.start),
+            "because of this space",
+        );
+        if let Some(c) = count {
+            d = d.with_secondary(c.span, "and this one too").with_fix(
+                "join the three",
+                gap,
+                next.text,
+            );
+        } else {
+            d = d.with_fix("join the two", gap, "");
+        }
+        out.push(d.with_help(format!(
+            "did you mean `{joined}`? Otherwise separate them with a comma"
+        )));
     }
 }
 

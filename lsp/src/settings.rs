@@ -2,8 +2,9 @@
 //!
 //! Accepted from `initializationOptions` and `workspace/didChangeConfiguration`, either as
 //! `{"rotlang": {...}}` or as the inner object itself. Keys: `layers`, `layerHeight`,
-//! `firstLayerHeight`, `bottomShellLayers`, `topShellLayers`. A value that is missing or
-//! unusable keeps its previous value, so one typo does not throw away the rest.
+//! `firstLayerHeight`, `bottomShellLayers`, `topShellLayers`, and `maxDocumentBytes` (the
+//! largest document checked). A value that is missing or unusable keeps its previous
+//! value, so one typo does not throw away the rest.
 
 use serde_json::Value;
 
@@ -11,6 +12,9 @@ use serde_json::Value;
 /// (well below the evaluator's own limit).
 pub const MAX_LAYERS: usize = 1_000_000;
 const MAX_SHELLS: u32 = 10_000;
+/// Documents larger than this are not checked (one diagnostic says so): templates are a
+/// line of text, and a pasted log file must not cost the editor hundreds of megabytes.
+pub const DEFAULT_MAX_DOCUMENT_BYTES: usize = 4 << 20;
 use rotlang::eval::{MAX_LAYER_HEIGHT as MAX_HEIGHT, MIN_LAYER_HEIGHT as MIN_HEIGHT};
 
 /// The model previews are evaluated on. The default is the documentation's 20 mm cube as
@@ -23,6 +27,9 @@ pub struct ModelSettings {
     pub first_layer_height: Option<f64>,
     pub bottom_shell_layers: u32,
     pub top_shell_layers: u32,
+    /// The largest document (bytes) the server parses; `maxDocumentBytes` raises it up to
+    /// the largest message the server reads.
+    pub max_document_bytes: usize,
 }
 
 impl Default for ModelSettings {
@@ -33,6 +40,7 @@ impl Default for ModelSettings {
             first_layer_height: None,
             bottom_shell_layers: 3,
             top_shell_layers: 4,
+            max_document_bytes: DEFAULT_MAX_DOCUMENT_BYTES,
         }
     }
 }
@@ -64,6 +72,10 @@ impl ModelSettings {
                 "topShellLayers" => set(
                     &mut self.top_shell_layers,
                     whole(value, 0, MAX_SHELLS.into()).map(|n| n as u32),
+                ),
+                "maxDocumentBytes" => set(
+                    &mut self.max_document_bytes,
+                    whole(value, 1024, crate::transport::MAX_MESSAGE as u64),
                 ),
                 _ => true, // unknown keys belong to other tools or future versions
             };

@@ -66,7 +66,10 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
                     .iter()
                     .map(|d| diagnostic_json(&index, d))
                     .collect();
-                let obj = serde_json::json!({"input": input.text, "name": input.name, "diagnostics": diagnostics});
+                let obj = serde_json::json!({
+                    "input": input.text, "name": input.name, "diagnostics": diagnostics,
+                    "errors": parse.errors, "warnings": parse.warnings, "omitted": parse.omitted,
+                });
                 writeln!(out, "{obj}").map_err(io)?;
             }
         }
@@ -79,24 +82,13 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
             let color = args.color.enabled(true);
             out.write_all(render_human(&reports, color).as_bytes())
                 .map_err(io)?;
-            // The "N more not shown" entry is a note about others, not one more problem.
-            let shown = |p: &&crate::Diagnostic| p.code != "rotlang::too-many-diagnostics";
-            let count = |error: bool| -> usize {
-                parses
-                    .iter()
-                    .map(|p| {
-                        p.diagnostics
-                            .iter()
-                            .filter(shown)
-                            .filter(|d| d.is_error() == error)
-                            .count()
-                    })
-                    .sum()
-            };
+            // Exact counts, whatever the cap on the diagnostics listed above.
+            let errors = parses.iter().map(|p| p.errors).sum();
+            let warnings = parses.iter().map(|p| p.warnings).sum();
             let omitted: usize = parses.iter().map(|p| p.omitted).sum();
-            let mut summary = summary(inputs.len(), count(true), count(false));
+            let mut summary = summary(inputs.len(), errors, warnings);
             if omitted > 0 {
-                summary.push_str(&format!(" shown, {omitted} more not shown"));
+                summary.push_str(&format!(" ({omitted} not shown)"));
             }
             writeln!(out, "{summary}").map_err(io)?;
         }

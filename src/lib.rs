@@ -19,6 +19,7 @@ pub mod format;
 pub mod ir;
 mod lint;
 pub mod number;
+pub mod profile;
 mod syntax;
 
 pub use diagnostic::{Diagnostic, Fix, Label, LineIndex, Severity, Span};

@@ -512,3 +512,35 @@ fn cli_fmt_keeps_orcaslicer_meaning() {
     assert_eq!(std::fs::read_to_string(&path).unwrap(), "0, 90\n");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Every `orcaslicer::` code `rotlang explain` documents: its example gets that code from
+/// the compat lint on the 20 mm cube, at the documented severity.
+#[test]
+fn explained_compat_examples_report_their_code() {
+    use rotlang::Target;
+    let docs: Vec<_> = rotlang::explain::codes()
+        .iter()
+        .filter(|d| d.code.starts_with("orcaslicer::"))
+        .collect();
+    assert_eq!(docs.len(), rotlang::dialect::compat::CODES.len());
+    for doc in docs {
+        let found = rotlang::dialect::compat(
+            doc.example,
+            Target::Sparse,
+            &Model::cube20(),
+            Options::default(),
+        );
+        let d = found
+            .iter()
+            .find(|d| d.code == doc.code)
+            .unwrap_or_else(|| {
+                panic!(
+                    "{} example {:?}: {:?}",
+                    doc.code,
+                    doc.example,
+                    found.iter().map(|d| d.code).collect::<Vec<_>>()
+                )
+            });
+        assert_eq!(d.severity.as_str(), doc.severity, "{}", doc.code);
+    }
+}

@@ -40,6 +40,10 @@ pub(super) fn read(name: &str, bytes: &[u8], profile: &mut Profile) -> Result<()
         });
         model_settings(profile, source)?;
     }
+    // Parts are collected before their object ends: back to document order.
+    profile
+        .templates
+        .sort_by_key(|f| (f.source, f.span_in_source(crate::Span::new(0, 0)).start));
     if !any {
         return Err(format!(
             "a zip archive without {PROJECT} or {MODEL}: not an OrcaSlicer project"
@@ -102,7 +106,7 @@ fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
         let event = reader.read_event().map_err(|e| {
             let at = reader.error_position() as usize;
             let (line, col) = crate::diagnostic::LineIndex::new(&text).line_col(at.min(text.len()));
-            format!("{MODEL}: invalid XML at {}:{}: {e}", line + 1, col + 1)
+            format!("{MODEL}: invalid XML at {line}:{col}: {e}")
         })?;
         let end = (reader.buffer_position() as usize).min(text.len());
         match event {

@@ -20,6 +20,7 @@ pub mod format;
 pub mod ir;
 mod lint;
 pub mod number;
+pub mod profile;
 mod syntax;
 
 pub use syntax::MAX_DIAGNOSTICS;

@@ -31,6 +31,11 @@ pub struct FmtArgs {
     /// Rewrite files in place instead of printing (templates from arguments are printed).
     #[arg(long)]
     pub write: bool,
+    /// Format even where OrcaSlicer would read the result differently (`0,,90` is
+    /// 0, 0, 90 for OrcaSlicer, `0, 90` is 0, 90); without it such a template is left as
+    /// it is (printed unchanged) and the exit status is 1.
+    #[arg(long)]
+    pub force: bool,
     /// Which setting the templates are for.
     #[arg(long, value_enum, default_value_t)]
     pub target: TargetArg,
@@ -59,6 +64,25 @@ pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i
             .text
             .strip_suffix('\n')
             .map_or(input.text.as_str(), |t| t.strip_suffix('\r').unwrap_or(t));
+        // Canonical for rotlang, but OrcaSlicer may read the new text differently.
+        if !args.check
+            && !args.force
+            && current != formatted
+            && let Some(why) = crate::dialect::compat::orcaslicer_change(current, &formatted)
+        {
+            writeln!(
+                err,
+                "{}: not formatted: `{formatted}` would change what OrcaSlicer does ({why}); \
+                 pass --force to format anyway",
+                input.name
+            )
+            .map_err(io)?;
+            if !args.write || input.path.is_none() {
+                writeln!(out, "{current}").map_err(io)?;
+            }
+            code = 1;
+            continue;
+        }
         if args.check {
             if current != formatted {
                 writeln!(

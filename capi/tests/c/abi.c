@@ -109,6 +109,61 @@ static void diagnostics(void) {
     STATUS(rotlang_template_free(t), ROTLANG_STATUS_OK);
 }
 
+/* The OrcaSlicer dialect: any text, OrcaSlicer's angles, its defects as findings. */
+static void orcaslicer(void) {
+    RotlangOptions orca = {0, 0, ROTLANG_DIALECT_ORCASLICER};
+    RotlangModel cube = rotlang_model_uniform(100, 0.2, 0);
+    double angles[100];
+    RotlangFinding items[4];
+    RotlangFindings findings = {items, 4, 0};
+
+    /* `10!, 5*` makes OrcaSlicer loop forever from layer 1; rotlang holds the angle. */
+    RotlangTemplate *hang = parse("10!, 5*");
+    STATUS(rotlang_expand(hang, &cube, &orca, 0, ROTLANG_TO_TOP, angles, NULL, 100, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 1 && items[0].kind == ROTLANG_FINDING_KIND_HANGS);
+    CHECK(items[0].first_layer == 1 && items[0].layers == 99);
+    CHECK(angles[0] == 10 && angles[1] == 10 && angles[99] == 10);
+    /* Not enough room: the count still says how many there are. */
+    RotlangFindings none = {NULL, 0, 0};
+    STATUS(rotlang_expand(hang, &cube, &orca, 0, ROTLANG_TO_TOP, angles, NULL, 100, &none), ROTLANG_STATUS_OK);
+    CHECK(none.count == 1);
+    /* Findings only cover the layers evaluated: layer 0 alone has no hang yet. */
+    STATUS(rotlang_expand(hang, &cube, &orca, 0, 1, angles, NULL, 1, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 0);
+    RotlangEvaluator *e = NULL;
+    STATUS(rotlang_evaluator_new(hang, &cube, &orca, &e), ROTLANG_STATUS_OK);
+    RotlangLayer layer;
+    STATUS(rotlang_evaluator_layer(e, 50, &layer), ROTLANG_STATUS_OK);
+    CHECK(layer.angle == 10);
+    STATUS(rotlang_evaluator_findings(e, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 1 && items[0].kind == ROTLANG_FINDING_KIND_HANGS);
+    STATUS(rotlang_evaluator_free(e), ROTLANG_STATUS_OK);
+    STATUS(rotlang_template_free(hang), ROTLANG_STATUS_OK);
+
+    /* Text rotlang rejects still has OrcaSlicer angles; random access equals the batch. */
+    RotlangTemplate *bad = parse("+30°, X, 0x10*2, nan");
+    int errors = 0;
+    STATUS(rotlang_template_has_errors(bad, &errors), ROTLANG_STATUS_OK);
+    CHECK(errors == 1);
+    STATUS(rotlang_expand(bad, &cube, &orca, 0, ROTLANG_TO_TOP, angles, NULL, 100, &findings), ROTLANG_STATUS_OK);
+    STATUS(rotlang_evaluator_new(bad, &cube, &orca, &e), ROTLANG_STATUS_OK);
+    for (size_t k = 0; k < 200; k++) {
+        size_t i = (k * 61) % 100;
+        STATUS(rotlang_evaluator_layer(e, i, &layer), ROTLANG_STATUS_OK);
+        CHECK(layer.angle == angles[i] && isfinite(layer.angle));
+    }
+    STATUS(rotlang_evaluator_free(e), ROTLANG_STATUS_OK);
+    STATUS(rotlang_template_free(bad), ROTLANG_STATUS_OK);
+
+    /* `1:4`: a quarter turn for rotlang, 1 degree for OrcaSlicer (SEMANTICS 10.2). */
+    RotlangTemplate *flip = parse("1:4");
+    double mine[5];
+    STATUS(rotlang_expand(flip, &cube, NULL, 0, 5, mine, NULL, 5, NULL), ROTLANG_STATUS_OK);
+    STATUS(rotlang_expand(flip, &cube, &orca, 0, 5, angles, NULL, 5, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 0 && mine[4] == 90 && angles[4] == 1);
+    STATUS(rotlang_template_free(flip), ROTLANG_STATUS_OK);
+}
+
 static void hostile(void) {
     RotlangTemplate *t = parse("+10, -10");
     RotlangTemplate *out = (RotlangTemplate *)1;
@@ -247,6 +302,7 @@ int main(int argc, char **argv) {
     versions();
     evaluates();
     diagnostics();
+    orcaslicer();
     hostile();
     threads();
     if (failures) {

@@ -1,7 +1,6 @@
-//! The OrcaSlicer dialect, and `explain` (which raises NotImplementedError until
-//! `rotlang::explain` is in the library).
+//! The OrcaSlicer dialect, and `explain`.
 
-use pyo3::exceptions::{PyNotImplementedError, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use rotlang_core::Target;
@@ -71,8 +70,16 @@ pub fn evaluate(
     }
 }
 
-pub fn explain(_py: Python<'_>, _text: &str, _target: Target, _model: Option<&Model>) -> PyResult<String> {
-    Err(PyNotImplementedError::new_err(
-        "explain is not in this build of rotlang yet",
-    ))
+/// The template in words (`rotlang::explain::template`) on `model` (default: the cube).
+pub fn explain(py: Python<'_>, text: &str, target: Target, model: Option<&Model>) -> String {
+    let cube;
+    let model = match model {
+        Some(m) => m,
+        None => {
+            cube = Model::cube20();
+            &cube
+        }
+    };
+    // Evaluating the layer ranges can take a while on tall models: let Python run.
+    py.detach(|| rotlang_core::explain::template(text, target, model))
 }

@@ -22,7 +22,9 @@ const TEMPLATE: &str = "5, 10!, +20, +10L25%, -10l25%";
 const LAYERS: usize = 100_000;
 
 fn heights() -> Vec<f64> {
-    (0..LAYERS).map(|i| if i == 0 { 0.3 } else { 0.2 }).collect()
+    (0..LAYERS)
+        .map(|i| if i == 0 { 0.3 } else { 0.2 })
+        .collect()
 }
 
 fn template() -> *mut RotlangTemplate {
@@ -170,20 +172,23 @@ fn c_abi_orcaslicer_uniform(bencher: Bencher) {
 #[divan::bench]
 fn orcaslicer_table_10k(bencher: Bencher) {
     let tops: Vec<f64> = (1..=10_000).map(|i| i as f64 * 0.2).collect();
-    bencher.counter(ItemsCount::new(10_000usize)).bench_local(|| {
-        let mut below = 0.0;
-        let heights: Vec<f64> = tops
-            .iter()
-            .map(|&t| {
-                let h = t - below;
-                below = t;
-                h
-            })
-            .collect();
-        let model = Model::from_heights(heights, 0.2).unwrap().with_shells(3, 4);
-        let table: Vec<f64> = orcaslicer::layers(black_box(TEMPLATE), &model, Options::default())
-            .map(|l| std::f64::consts::PI * l.angle / 180.0)
-            .collect();
-        black_box(table)
-    });
+    bencher
+        .counter(ItemsCount::new(10_000usize))
+        .bench_local(|| {
+            let mut below = 0.0;
+            let heights: Vec<f64> = tops
+                .iter()
+                .map(|&t| {
+                    let h = t - below;
+                    below = t;
+                    h
+                })
+                .collect();
+            let model = Model::from_heights(heights, 0.2).unwrap().with_shells(3, 4);
+            let table: Vec<f64> =
+                orcaslicer::layers(black_box(TEMPLATE), &model, Options::default())
+                    .map(|l| std::f64::consts::PI * l.angle / 180.0)
+                    .collect();
+            black_box(table)
+        });
 }

@@ -383,9 +383,19 @@ fn format(py: Python<'_>, template: &str, target: &str) -> PyResult<String> {
 /// The template in plain words, each instruction with its layer range on `model`.
 #[pyfunction]
 #[pyo3(signature = (template, model=None, target="sparse"))]
-fn explain(py: Python<'_>, template: &str, model: Option<&Model>, target: &str) -> PyResult<String> {
+fn explain(
+    py: Python<'_>,
+    template: &str,
+    model: Option<&Model>,
+    target: &str,
+) -> PyResult<String> {
     let target = self::target(target)?;
-    Ok(dialect::explain(py, template, target, model.map(|m| &m.inner)))
+    Ok(dialect::explain(
+        py,
+        template,
+        target,
+        model.map(|m| &m.inner),
+    ))
 }
 
 /// The documentation of a diagnostic code (`"rotlang::unknown-sign"` or `"unknown-sign"`):

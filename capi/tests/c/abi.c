@@ -292,6 +292,37 @@ static void threads(void) {
     STATUS(rotlang_template_free(shared), ROTLANG_STATUS_OK);
 }
 
+/* Freeing a template while other threads evaluate it: each call either finishes on the
+ * template (it holds its own reference) or, once the free went through, is refused with
+ * INVALID_HANDLE. Never a crash or a read of freed memory. */
+static RotlangTemplate *doomed;
+
+static void *racer(void *arg) {
+    (void)arg;
+    RotlangModel model = rotlang_model_uniform(2000, 0.2, 0);
+    double *angles = malloc(sizeof(double) * 2000);
+    size_t unexpected = 0, refused = 0;
+    for (int round = 0; round < 400 && refused < 3; round++) {
+        RotlangStatus s = rotlang_expand(doomed, &model, NULL, 0, ROTLANG_TO_TOP, angles, NULL, 2000, NULL);
+        if (s == ROTLANG_STATUS_INVALID_HANDLE) refused++;
+        else if (s != ROTLANG_STATUS_OK || angles[1999] != angles[1999 % 2]) unexpected++;
+    }
+    free(angles);
+    return (void *)unexpected;
+}
+
+static void free_while_evaluating(void) {
+    doomed = parse("0, 90");
+    pthread_t tid[3];
+    for (size_t i = 0; i < 3; i++) CHECK(pthread_create(&tid[i], NULL, racer, NULL) == 0);
+    STATUS(rotlang_template_free(doomed), ROTLANG_STATUS_OK);
+    for (size_t i = 0; i < 3; i++) {
+        void *unexpected = NULL;
+        CHECK(pthread_join(tid[i], &unexpected) == 0);
+        CHECK(unexpected == NULL);
+    }
+}
+
 /* Arguments (optional): layers per thread, threads. */
 int main(int argc, char **argv) {
     if (argc > 2) {
@@ -305,6 +336,7 @@ int main(int argc, char **argv) {
     orcaslicer();
     hostile();
     threads();
+    free_while_evaluating();
     if (failures) {
         fprintf(stderr, "%d of %d checks failed\n", failures, checks);
         return 1;

@@ -15,8 +15,11 @@ extern crate alloc;
 pub mod diagnostic;
 pub mod eval;
 pub mod format;
+#[cfg(feature = "infill")]
+pub mod infill;
 pub mod ir;
 mod lint;
+pub mod plot;
 mod syntax;
 
 pub use diagnostic::{Diagnostic, Fix, Label, LineIndex, Severity, Span};

@@ -6,6 +6,8 @@
 pub mod check;
 pub mod expand;
 pub mod fmt;
+pub mod plot;
+pub mod preview;
 
 use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};

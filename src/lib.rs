@@ -17,10 +17,13 @@ pub mod dialect;
 pub mod eval;
 pub mod explain;
 pub mod format;
+#[cfg(feature = "infill")]
+pub mod infill;
 pub mod ir;
 mod lint;
 pub mod number;
 pub mod profile;
+pub mod plot;
 mod syntax;
 
 pub use syntax::MAX_DIAGNOSTICS;

@@ -22,6 +22,8 @@ Examples:
   rotlang check '+10L25%, -10l25%'
   rotlang fmt '0 90  +30/50%'
   rotlang expand '+10L25%, -10l25%' --layers 200 --layer-height 0.1
+  rotlang plot '+10L25%, -10l25%' --out angles.svg
+  rotlang preview '+45' --pattern grid --density 20 --out layers.svg
 Run `rotlang help COMMAND` for a command's options and examples."
 )]
 struct Cli {
@@ -37,6 +39,10 @@ enum Command {
     Fmt(cli::fmt::FmtArgs),
     /// Print the angle and fill of every layer of a model.
     Expand(cli::expand::ExpandArgs),
+    /// Draw the angle against height as an SVG chart.
+    Plot(cli::plot::PlotArgs),
+    /// Draw the infill of some layers (SVG), or list its paths (JSON).
+    Preview(cli::preview::PreviewArgs),
 }
 
 fn main() -> ExitCode {
@@ -48,6 +54,8 @@ fn main() -> ExitCode {
         Command::Check(args) => cli::check::run(args, &mut out),
         Command::Fmt(args) => cli::fmt::run(args, &mut out, &mut err),
         Command::Expand(args) => cli::expand::run(args, &mut out, &mut err),
+        Command::Plot(args) => cli::plot::run(args, &mut out, &mut err),
+        Command::Preview(args) => cli::preview::run(args, &mut out, &mut err),
     };
     let flushed = out.flush();
     match result {

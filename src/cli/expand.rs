@@ -267,7 +267,7 @@ fn model(args: &ExpandArgs) -> Result<Model, UsageError> {
     Ok(model.with_shells(bottom, top))
 }
 
-fn model_file(path: &Path) -> Result<Model, UsageError> {
+pub(super) fn model_file(path: &Path) -> Result<Model, UsageError> {
     let text = read_file(path)?;
     let file: ModelFile = serde_json::from_str(&text).map_err(|e| {
         UsageError(format!(

@@ -8,6 +8,8 @@ mod dialect;
 pub mod expand;
 pub mod files;
 pub mod fmt;
+pub mod plot;
+pub mod preview;
 
 use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};

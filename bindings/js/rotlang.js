@@ -201,6 +201,15 @@ export function format(text, options = {}) {
   return call('rotlang_format', text, options).text;
 }
 
+/**
+ * How OrcaSlicer's own reading of the text differs from rotlang's on the model: the first
+ * layer whose direction differs, the solid layers it loses, and where it hangs, crashes or
+ * computes NaN (`findings`).
+ */
+export function compare(text, options = {}) {
+  return call('rotlang_compare', text, options, true);
+}
+
 /** The angle and fill of every layer (or of layers `from`..`to`) of a model. */
 export function expand(text, options = {}) {
   const answer = call('rotlang_expand', text, options, true);

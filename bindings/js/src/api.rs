@@ -1,8 +1,11 @@
 //! The operations behind the exports, in plain Rust (unit-testable natively): text and a
 //! request in, JSON (and for `expand`, typed arrays) out.
 
+use std::collections::HashMap;
+
+use rotlang::dialect::{Dialect, orcaslicer};
 use rotlang::eval::{self, Model};
-use rotlang::{Fill, Parse, Target};
+use rotlang::{Fill, Parse, Span, Target};
 use serde_json::{Value, json};
 
 use crate::Failure;
@@ -53,11 +56,10 @@ pub fn expand(
     out: &mut Layers,
 ) -> Result<Value, Failure> {
     let target = req.target()?;
+    let dialect = req.dialect()?;
     let options = req.eval_options()?;
     let model = req.model(heights)?;
     let (from, to) = range(req, &model)?;
-    let parse = parse_clean(text, target)?;
-    let spans = instruction_spans(text, &parse);
     out.angles.clear();
     out.fills.clear();
     out.instructions.clear();
@@ -65,50 +67,154 @@ pub fn expand(
     out.angles.reserve_exact(n);
     out.fills.reserve_exact(n);
     out.instructions.reserve_exact(n);
-    let starts: Vec<usize> = parse
-        .template
-        .instructions
-        .iter()
-        .map(|i| i.span.start)
-        .collect();
+    let (spans, findings) = match dialect {
+        Dialect::Rotlang => {
+            let parse = parse_clean(text, target)?;
+            let spans: Vec<Span> = parse.template.instructions.iter().map(|i| i.span).collect();
+            let stream = eval::layers(&parse.template, &model, options);
+            fill_layers(stream, from, to == model.len(), n, &spans, out);
+            (spans, Vec::new())
+        }
+        Dialect::OrcaSlicer => {
+            // OrcaSlicer's reader takes any text; its instructions are the spans its layers
+            // name. Indices are given in order of first appearance, then renumbered in
+            // order of the text.
+            let mut stream = orcaslicer::layers(text, &model, options);
+            let mut seen: HashMap<Span, i32> = HashMap::new();
+            let mut order: Vec<Span> = Vec::new();
+            let mut index_of = |span: Span| {
+                *seen.entry(span).or_insert_with(|| {
+                    order.push(span);
+                    i32::try_from(order.len() - 1).unwrap_or(-1)
+                })
+            };
+            if from > 0 {
+                stream.nth(from - 1);
+            }
+            for layer in stream.by_ref().take(n) {
+                out.angles.push(layer.angle);
+                out.fills.push(fill_code(layer.fill));
+                out.instructions.push(layer.instruction.map_or(-1, &mut index_of));
+            }
+            let mut spans = order.clone();
+            spans.sort_unstable();
+            let renumber: Vec<i32> = order
+                .iter()
+                .map(|s| spans.binary_search(s).map_or(-1, |i| i32::try_from(i).unwrap_or(-1)))
+                .collect();
+            for i in &mut out.instructions {
+                if let Some(&r) = usize::try_from(*i).ok().and_then(|k| renumber.get(k)) {
+                    *i = r;
+                }
+            }
+            (spans, stream.findings().to_vec())
+        }
+    };
+    Ok(json!({
+        "layers": model.len(),
+        "from": from,
+        "to": to,
+        "dialect": dialect.name(),
+        "instructions": span_list(text, &spans),
+        "findings": findings_json(&findings),
+        "model": model_json(&model),
+    }))
+}
+
+/// Writes layers `from`..`from + n` of `stream` into `out`, each with the index of its
+/// instruction in `spans` (sorted by start).
+fn fill_layers<I: Iterator<Item = eval::Layer>>(
+    mut stream: I,
+    from: usize,
+    to_top: bool,
+    n: usize,
+    spans: &[Span],
+    out: &mut Layers,
+) {
     // Runs of layers share an instruction: the last lookup is remembered.
-    let mut last: Option<(usize, i32)> = None;
+    let mut last: Option<(Span, i32)> = None;
     let mut push = |layer: eval::Layer| {
         out.angles.push(layer.angle);
         out.fills.push(fill_code(layer.fill));
         out.instructions.push(match layer.instruction {
             Some(span) => match last {
-                Some((start, index)) if start == span.start => index,
+                Some((s, index)) if s == span => index,
                 _ => {
-                    let index = starts
-                        .binary_search(&span.start)
+                    let index = spans
+                        .binary_search_by_key(&span.start, |s| s.start)
                         .map_or(-1, |i| i32::try_from(i).unwrap_or(-1));
-                    last = Some((span.start, index));
+                    last = Some((span, index));
                     index
                 }
             },
             None => -1,
         });
     };
-    // The stream (no checkpoints kept, unlike `Evaluator`), moved on to `from`. Up to the
-    // top it is folded internally (`for_each`), the evaluator's fast path; `take` would
-    // step it one `next` at a time.
-    let mut stream = eval::layers(&parse.template, &model, options);
     if from > 0 {
         stream.nth(from - 1);
     }
-    if to == model.len() {
+    // Up to the top the stream is folded internally (`for_each`), the evaluator's fast
+    // path; `take` would step it one `next` at a time.
+    if to_top {
         stream.for_each(&mut push);
     } else {
         stream.take(n).for_each(&mut push);
     }
+}
+
+/// How OrcaSlicer's reading differs from rotlang's on this model: the first layer whose
+/// direction differs, the solid layers it would lose, and its findings (hang, crash, NaN).
+pub fn compare(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
+    let target = req.target()?;
+    let options = req.eval_options()?;
+    let model = req.model(heights)?;
+    let parse = rotlang::parse(text, target);
+    let mut orca = orcaslicer::layers(text, &model, options);
+    let mut first_difference = Value::Null;
+    let mut differing = 0usize;
+    let mut solid_lost = 0usize;
+    if !parse.has_errors() {
+        for (ours, theirs) in eval::layers(&parse.template, &model, options).zip(orca.by_ref()) {
+            let diff = (ours.angle - theirs.angle).rem_euclid(360.0);
+            if diff > 1e-4 && diff < 360.0 - 1e-4 {
+                if differing == 0 {
+                    first_difference = json!({
+                        "layer": ours.index,
+                        "rotlang": ours.angle,
+                        "orcaslicer": theirs.angle,
+                    });
+                }
+                differing += 1;
+            }
+            if ours.fill != theirs.fill {
+                solid_lost += 1;
+            }
+        }
+    } else {
+        orca.by_ref().for_each(drop);
+    }
     Ok(json!({
+        "rotlangErrors": parse.has_errors(),
+        "firstDifference": first_difference,
+        "differingLayers": differing,
+        "solidLayersLost": solid_lost,
         "layers": model.len(),
-        "from": from,
-        "to": to,
-        "instructions": spans,
-        "model": model_json(&model),
+        "findings": findings_json(orca.findings()),
     }))
+}
+
+fn findings_json(findings: &[rotlang::dialect::Finding]) -> Value {
+    findings
+        .iter()
+        .map(|f| {
+            json!({
+                "code": f.code,
+                "message": f.message,
+                "firstLayer": f.first_layer,
+                "layers": f.layers,
+            })
+        })
+        .collect()
 }
 
 /// The template's parse, or the failure that carries its errors.
@@ -152,21 +258,21 @@ fn range(req: &Request, model: &Model) -> Result<(usize, usize), Failure> {
 
 /// Each instruction's span, in bytes and UTF-16 units, and its text.
 fn instruction_spans(text: &str, parse: &Parse) -> Value {
-    let ins = &parse.template.instructions;
-    let map = Utf16Map::new(
-        text,
-        ins.iter()
-            .flat_map(|i| [i.span.start, i.span.end])
-            .collect(),
-    );
-    ins.iter()
-        .map(|i| {
+    let spans: Vec<Span> = parse.template.instructions.iter().map(|i| i.span).collect();
+    span_list(text, &spans)
+}
+
+fn span_list(text: &str, spans: &[Span]) -> Value {
+    let map = Utf16Map::new(text, spans.iter().flat_map(|s| [s.start, s.end]).collect());
+    spans
+        .iter()
+        .map(|s| {
             json!({
-                "start": i.span.start,
-                "end": i.span.end,
-                "startUtf16": map.get(i.span.start),
-                "endUtf16": map.get(i.span.end),
-                "text": &text[i.span.range()],
+                "start": s.start,
+                "end": s.end,
+                "startUtf16": map.get(s.start),
+                "endUtf16": map.get(s.end),
+                "text": text.get(s.range()).unwrap_or(""),
             })
         })
         .collect()

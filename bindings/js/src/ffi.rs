@@ -136,6 +136,28 @@ pub unsafe extern "C" fn rotlang_expand(
     finish(result)
 }
 
+/// As [`rotlang_expand`], for `compare` (no arrays out).
+///
+/// # Safety
+/// As [`rotlang_expand`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_compare(
+    text: *const u8,
+    text_len: usize,
+    req: *const u8,
+    req_len: usize,
+    heights: *const f64,
+    count: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        // SAFETY: as above.
+        let heights = unsafe { f64s(heights, count) };
+        api::compare(t, &r, heights)
+    });
+    finish(result)
+}
+
 /// Reads a call's inputs.
 ///
 /// # Safety

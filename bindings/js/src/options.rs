@@ -2,6 +2,7 @@
 //! model, base, seed and a layer range.
 
 use rotlang::Target;
+use rotlang::dialect::Dialect;
 use rotlang::eval::{Model, Options};
 use serde::Deserialize;
 
@@ -59,6 +60,15 @@ impl Request {
             Some(other) => Err(Failure::options(format!(
                 "unknown target `{other}`: use \"sparse\" or \"solid\""
             ))),
+        }
+    }
+
+    pub fn dialect(&self) -> Result<Dialect, Failure> {
+        match self.dialect.as_deref() {
+            None => Ok(Dialect::Rotlang),
+            Some(name) => name
+                .parse()
+                .map_err(|e: rotlang::dialect::UnknownDialect| Failure::options(e.to_string())),
         }
     }
 

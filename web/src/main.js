@@ -161,14 +161,22 @@ function renderCompat(r) {
   const ul = $('compat-list');
   ul.replaceChildren();
   const add = (html) => { const li = document.createElement('li'); li.innerHTML = html; ul.append(li); };
-  for (const d of r.compat ?? []) add(`<code>${esc(d.code)}</code> ${esc(d.message)}`);
-  for (const f of r.layers?.findings ?? []) add(`<code>${esc(f.code)}</code> ${esc(f.message)} (from layer ${f.firstLayer ?? f.first_layer}, ${f.layers} layer${f.layers === 1 ? '' : 's'})`);
-  if (r.compatError) add(esc(r.compatError));
-  if (!ul.children.length) {
-    add(!r.compatAvailable
-      ? 'OrcaSlicer compatibility findings need a rotlang build with the dialect.'
-      : 'No findings: OrcaSlicer reads this template as rotlang does.');
+  const c = r.compare;
+  if (r.compareError) add(`not compared: ${esc(r.compareError)}`);
+  if (!c) return;
+  if (c.rotlangErrors) {
+    add('rotlang rejects this template; OrcaSlicer reads it anyway. Choose <em>as OrcaSlicer reads it</em> to plot its angles.');
+  } else if (c.firstDifference) {
+    const d = c.firstDifference;
+    add(`OrcaSlicer reads it differently: from layer ${d.layer} (${deg(d.rotlang)} in rotlang, ${deg(d.orcaslicer)} in OrcaSlicer); ${c.differingLayers} of ${c.layers} layers differ.`);
   }
+  if (c.solidLayersLost > 0) {
+    add(`OrcaSlicer has no solid signs: ${c.solidLayersLost} solid layer${c.solidLayersLost === 1 ? '' : 's'} would be sparse there.`);
+  }
+  for (const f of c.findings) {
+    add(`<code>${esc(f.code)}</code> ${esc(f.message)}`);
+  }
+  if (!ul.children.length) add('OrcaSlicer reads this template as rotlang does on this model.');
 }
 
 // ---- plot, slider, preview -----------------------------------------------------------

@@ -49,13 +49,11 @@ const ops = {
         out.modelError = err.message;
       }
     }
-    out.compatAvailable = typeof r.compat === 'function';
-    if (out.compatAvailable && !check.hasErrors) {
+    if (!out.refused) {
       try {
-        out.compat = r.compat(state.text, options(state));
+        out.compare = r.compare(state.text, { ...options(state), dialect: undefined });
       } catch (err) {
-        out.compat = [];
-        out.compatError = err.message;
+        out.compareError = err.message;
       }
     }
     if (typeof r.explain === 'function' && !check.hasErrors) {

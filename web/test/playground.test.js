@@ -272,6 +272,24 @@ test('hostile input: a 1 MB paste is refused, a million layers plot, ten million
   await page.close();
 });
 
+test('OrcaSlicer compat findings, and the OrcaSlicer reading in the plot', async () => {
+  const page = await open();
+  await type(page, '+30/50%');
+  assert.match(await page.textContent('#compat-list'), /reads this template as rotlang does/);
+  await type(page, '10!, 5*');
+  await page.waitForFunction(() => /orcaslicer::hangs/.test(document.querySelector('#compat-list').textContent));
+  await type(page, '0 90');
+  assert.match(await page.textContent('#compat-list'), /from layer 1 \(90° in rotlang, 0° in OrcaSlicer\)/);
+  // Read as OrcaSlicer does: `0 90` is 0 on every layer.
+  await page.selectOption('#dialect', 'orcaslicer');
+  await page.waitForFunction(() => window.rotlangPlayground.analysis()?.layers?.dialect === 'orcaslicer');
+  const angles = await page.locator('#plot svg circle').evaluateAll((cs) => cs.map((c) => Number(c.dataset.angle)));
+  assert.equal(angles.length, 100);
+  assert.ok(angles.every((a) => a === 0));
+  await shot(page, 'compat');
+  await page.close();
+});
+
 test('readable at phone width: no sideways scrolling', async () => {
   const page = await open('', { width: 390, height: 844 });
   await type(page, '+10L25%, -10l25%, -10L25%, +10l25%');

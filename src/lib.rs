@@ -15,6 +15,7 @@ extern crate alloc;
 pub mod diagnostic;
 pub mod dialect;
 pub mod eval;
+pub mod explain;
 pub mod format;
 pub mod ir;
 mod lint;

@@ -47,8 +47,9 @@ pub(crate) fn instruction(text: &str, ins: &Instruction, target: Target, out: &m
     }
 }
 
-/// Warnings about separators: `+30 /50%`.
-pub(crate) fn spacing(chunks: &[Chunk<'_>], out: &mut Sink) {
+/// Warnings about separators: `+30/ 50%`, `+30 /50%`.
+pub(crate) fn spacing(template: &Template, chunks: &[Chunk<'_>], out: &mut Sink) {
+    space_after_joint(template, chunks, out);
     // `+30 /50%`: a space splits what looks like one instruction into two.
     for (i, pair) in chunks.windows(2).enumerate() {
         let (prev, next) = (pair[0], pair[1]);
@@ -106,6 +107,52 @@ pub(crate) fn spacing(chunks: &[Chunk<'_>], out: &mut Sink) {
                 "did you mean `{joined}`? Otherwise separate them with a comma"
             )));
         }
+    }
+}
+
+/// `+30/ 50%`, `+30# 10`, `+10L 25%`: a space after a joint splits the instruction from
+/// its count, and both halves are legal: a one-layer turn, then an instruction of its own
+/// (`50%` is the absolute direction 180°). Only pairs of valid instructions get here; a
+/// second half that cannot stand alone is an error of the parser.
+fn space_after_joint(template: &Template, chunks: &[Chunk<'_>], out: &mut Sink) {
+    let parsed = |c: &Chunk<'_>| {
+        let i = template
+            .instructions
+            .partition_point(|ins| ins.span.start < c.span.start);
+        template
+            .instructions
+            .get(i)
+            .is_some_and(|ins| ins.span == c.span)
+    };
+    for pair in chunks.windows(2) {
+        let (prev, next) = (pair[0], pair[1]);
+        // `+30 / 50%`: the lone `/` is itself cut off; the check below joins all three.
+        let lone_joint = prev.after_space_only
+            && prev
+                .text
+                .starts_with(|c: char| Joint::from_symbol(c).is_some());
+        if lone_joint
+            || !(crate::syntax::after_joint(&prev, &next) && parsed(&prev) && parsed(&next))
+        {
+            continue;
+        }
+        let gap = Span::new(prev.span.end, next.span.start);
+        out.push(
+            Diagnostic::warning(
+                "rotlang::space-splits-instruction",
+                format!("`{}` starts a new instruction", next.text),
+            )
+            .with_primary(
+                next.span,
+                "read as an instruction of its own, not as the count of the joint",
+            )
+            .with_secondary(gap, "because of this space")
+            .with_fix("remove the space", gap, "")
+            .with_help(format!(
+                "did you mean `{}{}`? Otherwise separate them with a comma",
+                prev.text, next.text
+            )),
+        );
     }
 }
 

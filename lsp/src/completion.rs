@@ -44,6 +44,9 @@ const MARKS: [(&str, &str, &str); 6] = [
     ("T", "top shells", "count: the number of top shell layers"),
 ];
 
+/// Longer "instructions" (a paste without separators) are not copied into the items.
+const MAX_INSTRUCTION: usize = 256;
+
 /// All items for a template of this target. `None` outside any template (in a JSON
 /// profile, anywhere but the template strings).
 pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<CompletionItem>> {
@@ -51,15 +54,21 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
     // The instruction under the cursor: between the separators around it (instructions
     // never contain one).
     const SEPARATORS: [char; 5] = [',', ' ', '\t', '\r', '\n'];
-    let start = region.text[..at].rfind(SEPARATORS).map_or(0, |i| i + 1);
-    let end = region.text[at..]
+    let mut start = region.text[..at].rfind(SEPARATORS).map_or(0, |i| i + 1);
+    let mut end = region.text[at..]
         .find(SEPARATORS)
         .map_or(region.text.len(), |i| at + i);
+    if end - start > MAX_INSTRUCTION {
+        // No instruction is this long; a pasted blob must not be copied into every item
+        // (34 copies of a megabyte). Insert at the cursor instead.
+        (start, end) = (at, at);
+    }
     let (typed, after) = (&region.text[start..at], &region.text[at..end]);
     let range = Range::new(
         pos.position(region.map.to_doc(start)),
         pos.position(region.map.to_doc(end)),
     );
+    let (joint_fits, layers_unit_fits) = hash_roles(&region.text, at);
     let mut items = Vec::new();
     let mut push = |label: String, kind, detail: &str, doc_text: String, sort: usize| {
         // The longest end of `typed` that begins the label but is not all of it.
@@ -91,11 +100,18 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
     };
     let mut n = 0;
     for joint in Joint::ALL {
+        if joint == Joint::Step && !joint_fits {
+            continue;
+        }
         n += 1;
         push(
             joint.symbol().to_string(),
             CompletionItemKind::OPERATOR,
-            "joint sign",
+            if joint == Joint::Step {
+                "joint sign: a step"
+            } else {
+                "joint sign"
+            },
             format!(
                 "Joint sign: turns {} across the range (e.g. `+22.5{}50%`).",
                 joint.meaning(),
@@ -105,11 +121,18 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
         );
     }
     for unit in Unit::ALL {
+        if unit == Unit::StandardLayers && !layers_unit_fits {
+            continue;
+        }
         n += 1;
         push(
             unit.symbol().to_string(),
             CompletionItemKind::UNIT,
-            "length unit",
+            if unit == Unit::StandardLayers {
+                "length unit: standard layers"
+            } else {
+                "length unit"
+            },
             format!(
                 "Length unit after a count: {} (e.g. `+30/5{}`).",
                 unit.meaning(),
@@ -141,4 +164,39 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
         );
     }
     Some(items)
+}
+
+/// `#` is both a joint (a step) and a unit (standard layers): offer each once, where it
+/// fits. The joint fits while the instruction typed so far has no joint; the unit fits
+/// right after a count's number (digits after a joint or a flip).
+fn hash_roles(text: &str, at: usize) -> (bool, bool) {
+    let before = text.get(..at).unwrap_or("");
+    let start = before
+        .rfind(|c: char| matches!(c, ',' | ' ' | '\t' | '\r' | '\n'))
+        .map_or(0, |i| i + 1);
+    let typed = &before[start..];
+    // The angle's own sign is not a flip, and `%` after the angle is not a joint.
+    let body = typed.trim_start_matches(['+', '-']);
+    let joint_at = body.find(|c: char| Joint::from_symbol(c).is_some() || c == '-');
+    let count_digits = typed.ends_with(|c: char| c.is_ascii_digit())
+        && joint_at.is_some_and(|j| {
+            body[j + 1..]
+                .chars()
+                .all(|c| c.is_ascii_digit() || c == '.' || c == '-')
+        });
+    (joint_at.is_none(), count_digits)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::hash_roles;
+
+    #[test]
+    fn hash_is_offered_once_per_role() {
+        assert_eq!(hash_roles("+30", 3), (true, false));
+        assert_eq!(hash_roles("+30/5", 5), (false, true));
+        assert_eq!(hash_roles("0, +30/-5", 9), (false, true));
+        assert_eq!(hash_roles("+30/", 4), (false, false));
+        assert_eq!(hash_roles("", 0), (true, false));
+    }
 }

@@ -141,6 +141,12 @@ impl Document {
                     .collect()
             }
         };
+        // A JSON file that never names a template key is not a profile (an editor may hand
+        // the server every JSON file: settings.json, package.json, tsconfig.json with its
+        // comments): its syntax is the JSON server's business, not ours.
+        if regions.is_empty() && !json::TEMPLATE_KEYS.iter().any(|(k, _)| text.contains(k)) {
+            json_error = None;
+        }
         Document {
             text,
             kind,

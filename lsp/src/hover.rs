@@ -2,13 +2,14 @@
 //! governs; elsewhere in a template, the first layers and a sparkline of the sequence.
 //! The words come from the library's `meaning()`s; the angles from the evaluator.
 
-use rotlang::{CountKind, Fill, Instruction, Target, Unit};
+use rotlang::{Fill, Instruction, Target};
 use tower_lsp_server::ls_types::{Hover, HoverContents, MarkupContent, MarkupKind};
 
 use crate::document::{Document, Region};
 use crate::position::Positions;
-use crate::preview::{Preview, Run, SPARKLINE_WIDTH, fmt_deg, fmt_num, fmt_turn};
+use crate::preview::{Preview, Run, SPARKLINE_WIDTH, fmt_deg};
 use crate::settings::ModelSettings;
+use rotlang::explain::deg_and_lines;
 
 /// Longest template or instruction text quoted in a hover.
 const MAX_QUOTE: usize = 60;
@@ -79,14 +80,14 @@ pub fn instruction_hover(
                 .sample
                 .iter()
                 .map(|&(layer, angle, fill)| {
-                    format!("{layer}: {}{}", fmt_deg(angle), fill_mark(fill))
+                    format!("{layer}: {}{}", deg_and_lines(angle), fill_mark(fill))
                 })
                 .collect();
             out.push_str(&format!("Layers: {}", list.join(", ")));
             if p.layers > p.sample.len() {
                 out.push_str(", …");
             }
-            out.push('\n');
+            out.push_str(&format!("{}\n", lines_note(preview)));
         }
         _ if ins.is_dummy() => out.push_str("A dummy takes no layer of its own.\n"),
         _ => out.push_str("Governs no layer of this model.\n"),
@@ -100,9 +101,15 @@ pub fn template_hover(region: &Region, preview: &Preview) -> String {
     let model = &preview.model;
     let count = region.parse.template.instructions.len();
     let text = quote(&region.text);
+    // An empty code span would show as a literal "``".
+    let shown = if text.is_empty() {
+        "(empty)".to_owned()
+    } else {
+        format!("`{text}`")
+    };
     let mut out = match &region.key {
-        Some(key) => format!("**{key}** `{text}`"),
-        None => format!("**Template** `{text}`"),
+        Some(key) => format!("**{key}** {shown}"),
+        None => format!("**Template** {shown}"),
     };
     out.push_str(&format!(
         " ({} infill): {count} instruction{}.\n\n",
@@ -112,10 +119,15 @@ pub fn template_hover(region: &Region, preview: &Preview) -> String {
         },
         if count == 1 { "" } else { "s" }
     ));
+    if count == 0 {
+        out.push_str("An empty template: every layer keeps the base direction.\n");
+        out.push_str(&footer(region, preview));
+        return out;
+    }
     let first: Vec<String> = preview
         .first
         .iter()
-        .map(|&(a, fill)| format!("{}{}", fmt_deg(a), fill_mark(fill)))
+        .map(|&(a, fill)| format!("{}{}", deg_and_lines(a), fill_mark(fill)))
         .collect();
     out.push_str(&format!(
         "First {} layers: {}",
@@ -131,21 +143,34 @@ pub fn template_hover(region: &Region, preview: &Preview) -> String {
         preview.head.len()
     ));
     if model.layers > preview.head.len() {
+        // Highest and lowest angle per bucket: a mean would draw angles no layer has
+        // (`0, 90` would be a flat line at 45°).
+        let (high, low) = preview.model_sparklines();
         out.push_str(&format!(
-            "\n`{}` all {} layers, each mark the mean of about {} layers\n",
-            preview.model_sparkline(),
+            "\n`{high}` highest and\n`{low}` lowest angle of each group of about {} layers, all {} layers\n",
+            (model.layers + SPARKLINE_WIDTH / 2) / SPARKLINE_WIDTH,
             model.layers,
-            (model.layers + SPARKLINE_WIDTH / 2) / SPARKLINE_WIDTH
         ));
     }
     out.push_str(&format!(
-        "\nAngles from {} to {} over all {} layers.\n",
+        "\nAngles from {} to {} over all {} layers.{}\n",
         fmt_deg(preview.min),
         fmt_deg(preview.max),
-        model.layers
+        model.layers,
+        lines_note(preview)
     ));
     out.push_str(&footer(region, preview));
     out
+}
+
+/// Said when some angle is outside `[0°, 180°)`, where lists show it with its line
+/// direction in brackets (`270° (90°)`).
+fn lines_note(preview: &Preview) -> &'static str {
+    if preview.min < 0.0 || preview.max >= 180.0 {
+        " (In brackets: the direction of the infill lines, wrapped to [0°, 180°).)"
+    } else {
+        ""
+    }
 }
 
 fn footer(region: &Region, preview: &Preview) -> String {
@@ -156,142 +181,16 @@ fn footer(region: &Region, preview: &Preview) -> String {
     s
 }
 
-/// What an instruction does, in plain words, starting with a verb.
+/// What an instruction does, in plain words, starting with a verb (the library's words,
+/// shared with `rotlang explain`).
 pub fn describe(ins: &Instruction, model: &ModelSettings) -> String {
-    let deg = ins.degrees();
-    if ins.is_dummy() {
-        return if ins.is_relative() {
-            format!(
-                "adds {} to the next instruction's start angle without taking a layer (a dummy)",
-                fmt_turn(deg)
-            )
-        } else {
-            format!(
-                "sets the start angle to {} without taking a layer (a dummy)",
-                fmt_deg(deg)
-            )
-        };
-    }
-    let range = range_words(ins, model);
-    let mut s = if !ins.is_relative() {
-        format!("sets the direction to {} {range}", fmt_deg(deg))
-    } else if deg == 0.0 {
-        format!("keeps the current direction {range}")
-    } else if let Some(n) = per_layer_count(ins, model) {
-        format!(
-            "turns {} on each of the next {n} layer{} ({} in all)",
-            fmt_turn(deg),
-            if n == 1 { "" } else { "s" },
-            fmt_turn(deg * n as f64)
-        )
-    } else if ins.joint.is_none() && ins.count.is_none() {
-        // One layer has no shape to speak of.
-        format!("turns {} in one layer", fmt_turn(deg))
-    } else {
-        format!("turns {} {} {range}", fmt_turn(deg), ins.shape().meaning())
-    };
-    if ins.is_flipped() {
-        s.push_str(", flipped (from the end angle back to the start)");
-    }
-    if let Some(solid) = ins.solid {
-        s.push_str(&format!("; its layers are {}", solid.value.meaning()));
-    }
-    if ins.runs() > 1 {
-        s.push_str(&format!("; runs {} times in a row", ins.runs()));
-    }
-    if ins.is_one_time() {
-        s.push_str("; runs once for the whole model (one-time)");
-    }
-    s
+    rotlang::explain::instruction(ins, &crate::preview::model_of(model))
 }
 
-/// A relative turn with no joint over a counted range turns α on each layer.
-fn per_layer_count(ins: &Instruction, model: &ModelSettings) -> Option<u64> {
-    if ins.joint.is_some() {
-        return None;
-    }
-    let n = match ins.count?.kind {
-        CountKind::Layers(n) if n >= 1.0 => n.floor() as u64,
-        CountKind::Bottom => model.bottom_shell_layers.into(),
-        CountKind::Top => model.top_shell_layers.into(),
-        _ => return None,
-    };
-    (n >= 1).then_some(n)
-}
-
-fn range_words(ins: &Instruction, model: &ModelSettings) -> String {
-    let Some(count) = ins.count else {
-        return "for one layer".into();
-    };
-    match count.kind {
-        CountKind::Layers(n) if n >= 1.0 => {
-            let n = n.floor();
-            format!(
-                "over the next {} layer{}",
-                fmt_num(n),
-                if n == 1.0 { "" } else { "s" }
-            )
-        }
-        CountKind::Layers(_) => "for one layer".into(),
-        CountKind::Bottom => format!(
-            "over the next B = {} bottom shell layers",
-            model.bottom_shell_layers
-        ),
-        CountKind::Top => format!(
-            "over the next T = {} top shell layers",
-            model.top_shell_layers
-        ),
-        CountKind::Length { value, unit } => match unit {
-            Unit::PercentOfHeight => {
-                format!("over the next {}% of the object height", fmt_num(value))
-            }
-            Unit::StandardLayers => format!(
-                "over the next {} standard layers ({} mm)",
-                fmt_num(value),
-                fmt_num(value * model.layer_height)
-            ),
-            _ => {
-                let mm = unit.millimetres().unwrap_or(1.0) * value;
-                if unit == Unit::Millimetre {
-                    format!("over the next {} mm of height", fmt_num(value))
-                } else {
-                    format!(
-                        "over the next {}{} ({} mm) of height",
-                        fmt_num(value),
-                        unit.symbol(),
-                        fmt_num(mm)
-                    )
-                }
-            }
-        },
-        CountKind::HeightFraction { num, den } => format!(
-            "over the next {}:{} of the object height",
-            fmt_num(num),
-            fmt_num(den)
-        ),
-    }
-}
-
-/// `0°→22.5° over 50 layers` (from the angle below the run to its last layer), or
-/// `30° for 1 layer` when the angle does not move. A flipped run starts at its end angle,
-/// so it is shown from its first layer: `27°→0° over 10 layers`.
+/// The turn across a run, as `rotlang explain` words it (`0°→22.5° over 50 layers`, or
+/// `15° for 10 layers (a step from 0°)`).
 pub fn turn_words(ins: &Instruction, run: &Run) -> String {
-    let layers = run.layers;
-    let plural = if layers == 1 { "" } else { "s" };
-    let from = if ins.is_flipped() {
-        run.first
-    } else {
-        run.from
-    };
-    if !ins.is_relative() || (run.to - from).abs() < 1e-9 {
-        format!("{} for {layers} layer{plural}", fmt_deg(run.to))
-    } else {
-        format!(
-            "{}→{} over {layers} layer{plural}",
-            fmt_deg(from),
-            fmt_deg(run.to)
-        )
-    }
+    rotlang::explain::turn(ins, run)
 }
 
 fn fill_mark(fill: Fill) -> String {

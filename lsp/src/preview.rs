@@ -57,83 +57,26 @@ pub fn for_each_layer(
 /// on long templates over tall models.
 pub const FIRST_RUN_BUDGET: usize = 2_000_000;
 
-/// The first run of instruction `index`: the layers of its first range(s) before another
-/// instruction takes over, and the turn across them.
-///
-/// Provenance alone cannot tell where one range of an instruction ends and its next range
-/// begins (in `B!, +30` every layer after the shells is a new range of `+30`). So the
-/// template is evaluated with that instruction made one-time: it then acts exactly once,
-/// and the layers it governs are its first run. Evaluation stops at the run's end, and
-/// `budget` (layers) bounds the total work; `None` when it runs out or the instruction
-/// never acts.
+/// The first run of instruction `index` (see `rotlang::explain::first_run`, which this
+/// calls on the settings' model).
 pub fn first_run(
     template: &Template,
     index: usize,
     model: &ModelSettings,
     budget: &mut usize,
 ) -> Option<Run> {
-    let ins = template.instructions.get(index)?;
-    if ins.is_dummy() {
-        return None;
-    }
-    // The copy costs one unit per instruction: on a 1 MB template only a few first runs
-    // are computed this way, and the rest fall back to the first block.
-    *budget = budget.checked_sub(template.instructions.len())?;
-    let mut once = template.clone();
-    let target = once.instructions.get_mut(index)?;
-    if target.one_time.is_none() {
-        target.one_time = Some(target.span);
-    }
-    let span = ins.span;
-    let mut run: Option<Run> = None;
-    let mut previous = 0.0;
-    let mut exhausted = false;
-    for_each_layer(&once, model, |layer| {
-        if *budget == 0 {
-            exhausted = true;
-            return false;
-        }
-        *budget -= 1;
-        let angle = if layer.angle.is_finite() {
-            layer.angle
-        } else {
-            0.0
-        };
-        let mine = layer.instruction == Some(span);
-        match (&mut run, mine) {
-            (None, true) => {
-                run = Some(Run {
-                    first_layer: layer.index,
-                    layers: 1,
-                    from: previous,
-                    first: angle,
-                    to: angle,
-                })
-            }
-            (Some(r), true) => {
-                r.layers += 1;
-                r.to = angle;
-            }
-            (Some(_), false) => return false,
-            (None, false) => {}
-        }
-        previous = angle;
-        true
-    });
-    if exhausted { None } else { run }
+    rotlang::explain::first_run(template, index, &model_of(model), budget)
 }
 
-/// A contiguous block of layers governed by one instruction.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Run {
-    pub first_layer: usize,
-    pub layers: usize,
-    /// The angle of the layer below the run (0 below the first layer): where a turn starts.
-    pub from: f64,
-    /// The angle of the run's first layer.
-    pub first: f64,
-    /// The angle of the run's last layer.
-    pub to: f64,
+/// A contiguous block of layers governed by one instruction (the library's).
+pub use rotlang::explain::Run;
+
+/// The evaluator's model for the settings. Settings are validated with the evaluator's own
+/// limits, so the fallback (the 20 mm cube) is only there should those change.
+pub fn model_of(model: &ModelSettings) -> Model {
+    Model::uniform(model.layers, model.layer_height, model.first_layer_height)
+        .map(|m| m.with_shells(model.bottom_shell_layers, model.top_shell_layers))
+        .unwrap_or_else(|_| Model::cube20())
 }
 
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -154,10 +97,11 @@ pub struct Preview {
     pub first: Vec<(f64, Fill)>,
     /// The first `SPARKLINE_WIDTH` layers' angles, one per layer, for the sparkline.
     pub head: Vec<f64>,
-    /// The whole model in `SPARKLINE_WIDTH` buckets of consecutive layers, each the mean
-    /// angle of its layers. Means, not samples: sampling a `0, 90` alternation every
-    /// other-but-one layer draws blocks that are not there.
-    pub means: Vec<f64>,
+    /// The whole model in `SPARKLINE_WIDTH` buckets of consecutive layers, each the lowest
+    /// and highest angle of its layers. Not samples (sampling a `0, 90` alternation every
+    /// other-but-one layer draws blocks that are not there) and not means (a `0, 90`
+    /// mean is a 45° no layer has).
+    pub ranges: Vec<(f64, f64)>,
     pub min: f64,
     pub max: f64,
     /// Per instruction, in the template's order.
@@ -170,10 +114,10 @@ impl Preview {
         let mut instructions = vec![InstructionPreview::default(); n];
         let mut first = Vec::new();
         let mut head = Vec::new();
-        let mut means = Vec::new();
+        let mut ranges = Vec::new();
         let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
         let layers = model.layers.max(1);
-        let mut buckets = vec![(0.0, 0usize); SPARKLINE_WIDTH.min(layers)];
+        let mut buckets = vec![(f64::INFINITY, f64::NEG_INFINITY); SPARKLINE_WIDTH.min(layers)];
         let mut previous: (f64, Option<usize>) = (0.0, None);
         for_each_layer(template, model, |layer| {
             let angle = if layer.angle.is_finite() {
@@ -189,9 +133,9 @@ impl Preview {
             }
             // Sample column c at layer ⌊c × layers / width⌋.
             let bucket = layer.index.saturating_mul(buckets.len()) / layers;
-            if let Some((sum, n)) = buckets.get_mut(bucket) {
-                *sum += angle;
-                *n += 1;
+            if let Some((low, high)) = buckets.get_mut(bucket) {
+                *low = low.min(angle);
+                *high = high.max(angle);
             }
             min = min.min(angle);
             max = max.max(angle);
@@ -225,12 +169,7 @@ impl Preview {
             previous = (angle, which);
             true
         });
-        means.extend(
-            buckets
-                .iter()
-                .filter(|(_, n)| *n > 0)
-                .map(|&(sum, n)| sum / n as f64),
-        );
+        ranges.extend(buckets.iter().copied().filter(|(low, _)| low.is_finite()));
         if !min.is_finite() {
             (min, max) = (0.0, 0.0);
         }
@@ -238,7 +177,7 @@ impl Preview {
             model: *model,
             first,
             head,
-            means,
+            ranges,
             min,
             max,
             instructions,
@@ -251,9 +190,14 @@ impl Preview {
         sparkline(&self.head, self.min, self.max)
     }
 
-    /// The whole model, one mark per bucket of consecutive layers (their mean angle).
-    pub fn model_sparkline(&self) -> String {
-        sparkline(&self.means, self.min, self.max)
+    /// The whole model, one mark per bucket of consecutive layers: (highest, lowest).
+    pub fn model_sparklines(&self) -> (String, String) {
+        let high: Vec<f64> = self.ranges.iter().map(|r| r.1).collect();
+        let low: Vec<f64> = self.ranges.iter().map(|r| r.0).collect();
+        (
+            sparkline(&high, self.min, self.max),
+            sparkline(&low, self.min, self.max),
+        )
     }
 }
 
@@ -280,31 +224,8 @@ pub fn sparkline(values: &[f64], min: f64, max: f64) -> String {
         .collect()
 }
 
-/// A number for people: at most two decimals, no trailing zeros, no `-0`.
-pub fn fmt_num(x: f64) -> String {
-    if !x.is_finite() {
-        return x.to_string();
-    }
-    let r = (x * 100.0).round() / 100.0;
-    let s = format!("{r:.2}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.into() }
-}
-
-/// An angle for people, with the degree sign.
-pub fn fmt_deg(x: f64) -> String {
-    format!("{}°", fmt_num(x))
-}
-
-/// A signed turn for people: `+22.5°`, `-10°`.
-pub fn fmt_turn(x: f64) -> String {
-    let s = fmt_deg(x);
-    if s.starts_with('-') || s == "0°" {
-        s
-    } else {
-        format!("+{s}")
-    }
-}
+/// Numbers for people, as the library's `explain` writes them (two decimals at most).
+pub use rotlang::explain::{deg as fmt_deg, num as fmt_num, turn_deg as fmt_turn};
 
 #[cfg(test)]
 mod tests {

@@ -89,7 +89,8 @@ impl ModelSettings {
                 "server" | "trace" => continue,
                 _ => {
                     rejected.push(format!(
-                        "{key}: not a rotlang setting (known: {})",
+                        "{}: not a rotlang setting (known: {})",
+                        short(key),
                         KEYS.join(", ")
                     ));
                     continue;
@@ -97,7 +98,11 @@ impl ModelSettings {
             };
             if !ok {
                 self.keep(key, &previous);
-                rejected.push(format!("{key} = {value}: {}", expected(key)));
+                rejected.push(format!(
+                    "{key} = {}: {}",
+                    short(&value.to_string()),
+                    expected(key)
+                ));
             }
         }
         rejected
@@ -158,6 +163,15 @@ pub const KEYS: [&str; 5] = [
     "bottomShellLayers",
     "topShellLayers",
 ];
+
+/// A value or key as quoted in a warning: a pasted megabyte must not become the message.
+fn short(text: &str) -> String {
+    const MAX: usize = 40;
+    match text.char_indices().nth(MAX) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_string(),
+    }
+}
 
 /// What a key accepts, for the warning about an invalid value.
 fn expected(key: &str) -> String {
@@ -236,6 +250,9 @@ mod tests {
         assert!(!m.replace(&json!({"layerHeight": -1})).is_empty());
         assert!(!m.replace(&json!({"layerHeight": 0.0005})).is_empty());
         assert!(!m.replace(&json!("big")).is_empty());
+        let huge = "x".repeat(100_000);
+        let rejected = m.replace(&json!({ "layers": huge.clone(), huge.clone(): 1 }));
+        assert!(rejected.iter().all(|r| r.len() < 200), "{rejected:?}");
         // Nothing about rotlang: no section.
         assert!(ModelSettings::section(&json!(null)).is_none());
         assert!(ModelSettings::section(&json!({"python": {}})).is_none());

@@ -103,6 +103,13 @@ fn completion_replaces_the_instruction_typed_so_far_as_eglot_expects() {
         Some("0, *+30")
     );
 
+    // A pasted blob without separators is not copied into every item.
+    let blob = format!("+{}$0", "9".repeat(100_000));
+    let (_, items) = complete(&mut lsp, ROT, "rotlang", &blob);
+    let slash = item(&items, "/");
+    assert_eq!(slash["textEdit"]["newText"], "/");
+    assert_eq!(slash["textEdit"]["range"], range(0, 100_001, 0, 100_001));
+
     // In a profile the edit is in document coordinates, its text escaped.
     let uri = "file:///tmp/clients.json";
     let (text, items) = complete(
@@ -192,6 +199,18 @@ fn jsonc_profiles_accept_comments_and_trailing_commas() {
         .collect();
     assert_eq!(syntax.len(), 1, "{diags:#?}");
     assert_eq!(syntax[0]["range"]["start"]["line"], 0);
+
+    // A JSON file that names no template key is not a profile: whatever its syntax
+    // (VS Code's settings.json has comments), nothing is reported.
+    let settings = "{\n  // my settings\n  \"editor.fontSize\": 14,\n}\n";
+    assert!(
+        lsp.open("file:///tmp/settings.json", "jsonc", settings)
+            .is_empty()
+    );
+    assert!(
+        lsp.open("file:///tmp/broken.json", "json", "{\"a\": [1, 2,")
+            .is_empty()
+    );
 }
 
 fn hover_with(format: Value) -> Value {
@@ -308,6 +327,24 @@ fn settings_register_warn_once_and_fall_back_to_defaults() {
         json!({"settings": {"python": {"layers": 3}}}),
     );
     assert!(hover_text(&mut lsp, ROT, 0, 0).contains("Model: 100 layers"));
+
+    // Pulled settings are checked too; the VS Code extension's own keys (`server.path`,
+    // `trace.server`) in the same section are not settings of the server, and no error.
+    let mut lsp = Lsp::spawn();
+    lsp.configuration = json!({"layers": "many", "server": {"path": "rotlang-lsp"},
+                               "trace": {"server": "off"}});
+    lsp.result(
+        "initialize",
+        json!({"capabilities": {"workspace": {"configuration": true}}}),
+    );
+    lsp.notify("initialized", json!({}));
+    let log = lsp.wait(|m| m["method"] == "window/logMessage");
+    let message = log["params"]["message"].as_str().unwrap();
+    assert!(message.contains("layers = \"many\""), "{message}");
+    assert!(
+        !message.contains("server") && !message.contains("trace"),
+        "{message}"
+    );
 
     // Without dynamic registration, nothing is registered.
     let (mut lsp, _) = Lsp::start_with(json!({}), Value::Null);

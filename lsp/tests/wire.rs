@@ -224,7 +224,9 @@ fn hover_on_an_instruction_describes_it_and_its_layers() {
     lsp.change(ROT, 4, &text);
     let h = hover_text(&mut lsp, ROT, line, col);
     assert!(
-        h.contains("keeps the current direction over the next B = 3 bottom shell layers"),
+        h.contains(
+            "keeps the current direction over the next 3 layers (B = 3, the bottom shell layer count)"
+        ),
         "{h}"
     );
     assert!(h.contains("one-time"), "{h}");
@@ -245,8 +247,13 @@ fn hover_between_instructions_shows_the_sequence() {
         h.contains("`▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█▁█` first 48 layers"),
         "sparkline: {h}"
     );
+    // Per group of layers, the highest and the lowest angle: `0, 90` is not a line at 45°.
     assert!(
-        h.contains("all 100 layers, each mark the mean of about 2 layers"),
+        h.contains(&format!(
+            "`{}` highest and\n`{}` lowest angle of each group of about 2 layers, all 100 layers",
+            "█".repeat(48),
+            "▁".repeat(48)
+        )),
         "{h}"
     );
     assert!(
@@ -254,6 +261,26 @@ fn hover_between_instructions_shows_the_sequence() {
         "{h}"
     );
     assert!(h.contains("Model: 100 layers"), "{h}");
+    assert!(!h.contains("In brackets"), "all angles in [0°, 180°): {h}");
+
+    // Angles beyond 180° show the direction of their lines beside them.
+    lsp.change(ROT, 2, "0, 270");
+    let h = hover_text(&mut lsp, ROT, 0, 2);
+    assert!(h.contains("First 24 layers: 0°, 270° (90°), 0°"), "{h}");
+    assert!(
+        h.contains("In brackets: the direction of the infill lines"),
+        "{h}"
+    );
+
+    // An empty file says so, with no empty code span.
+    lsp.change(ROT, 3, "");
+    let h = hover_text(&mut lsp, ROT, 0, 0);
+    assert!(
+        h.contains("**Template** (empty) (sparse infill): 0 instructions."),
+        "{h}"
+    );
+    assert!(!h.contains("``"), "{h}");
+    assert!(h.contains("every layer keeps the base direction"), "{h}");
 
     // In a JSON profile, outside the template strings there is nothing to say.
     let doc = r#"{"sparse_infill_rotate_template": "0, 90"}"#;
@@ -282,7 +309,10 @@ fn the_model_comes_from_settings() {
         h.contains("Model: 10 layers × 0.3 mm (3 mm tall), shells B = 3, T = 4"),
         "{h}"
     );
-    assert!(h.contains("over the next B = 3 bottom shell layers"), "{h}");
+    assert!(
+        h.contains("over the next 3 layers (B = 3, the bottom shell layer count)"),
+        "{h}"
+    );
 
     // Without the `rotlang` wrapper, through didChangeConfiguration: the whole section,
     // so `layerHeight`, left out, is back at its default.
@@ -498,7 +528,9 @@ fn completion_offers_signs_with_meanings() {
         json!({"range": range(0, 0, 0, 3), "newText": "+30/"}),
         "replaces the instruction typed so far"
     );
-    assert_eq!(items.len(), 16 + 7 + 5 + 6);
+    // `#` once: the joint fits after `+30`, the standard-layers unit does not.
+    assert_eq!(items.len(), 16 + 6 + 5 + 6);
+    assert_eq!(items.iter().filter(|i| i["label"] == "#").count(), 1);
 
     // A solid template gets no solid signs; an inch sign is escaped inside JSON.
     let doc = r#"{"solid_infill_rotate_template": "+30/5"}"#;
@@ -604,6 +636,14 @@ fn inlay_hints_show_the_resolved_turn() {
         json!({"textDocument": {"uri": ROT}, "range": range(0, 0, 0, 8)}),
     );
     assert_eq!(hints[0]["label"], "27°→0° over 10 layers");
+
+    // A step is not a ramp: every layer of the range has the turned angle.
+    lsp.change(ROT, 4, "+15#10");
+    let hints = lsp.result(
+        "textDocument/inlayHint",
+        json!({"textDocument": {"uri": ROT}, "range": range(0, 0, 0, 6)}),
+    );
+    assert_eq!(hints[0]["label"], "15° for 10 layers (a step from 0°)");
 }
 
 #[test]

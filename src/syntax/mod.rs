@@ -225,7 +225,7 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
         first = end;
     }
     let template = Template { instructions };
-    crate::lint::spacing(&split.chunks, &mut sink);
+    crate::lint::spacing(&template, &split.chunks, &mut sink);
     let collected = sink.finish();
     Parse {
         template,
@@ -286,6 +286,25 @@ fn empty_instruction(span: Span, after_instruction: bool) -> Diagnostic {
     .with_help("OrcaSlicer reads an empty instruction as `0`; rotlang ignores it")
 }
 
+/// Whether `text` is one instruction the grammar accepts.
+pub(crate) fn is_instruction(text: &str) -> bool {
+    RotParser::parse(Rule::instruction, text).is_ok()
+}
+
+/// `+30/ 5cm`: the previous instruction ends with a joint and this chunk, after a space
+/// alone, is the count it lost. The pair (not the chunk) is what was meant.
+pub(crate) fn after_joint(prev: &Chunk<'_>, chunk: &Chunk<'_>) -> bool {
+    chunk.after_space_only
+        && prev
+            .text
+            .ends_with(|c: char| crate::ir::Joint::from_symbol(c).is_some())
+        && chunk
+            .text
+            .starts_with(|c: char| c.is_ascii_digit() || matches!(c, 'B' | 'T' | '-'))
+        && is_instruction(prev.text)
+        && is_instruction(&format!("{}{}", prev.text, chunk.text))
+}
+
 /// The diagnostic for an instruction the grammar rejects.
 fn chunk_error(
     text: &str,
@@ -293,6 +312,20 @@ fn chunk_error(
     previous: Option<&Chunk<'_>>,
     err: pest::error::Error<Rule>,
 ) -> Diagnostic {
+    // `+30/ 5cm`: a count cut off from its joint by a space.
+    if let Some(prev) = previous
+        && after_joint(prev, chunk)
+    {
+        let gap = Span::new(prev.span.end, chunk.span.start);
+        return Diagnostic::error(
+            "rotlang::space-after-joint",
+            format!("`{}` is cut off from its joint by a space", chunk.text),
+        )
+        .with_primary(chunk.span, "not an instruction on its own")
+        .with_secondary(gap, "this space ends the instruction before it")
+        .with_fix("remove the space", gap, "")
+        .with_help(format!("did you mean `{}{}`?", prev.text, chunk.text));
+    }
     // `+30/50 %`, `+30/5,%`: a unit split off its count by a separator.
     if let Some(prev) = previous
         && prev.text.ends_with(|c: char| c.is_ascii_digit())

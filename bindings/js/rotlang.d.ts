@@ -120,6 +120,8 @@ export interface ExpandResult {
   /** Index into `instructions` of the instruction that governs each layer; -1 when it holds. */
   instructionIndex: Int32Array;
   instructions: Instruction[];
+  /** rotlang dialect: each instruction in plain words (as the editor hover says it). */
+  words: string[];
   model: { layers: number; layerHeight: number; height: number; bottomShells: number; topShells: number };
   dialect: 'rotlang' | 'orcaslicer';
   /** OrcaSlicer dialect: where OrcaSlicer hangs, crashes or computes NaN, in the layers returned. */
@@ -152,3 +154,15 @@ export function format(text: string, options?: Options): string;
 export function expand(text: string, options?: ExpandOptions): ExpandResult;
 export function signs(): Sign[];
 export function compare(text: string, options?: Options): Comparison;
+/** The template in plain words on the model (what `rotlang explain TEMPLATE` prints). */
+export function explain(text: string, options?: Options): string;
+export interface CodeDoc {
+  code: string;
+  severity: 'error' | 'warning';
+  summary: string;
+  explanation: string;
+  example: string;
+  fix: string;
+}
+/** A diagnostic code explained (what `rotlang explain CODE` prints); null for an unknown code. */
+export function explainCode(code: string): CodeDoc | null;

@@ -68,6 +68,7 @@ function exportsOrThrow() {
 function put(ex, bytes) {
   const len = bytes.length;
   const ptr = ex.rotlang_alloc(len);
+  if (ptr === 0) throw new RotlangError('limit', `cannot allocate ${len} bytes for the input`);
   new Uint8Array(ex.memory.buffer, ptr, len).set(bytes);
   return [ptr, len];
 }
@@ -85,6 +86,17 @@ function textArg(text) {
   return text;
 }
 
+// The request crosses into wasm as a Float64Array of slots (src/options.rs `slot`); NaN
+// marks an absent value. Names and types are checked here, ranges and meanings there.
+const SLOTS = {
+  target: 0, dialect: 1, layers: 2, height: 3, layerHeight: 4, firstLayerHeight: 5,
+  bottomShells: 6, topShells: 7, base: 8, seed: 9, from: 10, to: 11,
+};
+const SLOT_COUNT = 12;
+const TARGETS = ['sparse', 'solid'];
+const DIALECTS = ['rotlang', 'orcaslicer'];
+
+// A model may use this API's camelCase names or the conformance models.json names.
 const MODEL_KEYS = {
   layers: 'layers',
   height: 'height',
@@ -98,54 +110,60 @@ const MODEL_KEYS = {
   top_shell_layers: 'topShells',
 };
 
-// The request JSON and the list heights (a Float64Array or null) of an options object.
-// A model may use this API's camelCase names or the conformance models.json names.
+function finite(kind, name, v) {
+  if (typeof v !== 'number' || !Number.isFinite(v)) {
+    throw new RotlangError(kind, `\`${name}\` must be a finite number, not ${typeof v === 'number' ? v : JSON.stringify(v) ?? String(v)}`);
+  }
+  return v;
+}
+
+// The request slots and the list heights (a Float64Array or null) of an options object.
 function request(options) {
   if (options === undefined || options === null) options = {};
   if (typeof options !== 'object') throw new RotlangError('options', 'the options must be an object');
-  const req = {};
+  const slots = new Float64Array(SLOT_COUNT).fill(NaN);
   let heights = null;
   for (const [key, value] of Object.entries(options)) {
-    if (value === undefined) continue;
-    if (key !== 'model') {
-      if (typeof value === 'number' && !Number.isFinite(value)) {
-        throw new RotlangError('options', `\`${key}\` must be a finite number, not ${value}`);
+    if (value === undefined || value === null) continue;
+    if (key === 'target' || key === 'dialect') {
+      const names = key === 'target' ? TARGETS : DIALECTS;
+      const i = names.indexOf(typeof value === 'string' ? value.trim().toLowerCase() : value);
+      if (i < 0) {
+        throw new RotlangError('options', `unknown ${key} \`${value}\`; expected ${names.map((n) => `\`${n}\``).join(' or ')}`);
       }
-      req[key] = value;
-      continue;
-    }
-    if (value === null) continue;
-    if (typeof value !== 'object') throw new RotlangError('model', 'the model must be an object');
-    const model = {};
-    for (const [k, v] of Object.entries(value)) {
-      if (v === undefined || v === null || k === 'description') continue;
-      if (k === 'layerHeights' || k === 'layer_heights') {
-        if (!(Array.isArray(v) || ArrayBuffer.isView(v))) {
-          throw new RotlangError('model', '`layerHeights` must be an array of numbers');
+      slots[SLOTS[key]] = i;
+    } else if (key === 'base' || key === 'seed' || key === 'from' || key === 'to') {
+      slots[SLOTS[key]] = finite('options', key, value);
+    } else if (key === 'model') {
+      if (typeof value !== 'object') throw new RotlangError('model', 'the model must be an object');
+      for (const [k, v] of Object.entries(value)) {
+        if (v === undefined || v === null || k === 'description') continue;
+        if (k === 'layerHeights' || k === 'layer_heights') {
+          if (!(Array.isArray(v) || ArrayBuffer.isView(v))) {
+            throw new RotlangError('model', '`layerHeights` must be an array of numbers');
+          }
+          heights = v instanceof Float64Array ? v : Float64Array.from(v, Number);
+          if (heights.length === 0) throw new RotlangError('model', 'the model has no layers');
+          continue;
         }
-        heights = v instanceof Float64Array ? v : Float64Array.from(v, Number);
-        if (heights.length === 0) throw new RotlangError('model', 'the model has no layers');
-        continue;
+        const name = MODEL_KEYS[k];
+        if (!name) throw new RotlangError('model', `unknown model field \`${k}\``);
+        slots[SLOTS[name]] = finite('model', k, v);
       }
-      const name = MODEL_KEYS[k];
-      if (!name) throw new RotlangError('model', `unknown model field \`${k}\``);
-      if (typeof v !== 'number' || !Number.isFinite(v)) {
-        throw new RotlangError('model', `\`${k}\` must be a finite number, not ${JSON.stringify(v) ?? String(v)}`);
-      }
-      model[name] = v;
+    } else {
+      throw new RotlangError('options', `unknown option \`${key}\``);
     }
-    req.model = model;
   }
-  return [JSON.stringify(req), heights];
+  return [slots, heights];
 }
 
 // One call: copies inputs in, calls `name`, frees inputs, returns the JSON answer or
 // throws the failure.
 function call(name, text, options, withHeights = false) {
-  const [req, heights] = request(options);
+  const [slots, heights] = request(options);
   const ex = exportsOrThrow();
   const textBytes = encoder.encode(textArg(text));
-  const reqBytes = encoder.encode(req);
+  const reqBytes = new Uint8Array(slots.buffer);
   let t = null;
   let r = null;
   let h = null;
@@ -156,10 +174,11 @@ function call(name, text, options, withHeights = false) {
     if (withHeights) {
       const count = heights ? heights.length : 0;
       h = [ex.rotlang_alloc(count * 8), count * 8];
+      if (h[0] === 0) throw new RotlangError('limit', `cannot allocate ${count} layer heights`);
       if (count) new Float64Array(ex.memory.buffer, h[0], count).set(heights);
-      code = ex[name](t[0], t[1], r[0], r[1], h[0], count);
+      code = ex[name](t[0], t[1], r[0], SLOT_COUNT, h[0], count);
     } else {
-      code = ex[name](t[0], t[1], r[0], r[1]);
+      code = ex[name](t[0], t[1], r[0], SLOT_COUNT);
     }
     const answer = readJson(ex);
     if (code !== 0) throw new RotlangError(answer.kind, answer.message, answer.diagnostics ?? null);
@@ -199,6 +218,16 @@ export function check(text, options = {}) {
 /** The canonical form of a template; throws a RotlangError (kind 'template') when it has errors. */
 export function format(text, options = {}) {
   return call('rotlang_format', text, options).text;
+}
+
+/** The template in plain words on the model: each instruction with the layers it governs. */
+export function explain(text, options = {}) {
+  return call('rotlang_explain', text, options, true).text;
+}
+
+/** A diagnostic code (`rotlang::unknown-sign`) explained, with an example and the fix; null if unknown. */
+export function explainCode(code) {
+  return call('rotlang_explain_code', code, {});
 }
 
 /**

@@ -3,10 +3,12 @@
 
 use std::collections::HashMap;
 
+use crate::json::Value;
+use crate::obj;
 use rotlang::dialect::{Dialect, orcaslicer};
 use rotlang::eval::{self, Model};
+use rotlang::explain;
 use rotlang::{Fill, Parse, Span, Target};
-use serde_json::{Value, json};
 
 use crate::Failure;
 use crate::diagnostics;
@@ -27,13 +29,13 @@ pub struct Layers {
 }
 
 pub fn version() -> Value {
-    json!({ "version": env!("CARGO_PKG_VERSION") })
+    obj!({ "version": env!("CARGO_PKG_VERSION") })
 }
 
 pub fn check(text: &str, req: &Request) -> Result<Value, Failure> {
     let target = req.target()?;
     let parse = rotlang::parse(text, target);
-    Ok(json!({
+    Ok(obj!({
         "diagnostics": diagnostics::to_json(text, &parse.diagnostics),
         "hasErrors": parse.has_errors(),
         "omitted": parse.omitted,
@@ -46,7 +48,7 @@ pub fn check(text: &str, req: &Request) -> Result<Value, Failure> {
 pub fn format(text: &str, req: &Request) -> Result<Value, Failure> {
     let target = req.target()?;
     let parse = parse_clean(text, target)?;
-    Ok(json!({ "text": rotlang::format::canonical(text, &parse.template) }))
+    Ok(obj!({ "text": rotlang::format::canonical(text, &parse.template) }))
 }
 
 pub fn expand(
@@ -67,10 +69,18 @@ pub fn expand(
     out.angles.reserve_exact(n);
     out.fills.reserve_exact(n);
     out.instructions.reserve_exact(n);
+    let mut words = Vec::new();
     let (spans, findings) = match dialect {
         Dialect::Rotlang => {
             let parse = parse_clean(text, target)?;
             let spans: Vec<Span> = parse.template.instructions.iter().map(|i| i.span).collect();
+            // Each instruction in words (the LSP hover's and `rotlang explain`'s text).
+            words = parse
+                .template
+                .instructions
+                .iter()
+                .map(|i| explain::instruction(i, &model))
+                .collect();
             let stream = eval::layers(&parse.template, &model, options);
             fill_layers(stream, from, to == model.len(), n, &spans, out);
             (spans, Vec::new())
@@ -94,13 +104,18 @@ pub fn expand(
             for layer in stream.by_ref().take(n) {
                 out.angles.push(layer.angle);
                 out.fills.push(fill_code(layer.fill));
-                out.instructions.push(layer.instruction.map_or(-1, &mut index_of));
+                out.instructions
+                    .push(layer.instruction.map_or(-1, &mut index_of));
             }
             let mut spans = order.clone();
             spans.sort_unstable();
             let renumber: Vec<i32> = order
                 .iter()
-                .map(|s| spans.binary_search(s).map_or(-1, |i| i32::try_from(i).unwrap_or(-1)))
+                .map(|s| {
+                    spans
+                        .binary_search(s)
+                        .map_or(-1, |i| i32::try_from(i).unwrap_or(-1))
+                })
                 .collect();
             for i in &mut out.instructions {
                 if let Some(&r) = usize::try_from(*i).ok().and_then(|k| renumber.get(k)) {
@@ -110,12 +125,13 @@ pub fn expand(
             (spans, stream.findings().to_vec())
         }
     };
-    Ok(json!({
+    Ok(obj!({
         "layers": model.len(),
         "from": from,
         "to": to,
         "dialect": dialect.name(),
         "instructions": span_list(text, &spans),
+        "words": words,
         "findings": findings_json(&findings),
         "model": model_json(&model),
     }))
@@ -162,6 +178,29 @@ fn fill_layers<I: Iterator<Item = eval::Layer>>(
     }
 }
 
+/// The template in plain words on the model: each instruction with the layers it governs
+/// (what `rotlang explain TEMPLATE` prints).
+pub fn explain(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
+    let target = req.target()?;
+    let model = req.model(heights)?;
+    Ok(obj!({ "text": explain::template(text, target, &model) }))
+}
+
+/// A diagnostic code explained (`rotlang explain CODE`), or null for an unknown code.
+pub fn explain_code(code: &str) -> Value {
+    match explain::code(code.trim()) {
+        Some(d) => obj!({
+            "code": d.code,
+            "severity": d.severity,
+            "summary": d.summary,
+            "explanation": d.explanation,
+            "example": d.example,
+            "fix": d.fix,
+        }),
+        None => Value::Null,
+    }
+}
+
 /// How OrcaSlicer's reading differs from rotlang's on this model: the first layer whose
 /// direction differs, the solid layers it would lose, and its findings (hang, crash, NaN).
 pub fn compare(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
@@ -178,7 +217,7 @@ pub fn compare(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<V
             let diff = (ours.angle - theirs.angle).rem_euclid(360.0);
             if diff > 1e-4 && diff < 360.0 - 1e-4 {
                 if differing == 0 {
-                    first_difference = json!({
+                    first_difference = obj!({
                         "layer": ours.index,
                         "rotlang": ours.angle,
                         "orcaslicer": theirs.angle,
@@ -193,7 +232,7 @@ pub fn compare(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<V
     } else {
         orca.by_ref().for_each(drop);
     }
-    Ok(json!({
+    Ok(obj!({
         "rotlangErrors": parse.has_errors(),
         "firstDifference": first_difference,
         "differingLayers": differing,
@@ -207,7 +246,7 @@ fn findings_json(findings: &[rotlang::dialect::Finding]) -> Value {
     findings
         .iter()
         .map(|f| {
-            json!({
+            obj!({
                 "code": f.code,
                 "message": f.message,
                 "firstLayer": f.first_layer,
@@ -240,8 +279,9 @@ fn parse_clean(text: &str, target: Target) -> Result<Parse, Failure> {
 
 fn range(req: &Request, model: &Model) -> Result<(usize, usize), Failure> {
     let len = model.len();
-    let from = req.from.unwrap_or(0);
-    let to = req.to.unwrap_or(len).min(len);
+    let (from, to) = req.range()?;
+    let from = from.unwrap_or(0);
+    let to = to.unwrap_or(len).min(len);
     if from > to {
         return Err(Failure::options(format!(
             "the range {from}..{to} is empty or reversed (the model has {len} layers)"
@@ -267,7 +307,7 @@ fn span_list(text: &str, spans: &[Span]) -> Value {
     spans
         .iter()
         .map(|s| {
-            json!({
+            obj!({
                 "start": s.start,
                 "end": s.end,
                 "startUtf16": map.get(s.start),
@@ -279,7 +319,7 @@ fn span_list(text: &str, spans: &[Span]) -> Value {
 }
 
 fn model_json(model: &Model) -> Value {
-    json!({
+    obj!({
         "layers": model.len(),
         "layerHeight": model.layer_height(),
         "height": rotlang::number::round_height(model.object_height()),
@@ -306,17 +346,17 @@ pub fn signs() -> Value {
     let mut out = Vec::new();
     for c in "/NnZz$LlUuQq~^|#".chars() {
         if let Some(j) = Joint::from_symbol(c) {
-            out.push(json!({ "sign": c.to_string(), "kind": "joint", "meaning": format!("turn {}", j.meaning()) }));
+            out.push(obj!({ "sign": c.to_string(), "kind": "joint", "meaning": format!("turn {}", j.meaning()) }));
         }
     }
     for c in "DSOMR".chars() {
         if let Some(s) = Solid::from_symbol(c) {
-            out.push(json!({ "sign": c.to_string(), "kind": "solid", "meaning": format!("the layers are {}", s.meaning()) }));
+            out.push(obj!({ "sign": c.to_string(), "kind": "solid", "meaning": format!("the layers are {}", s.meaning()) }));
         }
     }
     for u in ["mm", "cm", "m", "'", "\"", "#", "%"] {
         if let Some(unit) = Unit::from_symbol(u) {
-            out.push(json!({ "sign": u, "kind": "unit", "meaning": unit.meaning() }));
+            out.push(obj!({ "sign": u, "kind": "unit", "meaning": unit.meaning() }));
         }
     }
     for (sign, meaning) in [
@@ -329,7 +369,7 @@ pub fn signs() -> Value {
             "flip: run the shape from the end angle back to the start",
         ),
     ] {
-        out.push(json!({ "sign": sign, "kind": "mark", "meaning": meaning }));
+        out.push(obj!({ "sign": sign, "kind": "mark", "meaning": meaning }));
     }
     Value::Array(out)
 }

@@ -263,7 +263,7 @@ function hover(pos) {
   const dom = document.createElement('div');
   dom.className = 'tip';
   let html = `<code>${esc(ins.text)}</code>`;
-  const words = analysis.words?.[k];
+  const words = l?.words?.[k];
   if (words) html += ` ${esc(words)}`;
   if (l) {
     const g = l.ranges[k];

@@ -170,8 +170,10 @@ test('hover shows the instruction and its layer range; the plot highlights the g
   const tip = page.locator('.cm-tooltip-hover .tip');
   await tip.waitFor();
   const text = await tip.textContent();
-  assert.match(text, /\+30\/50%/);
+  assert.match(text, /\+30\/50% turns \+30° linearly/);
   assert.match(text, /governs \d+ of 100 layers: layers \d+–\d+/);
+  // The template in words, below the editor.
+  assert.match(await page.textContent('#explain'), /Governs \d+ of the 100 layers/);
   // Over the plot: the instruction of the layer under the mouse gets the highlight.
   const plot = await page.locator('#plot svg').boundingBox();
   await page.mouse.move(plot.x + plot.width * 0.02, plot.y + plot.height / 2);

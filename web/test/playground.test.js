@@ -49,7 +49,10 @@ async function settled(page, text) {
     const p = window.rotlangPlayground;
     return p.view.state.doc.toString() === t && p.analysedText() === t
       && document.querySelector('#status').textContent !== 'checking…';
-  }, text);
+  }, text, { timeout: 10_000 }).catch(async (e) => {
+    const doc = await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString());
+    throw new Error(`waiting for the analysis of ${JSON.stringify(text)}; the editor holds ${JSON.stringify(doc)}: ${e.message}`);
+  });
   await page.waitForTimeout(50);
 }
 
@@ -289,6 +292,66 @@ test('OrcaSlicer compat findings, and the OrcaSlicer reading in the plot', async
   assert.equal(angles.length, 100);
   assert.ok(angles.every((a) => a === 0));
   await shot(page, 'compat');
+  await page.close();
+});
+
+test('completion offers the signs with their meaning; Format gives the canonical form', async () => {
+  const page = await open();
+  await type(page, '+30');
+  await page.keyboard.press('End');
+  await page.keyboard.press('Control+Space');
+  const options = page.locator('.cm-tooltip-autocomplete li');
+  await options.first().waitFor();
+  const labels = await options.allTextContents();
+  assert.ok(labels.some((l) => l.startsWith('/')), labels.join(' | '));
+  assert.ok(labels.some((l) => l.startsWith('%')), labels.join(' | '));
+  // Pick `/` by keyboard: it is inserted after the angle.
+  const index = labels.findIndex((l) => l.startsWith('/'));
+  for (let i = 0; i < index; i++) await page.keyboard.press('ArrowDown');
+  await page.keyboard.press('Enter');
+  await page.keyboard.type('50%');
+  await settled(page, '+30/50%');
+  await type(page, '0 90,+45');
+  await page.click('#format');
+  await settled(page, '0, 90, +45');
+  // Shift+Alt+F from the editor too.
+  await type(page, '0,90');
+  await page.keyboard.press('Shift+Alt+KeyF');
+  await settled(page, '0, 90');
+  await page.close();
+});
+
+test('the examples menu loads a documentation example', async () => {
+  const page = await open();
+  await page.selectOption('#examples', '+15#10');
+  await settled(page, '+15#10');
+  const angles = await page.evaluate(() => [...window.rotlangPlayground.analysis().layers.angles.slice(0, 21)]);
+  assert.deepEqual(angles, [...Array(10).fill(15), ...Array(10).fill(30), 45]);
+  await page.close();
+});
+
+test('keyboard only: Tab leaves the editor and reaches every control', async () => {
+  const page = await open();
+  await page.click('.cm-content');
+  const seen = [];
+  for (let i = 0; i < 30; i++) {
+    await page.keyboard.press('Tab');
+    seen.push(await page.evaluate(() => document.activeElement.id || document.activeElement.className));
+  }
+  for (const id of ['target', 'dialect', 'layers', 'layer-height', 'profile', 'plot', 'layer-slider', 'pattern', 'density', 'shape']) {
+    assert.ok(seen.includes(id), `${id} not reached by Tab: ${seen.join(', ')}`);
+  }
+  await page.close();
+});
+
+test('the npm package works in the browser with no bundler', async () => {
+  const page = await browser.context.newPage();
+  await page.goto(`${base}pkg/`);
+  await page.waitForFunction(() => window.result);
+  const r = await page.evaluate(() => window.result);
+  assert.equal(r.message, 'unknown sign `X`');
+  assert.equal(r.formatted, '0, 90');
+  assert.deepEqual(r.angles, [0, 90, 0, 90]);
   await page.close();
 });
 

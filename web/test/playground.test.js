@@ -307,7 +307,10 @@ test('completion offers the signs with their meaning; Format gives the canonical
   assert.ok(labels.some((l) => l.startsWith('%')), labels.join(' | '));
   // Pick `/` by keyboard: it is inserted after the angle.
   const index = labels.findIndex((l) => l.startsWith('/'));
+  // CodeMirror ignores keys within 75 ms of the list opening (interactionDelay).
+  await page.waitForTimeout(200);
   for (let i = 0; i < index; i++) await page.keyboard.press('ArrowDown');
+  assert.match(await page.locator('.cm-tooltip-autocomplete li[aria-selected]').textContent(), /^\//);
   await page.keyboard.press('Enter');
   await page.keyboard.type('50%');
   await settled(page, '+30/50%');

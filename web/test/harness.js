@@ -37,7 +37,7 @@ export function serve() {
     }
     const root = path.startsWith('/pkg/') ? pkg : dist;
     let file = normalize(join(root, path.replace(/^\/pkg\//, '/')));
-    if (!file.startsWith(root) || (root === pkg && !/\/rotlang\.(js|wasm)$/.test(file))) {
+    if (!file.startsWith(root) || (root === pkg && !/\/(rotlang|lib)\.(js|wasm)$/.test(file))) {
       res.writeHead(403).end();
       return;
     }

@@ -292,6 +292,7 @@ fn fmt_prints_canonical_form() {
         0,
         [
             "fmt",
+            "--force",
             "0 90  +30/50%",
             "  +10L25%,-10l25%\n\n#5 ,",
             "10,,20"

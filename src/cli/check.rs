@@ -15,11 +15,15 @@ Examples:
   echo '+30/50 %' | rotlang check         from stdin
   rotlang check --target solid 'S/, +10'  as a solid_infill_rotate_template
   rotlang check --format json '+30X5'     one JSON object per input, one per line
+  rotlang check profiles/ project.3mf     every template in presets, exports, projects
+  rotlang check --compat orcaslicer process.json   where OrcaSlicer reads it differently
 
 Exit status: 0 when every input is clean or has only warnings, 1 when any has an
-error, 2 on a usage error.")]
+error or a file cannot be read (the other files are still checked), 2 on a usage error.")]
 pub struct CheckArgs {
-    /// Templates to check, each one input. Put `--` before a template that begins with `-`.
+    /// Templates to check, each one input, or files and folders: an argument naming an
+    /// existing path is read as a profile (.json, .jsonc, .ini, .3mf) or template (.rot).
+    /// Put `--` before a template that begins with `-`.
     #[arg(value_name = "TEMPLATE", allow_negative_numbers = true)]
     pub templates: Vec<String>,
     /// Read a template from a file (one template per file; newlines are separators). Repeatable.
@@ -37,6 +41,11 @@ pub struct CheckArgs {
     /// Treat warnings as errors (exit 1).
     #[arg(long)]
     pub deny_warnings: bool,
+    /// Also compare with a slicer's own reading (`orcaslicer`): where its angles part from
+    /// rotlang's on the model (the profile's own, or the 20 mm cube), where it hangs or
+    /// computes NaN angles, and constructs it reads differently.
+    #[arg(long, value_enum, value_name = "SLICER")]
+    pub compat: Option<super::files::CompatArg>,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
@@ -48,10 +57,14 @@ pub enum Format {
 
 /// Runs the check; returns the exit code.
 pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
+    // Files, folders (an argument naming an existing path is one) and the compat lint.
+    if super::files::wanted(args) {
+        return super::files::check(args, out);
+    }
     let inputs = gather(&args.templates, &args.files)?;
     let parses: Vec<_> = inputs
         .iter()
-        .map(|i| crate::parse(&i.text, args.target.into()))
+        .map(|i| crate::check(&i.text, args.target.into()))
         .collect();
     let failed =
         |p: &crate::Parse| p.has_errors() || (args.deny_warnings && !p.diagnostics.is_empty());

@@ -41,6 +41,13 @@ pub struct ExpandArgs {
     /// Read the template from a file (newlines separate instructions).
     #[arg(long, short = 'f', value_name = "PATH")]
     pub file: Option<PathBuf>,
+    /// Take the template (of --target), the model and the base direction from a profile:
+    /// an OrcaSlicer preset (.json), an exported .ini or a .3mf project. Layer heights,
+    /// shell counts and infill direction come from the profile (notes on stderr name every
+    /// default used); the object is 20 mm tall unless --height, --layers or --model; a
+    /// --base other than 0 replaces the profile's direction.
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["template", "file"])]
+    pub profile: Option<PathBuf>,
     /// Which setting the template is for (solid signs are errors in a solid template).
     #[arg(long, value_enum, default_value_t)]
     pub target: TargetArg,
@@ -174,15 +181,37 @@ struct ModelFile {
 /// Runs the expansion; returns the exit code.
 pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     // The model first: a usage error should not wait for stdin.
-    let model = model(args)?;
-    let templates: Vec<String> = args.template.iter().cloned().collect();
-    let files: Vec<PathBuf> = args.file.iter().cloned().collect();
-    let input = gather(&templates, &files)?
-        .into_iter()
-        .next()
-        .ok_or_else(|| UsageError("no template given".into()))?;
+    let mut model = model(args)?;
+    let mut base = args.base;
+    let input = match &args.profile {
+        Some(path) => {
+            let p = super::files::profile_template(path, args.target.into(), args.height)?;
+            for note in &p.notes {
+                writeln!(err, "note: {note}").map_err(|e| UsageError(e.to_string()))?;
+            }
+            if args.model.is_none() && args.layers.is_none() {
+                model = p.model;
+            }
+            if base == 0.0 {
+                base = p.base;
+            }
+            Input {
+                name: path.display().to_string(),
+                text: p.text,
+                path: Some(path.clone()),
+            }
+        }
+        None => {
+            let templates: Vec<String> = args.template.iter().cloned().collect();
+            let files: Vec<PathBuf> = args.file.iter().cloned().collect();
+            gather(&templates, &files)?
+                .into_iter()
+                .next()
+                .ok_or_else(|| UsageError("no template given".into()))?
+        }
+    };
     let options = Options {
-        base: args.base,
+        base,
         seed: args.seed,
     };
     if args.dialect == eval::Dialect::OrcaSlicer {
@@ -190,7 +219,8 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
             write_layers(layers, &input.text, args, out)
         });
     }
-    let parse = crate::parse(&input.text, args.target.into());
+    // The IR is not kept: a megabyte template costs a small multiple of its size.
+    let (parse, layers) = eval::parse_layers(&input.text, args.target.into(), &model, options);
     let write_error = |e: std::io::Error| UsageError(format!("cannot write to stderr: {e}"));
     if !parse.diagnostics.is_empty() {
         err.write_all(report(&input, &parse.diagnostics, args.color).as_bytes())
@@ -199,7 +229,6 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     if parse.has_errors() {
         return Ok(1);
     }
-    let layers = eval::layers(&parse.template, &model, options);
     match write_layers(layers, &input.text, args, out) {
         Ok(()) => Ok(0),
         // The reader went away (`| head`): what it wanted was written.

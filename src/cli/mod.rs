@@ -6,6 +6,7 @@
 pub mod check;
 mod dialect;
 pub mod expand;
+pub mod files;
 pub mod fmt;
 
 use std::io::{IsTerminal, Read};

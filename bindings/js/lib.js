@@ -250,5 +250,46 @@ export async function bind(wasmModule) {
     return { ...answer, angles, fills, instructionIndex };
   }
 
-  return { version, signs, check, format, explain, explainCode, compare, expand };
+  /** OrcaSlicer compat diagnostics (codes `orcaslicer::…`), with spans and fixes like check's. */
+  function compat(text, options = {}) {
+    return call('rotlang_compat', text, options, true).diagnostics;
+  }
+
+  /**
+   * The templates and model of a profile file: `name` picks the kind by its extension
+   * (`.json`, `.jsonc`, `.ini`, `.rot`); `content` is its text or bytes.
+   */
+  function readProfile(name, content) {
+    if (typeof name !== 'string') throw new RotlangError('options', 'the profile name must be a string');
+    const bytes = typeof content === 'string' ? encoder.encode(content)
+      : content instanceof Uint8Array ? content
+        : ArrayBuffer.isView(content) || content instanceof ArrayBuffer ? new Uint8Array(content.buffer ?? content)
+          : null;
+    if (!bytes) throw new RotlangError('options', 'the profile content must be a string or bytes');
+    const ex = exportsOrThrow();
+    let n = null;
+    let b = null;
+    try {
+      n = put(ex, encoder.encode(name));
+      b = put(ex, bytes);
+      const code = ex.rotlang_profile(n[0], n[1], b[0], b[1]);
+      const answer = readJson(ex);
+      if (code !== 0) throw new RotlangError(answer.kind, answer.message, null);
+      return answer;
+    } catch (e) {
+      if (e instanceof WebAssembly.RuntimeError) {
+        n = b = null;
+        restart();
+        throw new RotlangError('internal', `rotlang failed internally (${e.message}); the input was refused`);
+      }
+      throw e;
+    } finally {
+      for (const block of [n, b]) if (block) ex.rotlang_dealloc(block[0], block[1]);
+    }
+  }
+
+  const api = { version, signs, check, format, explain, explainCode, compare, compat, expand };
+  // In rotlang-full.wasm only.
+  if (instance.exports.rotlang_profile) api.readProfile = readProfile;
+  return api;
 }

@@ -5,7 +5,7 @@
 export const FILLS: readonly ['sparse', 'dense', 'solid', 'concentric', 'monotonic', 'rectilinear'];
 export type Fill = (typeof FILLS)[number];
 
-export type ErrorKind = 'template' | 'model' | 'options' | 'limit' | 'unavailable' | 'internal';
+export type ErrorKind = 'template' | 'model' | 'options' | 'limit' | 'profile' | 'unavailable' | 'internal';
 
 /** Thrown on bad input (never a crash): `kind` says what was wrong. */
 export class RotlangError extends Error {
@@ -164,5 +164,11 @@ export interface CodeDoc {
   example: string;
   fix: string;
 }
+/**
+ * The OrcaSlicer compat lint: where OrcaSlicer reads the template differently (codes
+ * `orcaslicer::…`), by rule and on the model, with fixes where one keeps both readings.
+ */
+export function compat(text: string, options?: Options): Diagnostic[];
+
 /** A diagnostic code explained (what `rotlang explain CODE` prints); null for an unknown code. */
 export function explainCode(code: string): CodeDoc | null;

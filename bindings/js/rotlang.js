@@ -7,4 +7,6 @@ export { FILLS, RotlangError } from './lib.js';
 
 const api = await bind(await compile(new URL('./rotlang.wasm', import.meta.url)));
 
-export const { version, signs, check, format, explain, explainCode, compare, expand } = api;
+export const {
+  version, signs, check, format, explain, explainCode, compare, compat, expand,
+} = api;

@@ -240,6 +240,7 @@ test('a dropped profile fills the editor and the model; a non-JSON one is refuse
   assert.equal(await page.inputValue('#bottom-shells'), '5');
   assert.equal(await page.inputValue('#top-shells'), '6');
   assert.equal(await page.inputValue('#pattern'), 'grid');
+  assert.equal(await page.inputValue('#layers'), '125', 'a 20 mm object in 0.16 mm layers after 0.24');
   assert.match(await page.textContent('#profile-templates'), /Profile My PLA 0\.16: 2 templates/);
   // The solid template is one click away.
   await page.click('#profile-templates button:has-text("solid_infill_rotate_template")');
@@ -247,7 +248,7 @@ test('a dropped profile fills the editor and the model; a non-JSON one is refuse
   assert.equal(await page.inputValue('#target'), 'solid');
   await shot(page, 'profile');
   await drop(page, 'notes.txt', 'this is not JSON {');
-  await page.waitForFunction(() => /refused: notes\.txt is not a JSON profile/.test(document.querySelector('#status').textContent));
+  await page.waitForFunction(() => /refused: notes\.txt is not a profile rotlang can read: invalid JSON/.test(document.querySelector('#status').textContent));
   assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString()), '0, 90', 'the editor is kept');
   await page.close();
 });
@@ -285,6 +286,9 @@ test('OrcaSlicer compat findings, and the OrcaSlicer reading in the plot', async
   await page.waitForFunction(() => /orcaslicer::hangs/.test(document.querySelector('#compat-list').textContent));
   await type(page, '0 90');
   assert.match(await page.textContent('#compat-list'), /from layer 1 \(90° in rotlang, 0° in OrcaSlicer\)/);
+  // The compat lint's findings: listed, and marked in the editor (as information).
+  assert.match(await page.textContent('#compat-list'), /orcaslicer::[a-z-]+/);
+  assert.ok(await page.locator('.cm-lintRange-info').count() > 0, 'an info squiggle');
   // Read as OrcaSlicer does: `0 90` is 0 on every layer.
   await page.selectOption('#dialect', 'orcaslicer');
   await page.waitForFunction(() => window.rotlangPlayground.analysis()?.layers?.dialect === 'orcaslicer');

@@ -201,6 +201,72 @@ pub fn explain_code(code: &str) -> Value {
     }
 }
 
+/// The OrcaSlicer compat lint (`orcaslicer::…` codes): where OrcaSlicer reads the
+/// template differently, by rule and on the model; fixes where one keeps both readings.
+pub fn compat(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
+    let target = req.target()?;
+    let options = req.eval_options()?;
+    let model = req.model(heights)?;
+    let found = rotlang::dialect::compat(text, target, &model, options);
+    Ok(obj!({ "diagnostics": diagnostics::to_json(text, &found) }))
+}
+
+#[cfg(feature = "full")]
+/// The templates and model of a profile file (`name` picks the kind by its extension:
+/// `.json`/`.jsonc` presets, `.ini` exports, `.rot` templates), read by `rotlang::profile`.
+pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
+    let p = rotlang::profile::parse(std::path::Path::new(name), bytes).map_err(|e| Failure {
+        kind: "profile",
+        message: e.message,
+        diagnostics: None,
+    })?;
+    let target = p.templates.first().map_or(Target::Sparse, |t| t.target);
+    let pm = p.model(target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
+    let m = &pm.model;
+    let first = m
+        .layer_bounds(0)
+        .map(|(bottom, top)| rotlang::number::round_height(top - bottom));
+    let templates: Vec<Value> = p
+        .templates
+        .iter()
+        .map(|t| {
+            obj!({
+                "key": t.key,
+                "object": t.object,
+                "target": match t.target {
+                    Target::Sparse => "sparse",
+                    Target::Solid => "solid",
+                },
+                "text": t.text,
+            })
+        })
+        .collect();
+    let notes: Vec<Value> = p
+        .notes
+        .iter()
+        .map(|n| obj!({ "message": n.message, "error": n.error }))
+        .chain(
+            pm.notes
+                .iter()
+                .map(|n| obj!({ "message": n, "error": false })),
+        )
+        .collect();
+    Ok(obj!({
+        "kind": p.kind.map(|k| k.name()),
+        "templates": templates,
+        "model": obj!({
+            "layers": m.len(),
+            "layerHeight": m.layer_height(),
+            "firstLayerHeight": first,
+            "bottomShells": m.bottom_shells(),
+            "topShells": m.top_shells(),
+        }),
+        "base": pm.options.base,
+        "notes": notes,
+        "hasErrors": p.has_errors(),
+    }))
+}
+
 /// How OrcaSlicer's reading differs from rotlang's on this model: the first layer whose
 /// direction differs, the solid layers it would lose, and its findings (hang, crash, NaN).
 pub fn compare(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {

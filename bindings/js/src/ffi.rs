@@ -182,6 +182,52 @@ pub unsafe extern "C" fn rotlang_explain_code(
     finish(unsafe { inputs(text, text_len, req, req_len) }.map(|(t, _)| api::explain_code(t)))
 }
 
+/// As [`rotlang_expand`], for the compat lint.
+///
+/// # Safety
+/// As [`rotlang_expand`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_compat(
+    text: *const u8,
+    text_len: usize,
+    req: *const f64,
+    req_len: usize,
+    heights: *const f64,
+    count: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        // SAFETY: as above.
+        let heights = unsafe { f64s(heights, count) };
+        api::compat(t, &r, heights)
+    });
+    finish(result)
+}
+
+#[cfg(feature = "full")]
+/// A profile file: its name (UTF-8) and its bytes (any: a file that is not UTF-8 text is
+/// reported as such).
+///
+/// # Safety
+/// Each (pointer, length) pair must be readable memory, or a length of 0.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_profile(
+    name: *const u8,
+    name_len: usize,
+    bytes: *const u8,
+    bytes_len: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let name = unsafe { utf8(name, name_len) }.unwrap_or("profile");
+    let bytes = if bytes.is_null() || bytes_len == 0 {
+        &[][..]
+    } else {
+        // SAFETY: forwarded from this function's contract.
+        unsafe { std::slice::from_raw_parts(bytes, bytes_len) }
+    };
+    finish(api::profile(name, bytes))
+}
+
 /// As [`rotlang_expand`], for `compare` (no arrays out).
 ///
 /// # Safety

@@ -72,3 +72,35 @@ test('the OrcaSlicer dialect reads text that rotlang rejects, and names its inst
   for (const i of r.instructionIndex) assert.ok(i < r.instructions.length);
   assert.throws(() => expand('0', { dialect: 'prusa' }), (e) => e.kind === 'options' && /unknown dialect/.test(e.message));
 });
+
+test('compat: OrcaSlicer findings as diagnostics with spans', async () => {
+  const { compat } = await import('../rotlang.js');
+  const list = compat('0 90');
+  assert.ok(list.length > 0);
+  assert.ok(list.every((d) => d.code.startsWith('orcaslicer::')), list.map((d) => d.code).join());
+  assert.ok(list.some((d) => d.fix), 'a fix keeps both readings');
+  assert.deepEqual(compat('+30/50%'), []);
+});
+
+test('readProfile: templates and model from JSON, jsonc and ini; broken input is an error', async () => {
+  const { readProfile, RotlangError } = await import('../full.js');
+  const p = readProfile('pla.json', JSON.stringify({
+    layer_height: '0.16', initial_layer_print_height: '0.24', bottom_shell_layers: '5',
+    top_shell_layers: '6', sparse_infill_rotate_template: '+10L25%', infill_direction: '45',
+  }));
+  assert.equal(p.kind, 'json');
+  assert.deepEqual(p.templates.map((t) => [t.key, t.target, t.text]), [['sparse_infill_rotate_template', 'sparse', '+10L25%']]);
+  assert.equal(p.model.layerHeight, 0.16);
+  assert.equal(p.model.firstLayerHeight, 0.24);
+  assert.equal(p.model.bottomShells, 5);
+  assert.equal(p.model.topShells, 6);
+  assert.equal(p.base, 45);
+  const ini = readProfile('config.ini', 'layer_height = 0.2\nsolid_infill_rotate_template = 0, 90\n');
+  assert.deepEqual(ini.templates.map((t) => [t.target, t.text]), [['solid', '0, 90']]);
+  const jsonc = readProfile('p.jsonc', '{ // comment\n "sparse_infill_rotate_template": "0, 90", }');
+  assert.equal(jsonc.templates[0].text, '0, 90');
+  assert.throws(() => readProfile('x.json', new Uint8Array([0x7b, 0xff, 0xfe])), (e) => e instanceof RotlangError && e.kind === 'profile' && /UTF-8/.test(e.message));
+  const broken = readProfile('x.json', 'this is not JSON {');
+  assert.equal(broken.templates.length, 0);
+  assert.ok(broken.hasErrors || broken.notes.length > 0, JSON.stringify(broken));
+});

@@ -64,7 +64,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     let inputs = gather(&args.templates, &args.files)?;
     let parses: Vec<_> = inputs
         .iter()
-        .map(|i| crate::parse(&i.text, args.target.into()))
+        .map(|i| crate::check(&i.text, args.target.into()))
         .collect();
     let failed =
         |p: &crate::Parse| p.has_errors() || (args.deny_warnings && !p.diagnostics.is_empty());

@@ -219,7 +219,8 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
             write_layers(layers, &input.text, args, out)
         });
     }
-    let parse = crate::parse(&input.text, args.target.into());
+    // The IR is not kept: a megabyte template costs a small multiple of its size.
+    let (parse, layers) = eval::parse_layers(&input.text, args.target.into(), &model, options);
     let write_error = |e: std::io::Error| UsageError(format!("cannot write to stderr: {e}"));
     if !parse.diagnostics.is_empty() {
         err.write_all(report(&input, &parse.diagnostics, args.color).as_bytes())
@@ -228,7 +229,6 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     if parse.has_errors() {
         return Ok(1);
     }
-    let layers = eval::layers(&parse.template, &model, options);
     match write_layers(layers, &input.text, args, out) {
         Ok(()) => Ok(0),
         // The reader went away (`| head`): what it wanted was written.

@@ -49,15 +49,16 @@ pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     let mut code = 0;
     for input in &inputs {
-        let parse = crate::parse(&input.text, args.target.into());
-        if parse.has_errors() {
+        // Diagnostics and the canonical form each in one streaming pass: no IR is kept.
+        let parse = crate::check(&input.text, args.target.into());
+        let formatted = crate::format::format(&input.text, args.target.into());
+        let Some(formatted) = formatted.filter(|_| !parse.has_errors()) else {
             let report = render_human(&[(input, &parse.diagnostics)], args.color.enabled(false));
             err.write_all(report.as_bytes()).map_err(io)?;
             writeln!(err, "{}: not formatted: fix the errors first", input.name).map_err(io)?;
             code = 1;
             continue;
-        }
-        let formatted = crate::format::canonical(&input.text, &parse.template);
+        };
         // A file keeps one trailing newline; the template itself is the rest.
         let current = input
             .text

@@ -12,7 +12,8 @@ pub(crate) struct Chunk<'a> {
     pub after_space_only: bool,
 }
 
-/// What the splitter found besides instructions: empty instructions (`,,`, a leading `,`).
+/// The whole split at once (for tests: the parser streams [`Pieces`]).
+#[cfg(test)]
 #[derive(Debug, Default)]
 pub(crate) struct Split<'a> {
     pub chunks: Vec<Chunk<'a>>,
@@ -20,30 +21,62 @@ pub(crate) struct Split<'a> {
     pub empties: Vec<Span>,
 }
 
-impl Split<'_> {
-    /// The same split with every span moved right by `offset` bytes (for a split of a
-    /// slice of the template).
-    pub fn shifted(mut self, offset: usize) -> Self {
-        for c in &mut self.chunks {
-            c.span = c.span.shift(offset);
-        }
-        for e in &mut self.empties {
-            *e = e.shift(offset);
-        }
-        self
-    }
-}
-
 pub(crate) fn is_separator(c: char) -> bool {
     matches!(c, ',' | ' ' | '\t' | '\r' | '\n')
 }
 
+#[cfg(test)]
 pub(crate) fn split(text: &str) -> Split<'_> {
     let mut out = Split::default();
-    let bytes = text.as_bytes();
-    let mut i = 0;
-    let mut first = true;
-    while i < bytes.len() {
+    for piece in Pieces::new(text, 0) {
+        match piece {
+            Piece::Empty(span) => out.empties.push(span),
+            Piece::Chunk(chunk) => out.chunks.push(chunk),
+        }
+    }
+    out
+}
+
+/// What the splitter finds, in source order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Piece<'a> {
+    /// A separator run holding an empty instruction (`,,`, a leading `,`).
+    Empty(Span),
+    Chunk(Chunk<'a>),
+}
+
+/// The pieces of a template one at a time, so that a parse holds no list of them (a
+/// megabyte template has hundreds of thousands).
+pub(crate) struct Pieces<'a> {
+    text: &'a str,
+    /// Added to every span: the position of `text` in the whole template.
+    offset: usize,
+    i: usize,
+    first: bool,
+    pending: Option<Chunk<'a>>,
+}
+
+impl<'a> Pieces<'a> {
+    pub fn new(text: &'a str, offset: usize) -> Self {
+        Pieces {
+            text,
+            offset,
+            i: 0,
+            first: true,
+            pending: None,
+        }
+    }
+}
+
+impl<'a> Iterator for Pieces<'a> {
+    type Item = Piece<'a>;
+
+    fn next(&mut self) -> Option<Piece<'a>> {
+        if let Some(chunk) = self.pending.take() {
+            return Some(Piece::Chunk(chunk));
+        }
+        let bytes = self.text.as_bytes();
+        let mut i = self.i;
         // A separator run.
         let sep_start = i;
         let mut commas = 0;
@@ -51,28 +84,30 @@ pub(crate) fn split(text: &str) -> Split<'_> {
             commas += usize::from(bytes[i] == b',');
             i += 1;
         }
-        let at_end = i == bytes.len();
+        if i == bytes.len() {
+            self.i = i;
+            return None;
+        }
         // A leading comma or two commas in one run enclose an instruction with nothing in
         // it. A trailing comma is common style and is not flagged.
-        let empty = if first { commas >= 1 } else { commas >= 2 };
-        if empty && !at_end {
-            out.empties.push(Span::new(sep_start, i));
-        }
-        if at_end {
-            break;
-        }
+        let empty = if self.first { commas >= 1 } else { commas >= 2 };
         let start = i;
         while i < bytes.len() && !is_separator(bytes[i] as char) {
             i += 1;
         }
-        out.chunks.push(Chunk {
-            text: &text[start..i],
-            span: Span::new(start, i),
-            after_space_only: !first && commas == 0,
-        });
-        first = false;
+        self.i = i;
+        let chunk = Chunk {
+            text: &self.text[start..i],
+            span: Span::new(start, i).shift(self.offset),
+            after_space_only: !self.first && commas == 0,
+        };
+        self.first = false;
+        if empty {
+            self.pending = Some(chunk);
+            return Some(Piece::Empty(Span::new(sep_start, start).shift(self.offset)));
+        }
+        Some(Piece::Chunk(chunk))
     }
-    out
 }
 
 #[cfg(test)]

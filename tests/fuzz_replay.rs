@@ -2,19 +2,23 @@
 //! `fuzz/corpus/<target>/` runs through the target's body. Targets that need the language
 //! server are replayed by `lsp/tests/fuzz_replay.rs`.
 
+#[path = "../fuzz/bodies/dialect.rs"]
+mod dialect;
 #[path = "../fuzz/bodies/eval.rs"]
 mod eval;
 #[path = "../fuzz/bodies/fmt.rs"]
 mod fmt;
 #[path = "../fuzz/bodies/parse.rs"]
 mod parse;
+#[path = "../fuzz/bodies/profile.rs"]
+mod profile;
 #[path = "../fuzz/bodies/replay.rs"]
 mod replay;
 
 const DIR: &str = env!("CARGO_MANIFEST_DIR");
 
 /// Replayed here.
-const HERE: &[&str] = &["eval", "fmt", "parse"];
+const HERE: &[&str] = &["dialect", "eval", "fmt", "parse", "profile"];
 /// Replayed by `lsp/tests/fuzz_replay.rs`.
 const LSP: &[&str] = &["lsp_framing", "lsp_json", "lsp_profiles"];
 /// Replayed by `capi/tests/fuzz_replay.rs`.
@@ -28,6 +32,16 @@ fn parse_corpus() {
 #[test]
 fn eval_corpus() {
     replay::replay(DIR, "eval", eval::run);
+}
+
+#[test]
+fn dialect_corpus() {
+    replay::replay(DIR, "dialect", dialect::run);
+}
+
+#[test]
+fn profile_corpus() {
+    replay::replay(DIR, "profile", profile::run);
 }
 
 #[test]

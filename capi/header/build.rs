@@ -7,8 +7,12 @@ fn main() {
     let header_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
     let capi = header_dir.join("..");
     println!("cargo:rerun-if-changed={}", capi.join("src").display());
-    println!("cargo:rerun-if-changed={}", capi.join("cbindgen.toml").display());
-    let config = cbindgen::Config::from_file(capi.join("cbindgen.toml")).expect("capi/cbindgen.toml");
+    println!(
+        "cargo:rerun-if-changed={}",
+        capi.join("cbindgen.toml").display()
+    );
+    let config =
+        cbindgen::Config::from_file(capi.join("cbindgen.toml")).expect("capi/cbindgen.toml");
     let out = Path::new(&std::env::var("OUT_DIR").expect("OUT_DIR")).join("rotlang.h");
     cbindgen::Builder::new()
         .with_crate(&capi)

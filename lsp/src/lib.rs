@@ -5,6 +5,7 @@
 //! Spans are bytes throughout; `position` converts at the edge.
 
 pub mod code_actions;
+pub mod compat;
 pub mod completion;
 pub mod diagnostics;
 pub mod document;

@@ -120,9 +120,12 @@ impl Backend {
     }
 
     async fn publish(&self, uri: Uri, doc: Arc<Document>, encoding: Encoding) {
+        let settings = self.state().model;
         let Some(diags) = guard(|| {
             let pos = Positions::new(&doc.text, encoding);
-            diagnostics::diagnostics(&doc, &uri, &pos)
+            let mut diags = diagnostics::diagnostics(&doc, &uri, &pos);
+            diags.extend(crate::compat::diagnostics(&doc, &uri, &pos, &settings));
+            diags
         }) else {
             return;
         };
@@ -327,8 +330,24 @@ impl LanguageServer for Backend {
             self.pull_configuration();
             return;
         };
+        let before = self.state().model.compat;
         let rejected = self.state().model.replace(section);
         report_settings(&self.client, &self.state, rejected).await;
+        if self.state().model.compat != before {
+            // The compat findings are part of every document's diagnostics.
+            let (docs, encoding) = {
+                let state = self.state();
+                let docs: Vec<_> = state
+                    .documents
+                    .iter()
+                    .map(|(u, d)| (u.clone(), d.clone()))
+                    .collect();
+                (docs, state.encoding)
+            };
+            for (uri, doc) in docs {
+                self.publish(uri, doc, encoding).await;
+            }
+        }
         if self.state().inlay_refresh {
             // Hints depend on the model; the answer does not matter.
             let _ = self.client.inlay_hint_refresh().await;

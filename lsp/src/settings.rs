@@ -28,9 +28,40 @@ pub struct ModelSettings {
     pub first_layer_height: Option<f64>,
     pub bottom_shell_layers: u32,
     pub top_shell_layers: u32,
+    /// `compat`: the OrcaSlicer compat lint (`rotlang::dialect::compat`) in diagnostics.
+    pub compat: Compat,
     /// The largest document (bytes) the server parses; `maxDocumentBytes` raises it up to
     /// the largest message the server reads.
     pub max_document_bytes: usize,
+}
+
+/// When to add the OrcaSlicer compat findings to a document's diagnostics.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Compat {
+    /// `"auto"` (the default): for JSON and `.ini` profiles, which are OrcaSlicer's files.
+    #[default]
+    Auto,
+    /// `"orcaslicer"` or `true`: for every document, `.rot` files included.
+    On,
+    /// `"off"` or `false`.
+    Off,
+}
+
+impl Compat {
+    fn from_value(value: &Value) -> Option<Compat> {
+        match value {
+            Value::Bool(true) => Some(Compat::On),
+            Value::Bool(false) => Some(Compat::Off),
+            Value::Null => Some(Compat::Auto),
+            Value::String(s) => match s.to_ascii_lowercase().as_str() {
+                "auto" => Some(Compat::Auto),
+                "orcaslicer" | "on" => Some(Compat::On),
+                "off" | "none" => Some(Compat::Off),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
 }
 
 impl Default for ModelSettings {
@@ -41,6 +72,7 @@ impl Default for ModelSettings {
             first_layer_height: None,
             bottom_shell_layers: 3,
             top_shell_layers: 4,
+            compat: Compat::Auto,
             max_document_bytes: DEFAULT_MAX_DOCUMENT_BYTES,
         }
     }
@@ -91,6 +123,7 @@ impl ModelSettings {
                     &mut self.top_shell_layers,
                     whole(value, 0, MAX_SHELLS.into()).map(|n| n as u32),
                 ),
+                "compat" => set(&mut self.compat, Compat::from_value(value)),
                 "maxDocumentBytes" => set(
                     &mut self.max_document_bytes,
                     whole(value, 1024, crate::transport::MAX_MESSAGE as u64),
@@ -127,6 +160,7 @@ impl ModelSettings {
             "firstLayerHeight" => self.first_layer_height = previous.first_layer_height,
             "bottomShellLayers" => self.bottom_shell_layers = previous.bottom_shell_layers,
             "topShellLayers" => self.top_shell_layers = previous.top_shell_layers,
+            "compat" => self.compat = previous.compat,
             "maxDocumentBytes" => self.max_document_bytes = previous.max_document_bytes,
             _ => {}
         }
@@ -168,12 +202,13 @@ impl ModelSettings {
 }
 
 /// The settings keys, as clients write them.
-pub const KEYS: [&str; 6] = [
+pub const KEYS: [&str; 7] = [
     "layers",
     "layerHeight",
     "firstLayerHeight",
     "bottomShellLayers",
     "topShellLayers",
+    "compat",
     "maxDocumentBytes",
 ];
 
@@ -198,6 +233,9 @@ fn expected(key: &str) -> String {
         ),
         "bottomShellLayers" | "topShellLayers" => {
             format!("a whole number from 0 to {MAX_SHELLS} expected; kept the previous value")
+        }
+        "compat" => {
+            "\"auto\" (JSON and .ini profiles), \"orcaslicer\" (every document) or \"off\" expected; kept the previous value".to_owned()
         }
         "firstLayerHeight" => format!(
             "a height in mm from {MIN_HEIGHT} to {MAX_HEIGHT}, or null, expected; kept the previous value"

@@ -16,7 +16,11 @@ fn with_checked_fix(
     span: Span,
     replacement: String,
 ) -> Diagnostic {
-    if fixable && keeps_meaning(text, &splice(text, span, &replacement), target) {
+    // Each check parses and evaluates the whole template: only for template-sized texts.
+    if fixable
+        && text.len() <= MAX_FIXED_TEXT
+        && keeps_meaning(text, &splice(text, span, &replacement), target)
+    {
         d.with_fix(title, span, replacement)
     } else {
         d
@@ -61,15 +65,24 @@ pub(super) fn rules(
         ));
     }
     for ins in instructions {
+        if out.len() >= MAX_RULE_FINDINGS {
+            break;
+        }
         instruction_rules(text, ins, list, fixable, target, out);
     }
+    out.truncate(MAX_RULE_FINDINGS);
 }
+
+/// A pasted megabyte of `+7!B` must not become a million findings (or fix checks).
+const MAX_RULE_FINDINGS: usize = 100;
+/// Fixes are checked by evaluating the fixed text: templates are lines, not megabytes.
+const MAX_FIXED_TEXT: usize = 4096;
 
 /// The list reading (no `+ - % * @ ' " c m` and no joint sign): pieces between commas.
 fn list_rules(text: &str, fixable: bool, target: Target, out: &mut Vec<Diagnostic>) {
     let bytes = text.as_bytes();
     let mut start = 0;
-    loop {
+    while out.len() < MAX_RULE_FINDINGS {
         let end = bytes[start..]
             .iter()
             .position(|&b| b == b',')

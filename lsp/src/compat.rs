@@ -1,0 +1,59 @@
+//! The OrcaSlicer compat lint in diagnostics (setting `compat`): where OrcaSlicer reads a
+//! template differently, hangs or computes NaN angles (`rotlang::dialect::compat`). On by
+//! default for JSON and `.ini` profiles (OrcaSlicer's files), evaluated on the profile's own
+//! model; on request for `.rot` files, on the model of the settings.
+
+use std::path::Path;
+
+use rotlang::eval::Options;
+use tower_lsp_server::ls_types::{Diagnostic, Uri};
+
+use crate::diagnostics::convert;
+use crate::document::{Document, Kind};
+use crate::position::Positions;
+use crate::settings::{Compat, ModelSettings};
+
+/// Beside the document's own diagnostics (capped at their own limit).
+const MAX_FINDINGS: usize = 100;
+
+pub fn diagnostics(
+    doc: &Document,
+    uri: &Uri,
+    pos: &Positions,
+    settings: &ModelSettings,
+) -> Vec<Diagnostic> {
+    let on = match settings.compat {
+        Compat::Off => false,
+        Compat::On => true,
+        Compat::Auto => doc.kind != Kind::Rot,
+    };
+    if !on {
+        return Vec::new();
+    }
+    // The profile's own layer heights, shells and direction (a name that says its kind).
+    let name = match doc.kind {
+        Kind::Rot => None,
+        Kind::Json => Some("profile.json"),
+        Kind::Jsonc => Some("profile.jsonc"),
+        Kind::Ini => Some("profile.ini"),
+    };
+    let profile =
+        name.and_then(|n| rotlang::profile::parse(Path::new(n), doc.text.as_bytes()).ok());
+    let mut out = Vec::new();
+    for region in &doc.regions {
+        let (model, options) = match &profile {
+            Some(p) => {
+                let m = p.model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
+                (m.model, m.options)
+            }
+            None => (crate::preview::model_of(settings), Options::default()),
+        };
+        for d in rotlang::dialect::compat(&region.text, region.target, &model, options) {
+            if out.len() >= MAX_FINDINGS {
+                return out;
+            }
+            out.push(convert(&d, region, uri, pos));
+        }
+    }
+    out
+}

@@ -156,3 +156,19 @@ mod preview {
         }
     }
 }
+
+/// The pictures checked in for the README are valid SVG with something drawn in them.
+#[test]
+fn readme_pictures_render() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img");
+    for name in ["plot", "preview", "preview-star"] {
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("checked in");
+        let picture = render(&svg, &format!("readme-{name}"));
+        let coloured = picture
+            .pixels()
+            .iter()
+            .filter(|c| c.red().max(c.green()).max(c.blue()) - c.red().min(c.green()).min(c.blue()) > 80)
+            .count();
+        assert!(coloured > 1000, "{name}: {coloured} coloured pixels");
+    }
+}

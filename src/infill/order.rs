@@ -78,7 +78,7 @@ fn monotonic_order(mut paths: Vec<Vec<Coord>>, frame: &Frame) -> Vec<Vec<Coord>>
 /// Greedy nearest neighbour with reversal, starting with the first path as generated.
 /// Path ends are kept in a grid of about one end per cell, rebuilt coarser as paths are
 /// used up, so that a layer of many thousand short walls orders in O(n) rather than O(n²).
-fn nearest(mut paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
+fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
     let n = paths.len();
     if n <= 2 {
         return paths;
@@ -92,6 +92,28 @@ fn nearest(mut paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
     used[0] = true;
     order.push((0, false));
     let mut at = ends[0][1];
+    if n <= 64 {
+        // Few paths: a plain scan is quicker than building the grid.
+        for _ in 1..n {
+            let mut best = (f64::INFINITY, 0, false);
+            for (i, e) in ends.iter().enumerate() {
+                if used[i] {
+                    continue;
+                }
+                for (side, &p) in e.iter().enumerate() {
+                    let d = dist(at, p);
+                    if d < best.0 {
+                        best = (d, i, side == 1);
+                    }
+                }
+            }
+            let (_, i, reversed) = best;
+            used[i] = true;
+            order.push((i, reversed));
+            at = ends[i][if reversed { 0 } else { 1 }];
+        }
+        return take_in_order(paths, order);
+    }
     let mut grid = Grid::new(&ends, &used, n - 1);
     let mut left = n - 1;
     while left > 0 {
@@ -106,7 +128,11 @@ fn nearest(mut paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
         order.push((i, reversed));
         at = ends[i][if reversed { 0 } else { 1 }];
     }
-    let mut taken: Vec<Option<Vec<Coord>>> = paths.drain(..).map(Some).collect();
+    take_in_order(paths, order)
+}
+
+fn take_in_order(paths: Vec<Vec<Coord>>, order: Vec<(usize, bool)>) -> Vec<Vec<Coord>> {
+    let mut taken: Vec<Option<Vec<Coord>>> = paths.into_iter().map(Some).collect();
     order
         .into_iter()
         .filter_map(|(i, reversed)| {

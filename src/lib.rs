@@ -15,6 +15,7 @@ extern crate alloc;
 pub mod diagnostic;
 pub mod eval;
 pub mod explain;
+pub mod fix;
 pub mod format;
 pub mod ir;
 mod lint;

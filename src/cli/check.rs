@@ -3,7 +3,9 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use super::{ColorArg, Input, TargetArg, UsageError, diagnostic_json, gather, render_human};
+use super::{
+    ColorArg, Input, TargetArg, UsageError, diagnostic_json, gather, pieces_note, render_human,
+};
 use crate::diagnostic::LineIndex;
 
 #[derive(clap::Args, Debug)]
@@ -15,6 +17,13 @@ Examples:
   echo '+30/50 %' | rotlang check         from stdin
   rotlang check --target solid 'S/, +10'  as a solid_infill_rotate_template
   rotlang check --format json '+30X5'     one JSON object per input, one per line
+  rotlang check --fix '+30°, 10,,20'      print the template with every fix applied
+  rotlang check --fix --write -f a.rot    apply the fixes to a.rot in place
+  rotlang check -f - < a.rot              `-` is stdin, as a template or a file
+
+`--fix` applies the fix of every diagnostic that has one (the `fix:` lines of the
+report), again and again until none is left. A template that still has errors after
+that is not printed or written: its remaining errors are reported instead (exit 1).
 
 Exit status: 0 when every input is clean or has only warnings, 1 when any has an
 error, 2 on a usage error.")]
@@ -37,6 +46,12 @@ pub struct CheckArgs {
     /// Treat warnings as errors (exit 1).
     #[arg(long)]
     pub deny_warnings: bool,
+    /// Apply every fix and print the fixed templates (diagnostics go to stderr).
+    #[arg(long)]
+    pub fix: bool,
+    /// With --fix: rewrite files in place instead of printing them.
+    #[arg(long, requires = "fix")]
+    pub write: bool,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
@@ -47,8 +62,15 @@ pub enum Format {
 }
 
 /// Runs the check; returns the exit code.
-pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
+pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     let inputs = gather(&args.templates, &args.files)?;
+    let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    if let Some(note) = pieces_note("check", &args.templates) {
+        err.write_all(note.as_bytes()).map_err(io)?;
+    }
+    if args.fix {
+        return fix(args, &inputs, out, err);
+    }
     let parses: Vec<_> = inputs
         .iter()
         .map(|i| crate::parse(&i.text, args.target.into()))
@@ -56,7 +78,6 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     let failed =
         |p: &crate::Parse| p.has_errors() || (args.deny_warnings && !p.diagnostics.is_empty());
     let code = i32::from(parses.iter().any(failed));
-    let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     match args.format {
         Format::Json => {
             for (input, parse) in inputs.iter().zip(&parses) {
@@ -94,7 +115,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
                     .sum()
             };
             let omitted: usize = parses.iter().map(|p| p.omitted).sum();
-            let mut summary = summary(inputs.len(), count(true), count(false));
+            let mut summary = summary(inputs.len(), count(true), count(false), args.deny_warnings);
             if omitted > 0 {
                 summary.push_str(&format!(" shown, {omitted} more not shown"));
             }
@@ -104,7 +125,81 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     Ok(code)
 }
 
-fn summary(inputs: usize, errors: usize, warnings: usize) -> String {
+/// `check --fix`: every fix applied; the fixed text printed or written, unless errors
+/// remain (then their report, exit 1).
+fn fix(
+    args: &CheckArgs,
+    inputs: &[Input],
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> Result<i32, UsageError> {
+    let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    let mut code = 0;
+    let (mut applied, mut written) = (0, 0);
+    for input in inputs {
+        let fixed = crate::fix::apply_all(&input.text, args.target.into());
+        applied += fixed.applied;
+        let left = Input {
+            text: fixed.text.clone(),
+            ..input.clone()
+        };
+        let shown = |p: &crate::Diagnostic| p.code != "rotlang::too-many-diagnostics";
+        let warnings = fixed.parse.diagnostics.iter().filter(|d| shown(d)).count();
+        if !fixed.parse.diagnostics.is_empty() {
+            let report = render_human(
+                &[(&left, &fixed.parse.diagnostics)],
+                args.color.enabled(false),
+            );
+            err.write_all(report.as_bytes()).map_err(io)?;
+        }
+        if fixed.parse.has_errors() {
+            writeln!(
+                err,
+                "{}: not fixed: errors remain that have no automatic fix",
+                input.name
+            )
+            .map_err(io)?;
+            code = 1;
+            continue;
+        }
+        if args.deny_warnings && warnings > 0 {
+            code = 1;
+        }
+        match (&input.path, args.write) {
+            (Some(path), true) => {
+                if fixed.text != input.text {
+                    super::fmt::write_atomically(path, &fixed.text)
+                        .map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
+                    written += 1;
+                }
+            }
+            _ => {
+                let text = fixed.text.strip_suffix('\n').unwrap_or(&fixed.text);
+                writeln!(out, "{text}").map_err(io)?;
+            }
+        }
+    }
+    let plural = |n: usize, w: &str| {
+        if n == 1 {
+            format!("1 {w}")
+        } else {
+            format!("{n} {w}s")
+        }
+    };
+    let fixes = if applied == 1 {
+        "1 fix".to_owned()
+    } else {
+        format!("{applied} fixes")
+    };
+    let mut line = format!("fixed: {fixes} applied");
+    if args.write {
+        line.push_str(&format!(", {} rewritten", plural(written, "file")));
+    }
+    writeln!(err, "{line}").map_err(io)?;
+    Ok(code)
+}
+
+fn summary(inputs: usize, errors: usize, warnings: usize, deny_warnings: bool) -> String {
     let what = if inputs == 1 {
         "1 template".to_owned()
     } else {
@@ -119,6 +214,10 @@ fn summary(inputs: usize, errors: usize, warnings: usize) -> String {
     };
     match (errors, warnings) {
         (0, 0) => format!("ok: {what}, no problems"),
+        (0, w) if deny_warnings => format!(
+            "failed: {what}, {} (denied by --deny-warnings)",
+            plural(w, "warning")
+        ),
         (0, w) => format!("ok: {what}, {}", plural(w, "warning")),
         (e, 0) => format!("failed: {what}, {}", plural(e, "error")),
         (e, w) => format!(

@@ -550,9 +550,7 @@ mod tests {
     #[test]
     fn usage_errors() {
         for argv in [
-            &["0", "--layers", "0"][..],
-            &["0", "--layers", "10", "--layer-height=-1"],
-            &["0", "--height", "nan"],
+            &["0", "--layers", "10", "--layer-height=-1"][..],
             &["0", "--layer-height", "0.1"],
             &["0", "--model", "/nonexistent/model.json"],
         ] {
@@ -560,6 +558,26 @@ mod tests {
             assert!(code.is_err(), "{argv:?}: {code:?}");
         }
         assert!(Cli::try_parse_from(["expand", "0", "--layers", "5", "--height", "3"]).is_err());
+        for bad in [
+            ["--layers", "0"],
+            ["--layers", "-5"],
+            ["--seed", "-1"],
+            ["--base", "nan"],
+            ["--height", "nan"],
+        ] {
+            let Err(e) = Cli::try_parse_from(["expand", "0", bad[0], bad[1]]) else {
+                panic!("{bad:?} is refused");
+            };
+            assert!(e.to_string().contains("must be"), "{e}");
+        }
+        for range in ["5..5", "x..3", "3..1"] {
+            assert!(Cli::try_parse_from(["expand", "0", "--range", range]).is_err());
+        }
+        let (code, _, _) = expand(&["0", "--range", "90..101"]);
+        assert!(
+            code.expect_err("past the top")
+                .contains("layers are 0 to 99")
+        );
         assert!(Cli::try_parse_from(["expand", "0", "--file", "x.rot"]).is_err());
     }
 

@@ -260,14 +260,21 @@ fn excerpt(
 }
 
 /// The text as shown under a diagnostic: control characters (a NUL, an escape) would be
-/// invisible or would drive the terminal, so each becomes a `?` of the same byte length.
+/// invisible or would drive the terminal, and zero-width ones invisible, so each becomes
+/// `?`s of the same byte length.
 fn visible(text: &str) -> String {
-    if !text.contains(|c: char| c.is_control() && !matches!(c, '\n' | '\t' | '\r')) {
+    // Zero-width characters (a byte-order mark, a zero-width space) would leave the caret
+    // under nothing.
+    let hidden = |c: char| {
+        (c.is_control() && !matches!(c, '\n' | '\t' | '\r'))
+            || matches!(c, '\u{feff}' | '\u{200b}'..='\u{200f}' | '\u{2060}')
+    };
+    if !text.contains(hidden) {
         return text.to_owned();
     }
     text.chars()
         .map(|c| {
-            if c.is_control() && !matches!(c, '\n' | '\t' | '\r') {
+            if hidden(c) {
                 "?".repeat(c.len_utf8())
             } else {
                 c.to_string()
@@ -329,7 +336,8 @@ pub fn diagnostic_json(index: &LineIndex<'_>, d: &Diagnostic) -> serde_json::Val
 /// its spaces (`check 0, 90`, `check +30/50 %`): an argument ending in `,`, a lone unit, or
 /// one that begins with a joint.
 pub fn pieces_note(command: &str, templates: &[String]) -> Option<String> {
-    if templates.len() < 2 {
+    // An argument with a space or a newline in it was quoted: the user splits on purpose.
+    if templates.len() < 2 || templates.iter().any(|t| t.contains(char::is_whitespace)) {
         return None;
     }
     let piece = |(i, t): (usize, &String)| {

@@ -147,7 +147,7 @@ static CODES: &[CodeDoc] = &[
         "rotlang::empty-instruction",
         W,
         "an empty instruction between separators",
-        "Two commas in a row, a leading comma or a comma alone enclose nothing. OrcaSlicer reads an empty instruction as `0`; rotlang ignores it.",
+        "Two commas in a row, a leading comma or a comma alone enclose nothing. OrcaSlicer reads an empty instruction as `0`; rotlang ignores it. One trailing comma (`0, 90,`) only ends the last instruction and is fine.",
         "10,,20",
         "Remove the extra comma: `10, 20`.",
     ),

@@ -150,6 +150,10 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
         }
         first = end;
     }
+    // Empty instructions after the last one (`0, 90,`, or `,` alone).
+    for span in empties {
+        sink.push(empty_instruction(*span, false));
+    }
     let template = Template { instructions };
     crate::lint::check(text, &template, &split.chunks, target, &mut sink);
     let (diagnostics, omitted) = sink.finish();
@@ -196,6 +200,8 @@ fn unreachable_error(text: &str) -> pest::error::Error<Rule> {
     )
 }
 
+/// `after_instruction`: between two instructions, where the fix leaves one separator; at
+/// either end of the template the fix removes the whole run.
 fn empty_instruction(span: Span, after_instruction: bool) -> Diagnostic {
     Diagnostic::warning(
         "rotlang::empty-instruction",

@@ -43,6 +43,11 @@ pub(crate) fn split(text: &str) -> Split<'_> {
     let bytes = text.as_bytes();
     let mut i = 0;
     let mut first = true;
+    // A byte-order mark some editors write at the start of a file is not part of the
+    // template: skipped like a separator (spans stay offsets into the whole text).
+    if text.starts_with('\u{feff}') {
+        i = '\u{feff}'.len_utf8();
+    }
     while i < bytes.len() {
         // A separator run.
         let sep_start = i;
@@ -52,11 +57,18 @@ pub(crate) fn split(text: &str) -> Split<'_> {
             i += 1;
         }
         let at_end = i == bytes.len();
-        // A leading comma or two commas in one run enclose an instruction with nothing in
-        // it. A trailing comma is common style and is not flagged.
+        // A leading comma (`,` alone too) or two commas in one run (`10,,` too) enclose
+        // an instruction with nothing in it. One trailing comma only ends the last
+        // instruction: common style, which OrcaSlicer drops as well (SEMANTICS 10.2).
         let empty = if first { commas >= 1 } else { commas >= 2 };
-        if empty && !at_end {
-            out.empties.push(Span::new(sep_start, i));
+        if empty {
+            // At the end, up to the last comma: a file's final newline is not part of it.
+            let end = if at_end {
+                sep_start + text[sep_start..i].rfind(',').map_or(0, |c| c + 1)
+            } else {
+                i
+            };
+            out.empties.push(Span::new(sep_start, end));
         }
         if at_end {
             break;
@@ -98,7 +110,12 @@ mod tests {
         assert_eq!(split(", +10").empties, [Span::new(0, 2)]);
         assert_eq!(split("10, , 20").empties, [Span::new(2, 6)]);
         assert!(split("10, 20,").empties.is_empty());
+        assert_eq!(split("10,,\n").empties, [Span::new(2, 4)]);
+        assert_eq!(split(",").empties, [Span::new(0, 1)]);
+        assert_eq!(split(" ,\n").empties, [Span::new(0, 2)]);
         assert!(split("10 20").empties.is_empty());
+        assert!(split("10 20\n").empties.is_empty());
+        assert_eq!(texts("\u{feff}0, 90"), ["0", "90"]);
     }
 
     #[test]

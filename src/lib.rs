@@ -13,6 +13,7 @@ pub mod cli;
 extern crate alloc;
 
 pub mod diagnostic;
+pub mod dialect;
 pub mod eval;
 pub mod explain;
 pub mod fix;
@@ -31,14 +32,22 @@ pub use ir::*;
 pub struct Parse {
     pub template: Template,
     /// At most `MAX_DIAGNOSTICS` (100), then one `rotlang::too-many-diagnostics` entry.
+    /// Past the cap errors take precedence over warnings, so the first error is always
+    /// in the list.
     pub diagnostics: Vec<Diagnostic>,
     /// How many diagnostics were found beyond the cap and not kept.
     pub omitted: usize,
+    /// How many errors were found, kept or not (the "not shown" entry is not counted).
+    pub errors: usize,
+    /// How many warnings were found, kept or not.
+    pub warnings: usize,
 }
 
 impl Parse {
+    /// Whether any instruction failed to parse or validate: exact whatever the cap on
+    /// `diagnostics`. Formatters and anything that rewrites text must check this.
     pub fn has_errors(&self) -> bool {
-        self.diagnostics.iter().any(Diagnostic::is_error)
+        self.errors > 0 || self.diagnostics.iter().any(Diagnostic::is_error)
     }
 }
 

@@ -6,51 +6,49 @@ use crate::ir::*;
 use crate::syntax::Sink;
 use crate::syntax::split::Chunk;
 
-pub(crate) fn check(
-    text: &str,
-    template: &Template,
-    chunks: &[Chunk<'_>],
-    target: Target,
-    out: &mut Sink,
-) {
-    for ins in &template.instructions {
-        if target == Target::Solid
-            && let Some(s) = ins.solid
-        {
-            out.push(
+/// The checks on one instruction, run as soon as it is lowered so that diagnostics reach
+/// the sink in source order (which is what lets the sink keep the first error).
+pub(crate) fn instruction(text: &str, ins: &Instruction, target: Target, out: &mut Sink) {
+    if target == Target::Solid
+        && let Some(s) = ins.solid
+    {
+        out.push(
                 Diagnostic::error("rotlang::solid-sign-in-solid-template", format!("the solid sign `{}` has no meaning in a solid infill template", s.value.symbol()))
                     .with_primary(s.span, "a solid sign")
                     .with_fix("remove the solid sign", s.span, "")
                     .with_help("solid signs (`D S O M R`) put solid layers into sparse infill; use them in `sparse_infill_rotate_template`"),
             );
-        }
-        angle_range(ins, out);
-        zero_count(ins, out);
-        dummy(text, ins, out);
-        // A joint or flip shapes a turn; an absolute angle has none to shape.
-        let shape = ins
-            .joint
-            .map(|j| (j.span, format!("the joint `{}`", j.value.symbol())))
-            .or(ins.flip.map(|f| (f, "the flip `-`".to_owned())));
-        if let (Some((span, what)), Some(a)) = (shape, &ins.angle)
-            && a.sign.is_none()
-            && ins.dummy.is_none()
-        {
-            out.push(
-                Diagnostic::warning(
-                    "rotlang::joint-on-absolute-angle",
-                    format!("{what} has no effect on an absolute angle"),
-                )
-                .with_primary(span, "this shape is never used")
-                .with_secondary(a.span, "an absolute angle stays constant over its range")
-                .with_help(format!(
-                    "to turn by {} over the range, write `+{}`",
-                    fmt_deg(a.degrees()),
-                    &text[a.span.range()]
-                )),
-            );
-        }
     }
+    angle_range(ins, out);
+    zero_count(ins, out);
+    dummy(text, ins, out);
+    // A joint or flip shapes a turn; an absolute angle has none to shape.
+    let shape = ins
+        .joint
+        .map(|j| (j.span, format!("the joint `{}`", j.value.symbol())))
+        .or(ins.flip.map(|f| (f, "the flip `-`".to_owned())));
+    if let (Some((span, what)), Some(a)) = (shape, &ins.angle)
+        && a.sign.is_none()
+        && ins.dummy.is_none()
+    {
+        out.push(
+            Diagnostic::warning(
+                "rotlang::joint-on-absolute-angle",
+                format!("{what} has no effect on an absolute angle"),
+            )
+            .with_primary(span, "this shape is never used")
+            .with_secondary(a.span, "an absolute angle stays constant over its range")
+            .with_help(format!(
+                "to turn by {} over the range, write `+{}`",
+                fmt_deg(a.degrees()),
+                &text[a.span.range()]
+            )),
+        );
+    }
+}
+
+/// Warnings about separators: `+30/ 50%`, `+30 /50%`.
+pub(crate) fn spacing(template: &Template, chunks: &[Chunk<'_>], out: &mut Sink) {
     space_after_joint(template, chunks, out);
     // `+30 /50%`: a space splits what looks like one instruction into two.
     for (i, pair) in chunks.windows(2).enumerate() {

@@ -410,3 +410,91 @@ proptest! {
         check_format(&text, target)?;
     }
 }
+
+// ── the diagnostic cap never hides an error ─────────────────────────────────────────────
+
+/// One instruction: well-formed, or legal with a warning.
+fn clean_piece() -> impl Strategy<Value = String> {
+    prop_oneof![
+        1 => parts().prop_map(|p| p.render()),
+        2 => prop::sample::select(vec!["400", "0/5", "+0*", "0/0", "30/5*"]).prop_map(str::to_owned),
+    ]
+}
+
+/// One instruction: clean, an error, or a scrap of soup.
+fn piece() -> impl Strategy<Value = String> {
+    let alphabet: Vec<char> = "0123456789.+-*!:%/NLlDSBTXm'\"°".chars().collect();
+    prop_oneof![
+        3 => clean_piece(),
+        1 => prop::sample::select(vec!["X", "+30X5", "S", "+5*2*", "1:0", "+30/5/5", "5mm", "%"])
+            .prop_map(str::to_owned),
+        1 => prop::collection::vec(prop::sample::select(alphabet), 1..6)
+            .prop_map(|v| v.into_iter().collect()),
+    ]
+}
+
+fn joined(items: Vec<(String, &'static str)>) -> String {
+    items
+        .into_iter()
+        .map(|(p, sep)| format!("{p}{sep}"))
+        .collect()
+}
+
+fn separators() -> impl Strategy<Value = &'static str> {
+    prop::sample::select(vec![", ", ",,", " ", ",, ", "\n"])
+}
+
+/// Up to a few hundred clean instructions, many with warnings, and empty instructions
+/// (`,,`: a warning each), often past the cap of 100 diagnostics; then a few of anything.
+fn long_template() -> impl Strategy<Value = String> {
+    (
+        prop::collection::vec((clean_piece(), separators()), 0..250),
+        prop::collection::vec((piece(), separators()), 0..12),
+    )
+        .prop_map(|(clean, mixed)| joined(clean) + &joined(mixed))
+}
+
+/// The instructions (separated as the language separates them) that have an error when
+/// parsed on their own: "some instruction failed to parse or validate", with no cap.
+fn failing_alone(text: &str, target: Target) -> Vec<Span> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    for part in text.split([',', ' ', '\t', '\r', '\n']) {
+        if !part.is_empty() && rotlang::parse(part, target).has_errors() {
+            out.push(Span::new(start, start + part.len()));
+        }
+        start += part.len() + 1;
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(Config { cases: cases(), ..Config::default() })]
+
+    #[test]
+    fn has_errors_is_exact_whatever_the_cap(text in long_template(), target in any_target()) {
+        let parse = rotlang::parse(&text, target);
+        let failing = failing_alone(&text, target);
+        prop_assert_eq!(parse.has_errors(), !failing.is_empty(), "{:?}", text);
+        prop_assert_eq!(parse.has_errors(), parse.errors > 0);
+        prop_assert!(parse.diagnostics.len() <= 101);
+        let listed: Vec<&Diagnostic> = parse
+            .diagnostics
+            .iter()
+            .filter(|d| d.code != "rotlang::too-many-diagnostics")
+            .collect();
+        prop_assert_eq!(parse.errors + parse.warnings, listed.len() + parse.omitted);
+        // The first error is listed, whatever came before it.
+        if let Some(first) = failing.first() {
+            let shown = listed.iter().find(|d| d.is_error());
+            prop_assert!(
+                shown.is_some_and(|d| d.primary_span().start <= first.end),
+                "first failing instruction at {:?}, first error listed {:?}",
+                first,
+                shown.map(|d| (d.code, d.primary_span()))
+            );
+        }
+        // A formatter never rewrites a template with an error.
+        prop_assert_eq!(rotlang::format::format(&text, target).is_none(), parse.has_errors());
+    }
+}

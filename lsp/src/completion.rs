@@ -1,8 +1,13 @@
 //! Completion: the language's signs, each with its meaning from the library.
 //!
-//! Every item inserts at the cursor through an empty-range text edit. The signs are not
-//! word characters, so a client filtering by "the word before the cursor" (`30` in `+30`)
-//! would otherwise hide them all.
+//! Every item's text edit replaces the instruction under the cursor (`+30` at `0, +30⎀`)
+//! with that instruction and the sign inserted at the cursor (`+30/`), and its
+//! `filterText` and `insertText` are that same text. Clients filter by the text between
+//! the edit's start and the cursor, which is then a prefix of every item. eglot (1.9)
+//! filters by the symbol at point, replaces the symbol with `insertText`, then applies the
+//! edit over the same characters: right when its mode makes an instruction one symbol (the
+//! documented `rot-mode` does), and nothing after the cursor is lost. A label typed in part
+//! (`c` of `cm`, `*` of `*2`) is completed, not repeated.
 
 use rotlang::{Joint, Solid, Target, Unit};
 use tower_lsp_server::ls_types::{
@@ -11,6 +16,7 @@ use tower_lsp_server::ls_types::{
 };
 
 use crate::document::Document;
+use crate::position::Positions;
 
 /// Runtime marks and shell counts: (text, label detail, meaning).
 const MARKS: [(&str, &str, &str); 6] = [
@@ -38,19 +44,49 @@ const MARKS: [(&str, &str, &str); 6] = [
     ("T", "top shells", "count: the number of top shell layers"),
 ];
 
+/// Longer "instructions" (a paste without separators) are not copied into the items.
+const MAX_INSTRUCTION: usize = 256;
+
 /// All items for a template of this target. `None` outside any template (in a JSON
 /// profile, anywhere but the template strings).
-pub fn completion(doc: &Document, offset: usize, range: Range) -> Option<Vec<CompletionItem>> {
+pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<CompletionItem>> {
     let (region, at) = doc.region_at(offset)?;
+    // The instruction under the cursor: between the separators around it (instructions
+    // never contain one).
+    const SEPARATORS: [char; 5] = [',', ' ', '\t', '\r', '\n'];
+    let mut start = region.text[..at].rfind(SEPARATORS).map_or(0, |i| i + 1);
+    let mut end = region.text[at..]
+        .find(SEPARATORS)
+        .map_or(region.text.len(), |i| at + i);
+    if end - start > MAX_INSTRUCTION {
+        // No instruction is this long; a pasted blob must not be copied into every item
+        // (34 copies of a megabyte). Insert at the cursor instead.
+        (start, end) = (at, at);
+    }
+    let (typed, after) = (&region.text[start..at], &region.text[at..end]);
+    let range = Range::new(
+        pos.position(region.map.to_doc(start)),
+        pos.position(region.map.to_doc(end)),
+    );
     let (joint_fits, layers_unit_fits) = hash_roles(&region.text, at);
     let mut items = Vec::new();
     let mut push = |label: String, kind, detail: &str, doc_text: String, sort: usize| {
+        // The longest end of `typed` that begins the label but is not all of it.
+        let partial = (1..label.len())
+            .rev()
+            .find(|&n| label.is_char_boundary(n) && typed.ends_with(&label[..n]))
+            .unwrap_or(0);
+        let new_text = doc.encode(&format!(
+            "{}{label}{after}",
+            &typed[..typed.len() - partial]
+        ));
         items.push(CompletionItem {
             text_edit: Some(CompletionTextEdit::Edit(TextEdit::new(
                 range,
-                doc.encode(&label),
+                new_text.clone(),
             ))),
-            filter_text: Some(label.clone()),
+            filter_text: Some(new_text.clone()),
+            insert_text: Some(new_text),
             label,
             kind: Some(kind),
             detail: Some(detail.to_string()),

@@ -28,37 +28,45 @@ pub fn diagnostics(doc: &Document, uri: &Uri, pos: &Positions) -> Vec<Diagnostic
         });
     }
     let total: usize = doc.regions.iter().map(|r| r.parse.diagnostics.len()).sum();
-    for region in &doc.regions {
-        for d in &region.parse.diagnostics {
-            if out.len() >= MAX_DIAGNOSTICS {
-                out.push(truncated(total, pos));
-                return out;
-            }
-            out.push(convert(d, region, uri, pos));
+    // Past the cap errors go first: an error must never hide behind warnings (a
+    // formatter refuses the document, and the user must see why).
+    let all = || {
+        doc.regions
+            .iter()
+            .flat_map(|r| r.parse.diagnostics.iter().map(move |d| (r, d)))
+    };
+    let ordered: Box<dyn Iterator<Item = _>> = if out.len() + total > MAX_DIAGNOSTICS {
+        Box::new(
+            all()
+                .filter(|(_, d)| d.is_error())
+                .chain(all().filter(|(_, d)| !d.is_error())),
+        )
+    } else {
+        Box::new(all())
+    };
+    for (region, d) in ordered {
+        if out.len() >= MAX_DIAGNOSTICS {
+            out.push(truncated(total, pos));
+            return out;
         }
+        out.push(convert(d, region, uri, pos));
     }
     out
 }
 
-/// One library diagnostic as an LSP diagnostic: the primary label is the range, the
-/// secondary labels are related information, the help goes under the message.
+/// One library diagnostic as an LSP diagnostic. The `message` is the message alone: it is
+/// what an editor shows in its one-line echo area or squiggle tooltip. Every label (the
+/// primary one at the diagnostic's own range) and the help go to related information,
+/// which editors show on demand, each at its place.
 pub fn convert(d: &rotlang::Diagnostic, region: &Region, uri: &Uri, pos: &Positions) -> Diagnostic {
     let range = pos.range(region.doc_span(d.primary_span()));
-    let mut message = d.message.clone();
-    if let Some(primary) = d.labels.iter().find(|l| l.primary && !l.message.is_empty())
-        && primary.message != d.message
-    {
-        message.push_str(&format!(": {}", primary.message));
-    }
-    if let Some(help) = &d.help {
-        message.push_str(&format!("\nhelp: {help}"));
-    }
-    let related: Vec<_> = d
+    let at = |span| Location::new(uri.clone(), pos.range(region.doc_span(span)));
+    let mut related: Vec<_> = d
         .labels
         .iter()
-        .filter(|l| !l.primary)
+        .filter(|l| !(l.primary && (l.message.is_empty() || l.message == d.message)))
         .map(|l| DiagnosticRelatedInformation {
-            location: Location::new(uri.clone(), pos.range(region.doc_span(l.span))),
+            location: at(l.span),
             message: if l.message.is_empty() {
                 "related".into()
             } else {
@@ -66,6 +74,12 @@ pub fn convert(d: &rotlang::Diagnostic, region: &Region, uri: &Uri, pos: &Positi
             },
         })
         .collect();
+    if let Some(help) = &d.help {
+        related.push(DiagnosticRelatedInformation {
+            location: at(d.primary_span()),
+            message: format!("help: {help}"),
+        });
+    }
     Diagnostic {
         range,
         severity: Some(match d.severity {
@@ -74,7 +88,7 @@ pub fn convert(d: &rotlang::Diagnostic, region: &Region, uri: &Uri, pos: &Positi
         }),
         code: Some(NumberOrString::String(d.code.to_string())),
         source: Some(SOURCE.into()),
-        message,
+        message: d.message.clone(),
         related_information: (!related.is_empty()).then_some(related),
         ..Diagnostic::default()
     }

@@ -3,6 +3,7 @@
 use rotlang::{Instruction, Parse, Span, Target};
 
 use crate::json::{self, OffsetMap};
+use crate::{ini, jsonc};
 
 /// What kind of file a document is: decides where its templates are.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -11,28 +12,40 @@ pub enum Kind {
     Rot,
     /// A JSON slicer profile: templates are the values of the template keys.
     Json,
+    /// JSON with comments and trailing commas (`.jsonc`): read as JSON once they are
+    /// blanked out (OrcaSlicer itself reads plain JSON only, so `.json` keeps reporting them).
+    Jsonc,
+    /// An `.ini` config export: `key = value` lines.
+    Ini,
 }
 
 impl Kind {
-    /// From the client's `languageId`, then the file extension. `None` for documents that
-    /// are neither (a client that sends every plain-text file gets no diagnostics on them).
+    /// From the file extension, else from the client's `languageId`. The extension comes
+    /// first: clients such as eglot send one `languageId` for every file a server handles,
+    /// so it cannot tell a profile from a template. `None` for documents that are neither
+    /// (a client that sends every plain-text file gets no diagnostics on them), and for
+    /// `.3mf` projects, which are zip archives, not text.
     pub fn detect(language_id: &str, uri: &str) -> Option<Kind> {
-        match language_id {
-            "json" | "jsonc" => return Some(Kind::Json),
-            "rotlang" | "rot" => return Some(Kind::Rot),
+        let path = uri.split(['?', '#']).next().unwrap_or(uri);
+        let name = path.rsplit('/').next().unwrap_or(path);
+        let extension = name
+            .rsplit_once('.')
+            .map(|(_, e)| e.to_ascii_lowercase())
+            .unwrap_or_default();
+        match extension.as_str() {
+            "rot" => return Some(Kind::Rot),
+            "json" => return Some(Kind::Json),
+            "jsonc" => return Some(Kind::Jsonc),
+            "ini" => return Some(Kind::Ini),
+            "3mf" => return None,
             _ => {}
         }
-        let path = uri
-            .split(['?', '#'])
-            .next()
-            .unwrap_or(uri)
-            .to_ascii_lowercase();
-        if path.ends_with(".json") {
-            Some(Kind::Json)
-        } else if path.ends_with(".rot") {
-            Some(Kind::Rot)
-        } else {
-            None
+        match language_id {
+            "rotlang" | "rot" => Some(Kind::Rot),
+            "json" => Some(Kind::Json),
+            "jsonc" => Some(Kind::Jsonc),
+            "ini" => Some(Kind::Ini),
+            _ => None,
         }
     }
 }
@@ -100,9 +113,21 @@ impl Document {
                 contents: Span::new(0, text.len()),
                 text: text.clone(),
             }],
-            Kind::Json => {
-                json_error = json::syntax_error(&text);
-                json::find_templates(&text)
+            Kind::Json | Kind::Jsonc | Kind::Ini => {
+                let found = match kind {
+                    Kind::Ini => ini::find_templates(&text),
+                    Kind::Jsonc => {
+                        // Same offsets as the text, so every span found is the document's.
+                        let plain = jsonc::blank(&text);
+                        json_error = json::syntax_error(&plain);
+                        json::find_templates(&plain)
+                    }
+                    _ => {
+                        json_error = json::syntax_error(&text);
+                        json::find_templates(&text)
+                    }
+                };
+                found
                     .into_iter()
                     .map(|t| Region {
                         parse: rotlang::parse(&t.text, t.target),
@@ -116,6 +141,12 @@ impl Document {
                     .collect()
             }
         };
+        // A JSON file that never names a template key is not a profile (an editor may hand
+        // the server every JSON file: settings.json, package.json, tsconfig.json with its
+        // comments): its syntax is the JSON server's business, not ours.
+        if regions.is_empty() && !json::TEMPLATE_KEYS.iter().any(|(k, _)| text.contains(k)) {
+            json_error = None;
+        }
         Document {
             text,
             kind,
@@ -135,8 +166,8 @@ impl Document {
     /// Text to insert into the document at a template position (JSON needs escapes).
     pub fn encode(&self, text: &str) -> String {
         match self.kind {
-            Kind::Rot => text.to_string(),
-            Kind::Json => json::escape(text),
+            Kind::Rot | Kind::Ini => text.to_string(),
+            Kind::Json | Kind::Jsonc => json::escape(text),
         }
     }
 }

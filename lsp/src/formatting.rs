@@ -22,16 +22,12 @@ pub fn formatted_text(doc: &Document) -> Option<String> {
     match doc.kind {
         Kind::Rot => {
             let region = doc.regions.first()?;
-            let body = rotlang::format::format(&region.text, region.target)?;
-            // Keep the file's final newline (editors and `git diff` care), and nothing else.
-            let newline = if doc.text.ends_with('\n') && !body.is_empty() {
-                "\n"
-            } else {
-                ""
-            };
-            Some(format!("{body}{newline}"))
+            if region.parse.has_errors() {
+                return None;
+            }
+            Some(rot_layout(&region.text, &region.parse.template))
         }
-        Kind::Json => {
+        Kind::Json | Kind::Jsonc | Kind::Ini => {
             let mut out = String::with_capacity(doc.text.len());
             let mut copied = 0;
             for region in &doc.regions {
@@ -49,4 +45,33 @@ pub fn formatted_text(doc: &Document) -> Option<String> {
             Some(out)
         }
     }
+}
+
+/// A `.rot` file in canonical form that keeps its lines: instructions the file puts on
+/// separate lines stay on separate lines (one line break, in the file's own style), those
+/// on one line are joined with `, `. The file's final line break is kept, nothing else.
+fn rot_layout(text: &str, template: &rotlang::Template) -> String {
+    let newline = match text.find(['\r', '\n']) {
+        Some(i) if text[i..].starts_with("\r\n") => "\r\n",
+        Some(i) => &text[i..i + 1],
+        None => "\n",
+    };
+    let mut out = String::with_capacity(text.len());
+    let mut previous_end = None;
+    for ins in &template.instructions {
+        if let Some(end) = previous_end {
+            let gap: &str = &text[end..ins.span.start];
+            out.push_str(if gap.contains(['\r', '\n']) {
+                newline
+            } else {
+                ", "
+            });
+        }
+        out.push_str(&text[ins.span.range()]);
+        previous_end = Some(ins.span.end);
+    }
+    if !out.is_empty() && text.ends_with(['\r', '\n']) {
+        out.push_str(newline);
+    }
+    out
 }

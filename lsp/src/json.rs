@@ -51,15 +51,20 @@ struct Segment {
 impl OffsetMap {
     /// The identity map of a `.rot` document (the whole text is the template).
     pub fn identity(len: usize) -> OffsetMap {
+        OffsetMap::verbatim(0, len)
+    }
+
+    /// A template copied verbatim from the document at `doc_start` (an `.ini` value).
+    pub fn verbatim(doc_start: usize, len: usize) -> OffsetMap {
         OffsetMap {
             segments: vec![Segment {
                 text: 0,
                 text_len: len,
-                doc: 0,
+                doc: doc_start,
                 doc_len: len,
                 verbatim: true,
             }],
-            doc_start: 0,
+            doc_start,
         }
     }
 

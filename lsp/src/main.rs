@@ -1,9 +1,44 @@
 //! `rotlang-lsp`: speaks the Language Server Protocol on stdin/stdout.
 
+const USAGE: &str = "\
+Usage: rotlang-lsp [--stdio]
+
+The language server for rotlang infill rotation templates (.rot files and the
+templates in OrcaSlicer JSON/INI profiles). It speaks the Language Server Protocol
+on standard input and output; an editor starts it, a person does not need to.
+
+Options:
+      --stdio    Talk over stdin/stdout (the default and only transport; accepted
+                 because many clients pass it)
+  -h, --help     Print this help and exit
+  -V, --version  Print the version and exit
+
+Settings (the model hovers and inlay hints are computed for) come from the client:
+see lsp/README.md.
+";
+
 fn main() {
-    if std::env::args().any(|a| a == "--version" || a == "-V") {
-        println!("rotlang-lsp {}", env!("CARGO_PKG_VERSION"));
-        return;
+    for arg in std::env::args_os().skip(1) {
+        match arg.to_str() {
+            Some("--stdio") => {}
+            Some("-h" | "--help") => {
+                print!("{USAGE}");
+                return;
+            }
+            Some("-V" | "--version") => {
+                println!("rotlang-lsp {}", env!("CARGO_PKG_VERSION"));
+                return;
+            }
+            _ => {
+                // An editor passing an option we do not know would otherwise get a server
+                // that silently ignores what it asked for.
+                eprintln!(
+                    "rotlang-lsp: unexpected argument '{}'\n\n{USAGE}",
+                    arg.to_string_lossy()
+                );
+                std::process::exit(2);
+            }
+        }
     }
     // A current-thread runtime built by hand: `#[tokio::main]` would pull in tokio-macros
     // (and with it a second major version of syn) for one line.

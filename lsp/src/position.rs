@@ -1,7 +1,8 @@
 //! The edge where byte offsets meet LSP positions. Everything inside the server is bytes;
 //! positions are converted here, in the negotiated encoding, and nowhere else.
 
-use rotlang::{LineIndex, Span};
+use rotlang::Span;
+use rotlang::diagnostic::floor_char_boundary;
 use tower_lsp_server::ls_types::{Position, PositionEncodingKind, Range};
 
 /// The position encoding agreed with the client at `initialize`.
@@ -32,10 +33,54 @@ impl Encoding {
     }
 }
 
+/// Where lines start and end by LSP's definition: a line ends at `\r\n`, `\n` or a lone
+/// `\r` (the library's own index, made for terminals, counts `\n` only).
+struct Lines {
+    /// The byte offset where each line's text starts.
+    starts: Vec<usize>,
+    /// The byte offset where each line's text ends (before its terminator).
+    ends: Vec<usize>,
+}
+
+impl Lines {
+    fn new(text: &str) -> Lines {
+        let bytes = text.as_bytes();
+        let (mut starts, mut ends) = (vec![0], Vec::new());
+        let mut i = 0;
+        while i < bytes.len() {
+            let width = match bytes[i] {
+                b'\r' if bytes.get(i + 1) == Some(&b'\n') => 2,
+                b'\r' | b'\n' => 1,
+                _ => {
+                    i += 1;
+                    continue;
+                }
+            };
+            ends.push(i);
+            i += width;
+            starts.push(i);
+        }
+        ends.push(text.len());
+        Lines { starts, ends }
+    }
+
+    fn count(&self) -> usize {
+        self.starts.len()
+    }
+
+    /// The line holding a byte offset; an offset inside a terminator belongs to the line
+    /// the terminator ends.
+    fn line(&self, offset: usize) -> usize {
+        self.starts
+            .partition_point(|&s| s <= offset)
+            .saturating_sub(1)
+    }
+}
+
 /// A document's text with its line index and encoding: converts in both directions.
 pub struct Positions<'a> {
     text: &'a str,
-    index: LineIndex<'a>,
+    lines: Lines,
     encoding: Encoding,
 }
 
@@ -43,19 +88,20 @@ impl<'a> Positions<'a> {
     pub fn new(text: &'a str, encoding: Encoding) -> Self {
         Positions {
             text,
-            index: LineIndex::new(text),
+            lines: Lines::new(text),
             encoding,
         }
     }
 
     pub fn position(&self, offset: usize) -> Position {
-        let (line, col) = match self.encoding {
-            Encoding::Utf16 => self.index.utf16_position(offset),
-            Encoding::Utf8 => {
-                let offset = rotlang::diagnostic::floor_char_boundary(self.text, offset);
-                let line = self.index.line(offset);
-                (line, offset - self.index.line_start(line))
-            }
+        let offset = floor_char_boundary(self.text, offset);
+        let line = self.lines.line(offset);
+        // Inside a `\r\n` pair: the end of the line's text.
+        let offset = offset.min(self.lines.ends[line]);
+        let walked = &self.text[self.lines.starts[line]..offset];
+        let col = match self.encoding {
+            Encoding::Utf16 => walked.encode_utf16().count(),
+            Encoding::Utf8 => walked.len(),
         };
         Position::new(to_u32(line), to_u32(col))
     }
@@ -68,13 +114,25 @@ impl<'a> Positions<'a> {
     /// A column past the line's end is clamped to it, as the protocol asks.
     pub fn offset(&self, position: Position) -> Option<usize> {
         let line = position.line as usize;
-        if line >= self.index.line_count() {
+        if line >= self.lines.count() {
             return None;
         }
         let col = position.character as usize;
+        let (start, end) = (self.lines.starts[line], self.lines.ends[line]);
         Some(match self.encoding {
-            Encoding::Utf16 => self.index.offset_of_utf16(line, col),
-            Encoding::Utf8 => self.index.offset_of_utf8(line, col),
+            Encoding::Utf16 => {
+                let mut units = 0;
+                let mut at = end;
+                for (i, c) in self.text[start..end].char_indices() {
+                    if units >= col {
+                        at = start + i;
+                        break;
+                    }
+                    units += c.len_utf16();
+                }
+                at
+            }
+            Encoding::Utf8 => floor_char_boundary(self.text, (start + col).min(end)),
         })
     }
 
@@ -119,9 +177,11 @@ impl<'p, 'a> Cursor<'p, 'a> {
 
     pub fn position(&mut self, offset: usize) -> Position {
         let text = self.positions.text;
-        let offset = rotlang::diagnostic::floor_char_boundary(text, offset);
-        let same_line =
-            offset >= self.offset && !text.as_bytes()[self.offset..offset].contains(&b'\n');
+        let offset = floor_char_boundary(text, offset);
+        let same_line = offset >= self.offset
+            && !text.as_bytes()[self.offset..offset]
+                .iter()
+                .any(|&b| b == b'\n' || b == b'\r');
         let position = if same_line {
             let walked = &text[self.offset..offset];
             let units = match self.positions.encoding {
@@ -161,5 +221,24 @@ mod tests {
         assert_eq!(cursor.position(plus), Position::new(0, 4));
         assert_eq!(cursor.position(text.len()), Position::new(0, 6));
         assert_eq!(cursor.position(2), Position::new(0, 1));
+    }
+
+    #[test]
+    fn lines_end_at_cr_lf_and_crlf() {
+        let text = "a\rb\nc\r\nd";
+        let p = Positions::new(text, Encoding::Utf16);
+        let at = |c: char| text.find(c).unwrap();
+        assert_eq!(p.position(at('b')), Position::new(1, 0));
+        assert_eq!(p.position(at('c')), Position::new(2, 0));
+        assert_eq!(p.position(at('d')), Position::new(3, 0));
+        // Inside `\r\n`: the end of line 2.
+        assert_eq!(p.position(at('c') + 2), Position::new(2, 1));
+        assert_eq!(p.offset(Position::new(2, 9)), Some(at('c') + 1));
+        assert_eq!(p.offset(Position::new(3, 0)), Some(at('d')));
+        assert_eq!(p.offset(Position::new(4, 0)), None);
+        let mut cursor = Cursor::new(&p);
+        assert_eq!(cursor.position(at('a')), Position::new(0, 0));
+        assert_eq!(cursor.position(at('b')), Position::new(1, 0));
+        assert_eq!(cursor.position(at('d')), Position::new(3, 0));
     }
 }

@@ -5,7 +5,6 @@ use std::collections::HashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::{Arc, Mutex, MutexGuard};
 
-use serde_json::Value;
 use tower_lsp_server::jsonrpc::{Error, Result};
 use tower_lsp_server::ls_types::*;
 use tower_lsp_server::{Client, LanguageServer, LspService, Server};
@@ -14,7 +13,8 @@ use crate::document::{Document, Kind};
 use crate::position::{Encoding, Positions};
 use crate::settings::ModelSettings;
 use crate::{
-    code_actions, completion, diagnostics, formatting, hover, inlay_hints, semantic_tokens, symbols,
+    code_actions, completion, diagnostics, formatting, hover, inlay_hints, markup, semantic_tokens,
+    symbols,
 };
 
 #[derive(Default)]
@@ -25,6 +25,17 @@ struct State {
     inlay_refresh: bool,
     /// The client answers `workspace/configuration` (the pull model).
     pull_configuration: bool,
+    /// The client lets the server register `workspace/didChangeConfiguration` (clients
+    /// built on vscode-languageclient send it only once registered).
+    register_configuration: bool,
+    /// The client asked for plain text in hovers / completion documentation.
+    plain_hover: bool,
+    plain_documentation: bool,
+    /// Problems with the initialization options, reported once the client is initialized
+    /// (the protocol lets a server speak first only then).
+    pending_warnings: Vec<String>,
+    /// Invalid settings were shown in a message box already (the log gets every time).
+    shown_settings_warning: bool,
 }
 
 pub struct Backend {
@@ -60,12 +71,15 @@ impl Backend {
             };
             if let Ok(values) = client.configuration(vec![item]).await
                 && let Some(value) = values.first()
+                // `null`: the client has no such section; what it gave before stays.
+                && !value.is_null()
             {
-                let refresh = {
+                let section = ModelSettings::section(value).unwrap_or(value);
+                let (rejected, refresh) = {
                     let mut state = lock(&state);
-                    state.model.update(value);
-                    state.inlay_refresh
+                    (state.model.replace(section), state.inlay_refresh)
                 };
+                report_settings(&client, &state, rejected).await;
                 if refresh {
                     // Hints depend on the model; the answer does not matter.
                     let _ = client.inlay_hint_refresh().await;
@@ -81,8 +95,28 @@ impl Backend {
         Some((doc, state.encoding, state.model))
     }
 
-    fn update_settings(&self, settings: &Value) -> Vec<String> {
-        self.state().model.update(settings)
+    /// Register for `workspace/didChangeConfiguration` where the client allows it.
+    /// Spawned: the answer is awaited, and nothing else should wait for it.
+    fn register_configuration(&self) {
+        if !self.state().register_configuration {
+            return;
+        }
+        let client = self.client.clone();
+        tokio::spawn(async move {
+            let registration = Registration {
+                id: "rotlang-configuration".into(),
+                method: "workspace/didChangeConfiguration".into(),
+                register_options: None,
+            };
+            if let Err(e) = client.register_capability(vec![registration]).await {
+                client
+                    .log_message(
+                        MessageType::INFO,
+                        format!("rotlang: could not register for settings changes: {e}"),
+                    )
+                    .await;
+            }
+        });
     }
 
     async fn publish(&self, uri: Uri, doc: Arc<Document>, encoding: Encoding) {
@@ -133,6 +167,26 @@ fn guard<T>(f: impl FnOnce() -> T) -> Option<T> {
     }
 }
 
+/// Tell the user about settings that were not accepted: every time in the log, once per
+/// session in a message box (a wrong value in a settings file should be seen, but not
+/// pop up on every keystroke of a settings editor).
+async fn report_settings(client: &Client, state: &Mutex<State>, rejected: Vec<String>) {
+    if rejected.is_empty() {
+        return;
+    }
+    let text = format!("rotlang: ignored invalid settings: {}", rejected.join("; "));
+    client.log_message(MessageType::WARNING, &text).await;
+    let first = !std::mem::replace(&mut lock(state).shown_settings_warning, true);
+    if first {
+        client
+            .show_message(
+                MessageType::WARNING,
+                format!("{text} (the log lists every later change)"),
+            )
+            .await;
+    }
+}
+
 fn internal() -> Error {
     Error::internal_error()
 }
@@ -158,19 +212,39 @@ impl LanguageServer for Backend {
             .and_then(|w| w.inlay_hint.as_ref())
             .and_then(|i| i.refresh_support)
             .unwrap_or(false);
+        let register_configuration = params
+            .capabilities
+            .workspace
+            .as_ref()
+            .and_then(|w| w.did_change_configuration.as_ref())
+            .and_then(|d| d.dynamic_registration)
+            .unwrap_or(false);
+        let text_document = params.capabilities.text_document.as_ref();
+        let plain_hover = markup::wants_plain(
+            text_document
+                .and_then(|t| t.hover.as_ref())
+                .and_then(|h| h.content_format.as_deref()),
+        );
+        let plain_documentation = markup::wants_plain(
+            text_document
+                .and_then(|t| t.completion.as_ref())
+                .and_then(|c| c.completion_item.as_ref())
+                .and_then(|i| i.documentation_format.as_deref()),
+        );
         {
             let mut state = self.state();
             state.encoding = encoding;
             state.inlay_refresh = inlay_refresh;
             state.pull_configuration = pull_configuration;
-            if let Some(options) = &params.initialization_options {
-                let rejected = state.model.update(options);
-                if !rejected.is_empty() {
-                    eprintln!(
-                        "rotlang-lsp: ignored invalid settings: {}",
-                        rejected.join(", ")
-                    );
-                }
+            state.register_configuration = register_configuration;
+            state.plain_hover = plain_hover;
+            state.plain_documentation = plain_documentation;
+            if let Some(section) = params
+                .initialization_options
+                .as_ref()
+                .and_then(ModelSettings::section)
+            {
+                state.pending_warnings = state.model.replace(section);
             }
         }
         Ok(InitializeResult {
@@ -184,6 +258,9 @@ impl LanguageServer for Backend {
     }
 
     async fn initialized(&self, _: InitializedParams) {
+        let warnings = std::mem::take(&mut self.state().pending_warnings);
+        report_settings(&self.client, &self.state, warnings).await;
+        self.register_configuration();
         self.pull_configuration();
     }
 
@@ -232,18 +309,14 @@ impl LanguageServer for Backend {
     }
 
     async fn did_change_configuration(&self, params: DidChangeConfigurationParams) {
-        if params.settings.is_null() {
+        // Pushed settings win; clients that push nothing useful (`null`, or only other
+        // tools' sections, as VS Code-style clients do) are asked.
+        let Some(section) = ModelSettings::section(&params.settings) else {
             self.pull_configuration();
-        }
-        let rejected = self.update_settings(&params.settings);
-        if !rejected.is_empty() {
-            self.client
-                .log_message(
-                    MessageType::WARNING,
-                    format!("rotlang: ignored invalid settings: {}", rejected.join(", ")),
-                )
-                .await;
-        }
+            return;
+        };
+        let rejected = self.state().model.replace(section);
+        report_settings(&self.client, &self.state, rejected).await;
         if self.state().inlay_refresh {
             // Hints depend on the model; the answer does not matter.
             let _ = self.client.inlay_hint_refresh().await;
@@ -252,28 +325,39 @@ impl LanguageServer for Backend {
 
     async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
         let p = params.text_document_position_params;
+        let plain = self.state().plain_hover;
         let Some((doc, encoding, model)) = self.snapshot(&p.text_document.uri) else {
             return Ok(None);
         };
         guard(|| {
             let pos = Positions::new(&doc.text, encoding);
             let offset = pos.offset(p.position)?;
-            hover::hover(&doc, offset, &model, &pos)
+            let mut hover = hover::hover(&doc, offset, &model, &pos)?;
+            if plain && let HoverContents::Markup(m) = &mut hover.contents {
+                *m = markup::content(std::mem::take(&mut m.value), true);
+            }
+            Some(hover)
         })
         .ok_or_else(internal)
     }
 
     async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
         let p = params.text_document_position;
+        let plain = self.state().plain_documentation;
         let Some((doc, encoding, _)) = self.snapshot(&p.text_document.uri) else {
             return Ok(None);
         };
         guard(|| {
             let pos = Positions::new(&doc.text, encoding);
             let offset = pos.offset(p.position)?;
-            // Insert exactly at the cursor (clamped, as the document knows it).
-            let at = pos.position(offset);
-            let items = completion::completion(&doc, offset, Range::new(at, at))?;
+            let mut items = completion::completion(&doc, offset, &pos)?;
+            if plain {
+                for item in &mut items {
+                    if let Some(Documentation::MarkupContent(m)) = &mut item.documentation {
+                        *m = markup::content(std::mem::take(&mut m.value), true);
+                    }
+                }
+            }
             Some(CompletionResponse::Array(items))
         })
         .ok_or_else(internal)
@@ -378,13 +462,19 @@ pub fn capabilities(encoding: Encoding) -> ServerCapabilities {
 
 /// Run the server on stdin/stdout until the client says `exit` or closes the stream.
 pub async fn run_stdio() {
-    crate::transport::serve(
-        tokio::io::stdin(),
-        tokio::io::stdout(),
-        |input, output| async move {
-            let (service, socket) = LspService::new(Backend::new);
-            Server::new(input, output, socket).serve(service).await;
-        },
-    )
+    serve(tokio::io::stdin(), tokio::io::stdout()).await;
+}
+
+/// Run the server on any pair of byte streams, behind the framing guard: stdio in
+/// `run_stdio`, in-memory buffers in the fuzz target `lsp_framing`.
+pub async fn serve<I, O>(input: I, output: O)
+where
+    I: tokio::io::AsyncRead + Unpin + Send + 'static,
+    O: tokio::io::AsyncWrite + Unpin,
+{
+    crate::transport::serve(input, output, |input, output| async move {
+        let (service, socket) = LspService::new(Backend::new);
+        Server::new(input, output, socket).serve(service).await;
+    })
     .await;
 }

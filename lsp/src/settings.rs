@@ -1,9 +1,11 @@
 //! Client settings: the model that previews are computed for.
 //!
-//! Accepted from `initializationOptions` and `workspace/didChangeConfiguration`, either as
-//! `{"rotlang": {...}}` or as the inner object itself. Keys: `layers`, `layerHeight`,
-//! `firstLayerHeight`, `bottomShellLayers`, `topShellLayers`. A value that is missing or
-//! unusable keeps its previous value, so one typo does not throw away the rest.
+//! Accepted from `initializationOptions`, `workspace/didChangeConfiguration` and
+//! `workspace/configuration`, either as `{"rotlang": {...}}` or as the inner object
+//! itself. Keys: `layers`, `layerHeight`, `firstLayerHeight`, `bottomShellLayers`,
+//! `topShellLayers`. Each source sends the whole section, so a key it leaves out is back
+//! at its default (removing a setting restores the default); an unusable value keeps its
+//! previous value, so one typo does not throw away the rest, and is reported.
 
 use serde_json::Value;
 
@@ -38,24 +40,41 @@ impl Default for ModelSettings {
 }
 
 impl ModelSettings {
-    /// These settings updated from a settings object; returns the keys that were rejected.
-    pub fn update(&mut self, settings: &Value) -> Vec<String> {
-        let inner = settings.get("rotlang").unwrap_or(settings);
-        let Some(obj) = inner.as_object() else {
+    /// The `rotlang` section of a settings object: `{"rotlang": {...}}`, or the inner
+    /// object itself when it has one of our keys. `None` when the object says nothing
+    /// about rotlang (a client pushing another tool's settings, or `null`).
+    pub fn section(settings: &Value) -> Option<&Value> {
+        match settings.get("rotlang") {
+            Some(inner) => Some(inner),
+            None => settings
+                .as_object()
+                .filter(|o| KEYS.iter().any(|k| o.contains_key(*k)))
+                .map(|_| settings),
+        }
+    }
+
+    /// These settings replaced by a whole `rotlang` section: keys left out go back to
+    /// their defaults, invalid values keep the previous ones. Returns one line per
+    /// problem (`layers = 0: …`), empty when everything was accepted.
+    pub fn replace(&mut self, section: &Value) -> Vec<String> {
+        if section.is_null() {
+            *self = ModelSettings::default();
             return Vec::new();
+        }
+        let Some(obj) = section.as_object() else {
+            return vec![format!(
+                "rotlang = {section}: an object of settings expected"
+            )];
         };
+        let previous = *self;
+        *self = ModelSettings::default();
         let mut rejected = Vec::new();
         for (key, value) in obj {
             let ok = match key.as_str() {
                 "layers" => set(&mut self.layers, whole(value, 1, MAX_LAYERS as u64)),
                 "layerHeight" => set(&mut self.layer_height, height(value)),
                 "firstLayerHeight" => {
-                    if value.is_null() {
-                        self.first_layer_height = None;
-                        true
-                    } else {
-                        set(&mut self.first_layer_height, height(value).map(Some))
-                    }
+                    value.is_null() || set(&mut self.first_layer_height, height(value).map(Some))
                 }
                 "bottomShellLayers" => set(
                     &mut self.bottom_shell_layers,
@@ -65,13 +84,40 @@ impl ModelSettings {
                     &mut self.top_shell_layers,
                     whole(value, 0, MAX_SHELLS.into()).map(|n| n as u32),
                 ),
-                _ => true, // unknown keys belong to other tools or future versions
+                // The VS Code extension's own settings (`rotlang.server.path`,
+                // `rotlang.trace.server`) arrive in the same section.
+                "server" | "trace" => continue,
+                _ => {
+                    rejected.push(format!(
+                        "{}: not a rotlang setting (known: {})",
+                        short(key),
+                        KEYS.join(", ")
+                    ));
+                    continue;
+                }
             };
             if !ok {
-                rejected.push(key.clone());
+                self.keep(key, &previous);
+                rejected.push(format!(
+                    "{key} = {}: {}",
+                    short(&value.to_string()),
+                    expected(key)
+                ));
             }
         }
         rejected
+    }
+
+    /// Put back the previous value of one key (after an invalid new one).
+    fn keep(&mut self, key: &str, previous: &ModelSettings) {
+        match key {
+            "layers" => self.layers = previous.layers,
+            "layerHeight" => self.layer_height = previous.layer_height,
+            "firstLayerHeight" => self.first_layer_height = previous.first_layer_height,
+            "bottomShellLayers" => self.bottom_shell_layers = previous.bottom_shell_layers,
+            "topShellLayers" => self.top_shell_layers = previous.top_shell_layers,
+            _ => {}
+        }
     }
 
     /// The object height in millimetres.
@@ -109,6 +155,42 @@ impl ModelSettings {
     }
 }
 
+/// The settings keys, as clients write them.
+pub const KEYS: [&str; 5] = [
+    "layers",
+    "layerHeight",
+    "firstLayerHeight",
+    "bottomShellLayers",
+    "topShellLayers",
+];
+
+/// A value or key as quoted in a warning: a pasted megabyte must not become the message.
+fn short(text: &str) -> String {
+    const MAX: usize = 40;
+    match text.char_indices().nth(MAX) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_string(),
+    }
+}
+
+/// What a key accepts, for the warning about an invalid value.
+fn expected(key: &str) -> String {
+    match key {
+        "layers" => {
+            format!("a whole number from 1 to {MAX_LAYERS} expected; kept the previous value")
+        }
+        "bottomShellLayers" | "topShellLayers" => {
+            format!("a whole number from 0 to {MAX_SHELLS} expected; kept the previous value")
+        }
+        "firstLayerHeight" => format!(
+            "a height in mm from {MIN_HEIGHT} to {MAX_HEIGHT}, or null, expected; kept the previous value"
+        ),
+        _ => format!(
+            "a height in mm from {MIN_HEIGHT} to {MAX_HEIGHT} expected; kept the previous value"
+        ),
+    }
+}
+
 fn set<T>(slot: &mut T, value: Option<T>) -> bool {
     match value {
         Some(v) => {
@@ -143,19 +225,38 @@ mod tests {
     use serde_json::json;
 
     #[test]
-    fn accepts_wrapped_and_bare_settings() {
+    fn a_section_replaces_the_settings() {
         let mut m = ModelSettings::default();
+        let wrapped = json!({"rotlang": {"layers": 10, "layerHeight": 0.3}});
         assert!(
-            m.update(&json!({"rotlang": {"layers": 10, "layerHeight": 0.3}}))
+            m.replace(ModelSettings::section(&wrapped).unwrap())
                 .is_empty()
         );
         assert_eq!((m.layers, m.layer_height), (10, 0.3));
-        let rejected = m.update(&json!({"layers": 0, "bottomShellLayers": 3.0, "x": 1}));
-        assert_eq!(rejected, vec!["layers".to_string()]);
-        assert_eq!((m.layers, m.bottom_shell_layers), (10, 3));
-        assert!(!m.update(&json!({"layerHeight": -1})).is_empty());
-        assert!(!m.update(&json!({"layerHeight": 0.0005})).is_empty());
-        assert_eq!(m.layer_height, 0.3);
-        assert!(m.update(&json!(null)).is_empty());
+        // Bare; an invalid value keeps the previous one; a key left out is the default.
+        let bare = json!({"layers": 0, "bottomShellLayers": 5.0, "x": 1});
+        let rejected = m.replace(ModelSettings::section(&bare).unwrap());
+        assert_eq!(rejected.len(), 2, "{rejected:?}");
+        assert!(
+            rejected[0].starts_with("layers = 0: a whole number from 1"),
+            "{rejected:?}"
+        );
+        assert!(
+            rejected[1].starts_with("x: not a rotlang setting"),
+            "{rejected:?}"
+        );
+        assert_eq!((m.layers, m.bottom_shell_layers), (10, 5));
+        assert_eq!(m.layer_height, 0.2, "left out: back to the default");
+        assert!(!m.replace(&json!({"layerHeight": -1})).is_empty());
+        assert!(!m.replace(&json!({"layerHeight": 0.0005})).is_empty());
+        assert!(!m.replace(&json!("big")).is_empty());
+        let huge = "x".repeat(100_000);
+        let rejected = m.replace(&json!({ "layers": huge.clone(), huge.clone(): 1 }));
+        assert!(rejected.iter().all(|r| r.len() < 200), "{rejected:?}");
+        // Nothing about rotlang: no section.
+        assert!(ModelSettings::section(&json!(null)).is_none());
+        assert!(ModelSettings::section(&json!({"python": {}})).is_none());
+        assert!(m.replace(&json!(null)).is_empty());
+        assert_eq!(m, ModelSettings::default());
     }
 }

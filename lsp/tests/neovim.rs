@@ -64,4 +64,19 @@ fn neovim_shows_the_diagnostic_clears_it_and_hovers() {
     );
     assert!(hover.contains("Layers: 6: 30.45°, 7: 30.9°"), "{hover}");
     assert!(hover.contains("Model: 100 layers × 0.2 mm"), "{hover}");
+
+    // Completion through Neovim's own omnifunc helpers: with the documented 'iskeyword'
+    // the keyword before the cursor is `+30`, where the server's edits start, and the
+    // joints survive Neovim's prefix filter.
+    assert_eq!(r["completion_start"], 3, "{r:#}");
+    assert_eq!(r["completion_edit_start"], 3, "{r:#}");
+    let words: Vec<&str> = r["completion_words"]
+        .as_array()
+        .expect("completion words")
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    for word in ["+30/", "+30N", "+30L", "+30#"] {
+        assert!(words.contains(&word), "{word} in {words:?}");
+    }
 }

@@ -81,7 +81,12 @@ fn rot_diagnostics_appear_and_clear() {
         .find(|d| d["code"] == "rotlang::repeat-after-joint")
         .expect("error");
     assert_eq!(moved["range"], range(1, 6, 1, 8));
-    let related = &moved["relatedInformation"][0];
+    let related = moved["relatedInformation"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["message"] == "it goes here")
+        .expect("the secondary label");
     assert_eq!(related["location"]["uri"], ROT);
     assert_eq!(related["location"]["range"], range(1, 3, 1, 3));
     assert_eq!(related["message"], "it goes here");
@@ -309,14 +314,15 @@ fn the_model_comes_from_settings() {
         "{h}"
     );
 
-    // Without the `rotlang` wrapper, through didChangeConfiguration.
+    // Without the `rotlang` wrapper, through didChangeConfiguration: the whole section,
+    // so `layerHeight`, left out, is back at its default.
     lsp.notify(
         "workspace/didChangeConfiguration",
-        json!({"settings": {"layers": 40, "firstLayerHeight": 0.2}}),
+        json!({"settings": {"layers": 40, "firstLayerHeight": 0.3}}),
     );
     let h = hover_text(&mut lsp, ROT, line, col);
     assert!(
-        h.contains("Model: 40 layers × 0.3 mm, first layer 0.2 mm (11.9 mm tall)"),
+        h.contains("Model: 40 layers × 0.2 mm, first layer 0.3 mm (8.1 mm tall)"),
         "{h}"
     );
 }
@@ -518,9 +524,9 @@ fn completion_offers_signs_with_meanings() {
             .contains("dummy")
     );
     assert_eq!(
-        find("/")["textEdit"]["range"],
-        range(0, 3, 0, 3),
-        "inserted at the cursor"
+        find("/")["textEdit"],
+        json!({"range": range(0, 0, 0, 3), "newText": "+30/"}),
+        "replaces the instruction typed so far"
     );
     // `#` once: the joint fits after `+30`, the standard-layers unit does not.
     assert_eq!(items.len(), 16 + 6 + 5 + 6);
@@ -537,7 +543,7 @@ fn completion_offers_signs_with_meanings() {
     let items = items.as_array().expect("a list");
     assert!(!items.iter().any(|i| i["label"] == "M"));
     let inch = items.iter().find(|i| i["label"] == "\"").expect("inch");
-    assert_eq!(inch["textEdit"]["newText"], "\\\"");
+    assert_eq!(inch["textEdit"]["newText"], "+30/5\\\"");
     // Outside the template strings: nothing.
     let r = lsp.result(
         "textDocument/completion",

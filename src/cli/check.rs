@@ -87,7 +87,10 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
                     .iter()
                     .map(|d| diagnostic_json(&index, d))
                     .collect();
-                let obj = serde_json::json!({"input": input.text, "name": input.name, "diagnostics": diagnostics});
+                let obj = serde_json::json!({
+                    "input": input.text, "name": input.name, "diagnostics": diagnostics,
+                    "errors": parse.errors, "warnings": parse.warnings, "omitted": parse.omitted,
+                });
                 writeln!(out, "{obj}").map_err(io)?;
             }
         }
@@ -100,24 +103,13 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
             let color = args.color.enabled(true);
             out.write_all(render_human(&reports, color).as_bytes())
                 .map_err(io)?;
-            // The "N more not shown" entry is a note about others, not one more problem.
-            let shown = |p: &&crate::Diagnostic| p.code != "rotlang::too-many-diagnostics";
-            let count = |error: bool| -> usize {
-                parses
-                    .iter()
-                    .map(|p| {
-                        p.diagnostics
-                            .iter()
-                            .filter(shown)
-                            .filter(|d| d.is_error() == error)
-                            .count()
-                    })
-                    .sum()
-            };
+            // Exact counts, whatever the cap on the diagnostics listed above.
+            let errors = parses.iter().map(|p| p.errors).sum();
+            let warnings = parses.iter().map(|p| p.warnings).sum();
             let omitted: usize = parses.iter().map(|p| p.omitted).sum();
-            let mut summary = summary(inputs.len(), count(true), count(false), args.deny_warnings);
+            let mut summary = summary(inputs.len(), errors, warnings, args.deny_warnings);
             if omitted > 0 {
-                summary.push_str(&format!(" shown, {omitted} more not shown"));
+                summary.push_str(&format!(" ({omitted} not shown)"));
             }
             writeln!(out, "{summary}").map_err(io)?;
         }

@@ -71,6 +71,11 @@ pub struct ExpandArgs {
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = args::seed,
           allow_negative_numbers = true)]
     pub seed: u64,
+    /// `rotlang`: the language as documented; `orcaslicer`: exactly the angles OrcaSlicer
+    /// computes, for any text (valid or not); where it hangs, crashes or yields NaN the
+    /// layers are reported on stderr and the angles stay finite.
+    #[arg(long, value_name = "DIALECT", default_value_t)]
+    pub dialect: eval::Dialect,
     /// Wrap the printed angles: `none` (90, 180, 270, 360, 450, ...), `360` (into
     /// [0, 360)), or `180` (into [0, 180): infill lines at θ and θ+180° are the same lines).
     #[arg(long, value_enum, default_value_t)]
@@ -196,6 +201,31 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         .into_iter()
         .next()
         .ok_or_else(|| UsageError("no template given".into()))?;
+    let options = Options {
+        base: args.base,
+        seed: args.seed,
+    };
+    let writer = Writer {
+        text: &input.text,
+        wrap: args.wrap.number(),
+        solid_target: args.target == TargetArg::Solid,
+        start,
+        end,
+    };
+    if args.dialect == eval::Dialect::OrcaSlicer {
+        // No grammar, so no diagnostics: JSON echoes none.
+        let empty = crate::Parse::default();
+        return super::dialect::expand(&input.text, &resolved.model, options, err, |layers| {
+            match args.format {
+                Format::Csv => writer.csv(layers, out),
+                Format::Table => writer.table(layers, out),
+                Format::Json => {
+                    let header = json_header(args, &input, &empty, &resolved, start, end);
+                    writer.json(layers, &header, out)
+                }
+            }
+        });
+    }
     let parse = crate::parse(&input.text, args.target.into());
     let write_error = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     let json = args.format == Format::Json;
@@ -217,18 +247,7 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     if parse.has_errors() {
         return Ok(1);
     }
-    let options = Options {
-        base: args.base,
-        seed: args.seed,
-    };
     let layers = eval::layers(&parse.template, &resolved.model, options);
-    let writer = Writer {
-        text: &input.text,
-        wrap: args.wrap.number(),
-        solid_target: args.target == TargetArg::Solid,
-        start,
-        end,
-    };
     let result = match args.format {
         Format::Csv => writer.csv(layers, out),
         Format::Table => writer.table(layers, out),
@@ -284,6 +303,7 @@ fn json_header(
             "top_shell_layers": model.top_shells(),
         },
         "options": {
+            "dialect": match args.dialect { eval::Dialect::Rotlang => "rotlang", eval::Dialect::OrcaSlicer => "orcaslicer" },
             "base": serde_json::from_str::<serde_json::Value>(number::angle(args.base).as_str()).unwrap_or_default(),
             "seed": args.seed,
             "wrap": args.wrap.name(),
@@ -330,11 +350,11 @@ impl Writer<'_> {
             .unwrap_or("")
     }
 
-    fn layers<'a>(&self, layers: eval::Layers<'a>) -> impl Iterator<Item = Layer> + 'a {
+    fn layers<I: Iterator<Item = Layer>>(&self, layers: I) -> impl Iterator<Item = Layer> {
         layers.skip(self.start).take(self.end - self.start)
     }
 
-    fn csv(&self, layers: eval::Layers<'_>, out: &mut dyn Write) -> std::io::Result<()> {
+    fn csv(&self, layers: impl Iterator<Item = Layer>, out: &mut dyn Write) -> std::io::Result<()> {
         // Our own buffer, so that each small write is a static call into it and only full
         // buffers go through `dyn Write`.
         let mut out = BufWriter::with_capacity(1 << 16, out);
@@ -383,7 +403,7 @@ impl Writer<'_> {
 
     fn json(
         &self,
-        layers: eval::Layers<'_>,
+        layers: impl Iterator<Item = Layer>,
         header: &str,
         out: &mut dyn Write,
     ) -> std::io::Result<()> {
@@ -427,7 +447,11 @@ impl Writer<'_> {
         out.flush()
     }
 
-    fn table(&self, layers: eval::Layers<'_>, out: &mut dyn Write) -> std::io::Result<()> {
+    fn table(
+        &self,
+        layers: impl Iterator<Item = Layer>,
+        out: &mut dyn Write,
+    ) -> std::io::Result<()> {
         let mut out = BufWriter::with_capacity(1 << 16, out);
         // Wide enough for the last index shown: 100,000 layers need six digits.
         let width = self.end.saturating_sub(1).to_string().len().max(5);

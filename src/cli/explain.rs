@@ -90,7 +90,8 @@ fn code_text(doc: &crate::explain::CodeDoc) -> String {
         doc.severity,
         doc.summary,
         wrap(doc.explanation, 88),
-        if doc.code == "rotlang::too-many-diagnostics" {
+        // Examples that are descriptions, not templates.
+        if doc.code == "rotlang::too-many-diagnostics" || doc.example.starts_with('(') {
             doc.example.to_owned()
         } else {
             format!("`{}`", doc.example.replace('\u{feff}', "<U+FEFF>"))
@@ -101,7 +102,12 @@ fn code_text(doc: &crate::explain::CodeDoc) -> String {
     } else {
         crate::Target::Sparse
     };
-    if doc.code != "rotlang::too-many-diagnostics" {
+    if doc.code.starts_with("orcaslicer::") {
+        s.push_str(&format!(
+            "    (as `rotlang expand --dialect orcaslicer '{}'` reports it)\n",
+            doc.example
+        ));
+    } else if doc.code != "rotlang::too-many-diagnostics" {
         let input = Input {
             name: "<template>".into(),
             text: doc.example.to_owned(),

@@ -6,6 +6,7 @@
 pub mod args;
 pub mod check;
 pub mod completions;
+mod dialect;
 pub mod expand;
 pub mod explain;
 pub mod fmt;

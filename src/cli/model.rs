@@ -12,36 +12,35 @@ const DEFAULT_BOTTOM: u32 = 3;
 const DEFAULT_TOP: u32 = 4;
 
 #[derive(clap::Args, Debug, Clone, Default)]
-#[command(next_help_heading = "Model")]
 pub struct ModelArgs {
     /// A uniform model of N layers (see --layer-height, --first-layer-height).
     /// Without --layers, --height or --model: the documentation's 20 mm cube.
-    #[arg(long, value_name = "N", value_parser = args::layers, allow_negative_numbers = true,
+    #[arg(long, help_heading = "Model", value_name = "N", value_parser = args::layers, allow_negative_numbers = true,
           conflicts_with_all = ["height", "model"])]
     pub layers: Option<usize>,
     /// A uniform model tall enough for an object of MM millimetres, e.g. --height 42.
-    #[arg(long, value_name = "MM", value_parser = args::finite, allow_negative_numbers = true,
+    #[arg(long, help_heading = "Model", value_name = "MM", value_parser = args::finite, allow_negative_numbers = true,
           conflicts_with = "model")]
     pub height: Option<f64>,
     /// The standard layer height h in mm, with --layers or --height [default: 0.2].
     /// `#` lengths count it, and counts reaching past the top extend by it.
-    #[arg(long, value_name = "MM", value_parser = args::finite, allow_negative_numbers = true,
+    #[arg(long, help_heading = "Model", value_name = "MM", value_parser = args::finite, allow_negative_numbers = true,
           conflicts_with = "model")]
     pub layer_height: Option<f64>,
     /// The first layer's height in mm, with --layers or --height [default: the layer height].
-    #[arg(long, value_name = "MM", value_parser = args::finite, allow_negative_numbers = true,
+    #[arg(long, help_heading = "Model", value_name = "MM", value_parser = args::finite, allow_negative_numbers = true,
           conflicts_with = "model")]
     pub first_layer_height: Option<f64>,
     /// A model from a JSON file: {"layer_heights": [...], "layer_height": H,
     /// "bottom_shell_layers": B, "top_shell_layers": T} (shell counts optional: 3 and 4).
     /// For a file holding named models (like the conformance models.json), FILE:NAME.
-    #[arg(long, value_name = "FILE[:NAME]")]
+    #[arg(long, help_heading = "Model", value_name = "FILE[:NAME]")]
     pub model: Option<String>,
     /// The bottom shell layer count, what `B` counts [default: 3, or the --model file's].
-    #[arg(long, value_name = "N", value_parser = args::shells, allow_negative_numbers = true)]
+    #[arg(long, help_heading = "Model", value_name = "N", value_parser = args::shells, allow_negative_numbers = true)]
     pub bottom_shell_layers: Option<u32>,
     /// The top shell layer count, what `T` counts [default: 4, or the --model file's].
-    #[arg(long, value_name = "N", value_parser = args::shells, allow_negative_numbers = true)]
+    #[arg(long, help_heading = "Model", value_name = "N", value_parser = args::shells, allow_negative_numbers = true)]
     pub top_shell_layers: Option<u32>,
 }
 

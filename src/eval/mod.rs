@@ -40,12 +40,15 @@ mod model;
 mod random;
 mod shape;
 
+pub use crate::dialect::Dialect;
 pub use model::{MAX_LAYER_HEIGHT, MAX_LAYERS, MIN_LAYER_HEIGHT, Model, ModelError};
+// The OrcaSlicer reader (`crate::dialect`) walks the same layers with the same randomness.
+pub(crate) use model::Cursor;
+pub(crate) use random::unit as random_unit;
 
 use crate::diagnostic::Span;
 use crate::ir::{Fill, Template};
 use engine::Engine;
-use model::Cursor;
 
 /// Evaluation options.
 #[derive(Clone, Copy, Debug, Default)]

@@ -2,11 +2,11 @@
 //!
 //! Layer bounds are running sums in double precision (`b[i+1] = t[i] = b[i] + height[i]`),
 //! exactly as SEMANTICS.md section 1 defines them. A model given as a list stores those
-//! sums; a uniform model stores three numbers and recomputes the same sums on the fly, so
-//! both kinds give bitwise identical bounds for the same heights.
+//! sums; a uniform model stores three numbers and computes the same sums arithmetically
+//! ([`running_sum`]), so both kinds give bitwise identical bounds for the same heights, and
+//! the top of a 1e8-layer model costs no more than that of a 10-layer one.
 
 use std::fmt;
-use std::sync::OnceLock;
 
 /// Layers thinner than one micrometre cannot come from a slicer (heights are scaled
 /// integers there) and would drown in the evaluator's 1e-6 mm tie tolerance.
@@ -77,13 +77,10 @@ enum Heights {
     /// `tops[i] = t[i]`, the running sums of the given heights.
     List(Vec<f64>),
     /// `layers` layers: the first of height `first`, every other of height `rest`.
-    /// `last_top` is `t[last]`, computed on first use by the same running sum (O(layers)
-    /// time once, O(1) memory).
     Uniform {
         layers: usize,
         first: f64,
         rest: f64,
-        last_top: OnceLock<f64>,
     },
 }
 
@@ -158,7 +155,6 @@ impl Model {
                 layers,
                 first,
                 rest: layer_height,
-                last_top: OnceLock::new(),
             },
             layer_height,
             bottom_shells: DEFAULT_BOTTOM_SHELLS,
@@ -210,7 +206,6 @@ impl Model {
                 layers: 100,
                 first: 0.2,
                 rest: 0.2,
-                last_top: OnceLock::new(),
             },
             layer_height: 0.2,
             bottom_shells: 3,
@@ -244,14 +239,13 @@ impl Model {
     }
 
     /// The object height `H`: the sum of the layer heights rounded to whole micrometres.
-    /// O(1) for a list; O(layers) on the first call for a uniform model.
+    /// O(1).
     pub fn object_height(&self) -> f64 {
         (self.last_top() * 1000.0).round() / 1000.0
     }
 
-    /// The bottom and top of layer `index` (mm), or `None` past the top.
-    /// O(1) for a list; O(index) for a uniform model (the running sum is walked so that
-    /// the result is bitwise the one the evaluator streams).
+    /// The bottom and top of layer `index` (mm), or `None` past the top. O(1): bitwise
+    /// the bounds the evaluator streams.
     pub fn layer_bounds(&self, index: usize) -> Option<(f64, f64)> {
         match &self.heights {
             Heights::List(tops) => {
@@ -262,20 +256,26 @@ impl Model {
                 };
                 Some((bottom, top))
             }
-            Heights::Uniform { layers, .. } => {
+            Heights::Uniform {
+                layers,
+                first,
+                rest,
+            } => {
                 if index >= *layers {
                     return None;
                 }
-                let mut cursor = Cursor::new(self);
-                for _ in 0..index {
-                    cursor.advance_in(self);
+                let cursor = Cursor::new(self);
+                if index == 0 {
+                    return Some((cursor.bottom, cursor.top));
                 }
-                Some((cursor.bottom, cursor.top))
+                let bottom = running_sum(cursor.top, *rest, index - 1);
+                debug_assert!(index > 1 || bottom == 0.0 + first);
+                Some((bottom, bottom + rest))
             }
         }
     }
 
-    /// `t[last]`, the top of the highest layer.
+    /// `t[last]`, the top of the highest layer. O(1).
     pub(crate) fn last_top(&self) -> f64 {
         match &self.heights {
             Heights::List(tops) => tops.last().copied().unwrap_or(0.0),
@@ -283,20 +283,12 @@ impl Model {
                 layers,
                 first,
                 rest,
-                last_top,
-            } => *last_top.get_or_init(|| {
-                let mut t = 0.0 + first;
-                for _ in 1..*layers {
-                    t += rest;
-                }
-                t
-            }),
+            } => running_sum(0.0 + first, *rest, layers - 1),
         }
     }
 
-    /// `t[j]` for a `j` at or above the layer a cursor stands on, by the same running sum
-    /// the cursor will follow. O(1) for a list, O(j - cursor) for a uniform model; the
-    /// evaluator asks only for the end of a range it is about to walk through anyway.
+    /// `t[j]` for a `j` at or above the layer a cursor stands on, bitwise the running sum
+    /// the cursor will follow. O(1).
     pub(crate) fn top_at(&self, cursor: &Cursor, j: usize) -> f64 {
         match &self.heights {
             Heights::List(tops) => tops.get(j).copied().unwrap_or_else(|| self.last_top()),
@@ -304,14 +296,61 @@ impl Model {
                 if j + 1 >= *layers {
                     return self.last_top();
                 }
-                let mut t = cursor.top;
-                for _ in cursor.index..j {
-                    t += rest;
-                }
-                t
+                running_sum(cursor.top, *rest, j.saturating_sub(cursor.index))
             }
         }
     }
+}
+
+/// `start + step + step + …` with `n` additions, each rounded as `t += step` rounds it:
+/// bitwise the loop's result, in O(binades) instead of O(n) (for positive `step`).
+///
+/// Why it works: while `t` and `t + step` stay in one binade `[2^e, 2^(e+1))`, every
+/// value is a multiple of that binade's ulp `u`, and `t + step` rounds to `t + k·u` with
+/// the same `k` each time; only an exact tie (`step` ending in half an ulp) depends on
+/// the parity of `t`, and after one rounding in the binade `t` is even, so from then on
+/// the increment is constant too. So: step one at a time until three consecutive values
+/// share a binade, then add the (exact) increment as many times as the binade allows
+/// at once, and go on stepping across the binade's edge.
+pub(crate) fn running_sum(start: f64, step: f64, n: usize) -> f64 {
+    let binade = |x: f64| x.to_bits() >> 52;
+    let mut t = start;
+    let mut left = n;
+    if !(step > 0.0 && start >= 0.0 && start.is_finite() && step.is_finite()) {
+        // Not a model's heights: the plain loop (validated models never come here).
+        for _ in 0..n {
+            t += step;
+        }
+        return t;
+    }
+    let mut prev = f64::NAN;
+    while left > 0 {
+        let next = t + step;
+        left -= 1;
+        if next == t {
+            // `step` is below half an ulp of `t`: nothing will ever change `t` again.
+            return t;
+        }
+        if left > 0 && binade(prev) == binade(t) && binade(t) == binade(next) && prev > 0.0 {
+            // `next - t` is exact (same binade); the binade ends at the next power of two.
+            let d = next - t;
+            let end = f64::from_bits((binade(next) + 1) << 52);
+            // The exact sum `next + i·d + step` must stay below `end` for every jump; four
+            // jumps short of the edge leaves room for the rounding of `room / d`.
+            let room = ((end - next - step) / d).floor() - 4.0;
+            if room >= 1.0 {
+                let k = (room as usize).min(left);
+                // `k·d` and `next + k·d` are multiples of the ulp below `end`: both exact.
+                t = next + k as f64 * d;
+                left -= k;
+                prev = t - d;
+                continue;
+            }
+        }
+        prev = t;
+        t = next;
+    }
+    t
 }
 
 impl Default for Model {
@@ -355,5 +394,93 @@ impl Cursor {
             },
             Heights::Uniform { rest, .. } => self.bottom + rest,
         };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn looped(start: f64, step: f64, n: usize) -> f64 {
+        let mut t = start;
+        for _ in 0..n {
+            t += step;
+        }
+        t
+    }
+
+    #[test]
+    fn running_sum_is_the_loop_bitwise() {
+        // Steps whose last bit is half an ulp of some partial sum (ties: 0.2 from 0.25 up,
+        // 0.1, 0.3), tiny and huge layers, and pseudo-random ones.
+        let mut steps = vec![0.2, 0.1, 0.3, 0.05, 0.12, 0.001, 0.28, 1000.0, 0.15, 0.075];
+        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        for _ in 0..20 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            steps.push(MIN_LAYER_HEIGHT + (x % 1_000_000) as f64 / 1_000_000.0);
+        }
+        for &step in &steps {
+            for start in [step, 0.3, 0.001, 0.25, 1.0, 1000.0, step * 3.0] {
+                let mut t = start;
+                for n in 0..5_000 {
+                    // Every n up to 5 000 (each crossing of a binade edge), then long ones.
+                    assert_eq!(
+                        running_sum(start, step, n).to_bits(),
+                        t.to_bits(),
+                        "start {start}, step {step}, n {n}"
+                    );
+                    t += step;
+                }
+                for n in [65_537, 300_007] {
+                    assert_eq!(
+                        running_sum(start, step, n).to_bits(),
+                        looped(start, step, n).to_bits(),
+                        "start {start}, step {step}, n {n}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_hundred_million_layers_sum_up_the_same() {
+        for (h, h0) in [(0.2, 0.2), (0.1, 0.3), (0.001, 0.001)] {
+            let model = Model::uniform(MAX_LAYERS, h, Some(h0)).unwrap();
+            assert_eq!(
+                model.last_top().to_bits(),
+                looped(h0, h, MAX_LAYERS - 1).to_bits(),
+                "h {h}, first {h0}"
+            );
+        }
+    }
+
+    #[test]
+    fn layer_bounds_are_the_cursor_bounds() {
+        let model = Model::uniform(50_000, 0.2, Some(0.3)).unwrap();
+        let mut cursor = Cursor::new(&model);
+        for i in 0..50_000 {
+            let (b, t) = model.layer_bounds(i).unwrap();
+            assert_eq!(
+                (b.to_bits(), t.to_bits()),
+                (cursor.bottom.to_bits(), cursor.top.to_bits())
+            );
+            if i % 997 == 0 {
+                for j in [i, i + 1, i + 77, 49_999, 60_000] {
+                    let mut c = cursor.clone();
+                    while c.index < j.min(49_999) {
+                        c.advance_in(&model);
+                    }
+                    assert_eq!(
+                        model.top_at(&cursor, j).to_bits(),
+                        c.top.to_bits(),
+                        "i {i} j {j}"
+                    );
+                }
+            }
+            cursor.advance_in(&model);
+        }
+        assert_eq!(model.layer_bounds(50_000), None);
     }
 }

@@ -56,6 +56,30 @@ const W: &str = "warning";
 
 static CODES: &[CodeDoc] = &[
     doc(
+        "orcaslicer::hangs",
+        W,
+        "OrcaSlicer never finishes slicing this template",
+        "Reported by the OrcaSlicer reading (`rotlang expand --dialect orcaslicer`). When only dummies are left alive and the first instruction is spent, OrcaSlicer's walk through the template loops for ever; rotlang stops at an instruction it already set up and gives finite angles.",
+        "10!, 5*",
+        "Keep a live instruction that takes layers after the one-time ones: `10!, 5*, +0`.",
+    ),
+    doc(
+        "orcaslicer::nan",
+        W,
+        "OrcaSlicer computes NaN angles on some layers",
+        "Reported by the OrcaSlicer reading. An arcsine `$` over a range that ends inside a layer takes the arcsine of a value above 1 in OrcaSlicer: the angle is NaN there. rotlang clamps the progress and stays finite.",
+        "+30$0.5mm",
+        "Make the range end on a layer boundary (a whole number of layers: `+30$3`), or use another joint.",
+    ),
+    doc(
+        "orcaslicer::undefined",
+        W,
+        "OrcaSlicer's behaviour is undefined here (it may crash)",
+        "Reported by the OrcaSlicer reading. OrcaSlicer converts counts to 32-bit integers; a count beyond that range is undefined behaviour in C++.",
+        "+30/5000000000",
+        "Use counts below 2147483647 (no print has that many layers).",
+    ),
+    doc(
         "rotlang::angle-out-of-range",
         W,
         "an absolute angle outside 0–360°",
@@ -166,6 +190,14 @@ static CODES: &[CodeDoc] = &[
         "The instruction stops where the grammar needs more, such as a number after a sign.",
         "+",
         "Complete the instruction (`+30`) or remove it.",
+    ),
+    doc(
+        "rotlang::invalid-instruction",
+        E,
+        "an instruction that cannot be read (a safety net)",
+        "Every instruction left out of the template gets a diagnostic saying why. Should none of the specific ones apply, this one is reported rather than dropping the instruction silently. Seeing it is a bug in rotlang worth reporting.",
+        "(none known)",
+        "Report the template; meanwhile rewrite the instruction in a simpler form.",
     ),
     doc(
         "rotlang::joint-on-absolute-angle",

@@ -8,7 +8,7 @@ pub(crate) mod split;
 use pest::Parser;
 use pest::error::{ErrorVariant, InputLocation};
 
-use crate::diagnostic::{Diagnostic, Span};
+use crate::diagnostic::{Diagnostic, Severity, Span};
 use crate::{Parse, Target, Template};
 use grammar::{RotParser, Rule};
 use split::Chunk;
@@ -21,38 +21,93 @@ pub const MAX_DIAGNOSTICS: usize = 100;
 const BATCH_BYTES: usize = 16 * 1024;
 
 /// Collects diagnostics up to `MAX_DIAGNOSTICS` and counts the rest, so memory stays
-/// bounded whatever the input.
+/// bounded whatever the input. The counts are exact: whether a template has errors never
+/// depends on the cap. Diagnostics arrive in source order, and once the list is full an
+/// error replaces the last warning kept, so errors are never hidden behind warnings and
+/// the first error is always shown.
 #[derive(Default)]
 pub(crate) struct Sink {
     list: Vec<Diagnostic>,
-    dropped: usize,
+    errors: usize,
+    warnings: usize,
+    /// Warnings in `list`: the ones an error may replace.
+    kept_warnings: usize,
+}
+
+/// What a `Sink` collected.
+pub(crate) struct Collected {
+    pub diagnostics: Vec<Diagnostic>,
+    pub errors: usize,
+    pub warnings: usize,
+    pub omitted: usize,
 }
 
 impl Sink {
-    pub fn full(&self) -> bool {
-        self.list.len() >= MAX_DIAGNOSTICS
+    /// Whether a diagnostic of this severity, pushed now, would be kept. When it would
+    /// not, callers may `count` it instead of building it.
+    pub fn keeps(&self, severity: Severity) -> bool {
+        self.list.len() < MAX_DIAGNOSTICS || (severity == Severity::Error && self.kept_warnings > 0)
     }
 
-    pub fn push(&mut self, d: Diagnostic) {
-        if self.full() {
-            self.dropped += 1;
-        } else {
-            self.list.push(d);
+    pub fn errors(&self) -> usize {
+        self.errors
+    }
+
+    /// Counts a diagnostic that is not kept.
+    pub fn count(&mut self, severity: Severity) {
+        match severity {
+            Severity::Error => self.errors += 1,
+            Severity::Warning => self.warnings += 1,
         }
     }
 
+    pub fn push(&mut self, d: Diagnostic) {
+        self.count(d.severity);
+        if !self.keeps(d.severity) {
+            return;
+        }
+        if self.list.len() >= MAX_DIAGNOSTICS {
+            // Bounded: each replacement removes one of at most `MAX_DIAGNOSTICS` warnings,
+            // and no warning is added once the list is full.
+            if let Some(i) = self.list.iter().rposition(|d| !d.is_error()) {
+                self.list.remove(i);
+                self.kept_warnings -= 1;
+            }
+        }
+        if !d.is_error() {
+            self.kept_warnings += 1;
+        }
+        self.list.push(d);
+    }
+
     /// The diagnostics in source order, with a last one saying how many were dropped.
-    fn finish(mut self) -> (Vec<Diagnostic>, usize) {
+    fn finish(mut self) -> Collected {
         self.list
             .sort_by_key(|d| (d.primary_span().start, std::cmp::Reverse(d.severity)));
-        if self.dropped > 0 {
-            let more = self.dropped;
+        let kept_errors = self.list.len() - self.kept_warnings;
+        let (errors, warnings) = (
+            self.errors - kept_errors,
+            self.warnings - self.kept_warnings,
+        );
+        let omitted = errors + warnings;
+        if omitted > 0 {
             let last = self
                 .list
                 .last()
                 .map_or(Span::default(), Diagnostic::primary_span);
-            let message = format!("{more} more diagnostics not shown");
-            let d = if self.list.iter().any(Diagnostic::is_error) {
+            let plural = |n: usize, w: &str| format!("{n} {w}{}", if n == 1 { "" } else { "s" });
+            let message = match (errors, warnings) {
+                (0, w) => format!("{} not shown", plural(w, "more warning")),
+                (e, 0) => format!("{} not shown", plural(e, "more error")),
+                (e, w) => format!(
+                    "{} and {} not shown",
+                    plural(e, "more error"),
+                    plural(w, "more warning")
+                ),
+            };
+            // An error when an error is among those not shown: a reader of the list alone
+            // (an editor, a script) must still see that the template does not parse.
+            let d = if errors > 0 {
                 Diagnostic::error("rotlang::too-many-diagnostics", message)
             } else {
                 Diagnostic::warning("rotlang::too-many-diagnostics", message)
@@ -62,7 +117,12 @@ impl Sink {
                     .with_help("fix the ones above first; the rest are often the same mistake"),
             );
         }
-        (self.list, self.dropped)
+        Collected {
+            diagnostics: self.list,
+            errors: self.errors,
+            warnings: self.warnings,
+            omitted,
+        }
     }
 }
 
@@ -133,17 +193,31 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
             };
             match parsed {
                 Ok((pair, offset)) => {
+                    let errors = sink.errors();
                     let mut lowerer = lower::Lowerer {
                         offset,
                         diagnostics: &mut sink,
                     };
-                    if let Some(ins) = lowerer.instruction(pair) {
-                        instructions.push(ins);
+                    match lowerer.instruction(pair) {
+                        Some(ins) => {
+                            crate::lint::instruction(text, &ins, target, &mut sink);
+                            instructions.push(ins);
+                        }
+                        // Every instruction left out of the IR is an error: should lowering
+                        // ever drop one without saying why, say it here.
+                        None if sink.errors() == errors => sink.push(
+                            Diagnostic::error(
+                                "rotlang::invalid-instruction",
+                                "this instruction cannot be read",
+                            )
+                            .with_primary(chunk.span, "not a valid instruction"),
+                        ),
+                        None => {}
                     }
                 }
-                // Past the cap a failure is only counted: diagnosing it would cost time
-                // and memory for a report nobody sees.
-                Err(_) if sink.full() => sink.dropped += 1,
+                // When it would not be kept, a failure is only counted: diagnosing it
+                // would cost time and memory for a report nobody sees.
+                Err(_) if !sink.keeps(Severity::Error) => sink.count(Severity::Error),
                 Err(err) => sink.push(chunk_error(text, chunk, previous.as_ref(), err)),
             }
             previous = Some(*chunk);
@@ -155,12 +229,14 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
         sink.push(empty_instruction(*span, false));
     }
     let template = Template { instructions };
-    crate::lint::check(text, &template, &split.chunks, target, &mut sink);
-    let (diagnostics, omitted) = sink.finish();
+    crate::lint::spacing(&template, &split.chunks, &mut sink);
+    let collected = sink.finish();
     Parse {
         template,
-        diagnostics,
-        omitted,
+        diagnostics: collected.diagnostics,
+        omitted: collected.omitted,
+        errors: collected.errors,
+        warnings: collected.warnings,
     }
 }
 

@@ -28,7 +28,13 @@ pub struct Lsp {
 impl Lsp {
     /// Spawn the server without initializing it.
     pub fn spawn() -> Lsp {
+        Lsp::spawn_with_args(&[])
+    }
+
+    /// Spawn with command-line arguments (as clients pass `--stdio`).
+    pub fn spawn_with_args(args: &[&str]) -> Lsp {
         let mut child = Command::new(env!("CARGO_BIN_EXE_rotlang-lsp"))
+            .args(args)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::null())

@@ -66,6 +66,34 @@ local function run()
   end
   step("hovered")
 
+  -- 4. Completion after `+30`, as the omnifunc does it: the start column is that of the
+  -- keyword before the cursor (with the documented 'iskeyword', the whole instruction),
+  -- and only words starting with the text from there are kept.
+  vim.opt_local.iskeyword = "@,48-57,_,192-255,33-43,45-47,58,94,124,126"
+  vim.api.nvim_buf_set_lines(bufnr, 0, -1, false, { "0, +30" })
+  local line = "0, +30"
+  local start = vim.fn.match(line, "\\k*$")
+  local prefix = line:sub(start + 1)
+  local cparams = {
+    textDocument = { uri = vim.uri_from_bufnr(bufnr) },
+    position = { line = 0, character = #line },
+  }
+  local cresponses = vim.lsp.buf_request_sync(bufnr, "textDocument/completion", cparams, 15000)
+  result.completion_start = start
+  result.completion_words = {}
+  for _, r in pairs(cresponses or {}) do
+    if r.result then
+      for _, item in ipairs(vim.lsp.util.text_document_completion_list_to_complete_items(r.result, prefix)) do
+        table.insert(result.completion_words, item.word)
+      end
+      local first = r.result[1] or (r.result.items or {})[1]
+      if first and first.textEdit then
+        result.completion_edit_start = first.textEdit.range.start.character
+      end
+    end
+  end
+  step("completed")
+
   vim.lsp.stop_client(client_id)
 end
 

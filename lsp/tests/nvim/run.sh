@@ -4,8 +4,8 @@
 # diagnostic, fixes the text, sees the diagnostics cleared, and hovers (e2e.lua).
 #
 # Usage: run.sh PATH/TO/rotlang-lsp RESULT.json
-# Installs Debian's `neovim` when `nvim` is missing and we are root (as in CI);
-# otherwise exits 77 ("skipped") with a message saying why.
+# Installs Debian's `neovim` through scripts/ensure when `nvim` is missing; exits 77
+# ("skipped") with a message saying why when it cannot.
 set -euo pipefail
 
 server=${1:?usage: run.sh SERVER RESULT.json}
@@ -13,14 +13,14 @@ out=${2:?usage: run.sh SERVER RESULT.json}
 here=$(cd "$(dirname "$0")" && pwd)
 
 if ! command -v nvim >/dev/null 2>&1; then
-    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-        echo "run.sh: installing neovim (Debian package)" >&2
-        export DEBIAN_FRONTEND=noninteractive
-        apt-get update -qq >&2
-        apt-get install -y -qq neovim >&2
-    else
-        echo "SKIPPED: nvim is not installed and installing it needs root (apt-get install neovim)"
+    # The shared, locked installer: tests run in parallel and apt must not.
+    status=0
+    "$here/../../../scripts/ensure" apt neovim || status=$?
+    if [ "$status" -eq 77 ]; then
+        echo "SKIPPED: nvim is not installed and cannot be (see above)"
         exit 77
+    elif [ "$status" -ne 0 ]; then
+        exit "$status"
     fi
 fi
 

@@ -1,0 +1,190 @@
+//! The exports. Inputs are (pointer, length) pairs into memory from [`rotlang_alloc`];
+//! every call returns 0 on success, 1 on failure, and leaves its JSON answer in the
+//! output buffer. Single-threaded (wasm32-unknown-unknown), so the buffers are
+//! thread-locals.
+
+use std::cell::RefCell;
+
+use serde_json::Value;
+
+use crate::Failure;
+use crate::api::{self, Layers};
+use crate::options::Request;
+
+thread_local! {
+    static OUT: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
+    static LAYERS: RefCell<Layers> = RefCell::new(Layers::default());
+}
+
+/// Memory for JavaScript to write an input into; freed with [`rotlang_dealloc`].
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_alloc(len: usize) -> *mut u8 {
+    let mut v = Vec::<u8>::with_capacity(len.max(1));
+    let p = v.as_mut_ptr();
+    std::mem::forget(v);
+    p
+}
+
+/// Frees memory from [`rotlang_alloc`] (same length).
+///
+/// # Safety
+/// `ptr` and `len` must come from one call of `rotlang_alloc`, freed once.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_dealloc(ptr: *mut u8, len: usize) {
+    if !ptr.is_null() {
+        // SAFETY: the caller passes back what rotlang_alloc gave (capacity len.max(1)).
+        drop(unsafe { Vec::from_raw_parts(ptr, 0, len.max(1)) });
+    }
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_out_ptr() -> *const u8 {
+    OUT.with_borrow(|o| o.as_ptr())
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_out_len() -> usize {
+    OUT.with_borrow(Vec::len)
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_layers_len() -> usize {
+    LAYERS.with_borrow(|l| l.angles.len())
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_angles_ptr() -> *const f64 {
+    LAYERS.with_borrow(|l| l.angles.as_ptr())
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_fills_ptr() -> *const u8 {
+    LAYERS.with_borrow(|l| l.fills.as_ptr())
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_instructions_ptr() -> *const i32 {
+    LAYERS.with_borrow(|l| l.instructions.as_ptr())
+}
+
+/// Frees the last `expand`'s arrays (JavaScript has copied them).
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_release() {
+    LAYERS.with_borrow_mut(|l| *l = Layers::default());
+    OUT.with_borrow_mut(|o| *o = Vec::new());
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_version() -> i32 {
+    finish(Ok(api::version()))
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_signs() -> i32 {
+    finish(Ok(api::signs()))
+}
+
+/// # Safety
+/// Each (pointer, length) pair must be readable memory (from `rotlang_alloc`), or a
+/// length of 0.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_check(
+    text: *const u8,
+    text_len: usize,
+    req: *const u8,
+    req_len: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    finish(unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| api::check(t, &r)))
+}
+
+/// # Safety
+/// As [`rotlang_check`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_format(
+    text: *const u8,
+    text_len: usize,
+    req: *const u8,
+    req_len: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    finish(unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| api::format(t, &r)))
+}
+
+/// `heights`/`count`: the layer heights of a list model (`count` f64s), or a count of 0.
+///
+/// # Safety
+/// As [`rotlang_check`]; `heights` must hold `count` f64s when `count` > 0.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_expand(
+    text: *const u8,
+    text_len: usize,
+    req: *const u8,
+    req_len: usize,
+    heights: *const f64,
+    count: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        // SAFETY: as above.
+        let heights = unsafe { f64s(heights, count) };
+        LAYERS.with_borrow_mut(|out| api::expand(t, &r, heights, out))
+    });
+    if result.is_err() {
+        LAYERS.with_borrow_mut(|l| *l = Layers::default());
+    }
+    finish(result)
+}
+
+/// Reads a call's inputs.
+///
+/// # Safety
+/// As [`rotlang_check`].
+unsafe fn inputs<'a>(
+    text: *const u8,
+    text_len: usize,
+    req: *const u8,
+    req_len: usize,
+) -> Result<(&'a str, Request), Failure> {
+    // SAFETY: forwarded.
+    let text = unsafe { utf8(text, text_len) }
+        .ok_or_else(|| Failure::options("the template is not valid UTF-8"))?;
+    // SAFETY: forwarded.
+    let req = unsafe { utf8(req, req_len) }
+        .ok_or_else(|| Failure::options("the options are not valid UTF-8"))?;
+    Ok((text, Request::parse(req)?))
+}
+
+/// # Safety
+/// `ptr` must point to `len` readable bytes, or `len` must be 0.
+unsafe fn utf8<'a>(ptr: *const u8, len: usize) -> Option<&'a str> {
+    if len == 0 || ptr.is_null() {
+        return Some("");
+    }
+    // SAFETY: guaranteed by the caller.
+    std::str::from_utf8(unsafe { std::slice::from_raw_parts(ptr, len) }).ok()
+}
+
+/// # Safety
+/// `ptr` must point to `count` f64s, or `count` must be 0.
+unsafe fn f64s(ptr: *const f64, count: usize) -> Option<Vec<f64>> {
+    if count == 0 || ptr.is_null() {
+        return None;
+    }
+    // SAFETY: guaranteed by the caller.
+    Some(unsafe { std::slice::from_raw_parts(ptr, count) }.to_vec())
+}
+
+/// Writes the answer (or the failure) to the output buffer; 0 = success, 1 = failure.
+fn finish(result: Result<Value, Failure>) -> i32 {
+    let (code, value) = match result {
+        Ok(v) => (0, v),
+        Err(f) => (1, f.to_json()),
+    };
+    OUT.with_borrow_mut(|o| {
+        o.clear();
+        // Serializing a Value into a Vec cannot fail.
+        let _ = serde_json::to_writer(&mut *o, &value);
+    });
+    code
+}

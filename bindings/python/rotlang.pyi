@@ -1,0 +1,108 @@
+"""Check, expand, explain and format infill rotation templates (rotlang)."""
+
+from array import array
+from typing import List, Literal, Optional, Sequence, Union, overload
+
+__version__: str
+DIALECTS: List[str]
+
+Target = Literal["sparse", "solid"]
+DialectName = Literal["rotlang", "orcaslicer"]
+
+class TemplateError(Exception):
+    """The template has errors. ``args == (message, diagnostics)``."""
+
+    diagnostics: List["Diagnostic"]
+
+class Diagnostic:
+    code: str
+    severity: Literal["error", "warning"]
+    message: str
+    help: Optional[str]
+    start: int
+    """Code-point offset of the primary span: ``text[start:end]``."""
+    end: int
+    byte_start: int
+    """UTF-8 byte offset of the same span."""
+    byte_end: int
+
+class Finding:
+    code: Literal["orcaslicer::hangs", "orcaslicer::undefined", "orcaslicer::nan"]
+    message: str
+    first_layer: int
+    layers: int
+
+class Model:
+    @staticmethod
+    def uniform(
+        layers: int,
+        layer_height: float = 0.2,
+        first_layer_height: Optional[float] = None,
+        bottom_shells: int = 3,
+        top_shells: int = 4,
+    ) -> "Model": ...
+    @staticmethod
+    def from_heights(
+        heights: Sequence[float], layer_height: float, bottom_shells: int = 3, top_shells: int = 4
+    ) -> "Model": ...
+    @staticmethod
+    def from_total_height(
+        height: float,
+        layer_height: float = 0.2,
+        first_layer_height: Optional[float] = None,
+        bottom_shells: int = 3,
+        top_shells: int = 4,
+    ) -> "Model": ...
+    @staticmethod
+    def cube20() -> "Model": ...
+    def __len__(self) -> int: ...
+    @property
+    def layer_height(self) -> float: ...
+    @property
+    def bottom_shells(self) -> int: ...
+    @property
+    def top_shells(self) -> int: ...
+    @property
+    def height(self) -> float: ...
+
+class Expansion:
+    angles: Union[List[float], "array[float]"]
+    fills: List[Literal["sparse", "dense", "solid", "concentric", "monotonic", "rectilinear"]]
+    findings: List[Finding]
+
+def check(template: str, target: Target = "sparse") -> List[Diagnostic]: ...
+@overload
+def expand(
+    template: str,
+    model: Optional[Model] = None,
+    *,
+    base: float = 0.0,
+    seed: int = 0,
+    target: Target = "sparse",
+    dialect: DialectName = "rotlang",
+    array: Literal[False] = False,
+) -> List[float]: ...
+@overload
+def expand(
+    template: str,
+    model: Optional[Model] = None,
+    *,
+    base: float = 0.0,
+    seed: int = 0,
+    target: Target = "sparse",
+    dialect: DialectName = "rotlang",
+    array: Literal[True],
+) -> "array[float]": ...
+def evaluate_layers(
+    template: str,
+    model: Optional[Model] = None,
+    *,
+    base: float = 0.0,
+    seed: int = 0,
+    target: Target = "sparse",
+    dialect: DialectName = "rotlang",
+    array: bool = False,
+) -> Expansion: ...
+def format(template: str, target: Target = "sparse") -> str: ...
+def format_angle(degrees: float) -> str: ...
+def explain(template: str, model: Optional[Model] = None, target: Target = "sparse") -> str: ...

@@ -1,0 +1,414 @@
+//! The `rotlang` Python module: check, expand, explain and format templates.
+//!
+//! Spans reach Python as code-point offsets (`start`, `end`: what `text[start:end]`
+//! slices) and as UTF-8 byte offsets (`byte_start`, `byte_end`). Bad input raises
+//! `rotlang.TemplateError` (carrying the diagnostics) or `ValueError`, never crashes.
+
+use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyList};
+
+use rotlang_core::eval::{self, Model as RustModel, Options};
+use rotlang_core::{Diagnostic as RustDiagnostic, Target};
+
+mod dialect;
+
+pyo3::create_exception!(
+    rotlang,
+    TemplateError,
+    PyException,
+    "The template has errors; `.diagnostics` lists them (`args[1]` too)."
+);
+
+/// One diagnostic of a template.
+#[pyclass(frozen, get_all, skip_from_py_object, module = "rotlang")]
+#[derive(Clone)]
+struct Diagnostic {
+    /// Stable code, e.g. `rotlang_core::unknown-sign`.
+    code: String,
+    /// `"error"` or `"warning"`.
+    severity: String,
+    message: String,
+    help: Option<String>,
+    /// Code-point offsets of the primary span: `text[start:end]`.
+    start: usize,
+    end: usize,
+    /// UTF-8 byte offsets of the same span.
+    byte_start: usize,
+    byte_end: usize,
+}
+
+#[pymethods]
+impl Diagnostic {
+    fn __repr__(&self) -> String {
+        format!(
+            "Diagnostic({}, {:?}, {:?}, start={}, end={})",
+            self.severity, self.code, self.message, self.start, self.end
+        )
+    }
+}
+
+fn diagnostic(text: &str, d: &RustDiagnostic) -> Diagnostic {
+    let span = d.primary_span();
+    let chars = |byte: usize| {
+        let byte = rotlang_core::diagnostic::floor_char_boundary(text, byte);
+        text[..byte].chars().count()
+    };
+    Diagnostic {
+        code: d.code.to_string(),
+        severity: d.severity.as_str().to_string(),
+        message: d.message.clone(),
+        help: d.help.clone(),
+        start: chars(span.start),
+        end: chars(span.end),
+        byte_start: span.start,
+        byte_end: span.end,
+    }
+}
+
+fn target(name: &str) -> PyResult<Target> {
+    match name {
+        "sparse" => Ok(Target::Sparse),
+        "solid" => Ok(Target::Solid),
+        other => Err(PyValueError::new_err(format!(
+            "target must be 'sparse' or 'solid', not {other:?}"
+        ))),
+    }
+}
+
+/// The TemplateError for a template with errors.
+fn template_error(py: Python<'_>, text: &str, diagnostics: &[RustDiagnostic]) -> PyErr {
+    let list: Vec<Diagnostic> = diagnostics.iter().map(|d| diagnostic(text, d)).collect();
+    let first = diagnostics
+        .iter()
+        .find(|d| d.is_error())
+        .map_or(String::new(), |d| format!("{}: {}", d.code, d.message));
+    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+    let message = format!("the template has {errors} error(s); first: {first}");
+    match PyList::new(py, list) {
+        Ok(list) => {
+            let err = TemplateError::new_err((message, list.clone().unbind()));
+            let _ = err.value(py).setattr("diagnostics", list);
+            err
+        }
+        Err(e) => e,
+    }
+}
+
+/// The layers of one object: a list of heights or a uniform model, with `h`, `B`, `T`.
+#[pyclass(frozen, skip_from_py_object, module = "rotlang")]
+#[derive(Clone)]
+struct Model {
+    inner: RustModel,
+}
+
+fn model_error(e: eval::ModelError) -> PyErr {
+    PyValueError::new_err(format!("invalid model: {e}"))
+}
+
+#[pymethods]
+impl Model {
+    /// `layers` layers of `layer_height` mm, the first of `first_layer_height`.
+    #[staticmethod]
+    #[pyo3(signature = (layers, layer_height=0.2, first_layer_height=None, bottom_shells=3, top_shells=4))]
+    fn uniform(
+        layers: usize,
+        layer_height: f64,
+        first_layer_height: Option<f64>,
+        bottom_shells: u32,
+        top_shells: u32,
+    ) -> PyResult<Model> {
+        let inner = RustModel::uniform(layers, layer_height, first_layer_height)
+            .map_err(model_error)?
+            .with_shells(bottom_shells, top_shells);
+        Ok(Model { inner })
+    }
+
+    /// A model from every layer's height (mm, bottom to top) and the standard height.
+    #[staticmethod]
+    #[pyo3(signature = (heights, layer_height, bottom_shells=3, top_shells=4))]
+    fn from_heights(
+        heights: Vec<f64>,
+        layer_height: f64,
+        bottom_shells: u32,
+        top_shells: u32,
+    ) -> PyResult<Model> {
+        let inner = RustModel::from_heights(heights, layer_height)
+            .map_err(model_error)?
+            .with_shells(bottom_shells, top_shells);
+        Ok(Model { inner })
+    }
+
+    /// An object `height` mm tall in layers of `layer_height`.
+    #[staticmethod]
+    #[pyo3(signature = (height, layer_height=0.2, first_layer_height=None, bottom_shells=3, top_shells=4))]
+    fn from_total_height(
+        height: f64,
+        layer_height: f64,
+        first_layer_height: Option<f64>,
+        bottom_shells: u32,
+        top_shells: u32,
+    ) -> PyResult<Model> {
+        let inner = RustModel::from_total_height(height, layer_height, first_layer_height)
+            .map_err(model_error)?
+            .with_shells(bottom_shells, top_shells);
+        Ok(Model { inner })
+    }
+
+    /// The documentation's 20 mm cube: 100 layers of 0.2 mm, 3 bottom and 4 top shells.
+    #[staticmethod]
+    fn cube20() -> Model {
+        Model {
+            inner: RustModel::cube20(),
+        }
+    }
+
+    fn __len__(&self) -> usize {
+        self.inner.len()
+    }
+
+    #[getter]
+    fn layer_height(&self) -> f64 {
+        self.inner.layer_height()
+    }
+
+    #[getter]
+    fn bottom_shells(&self) -> u32 {
+        self.inner.bottom_shells()
+    }
+
+    #[getter]
+    fn top_shells(&self) -> u32 {
+        self.inner.top_shells()
+    }
+
+    /// The object height in mm.
+    #[getter]
+    fn height(&self) -> f64 {
+        self.inner.object_height()
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Model(layers={}, layer_height={}, height={}, bottom_shells={}, top_shells={})",
+            self.inner.len(),
+            rotlang_core::number::height(self.inner.layer_height()),
+            rotlang_core::number::height(self.inner.object_height()),
+            self.inner.bottom_shells(),
+            self.inner.top_shells()
+        )
+    }
+}
+
+/// A defect of OrcaSlicer's reading found by the OrcaSlicer dialect.
+#[pyclass(frozen, get_all, skip_from_py_object, module = "rotlang")]
+#[derive(Clone)]
+struct Finding {
+    /// `orcaslicer::hangs`, `orcaslicer::undefined` or `orcaslicer::nan`.
+    code: String,
+    message: String,
+    first_layer: usize,
+    layers: usize,
+}
+
+#[pymethods]
+impl Finding {
+    fn __repr__(&self) -> String {
+        format!(
+            "Finding({:?}, first_layer={}, layers={})",
+            self.code, self.first_layer, self.layers
+        )
+    }
+}
+
+/// Every layer's angle, fill and the dialect's findings.
+#[pyclass(frozen, get_all, skip_from_py_object, module = "rotlang")]
+struct Expansion {
+    /// Degrees, base included, not wrapped.
+    angles: Py<PyAny>,
+    /// `"sparse"`, `"dense"`, `"solid"`, `"concentric"`, `"monotonic"`, `"rectilinear"`.
+    fills: Vec<&'static str>,
+    findings: Vec<Finding>,
+}
+
+/// What one evaluation computes, before it becomes Python objects.
+struct Evaluated {
+    angles: Vec<f64>,
+    fills: Vec<&'static str>,
+    findings: Vec<Finding>,
+}
+
+fn evaluate(
+    py: Python<'_>,
+    text: &str,
+    model: Option<&Model>,
+    options: Options,
+    target_name: &str,
+    dialect_name: &str,
+    want_fills: bool,
+) -> PyResult<Evaluated> {
+    let target = target(target_name)?;
+    let dialect = dialect::Dialect::from_name(dialect_name)?;
+    let cube;
+    let model = match model {
+        Some(m) => &m.inner,
+        None => {
+            cube = RustModel::cube20();
+            &cube
+        }
+    };
+    match dialect {
+        dialect::Dialect::Rotlang => {
+            let parse = rotlang_core::parse(text, target);
+            if parse.has_errors() {
+                return Err(template_error(py, text, &parse.diagnostics));
+            }
+            // The evaluation holds no Python object: other Python threads may run.
+            Ok(py.detach(|| {
+                let mut angles = Vec::with_capacity(model.len());
+                let mut fills = Vec::new();
+                for layer in eval::layers(&parse.template, model, options) {
+                    angles.push(layer.angle);
+                    if want_fills {
+                        fills.push(layer.fill.name());
+                    }
+                }
+                Evaluated {
+                    angles,
+                    fills,
+                    findings: Vec::new(),
+                }
+            }))
+        }
+        other => dialect::evaluate(py, other, text, model, options, want_fills),
+    }
+}
+
+/// A Python `array('d')` holding `values` (NumPy-free, one copy of 8 bytes per value).
+fn float_array<'py>(py: Python<'py>, values: &[f64]) -> PyResult<Bound<'py, PyAny>> {
+    let array = py.import("array")?.getattr("array")?.call1(("d",))?;
+    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_ne_bytes()).collect();
+    array.call_method1("frombytes", (PyBytes::new(py, &bytes),))?;
+    Ok(array)
+}
+
+fn angles_object<'py>(py: Python<'py>, angles: &[f64], array: bool) -> PyResult<Bound<'py, PyAny>> {
+    if array {
+        float_array(py, angles)
+    } else {
+        Ok(PyList::new(py, angles)?.into_any())
+    }
+}
+
+/// The angle (degrees) of every layer of `model` (default: the 20 mm cube) under the
+/// template: a `list` of floats, or an `array('d')` with `array=True`.
+#[pyfunction]
+#[pyo3(signature = (template, model=None, *, base=0.0, seed=0, target="sparse", dialect="rotlang", array=false))]
+#[allow(clippy::too_many_arguments)] // Python keyword arguments
+fn expand<'py>(
+    py: Python<'py>,
+    template: &str,
+    model: Option<&Model>,
+    base: f64,
+    seed: u64,
+    target: &str,
+    dialect: &str,
+    array: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let options = options(base, seed)?;
+    let done = evaluate(py, template, model, options, target, dialect, false)?;
+    angles_object(py, &done.angles, array)
+}
+
+/// Angles, fills and findings together (see `Expansion`).
+#[pyfunction]
+#[pyo3(signature = (template, model=None, *, base=0.0, seed=0, target="sparse", dialect="rotlang", array=false))]
+#[allow(clippy::too_many_arguments)] // Python keyword arguments
+fn evaluate_layers(
+    py: Python<'_>,
+    template: &str,
+    model: Option<&Model>,
+    base: f64,
+    seed: u64,
+    target: &str,
+    dialect: &str,
+    array: bool,
+) -> PyResult<Expansion> {
+    let options = options(base, seed)?;
+    let done = evaluate(py, template, model, options, target, dialect, true)?;
+    Ok(Expansion {
+        angles: angles_object(py, &done.angles, array)?.unbind(),
+        fills: done.fills,
+        findings: done.findings,
+    })
+}
+
+fn options(base: f64, seed: u64) -> PyResult<Options> {
+    if !(base.is_finite() && base.abs() <= 1e9) {
+        return Err(PyValueError::new_err(format!(
+            "base must be a finite number of degrees within ±1e9, not {base}"
+        )));
+    }
+    Ok(Options { base, seed })
+}
+
+/// Every diagnostic (errors and warnings) of a template; an empty list when it is clean.
+#[pyfunction]
+#[pyo3(signature = (template, target="sparse"))]
+fn check(template: &str, target: &str) -> PyResult<Vec<Diagnostic>> {
+    let parse = rotlang_core::parse(template, self::target(target)?);
+    Ok(parse
+        .diagnostics
+        .iter()
+        .map(|d| diagnostic(template, d))
+        .collect())
+}
+
+/// The canonical form of a template (`, ` between instructions). Raises TemplateError
+/// when it has errors.
+#[pyfunction]
+#[pyo3(signature = (template, target="sparse"))]
+fn format(py: Python<'_>, template: &str, target: &str) -> PyResult<String> {
+    let target = self::target(target)?;
+    match rotlang_core::format::format(template, target) {
+        Some(text) => Ok(text),
+        None => Err(template_error(
+            py,
+            template,
+            &rotlang_core::parse(template, target).diagnostics,
+        )),
+    }
+}
+
+/// The template in plain words, each instruction with its layer range on `model`.
+#[pyfunction]
+#[pyo3(signature = (template, model=None, target="sparse"))]
+fn explain(py: Python<'_>, template: &str, model: Option<&Model>, target: &str) -> PyResult<String> {
+    let target = self::target(target)?;
+    dialect::explain(py, template, target, model.map(|m| &m.inner))
+}
+
+/// Wraps an angle into `[0, 360)` and prints it without float noise (`"30"`, `"22.5"`).
+#[pyfunction]
+fn format_angle(degrees: f64) -> String {
+    let wrapped = rotlang_core::number::wrap(degrees, rotlang_core::number::Wrap::Turn);
+    rotlang_core::number::angle(wrapped).to_string()
+}
+
+#[pymodule]
+fn rotlang(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("TemplateError", m.py().get_type::<TemplateError>())?;
+    m.add("DIALECTS", dialect::NAMES.to_vec())?;
+    m.add_class::<Diagnostic>()?;
+    m.add_class::<Model>()?;
+    m.add_class::<Finding>()?;
+    m.add_class::<Expansion>()?;
+    m.add_function(wrap_pyfunction!(check, m)?)?;
+    m.add_function(wrap_pyfunction!(expand, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate_layers, m)?)?;
+    m.add_function(wrap_pyfunction!(format, m)?)?;
+    m.add_function(wrap_pyfunction!(format_angle, m)?)?;
+    m.add_function(wrap_pyfunction!(explain, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,158 @@
+"""The Python package against the conformance corpus, and its behaviour on bad input."""
+
+import json
+import math
+import os
+from array import array
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+
+import rotlang
+
+# The corpus lives beside the project (`../shared/conformance/` from the repository root).
+CORPUS = Path(
+    os.environ.get(
+        "ROTLANG_CONFORMANCE",
+        Path(__file__).resolve().parents[3] / ".." / "shared" / "conformance",
+    )
+)
+
+
+def _lines(name):
+    with open(CORPUS / name, encoding="utf-8") as f:
+        return [json.loads(line) for line in f if line.strip()]
+
+
+MODELS = {
+    name: rotlang.Model.from_heights(
+        m["layer_heights"], m["layer_height"], m["bottom_shell_layers"], m["top_shell_layers"]
+    )
+    for name, m in json.loads((CORPUS / "models.json").read_text(encoding="utf-8")).items()
+}
+CASES = _lines("cases.jsonl")
+
+
+def close(got, expected):
+    if expected is None:  # OrcaSlicer's angle is NaN there; rotlang's is finite
+        return math.isfinite(got)
+    if abs(expected) > 1e9:
+        return abs(got - expected) <= 1e-9 * abs(expected)
+    d = math.fmod(abs(got - expected), 360.0)
+    return min(d, 360.0 - d) <= 1e-4
+
+
+def test_every_exact_case_in_the_rotlang_dialect():
+    assert len(CASES) >= 1500
+    failures = []
+    for case in CASES:
+        e = rotlang.evaluate_layers(case["template"], MODELS[case["model"]])
+        fills = case.get("fills") or ["sparse"] * len(case["degrees"])
+        if len(e.angles) != len(case["degrees"]) or e.fills != fills or e.findings:
+            failures.append(case)
+            continue
+        if not all(close(g, x) for g, x in zip(e.angles, case["degrees"])):
+            failures.append(case)
+    assert not failures, f"{len(failures)} cases differ, first: {failures[0]}"
+
+
+def test_every_exact_case_in_the_orcaslicer_dialect():
+    failures = []
+    for case in CASES:
+        orca = case["orcaslicer"]
+        expected = case["degrees"] if orca["status"] == "same" else orca["degrees"]
+        e = rotlang.evaluate_layers(case["template"], MODELS[case["model"]], dialect="orcaslicer")
+        codes = {f.code for f in e.findings}
+        if orca["status"] in ("hangs", "nan") and f"orcaslicer::{orca['status']}" not in codes:
+            failures.append((case, "finding"))
+        if not all(close(g, x) for g, x in zip(e.angles, expected)):
+            failures.append((case, "angles"))
+    assert not failures, f"{len(failures)} cases differ, first: {failures[0]}"
+
+
+def test_random_cases_stay_in_bounds_and_follow_the_seed():
+    for case in _lines("cases-random.jsonl"):
+        model = MODELS[case["model"]]
+        a = rotlang.expand(case["template"], model, seed=7)
+        assert a == rotlang.expand(case["template"], model, seed=7)
+        for got, lo, hi in zip(a, case["min_degrees"], case["max_degrees"]):
+            assert lo - 1e-4 <= got <= hi + 1e-4, case["template"]
+
+
+def test_expand_returns_a_list_or_an_array_of_doubles():
+    angles = rotlang.expand("5, 10!, +20")
+    assert isinstance(angles, list) and len(angles) == 100
+    assert angles[:7] == [5, 10, 30, 5, 25, 5, 25]
+    packed = rotlang.expand("5, 10!, +20", array=True)
+    assert isinstance(packed, array) and packed.typecode == "d"
+    assert list(packed) == angles
+    assert rotlang.expand("5, 10!, +20", base=45)[:2] == [50, 55]
+
+
+def test_models():
+    m = rotlang.Model.uniform(10, 0.2, first_layer_height=0.3, bottom_shells=2, top_shells=5)
+    assert len(m) == 10 and m.bottom_shells == 2 and m.top_shells == 5
+    assert abs(m.height - 2.1) < 1e-9
+    assert len(rotlang.Model.from_total_height(20.0)) == 100
+    for bad in ([], [0.2, float("nan")], [0.2, -0.2], [0.2, 0.0]):
+        with pytest.raises(ValueError):
+            rotlang.Model.from_heights(bad, 0.2)
+    with pytest.raises(ValueError):
+        rotlang.Model.uniform(0)
+    with pytest.raises(ValueError):
+        rotlang.Model.uniform(10, float("inf"))
+    with pytest.raises((ValueError, OverflowError, TypeError)):
+        rotlang.Model.uniform(-1)
+
+
+def test_check_gives_code_point_and_byte_offsets():
+    text = "+30°, X"
+    d = rotlang.check(text)
+    assert [x.code for x in d] == ["rotlang::degree-sign", "rotlang::unknown-sign"]
+    assert text[d[0].start : d[0].end] == "°" and (d[0].byte_start, d[0].byte_end) == (3, 5)
+    assert text[d[1].start : d[1].end] == "X" and (d[1].byte_start, d[1].byte_end) == (7, 8)
+    assert d[1].severity == "error" and d[0].help
+    assert rotlang.check("+10, -10") == []
+
+
+def test_bad_templates_raise_with_their_diagnostics():
+    with pytest.raises(rotlang.TemplateError) as caught:
+        rotlang.expand("+30°, X")
+    assert [d.code for d in caught.value.diagnostics][:1] == ["rotlang::degree-sign"]
+    assert "rotlang::degree-sign" in str(caught.value)
+    with pytest.raises(rotlang.TemplateError):
+        rotlang.format("+10X")
+    with pytest.raises(ValueError):
+        rotlang.expand("+10", dialect="prusa")
+    with pytest.raises(ValueError):
+        rotlang.check("+10", target="dense")
+    with pytest.raises(ValueError):
+        rotlang.expand("+10", base=float("nan"))
+    # A lone surrogate cannot become UTF-8: an exception, not a crash.
+    with pytest.raises(UnicodeEncodeError):
+        rotlang.check("+10\ud800")
+    # Huge and hostile texts come back with diagnostics.
+    assert rotlang.check("+" * 100_000)
+    assert rotlang.check("\x00\n\t𝕏" * 1000)
+
+
+def test_format_and_format_angle():
+    assert rotlang.format("5 ,10!,+20") == "5, 10!, +20"
+    assert rotlang.format_angle(370.1) == "10.1"
+    assert rotlang.format_angle(0.1 + 0.2) == "0.3"
+    assert rotlang.format_angle(-1e-12) == "0"
+
+
+def test_explain_describes_each_instruction():
+    words = rotlang.explain("+10/5mm, -10", rotlang.Model.cube20())
+    assert "+10/5mm" in words and "-10" in words
+
+
+def test_one_template_from_many_threads():
+    model = rotlang.Model.uniform(20_000, 0.2, 0.3)
+    text = "5, 10!, +20, +10L25%, -10~50, #3, +45Z10mm"
+    expected = rotlang.expand(text, model, array=True)
+    with ThreadPoolExecutor(max_workers=8) as pool:
+        results = list(pool.map(lambda _: rotlang.expand(text, model, array=True), range(32)))
+    assert all(r == expected for r in results)

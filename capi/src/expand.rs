@@ -1,0 +1,191 @@
+//! Batch evaluation into the caller's arrays.
+
+use crate::handle::{self, RotlangTemplate};
+use crate::model::{RotlangFill, RotlangModel, RotlangOptions, Settings};
+use crate::status::{Failure, RotlangStatus, guard};
+use crate::stream::{RotlangFinding, RotlangFindings, Stream, report};
+use crate::util::{input, out, slice_mut};
+use rotlang::eval::Layer;
+
+/// `count` value of `rotlang_expand`: every layer from `first` to the top. (`SIZE_MAX`;
+/// written `!0` so that cbindgen can spell it in C as `~0`, which converts to it.)
+pub const ROTLANG_TO_TOP: usize = !0;
+
+/// The number of layers of a model, after checking it (`INVALID_MODEL` with the reason
+/// in `rotlang_last_error` when it is unusable). Use it to size the output arrays.
+///
+/// # Safety
+/// `model` points to a `RotlangModel` (whose `heights` holds `heights_len` doubles);
+/// `out` to one writable `size_t`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_model_layer_count(
+    model: *const RotlangModel,
+    out: *mut usize,
+) -> RotlangStatus {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let out = unsafe { crate::util::out(out) }?;
+        // SAFETY: the caller's contract.
+        let model = unsafe { input(model, "the model") }?;
+        // SAFETY: the caller's contract on `heights`.
+        *out = unsafe { model.to_model() }?.len();
+        Ok(())
+    })
+}
+
+/// Evaluates layers `first .. first + count` of `model` (`count` = `ROTLANG_TO_TOP`: up
+/// to the top) and writes their angles (degrees, base included, not wrapped, always
+/// finite) to `angles[0..]` and, when `fills` is not NULL, their fills (`RotlangFill`
+/// values) to `fills[0..]`. Both arrays hold `capacity` entries. `options` may be NULL
+/// (defaults); `findings` may be NULL (not wanted): it gets the OrcaSlicer dialect's
+/// findings on the layers up to the end of the range.
+///
+/// Thread-safe: any number of threads may expand one template at once.
+/// The cost is that of evaluating layers `0 .. first + count` (the evaluator streams
+/// from the bottom); for layer-by-layer access use a `RotlangEvaluator`.
+///
+/// Errors: `NULL_POINTER`, `INVALID_HANDLE`, `INVALID_MODEL`, `INVALID_ARGUMENT` (unknown
+/// dialect, base not finite), `TEMPLATE_HAS_ERRORS` (rotlang dialect), `OUT_OF_RANGE`
+/// (`first` at or past the top, or the range past it), `BUFFER_TOO_SMALL` (`capacity`
+/// below the range's length), `DIALECT_UNAVAILABLE`. On error nothing is written.
+///
+/// # Safety
+/// `model` points to a valid `RotlangModel`; `options` is NULL or valid; `angles` (and
+/// `fills` unless NULL) hold `capacity` writable entries; `findings` is NULL or valid.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)] // a C signature: the buffers and their length
+pub unsafe extern "C" fn rotlang_expand(
+    template: *const RotlangTemplate,
+    model: *const RotlangModel,
+    options: *const RotlangOptions,
+    first: usize,
+    count: usize,
+    angles: *mut f64,
+    fills: *mut u8,
+    capacity: usize,
+    findings: *mut RotlangFindings,
+) -> RotlangStatus {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let found = unsafe {
+            expand_into(
+                template, model, options, first, count, angles, fills, capacity,
+            )
+        }?;
+        // SAFETY: the caller's contract on `findings`.
+        unsafe { report(findings, &found) }
+    })
+}
+
+/// The body of `rotlang_expand`, returning the findings.
+///
+/// # Safety
+/// As `rotlang_expand`.
+#[allow(clippy::too_many_arguments)]
+unsafe fn expand_into(
+    template: *const RotlangTemplate,
+    model: *const RotlangModel,
+    options: *const RotlangOptions,
+    first: usize,
+    count: usize,
+    angles: *mut f64,
+    fills: *mut u8,
+    capacity: usize,
+) -> Result<Vec<RotlangFinding>, Failure> {
+    let data = handle::template(template)?;
+    // SAFETY: the caller's contract on each pointer.
+    let model = unsafe { input(model, "the model")?.to_model() }?;
+    let options = (!options.is_null())
+        // SAFETY: the caller's contract.
+        .then(|| unsafe { input(options, "the options") })
+        .transpose()?;
+    let settings = Settings::from_c(options)?;
+    if angles.is_null() {
+        return Err(Failure::with(RotlangStatus::NullPointer, "angles"));
+    }
+    let len = model.len();
+    if first >= len {
+        return Err(Failure::with(
+            RotlangStatus::OutOfRange,
+            format!("first layer {first} of a model with {len} layers"),
+        ));
+    }
+    let count = if count == ROTLANG_TO_TOP {
+        len - first
+    } else {
+        count
+    };
+    if count > len - first {
+        return Err(Failure::with(
+            RotlangStatus::OutOfRange,
+            format!("layers {first} + {count} of a model with {len} layers"),
+        ));
+    }
+    if capacity < count {
+        return Err(Failure::with(
+            RotlangStatus::BufferTooSmall,
+            format!("capacity {capacity} for {count} layers"),
+        ));
+    }
+    // SAFETY: the caller's contract: `capacity >= count` entries.
+    let angles = unsafe { slice_mut(angles, count, "angles") }?;
+    let mut fills = match fills.is_null() {
+        true => None,
+        // SAFETY: as for `angles`.
+        false => Some(unsafe { slice_mut(fills, count, "fills") }?),
+    };
+    let mut stream = Stream::open(&data, &model, settings)?;
+    stream.seek(first);
+    let mut store = |i: usize, layer: Layer| {
+        // `i < count` always (the range is inside the model); the check keeps the
+        // writes in bounds without a panic path.
+        if let Some(slot) = angles.get_mut(i) {
+            *slot = layer.angle;
+        }
+        if let Some(slot) = fills.as_deref_mut().and_then(|f| f.get_mut(i)) {
+            *slot = RotlangFill::from(layer.fill) as u8;
+        }
+        i + 1
+    };
+    if first + count == len {
+        let (_, found) = stream.fold_to_top(0, &mut store);
+        Ok(found)
+    } else {
+        let mut i = 0;
+        for layer in stream.by_ref().take(count) {
+            i = store(i, layer);
+        }
+        Ok(stream.findings())
+    }
+}
+
+/// Evaluates layer `index` alone into `*angle` (and `*fill` unless NULL): a convenience
+/// for one-off questions. It streams from the bottom, so it costs O(index); for many
+/// layers use `rotlang_expand` or an evaluator.
+///
+/// # Safety
+/// As `rotlang_expand`; `angle` points to one writable double, `fill` is NULL or to one
+/// writable byte.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_angle_at(
+    template: *const RotlangTemplate,
+    model: *const RotlangModel,
+    options: *const RotlangOptions,
+    index: usize,
+    angle: *mut f64,
+    fill: *mut u8,
+) -> RotlangStatus {
+    guard(|| {
+        // SAFETY: the caller's contract.
+        let angle = unsafe { out(angle) }?;
+        let (mut a, mut f) = (0.0, 0u8);
+        // SAFETY: the caller's contract; the outputs are locals.
+        unsafe { expand_into(template, model, options, index, 1, &mut a, &mut f, 1) }?;
+        *angle = a;
+        if !fill.is_null() {
+            // SAFETY: the caller's contract.
+            *unsafe { out(fill) }? = f;
+        }
+        Ok(())
+    })
+}

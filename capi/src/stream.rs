@@ -1,0 +1,158 @@
+//! One stream of layers for either dialect, and the dialect's findings in C form.
+
+use std::ffi::c_char;
+
+use rotlang::eval::{self, Layer, Model};
+
+use crate::model::{RotlangDialect, Settings};
+use crate::status::{Failure, RotlangStatus};
+use crate::template::TemplateData;
+
+/// A defect of OrcaSlicer's reading that rotlang's OrcaSlicer dialect found and worked
+/// around (SEMANTICS.md section 10).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RotlangFindingKind {
+    /// OrcaSlicer never finishes slicing from `first_layer` (`orcaslicer::hangs`).
+    Hangs = 1,
+    /// A count outside the 32-bit range: OrcaSlicer's behaviour is undefined (it
+    /// crashes) from `first_layer` (`orcaslicer::undefined`).
+    Undefined = 2,
+    /// OrcaSlicer's angle is NaN or infinite on `layers` layers from `first_layer`
+    /// (`orcaslicer::nan`).
+    Nan = 3,
+}
+
+/// One finding: its kind, the first layer it concerns and how many layers.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RotlangFinding {
+    pub kind: RotlangFindingKind,
+    pub first_layer: usize,
+    pub layers: usize,
+}
+
+/// Where an evaluation reports its findings: the caller's array of `capacity` entries
+/// (`items` may be NULL when `capacity` is 0). The library sets `count` to the number of
+/// findings, which may exceed `capacity`: then only the first `capacity` were written.
+/// The rotlang dialect never has findings (`count` = 0).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct RotlangFindings {
+    pub items: *mut RotlangFinding,
+    pub capacity: usize,
+    pub count: usize,
+}
+
+/// The stable code of a finding kind (`"orcaslicer::hangs"`, ...), a static
+/// NUL-terminated string; `"unknown"` for other values.
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_finding_code(kind: u32) -> *const c_char {
+    match kind {
+        1 => c"orcaslicer::hangs".as_ptr(),
+        2 => c"orcaslicer::undefined".as_ptr(),
+        3 => c"orcaslicer::nan".as_ptr(),
+        _ => c"unknown".as_ptr(),
+    }
+}
+
+/// The layers of a model under a template in one dialect.
+pub enum Stream<'a> {
+    Rotlang(eval::Layers<'a>),
+}
+
+impl<'a> Stream<'a> {
+    pub fn open(
+        data: &'a TemplateData,
+        model: &'a Model,
+        settings: Settings,
+    ) -> Result<Stream<'a>, Failure> {
+        match settings.dialect {
+            RotlangDialect::Rotlang => {
+                if data.parse.has_errors() {
+                    return Err(RotlangStatus::TemplateHasErrors.into());
+                }
+                Ok(Stream::Rotlang(eval::layers(
+                    &data.parse.template,
+                    model,
+                    settings.options,
+                )))
+            }
+            RotlangDialect::Orcaslicer => Err(Failure::with(
+                RotlangStatus::DialectUnavailable,
+                "the OrcaSlicer dialect is not in this build yet",
+            )),
+        }
+    }
+
+    /// The index of the layer `next` yields.
+    pub fn layer_position(&self) -> usize {
+        match self {
+            Stream::Rotlang(layers) => layers.position(),
+        }
+    }
+
+    /// The findings so far, in C form.
+    pub fn findings(&self) -> Vec<RotlangFinding> {
+        match self {
+            Stream::Rotlang(_) => Vec::new(),
+        }
+    }
+
+    /// Folds over every layer left and returns the result with the findings.
+    #[inline]
+    pub fn fold_to_top<B, F: FnMut(B, Layer) -> B>(
+        self,
+        init: B,
+        f: F,
+    ) -> (B, Vec<RotlangFinding>) {
+        match self {
+            // `fold`, not `next`: the rotlang stream keeps its state in registers across
+            // layers that way (see `eval::Layers::fold`). It has no findings.
+            Stream::Rotlang(layers) => (layers.fold(init, f), Vec::new()),
+        }
+    }
+
+    /// Skips to layer `index` (at or after the current position).
+    pub fn seek(&mut self, index: usize) {
+        while self.layer_position() < index {
+            if self.next().is_none() {
+                break;
+            }
+        }
+    }
+}
+
+impl Iterator for Stream<'_> {
+    type Item = Layer;
+
+    #[inline]
+    fn next(&mut self) -> Option<Layer> {
+        match self {
+            Stream::Rotlang(layers) => layers.next(),
+        }
+    }
+}
+
+/// Writes `findings` into the caller's `RotlangFindings`, if given.
+///
+/// # Safety
+/// `out` is NULL or points to a `RotlangFindings` whose `items` hold `capacity` entries.
+pub unsafe fn report(
+    out: *mut RotlangFindings,
+    findings: &[RotlangFinding],
+) -> Result<(), Failure> {
+    if out.is_null() {
+        return Ok(());
+    }
+    // SAFETY: the caller's contract.
+    let out = unsafe { crate::util::out(out) }?;
+    out.count = findings.len();
+    let n = findings.len().min(out.capacity);
+    if n > 0 {
+        // SAFETY: the caller's contract on `items` and `capacity`.
+        let items = unsafe { crate::util::slice_mut(out.items, n, "findings.items") }?;
+        items.copy_from_slice(&findings[..n]);
+    }
+    Ok(())
+}

@@ -1,0 +1,218 @@
+//! Parsing into a template handle, and reading its diagnostics.
+
+use std::ffi::{CString, c_char};
+
+use rotlang::{Parse, Target};
+
+use crate::handle::{self, RotlangTemplate};
+use crate::status::{Failure, RotlangStatus, guard};
+use crate::util::{self, bytes};
+
+/// Which setting a template belongs to (the `target` argument of `rotlang_parse`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RotlangTarget {
+    /// `sparse_infill_rotate_template`.
+    Sparse = 0,
+    /// `solid_infill_rotate_template`: solid signs are errors there.
+    Solid = 1,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RotlangSeverity {
+    Warning = 0,
+    Error = 1,
+}
+
+/// One diagnostic of a template. The strings are NUL-terminated UTF-8 owned by the
+/// template handle: valid until it is freed.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct RotlangDiagnostic {
+    /// Stable code, e.g. `rotlang::unknown-sign`.
+    pub code: *const c_char,
+    pub severity: RotlangSeverity,
+    /// One line of English.
+    pub message: *const c_char,
+    /// Help text, or NULL when there is none.
+    pub help: *const c_char,
+    /// Byte offsets (not characters) of the primary span in the text given to
+    /// `rotlang_parse`: `text[start..end)`.
+    pub start: usize,
+    pub end: usize,
+}
+
+/// A diagnostic in C form: the strings it points to live in the `CString`s beside it.
+struct Stored {
+    code: CString,
+    message: CString,
+    help: Option<CString>,
+    severity: RotlangSeverity,
+    start: usize,
+    end: usize,
+}
+
+/// What a template handle holds; immutable once built, shared by every thread.
+pub struct TemplateData {
+    pub text: String,
+    pub parse: Parse,
+    diagnostics: Vec<Stored>,
+}
+
+/// A string without interior NULs (rotlang's messages have none; replace any as a guard).
+fn c_string(s: &str) -> CString {
+    CString::new(s.replace('\0', "\u{FFFD}")).unwrap_or_default()
+}
+
+impl TemplateData {
+    pub fn new(text: String, target: Target) -> TemplateData {
+        let parse = rotlang::parse(&text, target);
+        let diagnostics = parse
+            .diagnostics
+            .iter()
+            .map(|d| {
+                let span = d.primary_span();
+                Stored {
+                    code: c_string(d.code),
+                    message: c_string(&d.message),
+                    help: d.help.as_deref().map(c_string),
+                    severity: match d.severity {
+                        rotlang::Severity::Warning => RotlangSeverity::Warning,
+                        rotlang::Severity::Error => RotlangSeverity::Error,
+                    },
+                    start: span.start,
+                    end: span.end,
+                }
+            })
+            .collect();
+        TemplateData {
+            text,
+            parse,
+            diagnostics,
+        }
+    }
+}
+
+/// Parses `length` bytes of UTF-8 at `text` (no NUL needed; NUL bytes inside are just
+/// characters) for `target` (a `RotlangTarget`). On success `*out` is a new handle, also
+/// when the template has errors: read them with `rotlang_template_diagnostic`. Free it
+/// with `rotlang_template_free`. `text` may be NULL when `length` is 0 (the empty template).
+///
+/// Errors: `NULL_POINTER` (`out`, or `text` with `length > 0`), `INVALID_UTF8`,
+/// `INVALID_ARGUMENT` (unknown target). On error `*out` is set to NULL.
+///
+/// # Safety
+/// `text` points to `length` readable bytes; `out` to one writable pointer.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_parse(
+    text: *const c_char,
+    length: usize,
+    target: u32,
+    out: *mut *mut RotlangTemplate,
+) -> RotlangStatus {
+    guard(|| {
+        // SAFETY: the caller's contract on `out`.
+        let out = unsafe { util::out::<*mut RotlangTemplate>(out) }?;
+        *out = std::ptr::null_mut();
+        let target = match target {
+            0 => Target::Sparse,
+            1 => Target::Solid,
+            other => {
+                return Err(Failure::with(
+                    RotlangStatus::InvalidArgument,
+                    format!("target {other} (0 = sparse, 1 = solid)"),
+                ));
+            }
+        };
+        // SAFETY: the caller's contract on `text`.
+        let bytes = unsafe { bytes(text.cast(), length) }?;
+        let text = std::str::from_utf8(bytes).map_err(|e| {
+            Failure::with(
+                RotlangStatus::InvalidUtf8,
+                format!("invalid byte at offset {}", e.valid_up_to()),
+            )
+        })?;
+        *out = handle::new_template(TemplateData::new(text.to_owned(), target));
+        Ok(())
+    })
+}
+
+/// Frees a template. Freeing NULL is `NULL_POINTER`; freeing a handle twice (or a pointer
+/// that is not a template handle) is `INVALID_HANDLE` and has no other effect. Evaluators
+/// made from the template keep working: they hold their own reference.
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_template_free(template: *mut RotlangTemplate) -> RotlangStatus {
+    guard(|| handle::free_template(template))
+}
+
+/// The number of diagnostics (errors and warnings) of a template.
+///
+/// # Safety
+/// `out` points to one writable `size_t`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_template_diagnostic_count(
+    template: *const RotlangTemplate,
+    out: *mut usize,
+) -> RotlangStatus {
+    guard(|| {
+        // SAFETY: the caller's contract on `out`.
+        let out = unsafe { util::out::<usize>(out) }?;
+        *out = handle::template(template)?.diagnostics.len();
+        Ok(())
+    })
+}
+
+/// Whether the template has errors (`*out` = 1) or not (0). Warnings do not count.
+///
+/// # Safety
+/// `out` points to one writable `int`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_template_has_errors(
+    template: *const RotlangTemplate,
+    out: *mut i32,
+) -> RotlangStatus {
+    guard(|| {
+        // SAFETY: the caller's contract on `out`.
+        let out = unsafe { util::out::<i32>(out) }?;
+        *out = i32::from(handle::template(template)?.parse.has_errors());
+        Ok(())
+    })
+}
+
+/// Diagnostic number `index` (from 0, in text order). `OUT_OF_RANGE` past the count.
+///
+/// # Safety
+/// `out` points to one writable `RotlangDiagnostic`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_template_diagnostic(
+    template: *const RotlangTemplate,
+    index: usize,
+    out: *mut RotlangDiagnostic,
+) -> RotlangStatus {
+    guard(|| {
+        // SAFETY: the caller's contract on `out`.
+        let out = unsafe { util::out::<RotlangDiagnostic>(out) }?;
+        let data = handle::template(template)?;
+        let d = data.diagnostics.get(index).ok_or_else(|| {
+            Failure::with(
+                RotlangStatus::OutOfRange,
+                format!(
+                    "diagnostic {index} of a template with {}",
+                    data.diagnostics.len()
+                ),
+            )
+        })?;
+        // The pointers stay valid after `data` (this Arc clone) drops: the registry or
+        // another user holds the data until the template is freed.
+        *out = RotlangDiagnostic {
+            code: d.code.as_ptr(),
+            severity: d.severity,
+            message: d.message.as_ptr(),
+            help: d.help.as_ref().map_or(std::ptr::null(), |h| h.as_ptr()),
+            start: d.start,
+            end: d.end,
+        };
+        Ok(())
+    })
+}

@@ -1,0 +1,164 @@
+// The OrcaSlicer drop-in (examples/orcaslicer/rotation_angle.cpp) against the conformance
+// corpus: every layer of every case on all four models, from several threads at once,
+// each walking the cases and layers in its own random order. Run by capi/tests/cpp.rs.
+//
+// Usage: dropin_test CORPUS THREADS STRIDE [same-only]
+//   CORPUS: lines "model NAME h B T N heights..." and "case MODEL STATUS HEX N degrees..."
+//   (written by cpp.rs from ../shared/conformance; "nan" where OrcaSlicer's angle is NaN);
+//   STRIDE: check every STRIDE-th case (valgrind runs a sample); same-only: only cases
+//   whose OrcaSlicer angles equal rotlang's (for a build in the rotlang dialect).
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "Print.hpp"
+
+namespace Slic3r {
+double calculate_infill_rotation_angle(const PrintObject* object, size_t layer_id, const double& fixed_infill_angle,
+                                       const std::string& template_string);
+void clear_infill_rotation_cache();
+}  // namespace Slic3r
+
+using namespace Slic3r;
+
+struct Case {
+    std::string model, status, text;
+    std::vector<double> degrees;  // NaN: OrcaSlicer's angle is NaN there
+};
+
+struct ModelSpec {
+    double layer_height;
+    int bottom, top;
+    std::vector<double> heights;
+};
+
+static std::string unhex(const std::string& hex) {
+    if (hex == "-") return "";
+    std::string out;
+    for (size_t i = 0; i + 1 < hex.size(); i += 2) out.push_back(static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16)));
+    return out;
+}
+
+static bool close(double got, double expected) {
+    if (!std::isfinite(got)) return false;
+    if (std::isnan(expected)) return true;  // OrcaSlicer: NaN; rotlang: any finite angle
+    if (std::fabs(expected) > 1e9) return std::fabs(got - expected) <= 1e-9 * std::fabs(expected);
+    double d = std::fmod(std::fabs(got - expected), 360.0);
+    return std::min(d, 360.0 - d) <= 1e-4;
+}
+
+int main(int argc, char** argv) {
+    if (argc < 4) return 2;
+    std::ifstream in(argv[1]);
+    unsigned threads = static_cast<unsigned>(std::stoi(argv[2]));
+    size_t stride = static_cast<size_t>(std::stoi(argv[3]));
+    bool same_only = argc > 4 && std::string(argv[4]) == "same-only";
+
+    std::map<std::string, ModelSpec> specs;
+    std::vector<Case> cases;
+    std::string line;
+    size_t seen = 0;
+    while (std::getline(in, line)) {
+        std::istringstream s(line);
+        std::string kind;
+        s >> kind;
+        size_t n = 0;
+        if (kind == "model") {
+            std::string name;
+            ModelSpec m;
+            s >> name >> m.layer_height >> m.bottom >> m.top >> n;
+            m.heights.resize(n);
+            for (auto& h : m.heights) s >> h;
+            specs[name] = m;
+        } else if (kind == "case") {
+            Case c;
+            std::string hex;
+            s >> c.model >> c.status >> hex >> n;
+            c.text = unhex(hex);
+            for (size_t i = 0; i < n; i++) {
+                std::string d;
+                s >> d;
+                c.degrees.push_back(d == "nan" ? NAN : std::stod(d));
+            }
+            if (seen++ % stride == 0 && (!same_only || c.status == "same")) cases.push_back(c);
+        }
+    }
+
+    // One Print per model (its shell counts) and one object per model, plus the same
+    // object on a 1.5 mm raft: the angles must not move with the raft.
+    std::map<std::string, std::unique_ptr<Print>> prints;
+    std::map<std::string, std::unique_ptr<PrintObject>> objects, rafted;
+    for (const auto& [name, m] : specs) {
+        auto print = std::make_unique<Print>();
+        print->m_region.bottom_shell_layers.value = m.bottom;
+        print->m_region.top_shell_layers.value = m.top;
+        objects[name] = std::make_unique<PrintObject>(print.get(), m.heights, m.layer_height, 0.0);
+        rafted[name] = std::make_unique<PrintObject>(print.get(), m.heights, m.layer_height, 1.5);
+        prints[name] = std::move(print);
+    }
+
+    std::atomic<size_t> checked{0}, failed{0}, raft_diffs{0};
+    auto worker = [&](unsigned seed) {
+        std::mt19937 rng(seed);
+        std::vector<size_t> order(cases.size());
+        for (size_t i = 0; i < order.size(); i++) order[i] = i;
+        std::shuffle(order.begin(), order.end(), rng);
+        for (size_t k : order) {
+            const Case& c = cases[k];
+            const PrintObject* object = objects.at(c.model).get();
+            const PrintObject* raft = rafted.at(c.model).get();
+            std::vector<size_t> layers(c.degrees.size());
+            for (size_t i = 0; i < layers.size(); i++) layers[i] = i;
+            std::shuffle(layers.begin(), layers.end(), rng);
+            for (size_t i : layers) {
+                double fixed = 45.0;  // ignored by every non-empty template
+                double got = calculate_infill_rotation_angle(object, i, fixed, c.text) * 180.0 / M_PI;
+                double on_raft = calculate_infill_rotation_angle(raft, i, fixed, c.text) * 180.0 / M_PI;
+                checked++;
+                if (!close(got, c.degrees[i])) {
+                    if (failed++ < 10)
+                        std::fprintf(stderr, "%s on %s (%s), layer %zu: got %.9g, expected %.9g\n", c.text.c_str(),
+                                     c.model.c_str(), c.status.c_str(), i, got, c.degrees[i]);
+                }
+                if (!close(on_raft, got) && raft_diffs++ < 10)
+                    std::fprintf(stderr, "%s on %s with a raft, layer %zu: %.9g, without: %.9g\n", c.text.c_str(),
+                                 c.model.c_str(), i, on_raft, got);
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; t++) pool.emplace_back(worker, 1234 + t);
+    for (auto& t : pool) t.join();
+
+    // The empty template gives the fixed angle in radians; a layer past the top too.
+    const PrintObject* cube = objects.begin()->second.get();
+    double fixed = 30.0;
+    bool fixed_ok = calculate_infill_rotation_angle(cube, 3, fixed, "") == M_PI * 30.0 / 180.0 &&
+                    calculate_infill_rotation_angle(cube, 1000000, fixed, "+10") == M_PI * 30.0 / 180.0;
+
+    // Re-slicing an object (new layer heights) gives it a new table.
+    const ModelSpec& spec = specs.begin()->second;
+    PrintObject object(prints.begin()->second.get(), spec.heights, spec.layer_height, 0.0);
+    double before = calculate_infill_rotation_angle(&object, 5, fixed, "+10/5mm");
+    std::vector<double> thicker(spec.heights.size(), spec.heights[0] * 2);
+    object.restack(thicker);
+    double after = calculate_infill_rotation_angle(&object, 5, fixed, "+10/5mm");
+    PrintObject fresh(prints.begin()->second.get(), thicker, spec.layer_height, 0.0);
+    bool reslice_ok = after != before && after == calculate_infill_rotation_angle(&fresh, 5, fixed, "+10/5mm");
+    clear_infill_rotation_cache();
+
+    std::printf("checked %zu layers of %zu cases on %zu threads: %zu failed, %zu moved on a raft\n", checked.load(),
+                cases.size(), static_cast<size_t>(threads), failed.load(), raft_diffs.load());
+    if (!fixed_ok) std::fprintf(stderr, "the fixed angle is not returned for an empty template\n");
+    if (!reslice_ok) std::fprintf(stderr, "a re-sliced object kept its old table\n");
+    return failed == 0 && raft_diffs == 0 && fixed_ok && reslice_ok && !cases.empty() ? 0 : 1;
+}

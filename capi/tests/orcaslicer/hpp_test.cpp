@@ -1,0 +1,87 @@
+// include/rotlang.hpp from C++17: RAII, exceptions carrying diagnostics, models, ranges,
+// the evaluator. Run by capi/tests/cpp.rs (plain and under valgrind).
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "rotlang.hpp"
+
+static int failures = 0;
+#define CHECK(cond)                                                                    \
+    do {                                                                               \
+        if (!(cond)) {                                                                 \
+            failures++;                                                                \
+            std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
+        }                                                                              \
+    } while (0)
+
+int main() {
+    CHECK(rotlang::version().size() >= 5);
+
+    // Parse and evaluate: the documentation's example on the 20 mm cube.
+    rotlang::Template tpl(std::string_view("5, 10!, +20"));
+    CHECK(!tpl.has_errors() && tpl.diagnostics().empty());
+    auto cube = rotlang::Model::uniform(100, 0.2);
+    std::vector<double> angles = tpl.angles(cube);
+    CHECK(angles.size() == 100 && angles[0] == 5 && angles[1] == 10 && angles[2] == 30 && angles[4] == 25);
+
+    // A range with the base direction; fills.
+    rotlang::Options options;
+    options.base = 45;
+    rotlang::Expansion part = tpl.expand(cube, options, 2, 3);
+    CHECK(part.angles == (std::vector<double>{75, 50, 70}) && part.fills.size() == 3 && part.findings.empty());
+    rotlang::Template solid(std::string_view("+30, S2"));
+    rotlang::Expansion s = solid.expand(rotlang::Model::from_heights({0.3, 0.2, 0.2, 0.2}, 0.2).shells(2, 2));
+    CHECK(s.fills[0] == rotlang::Fill::Sparse && s.fills[1] == rotlang::Fill::Solid);
+
+    // The evaluator, in any order, equals the batch.
+    rotlang::Evaluator ev = tpl.evaluator(cube);
+    for (size_t i : {99u, 3u, 50u, 0u, 51u}) CHECK(ev.layer(i).angle == angles[i]);
+    CHECK(std::fabs(ev.layer(9).top - 2.0) < 1e-12);
+
+    // A template with errors constructs; evaluating it throws with the diagnostics.
+    rotlang::Template bad(std::string_view("+30°, X"));
+    CHECK(bad.has_errors() && bad.diagnostics().size() == 2);
+    CHECK(bad.diagnostics()[1].code == "rotlang::unknown-sign" && bad.diagnostics()[1].start == 7);
+    try {
+        bad.angles(cube);
+        CHECK(false);
+    } catch (const rotlang::Error& e) {
+        CHECK(e.status() == ROTLANG_STATUS_TEMPLATE_HAS_ERRORS && e.diagnostics().size() == 2);
+    }
+
+    // Bad input: non-UTF-8, bad models, out of range.
+    try {
+        rotlang::Template t(std::string_view("+10\xff", 4));
+        CHECK(false);
+    } catch (const rotlang::Error& e) {
+        CHECK(e.status() == ROTLANG_STATUS_INVALID_UTF8);
+    }
+    try {
+        tpl.angles(rotlang::Model::from_heights({0.2, NAN}, 0.2));
+        CHECK(false);
+    } catch (const rotlang::Error& e) {
+        CHECK(e.status() == ROTLANG_STATUS_INVALID_MODEL && std::string(e.what()).find("layer 1") != std::string::npos);
+    }
+    try {
+        tpl.angles(rotlang::Model::from_heights({}, 0.2));
+        CHECK(false);
+    } catch (const rotlang::Error& e) {
+        CHECK(e.status() == ROTLANG_STATUS_INVALID_MODEL);
+    }
+    try {
+        ev.layer(100);
+        CHECK(false);
+    } catch (const rotlang::Error& e) {
+        CHECK(e.status() == ROTLANG_STATUS_OUT_OF_RANGE);
+    }
+
+    // Move semantics: the moved-to template works, the handle is freed once.
+    rotlang::Template moved = std::move(tpl);
+    CHECK(moved.angles(cube) == angles);
+
+    if (failures) return 1;
+    std::printf("ok\n");
+    return 0;
+}

@@ -1,0 +1,5 @@
+// What the playground refuses, with a message, to stay responsive. Real templates are a
+// few dozen characters and real prints a few thousand layers; the CLI has no such caps.
+export const MAX_TEMPLATE = 64 * 1024; // characters in the editor
+export const MAX_LAYERS = 2_000_000; // layers evaluated and plotted
+export const WORKER_TIMEOUT_MS = 10_000; // then the worker is stopped and restarted

@@ -1,0 +1,377 @@
+// The playground's page: wires the editor, the worker's analysis, the plot, the layer
+// slider with its preview, the model form, profiles, compat findings and the share link.
+import { createEditor, highlight, replaceAll, showDiagnostics } from './editor.js';
+import { Engine } from './engine.js';
+import { EXAMPLES } from './examples.js';
+import { MAX_LAYERS } from './limits.js';
+import { cursorX, layerAt, plotSvg } from './plot.js';
+import { previewSvg } from './preview.js';
+import { decodeState, encodeState } from './share.js';
+
+const $ = (id) => document.getElementById(id);
+const FILLS = ['sparse', 'dense', 'solid', 'concentric', 'monotonic', 'rectilinear'];
+const esc = (s) => String(s).replace(/[&<>"]/g, (c) => `&#${c.charCodeAt(0)};`);
+const deg = (a) => `${Number(a.toFixed(4))}°`;
+
+let signs = [];
+let analysis = null; // the last answer, for the text it was computed on
+let analysedText = null;
+let seq = 0;
+let timer = null;
+
+const engine = new Engine((error) => status(error.message, true));
+
+function status(message, refused = false) {
+  const s = $('status');
+  s.textContent = message;
+  s.classList.toggle('refused', refused);
+}
+
+// ---- model and view state -------------------------------------------------------
+
+function num(id) {
+  const v = $(id).value.trim();
+  return v === '' ? undefined : Number(v);
+}
+
+function modelState() {
+  return {
+    layers: num('layers'),
+    layerHeight: num('layer-height'),
+    firstLayerHeight: num('first-layer'),
+    bottomShells: num('bottom-shells'),
+    topShells: num('top-shells'),
+  };
+}
+
+function viewState() {
+  const m = modelState();
+  return {
+    text: view.state.doc.toString(),
+    target: $('target').value,
+    dialect: $('dialect').value,
+    layers: m.layers,
+    layerHeight: m.layerHeight,
+    firstLayerHeight: m.firstLayerHeight,
+    bottomShells: m.bottomShells,
+    topShells: m.topShells,
+    base: num('base'),
+    seed: num('seed'),
+    layer: Number($('layer-slider').value),
+    pattern: $('pattern').value,
+    density: num('density'),
+    shape: $('shape').value,
+  };
+}
+
+function applyState(s) {
+  const set = (id, v) => { if (v !== undefined && v !== null) $(id).value = v; };
+  set('target', s.target);
+  set('dialect', s.dialect);
+  set('layers', s.layers);
+  set('layer-height', s.layerHeight);
+  set('first-layer', s.firstLayerHeight);
+  set('bottom-shells', s.bottomShells);
+  set('top-shells', s.topShells);
+  set('base', s.base);
+  set('seed', s.seed);
+  set('pattern', s.pattern);
+  set('density', s.density);
+  set('shape', s.shape);
+  if (s.layer !== undefined) pendingLayer = Number(s.layer);
+  if (typeof s.text === 'string' && s.text !== view.state.doc.toString()) replaceAll(view, s.text);
+  schedule(0);
+}
+
+// ---- analysis -------------------------------------------------------------------
+
+function schedule(delay = 120) {
+  clearTimeout(timer);
+  timer = setTimeout(analyse, delay);
+}
+
+let pendingLayer = null;
+
+async function analyse() {
+  const text = view.state.doc.toString();
+  const s = viewState();
+  const id = ++seq;
+  const model = modelState();
+  if (model.firstLayerHeight === undefined) delete model.firstLayerHeight;
+  status('checking…');
+  let r;
+  try {
+    r = await engine.request('analyse', {
+      text, target: s.target, dialect: s.dialect, model, base: s.base, seed: s.seed,
+    });
+  } catch (e) {
+    if (id !== seq) return;
+    status(e.message, true);
+    return;
+  }
+  if (id !== seq || text !== view.state.doc.toString()) return; // stale
+  analysis = r;
+  analysedText = text;
+  showDiagnostics(view, r.check.diagnostics);
+  renderProblems(r.check);
+  renderCompat(r);
+  $('explain').textContent = typeof r.explain === 'string' ? r.explain : '';
+  if (r.refused) {
+    status(`refused: ${r.refused}`, true);
+  } else if (r.modelError) {
+    status(`model: ${r.modelError}`, true);
+  } else if (r.check.hasErrors && !r.layers) {
+    const n = r.check.diagnostics.filter((d) => d.severity === 'error').length;
+    status(`${n}${r.check.omitted ? '+' : ''} error${n === 1 ? '' : 's'}: fix ${n === 1 ? 'it' : 'them'} to see the angles`);
+  } else if (r.layers) {
+    const l = r.layers;
+    status(`${l.layers.toLocaleString('en')} layers · ${l.instructions.length} instruction${l.instructions.length === 1 ? '' : 's'}`);
+  }
+  renderPlot();
+}
+
+function renderProblems(check) {
+  const ul = $('problems');
+  ul.replaceChildren();
+  for (const d of check.diagnostics.slice(0, 20)) {
+    const li = document.createElement('li');
+    li.className = d.severity;
+    li.innerHTML = `${esc(d.message)} <small>(${esc(d.code)}, column ${d.column})</small>`;
+    if (d.fix) {
+      const b = document.createElement('button');
+      b.type = 'button';
+      b.textContent = `Fix: ${d.fix.title}`;
+      b.addEventListener('click', () => {
+        if (view.state.doc.toString() !== analysedText) return;
+        view.dispatch({ changes: { from: d.fix.startUtf16, to: d.fix.endUtf16, insert: d.fix.replacement } });
+        view.focus();
+      });
+      li.append(' ', b);
+    }
+    ul.append(li);
+  }
+  if (check.diagnostics.length > 20 || check.omitted) {
+    const li = document.createElement('li');
+    li.textContent = `… and ${check.diagnostics.length - 20 + check.omitted} more`;
+    ul.append(li);
+  }
+}
+
+function renderCompat(r) {
+  const ul = $('compat-list');
+  ul.replaceChildren();
+  const add = (html) => { const li = document.createElement('li'); li.innerHTML = html; ul.append(li); };
+  for (const d of r.compat ?? []) add(`<code>${esc(d.code)}</code> ${esc(d.message)}`);
+  for (const f of r.layers?.findings ?? []) add(`<code>${esc(f.code)}</code> ${esc(f.message)} (from layer ${f.firstLayer ?? f.first_layer}, ${f.layers} layer${f.layers === 1 ? '' : 's'})`);
+  if (r.compatError) add(esc(r.compatError));
+  if (!ul.children.length) {
+    add(!r.compatAvailable
+      ? 'OrcaSlicer compatibility findings need a rotlang build with the dialect.'
+      : 'No findings: OrcaSlicer reads this template as rotlang does.');
+  }
+}
+
+// ---- plot, slider, preview -----------------------------------------------------------
+
+function renderPlot() {
+  const plot = $('plot');
+  const l = analysis?.layers;
+  if (!l) {
+    plot.innerHTML = '';
+    $('preview').innerHTML = '';
+    $('layer-info').textContent = '';
+    return;
+  }
+  plot.innerHTML = typeof analysis.plot === 'string' ? analysis.plot : plotSvg(l.angles, l.fills);
+  const slider = $('layer-slider');
+  slider.max = String(Math.max(0, l.angles.length - 1));
+  if (pendingLayer !== null) {
+    slider.value = String(Math.min(pendingLayer, l.angles.length - 1));
+    pendingLayer = null;
+  }
+  renderLayer();
+}
+
+function renderLayer() {
+  const l = analysis?.layers;
+  if (!l) return;
+  const i = Math.min(Number($('layer-slider').value), l.angles.length - 1);
+  const angle = l.angles[i];
+  const fill = FILLS[l.fills[i]];
+  const k = l.instructionIndex[i];
+  const ins = k >= 0 ? l.instructions[k] : null;
+  $('layer-info').textContent = `layer ${i}: ${deg(angle)}${fill !== 'sparse' ? ` (${fill})` : ''}${ins ? ` · ${ins.text}` : ' · holds'}`;
+  const cursor = $('plot').querySelector('.cursor');
+  if (cursor) {
+    const x = cursorX(i, l.angles.length);
+    cursor.setAttribute('x1', x);
+    cursor.setAttribute('x2', x);
+  }
+  $('preview').innerHTML = previewSvg(angle, {
+    pattern: $('pattern').value,
+    density: num('density') ?? 15,
+    shape: $('shape').value,
+    solid: fill !== 'sparse',
+  });
+  highlight(view, ins && view.state.doc.toString() === analysedText
+    ? { from: ins.startUtf16, to: ins.endUtf16, title: `governs layer ${i}` }
+    : null);
+}
+
+function setLayer(i) {
+  const slider = $('layer-slider');
+  slider.value = String(Math.max(0, Math.min(Number(slider.max), i)));
+  renderLayer();
+}
+
+$('layer-slider').addEventListener('input', renderLayer);
+for (const id of ['pattern', 'density', 'shape']) $(id).addEventListener('input', renderLayer);
+
+$('plot').addEventListener('mousemove', (e) => {
+  const svg = $('plot').querySelector('svg');
+  const l = analysis?.layers;
+  if (!svg || !l) return;
+  const box = svg.getBoundingClientRect();
+  const vb = svg.viewBox.baseVal;
+  setLayer(layerAt(((e.clientX - box.left) / box.width) * vb.width, l.angles.length));
+});
+$('plot').addEventListener('keydown', (e) => {
+  const step = { ArrowLeft: -1, ArrowRight: 1, PageDown: -10, PageUp: 10 }[e.key];
+  if (step === undefined) return;
+  e.preventDefault();
+  setLayer(Number($('layer-slider').value) + step);
+});
+
+// ---- hover --------------------------------------------------------------------------
+
+function hover(pos) {
+  const l = analysis?.layers;
+  const text = view.state.doc.toString();
+  if (!analysis || text !== analysedText) return null;
+  const instructions = l?.instructions ?? analysis.check.instructions;
+  const k = instructions.findIndex((s) => s.startUtf16 <= pos && pos <= s.endUtf16);
+  if (k < 0) return null;
+  const ins = instructions[k];
+  const dom = document.createElement('div');
+  dom.className = 'tip';
+  let html = `<code>${esc(ins.text)}</code>`;
+  const words = analysis.words?.[k];
+  if (words) html += ` ${esc(words)}`;
+  if (l) {
+    const g = l.ranges[k];
+    html += g.count === 0
+      ? '<br>governs no layer of this model'
+      : `<br>governs ${g.count} of ${l.layers} layers: ${g.first === g.last ? `layer ${g.first}` : `layers ${g.first}–${g.last}`}`
+        + ` (${deg(l.angles[g.first])} … ${deg(l.angles[g.last])})`;
+  }
+  dom.innerHTML = html;
+  return dom;
+}
+
+// ---- formatting, examples, share, profiles -------------------------------------------
+
+async function format() {
+  try {
+    const text = await engine.request('format', { text: view.state.doc.toString(), target: $('target').value });
+    if (text !== view.state.doc.toString()) replaceAll(view, text);
+    status('formatted');
+  } catch (e) {
+    status(e.kind === 'template' ? 'fix the errors before formatting' : e.message, true);
+  }
+}
+$('format').addEventListener('click', format);
+
+for (const [t, words] of EXAMPLES) {
+  const o = document.createElement('option');
+  o.value = t;
+  o.textContent = `${t}: ${words}`;
+  $('examples').append(o);
+}
+$('examples').addEventListener('change', (e) => {
+  if (!e.target.value) return;
+  replaceAll(view, e.target.value);
+  e.target.value = '';
+});
+
+$('share').addEventListener('click', async () => {
+  const hash = encodeState(viewState());
+  history.replaceState(null, '', hash);
+  const link = $('share-link');
+  link.value = location.href;
+  link.hidden = false;
+  link.focus();
+  link.select();
+  try {
+    await navigator.clipboard.writeText(location.href);
+    status('share link copied');
+  } catch {
+    status('share link ready: copy it from the box');
+  }
+});
+window.addEventListener('hashchange', () => {
+  const s = decodeState(location.hash);
+  if (s) applyState(s);
+});
+
+async function loadProfile(name, text) {
+  try {
+    const p = await engine.request('profile', { name, text });
+    const holder = $('profile-templates');
+    holder.replaceChildren();
+    const m = p.model;
+    applyState({
+      layerHeight: m.layerHeight, firstLayerHeight: m.firstLayerHeight,
+      bottomShells: m.bottomShells, topShells: m.topShells, base: p.base,
+      pattern: ['grid', 'triangles'].includes(p.pattern) ? p.pattern : undefined,
+      density: Number.isFinite(p.density) ? p.density : undefined,
+      target: p.templates[0].target, text: p.templates[0].text,
+    });
+    const label = document.createElement('p');
+    label.textContent = `Profile ${p.name}: ${p.templates.length} template${p.templates.length === 1 ? '' : 's'}`;
+    holder.append(label);
+    for (const t of p.templates) {
+      const b = document.createElement('button');
+      b.type = 'button';
+      b.textContent = `${t.key}: ${t.text.length > 40 ? `${t.text.slice(0, 40)}…` : t.text || '(empty)'}`;
+      b.addEventListener('click', () => applyState({ target: t.target, text: t.text }));
+      holder.append(b, ' ');
+    }
+  } catch (e) {
+    status(`refused: ${e.message}`, true);
+  }
+}
+$('profile').addEventListener('change', async (e) => {
+  const file = e.target.files?.[0];
+  if (file) await loadProfile(file.name, await file.text());
+  e.target.value = '';
+});
+document.addEventListener('dragover', (e) => { e.preventDefault(); document.body.classList.add('dragging'); });
+document.addEventListener('dragleave', (e) => { if (!e.relatedTarget) document.body.classList.remove('dragging'); });
+document.addEventListener('drop', async (e) => {
+  e.preventDefault();
+  document.body.classList.remove('dragging');
+  const file = e.dataTransfer?.files?.[0];
+  if (file) await loadProfile(file.name, await file.text());
+});
+
+for (const id of ['target', 'dialect', 'layers', 'layer-height', 'first-layer', 'bottom-shells', 'top-shells', 'base', 'seed']) {
+  $(id).addEventListener('input', () => schedule());
+}
+$('layers').max = String(MAX_LAYERS * 50);
+
+// ---- start ------------------------------------------------------------------------
+
+const initial = decodeState(location.hash);
+const view = createEditor($('editor'), initial?.text ?? '+10L25%, -10l25%, -10L25%, +10l25%', {
+  onChange: () => schedule(),
+  onRefused: (m) => status(m, true),
+  format,
+  hover,
+  signs: () => signs,
+});
+if (initial) applyState(initial);
+schedule(0);
+engine.request('signs').then((s) => { signs = s; }).catch(() => {});
+engine.request('version').then((v) => { $('version').textContent = `rotlang ${v}`; }).catch(() => {});
+// For the browser tests and the curious: the editor view.
+window.rotlangPlayground = { view, engine, state: () => viewState(), analysis: () => analysis, analysedText: () => analysedText };

@@ -1,0 +1,111 @@
+// All rotlang work runs here, off the main thread: a 1 MB template or a million layers
+// never freezes the page. The main thread sends {id, op, args}; the answer is
+// {id, ok, result} or {id, ok: false, error: {kind, message, diagnostics}}.
+import { MAX_LAYERS, MAX_TEMPLATE } from './limits.js';
+import { readProfile } from './profile.js';
+
+// Loaded lazily so that onmessage is set before the wasm is ready (messages sent
+// meanwhile wait for it instead of being lost).
+const rotlang = import('rotlang');
+
+function refuse(kind, message) {
+  return Object.assign(new Error(message), { kind });
+}
+
+function options(state) {
+  const o = { target: state.target, model: state.model, base: state.base, seed: state.seed };
+  if (state.dialect && state.dialect !== 'rotlang') o.dialect = state.dialect;
+  return o;
+}
+
+const ops = {
+  async analyse(state) {
+    const r = await rotlang;
+    if (state.text.length > MAX_TEMPLATE) {
+      throw refuse('limit', `the template has ${state.text.length.toLocaleString('en')} characters; the playground takes up to ${MAX_TEMPLATE.toLocaleString('en')}`);
+    }
+    const check = r.check(state.text, { target: state.target });
+    const out = { check, layers: null, compat: [], transfer: [] };
+    const layers = state.model.layers;
+    if (layers > MAX_LAYERS) {
+      out.refused = `${Number(layers).toLocaleString('en')} layers asked for; the playground evaluates up to ${MAX_LAYERS.toLocaleString('en')} (the CLI up to 100,000,000)`;
+    } else if (!check.hasErrors || (state.dialect && state.dialect !== 'rotlang')) {
+      try {
+        const e = r.expand(state.text, options(state));
+        // Each instruction's layers: first, last and how many.
+        const ranges = e.instructions.map(() => ({ first: -1, last: -1, count: 0 }));
+        for (let i = 0; i < e.instructionIndex.length; i++) {
+          const k = e.instructionIndex[i];
+          if (k < 0) continue;
+          const g = ranges[k];
+          if (g.first < 0) g.first = i;
+          g.last = i;
+          g.count++;
+        }
+        out.layers = { ...e, ranges };
+        out.transfer = [e.angles.buffer, e.fills.buffer, e.instructionIndex.buffer];
+      } catch (err) {
+        if (err.kind === 'template') throw err;
+        out.modelError = err.message;
+      }
+    }
+    out.compatAvailable = typeof r.compat === 'function';
+    if (out.compatAvailable && !check.hasErrors) {
+      try {
+        out.compat = r.compat(state.text, options(state));
+      } catch (err) {
+        out.compat = [];
+        out.compatError = err.message;
+      }
+    }
+    if (typeof r.explain === 'function' && !check.hasErrors) {
+      try {
+        out.explain = r.explain(state.text, options(state));
+      } catch {
+        out.explain = null;
+      }
+    }
+    if (typeof r.plot === 'function' && out.layers) {
+      try {
+        out.plot = r.plot(state.text, { ...options(state), ...state.plot });
+      } catch {
+        out.plot = null;
+      }
+    }
+    return out;
+  },
+  async format({ text, target }) {
+    const r = await rotlang;
+    if (text.length > MAX_TEMPLATE) throw refuse('limit', 'the template is too long to format here');
+    return r.format(text, { target });
+  },
+  async preview(args) {
+    const r = await rotlang;
+    if (typeof r.preview !== 'function') return null;
+    return r.preview(args.text, args.options);
+  },
+  async profile({ name, text }) {
+    return readProfile(name, text);
+  },
+  async signs() {
+    return (await rotlang).signs();
+  },
+  async version() {
+    return (await rotlang).version();
+  },
+};
+
+self.onmessage = async ({ data: { id, op, args } }) => {
+  try {
+    const result = await ops[op](args);
+    const transfer = result && result.transfer ? result.transfer : [];
+    if (result && result.transfer) delete result.transfer;
+    self.postMessage({ id, ok: true, result }, transfer);
+  } catch (e) {
+    self.postMessage({
+      id,
+      ok: false,
+      error: { kind: e.kind ?? 'internal', message: e.message ?? String(e), diagnostics: e.diagnostics ?? null },
+    });
+  }
+};

@@ -1,0 +1,292 @@
+// The playground in a real browser (Debian's Chromium through playwright-core), on the
+// built site (web/dist) served from 127.0.0.1: everything issue 12 lists.
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { join } from 'node:path';
+import { artifacts, launch, serve } from './harness.js';
+
+let server;
+let browser;
+let base;
+
+before(async () => {
+  server = await serve();
+  base = `http://127.0.0.1:${server.address().port}/`;
+  browser = await launch();
+});
+
+after(async () => {
+  await browser?.cleanup();
+  server?.close();
+});
+
+async function open(path = '', viewport) {
+  const page = await browser.context.newPage();
+  if (viewport) await page.setViewportSize(viewport);
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.errors = errors;
+  await page.goto(base + path);
+  await page.waitForFunction(() => window.rotlangPlayground?.analysis() !== null);
+  return page;
+}
+
+const shot = (page, name) => page.screenshot({ path: join(artifacts, `${name}.png`), fullPage: true });
+
+// Replaces the editor's text by typing it, as a person would.
+async function type(page, text) {
+  await page.click('.cm-content');
+  await page.keyboard.press('Control+A');
+  await page.keyboard.press('Delete');
+  await page.keyboard.type(text);
+  await page.keyboard.press('Escape'); // close a completion popup, if any
+  await settled(page, text);
+}
+
+// Waits until the analysis is of `text`.
+async function settled(page, text) {
+  await page.waitForFunction((t) => {
+    const p = window.rotlangPlayground;
+    return p.view.state.doc.toString() === t && p.analysedText() === t
+      && document.querySelector('#status').textContent !== 'checking…';
+  }, text);
+  await page.waitForTimeout(50);
+}
+
+async function setText(page, text) {
+  await page.evaluate((t) => {
+    const v = window.rotlangPlayground.view;
+    v.dispatch({ changes: { from: 0, to: v.state.doc.length, insert: t } });
+  }, text);
+  await settled(page, text);
+}
+
+test('typing +30X5 shows a squiggle on X with the message', async () => {
+  const page = await open();
+  await type(page, '+30X5');
+  const range = page.locator('.cm-lintRange-error');
+  await range.first().waitFor();
+  assert.equal(await range.count(), 1);
+  assert.equal(await range.first().textContent(), 'X');
+  await range.first().hover();
+  const tip = page.locator('.cm-tooltip-lint');
+  await tip.waitFor();
+  assert.match(await tip.textContent(), /unknown sign `X`/);
+  await shot(page, 'squiggle');
+  assert.deepEqual(page.errors, []);
+  await page.close();
+});
+
+test('the quick fix on +30/50 % gives +30/50%', async () => {
+  const page = await open();
+  await type(page, '+30/50 %');
+  const range = page.locator('.cm-lintRange-error');
+  await range.first().waitFor();
+  await range.first().hover();
+  const action = page.locator('.cm-tooltip-lint .cm-diagnosticAction', { hasText: 'remove the space' });
+  await action.waitFor();
+  await action.click();
+  await settled(page, '+30/50%');
+  assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString()), '+30/50%');
+  assert.equal(await page.locator('.cm-lintRange-error').count(), 0);
+  await page.close();
+});
+
+test('the quick fix works from the keyboard alone (lint panel)', async () => {
+  const page = await open();
+  await type(page, '+30/50 %');
+  await page.locator('.cm-lintRange-error').first().waitFor();
+  await page.keyboard.press('Control+Shift+KeyM'); // open the lint panel (focuses it)
+  const panel = page.locator('.cm-panel-lint');
+  await panel.waitFor();
+  assert.match(await panel.textContent(), /remove the space/);
+  await page.keyboard.press('r'); // the action's access key
+  await settled(page, '+30/50%');
+  assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString()), '+30/50%');
+  await page.close();
+});
+
+test('the plot for 0, 90 alternates', async () => {
+  const page = await open();
+  await type(page, '0, 90');
+  const dots = await page.locator('#plot svg circle').evaluateAll((cs) => cs.map((c) => ({
+    layer: Number(c.dataset.layer), angle: Number(c.dataset.angle), cy: Number(c.getAttribute('cy')),
+  })));
+  assert.equal(dots.length, 100);
+  for (const d of dots) {
+    assert.equal(d.angle, d.layer % 2 === 0 ? 0 : 90, `layer ${d.layer}`);
+    assert.equal(d.cy, dots[d.layer % 2].cy, 'drawn at one of two heights');
+  }
+  assert.ok(dots[1].cy < dots[0].cy, '90° is drawn above 0°');
+  await shot(page, 'plot-0-90');
+  await page.close();
+});
+
+// Directions of the preview's lines (degrees modulo 180), read from the rendered SVG.
+async function lineDirections(page) {
+  return page.locator('#preview svg .infill line').evaluateAll((ls) => ls.map((l) => {
+    const [x1, y1, x2, y2] = ['x1', 'y1', 'x2', 'y2'].map((a) => Number(l.getAttribute(a)));
+    // SVG's y axis points down.
+    const a = (Math.atan2(-(y2 - y1), x2 - x1) * 180) / Math.PI;
+    return ((a % 180) + 180) % 180;
+  }));
+}
+
+test('the slider at layer 49 of +30/50% on the cube shows lines at 30°, by keyboard', async () => {
+  const page = await open();
+  await type(page, '+30/50%');
+  // Keyboard only: focus the slider by tabbing, then Home and 49 × ArrowRight.
+  await page.focus('#layer-slider');
+  await page.keyboard.press('Home');
+  for (let i = 0; i < 49; i++) await page.keyboard.press('ArrowRight');
+  assert.equal(await page.inputValue('#layer-slider'), '49');
+  assert.match(await page.textContent('#layer-info'), /^layer 49: 30°/);
+  const dirs = await lineDirections(page);
+  assert.ok(dirs.length > 5, `${dirs.length} lines`);
+  for (const d of dirs) assert.ok(Math.abs(d - 30) < 1e-3, `a line at ${d}°`);
+  // The instruction that governs layer 49 is highlighted in the editor.
+  assert.equal(await page.locator('.cm-governing').textContent(), '+30/50%');
+  // Layer 0 is at 0.6° (the first of 50 steps), not 30°.
+  await page.keyboard.press('Home');
+  const first = await lineDirections(page);
+  assert.ok(first.every((d) => Math.abs(d - 30) > 1), 'layer 0 differs');
+  await page.keyboard.press('End');
+  await shot(page, 'slider-49');
+  await page.close();
+});
+
+test('hover shows the instruction and its layer range; the plot highlights the governing instruction', async () => {
+  const page = await open();
+  await type(page, '0, +30/50%');
+  const box = await page.locator('.cm-content').boundingBox();
+  // Hover over the second instruction (characters 3..10).
+  const pos = await page.evaluate(() => {
+    const v = window.rotlangPlayground.view;
+    const c = v.coordsAtPos(6);
+    return { x: c.left + 1, y: (c.top + c.bottom) / 2 };
+  });
+  assert.ok(box);
+  await page.mouse.move(pos.x, pos.y);
+  const tip = page.locator('.cm-tooltip-hover .tip');
+  await tip.waitFor();
+  const text = await tip.textContent();
+  assert.match(text, /\+30\/50%/);
+  assert.match(text, /governs \d+ of 100 layers: layers \d+–\d+/);
+  // Over the plot: the instruction of the layer under the mouse gets the highlight.
+  const plot = await page.locator('#plot svg').boundingBox();
+  await page.mouse.move(plot.x + plot.width * 0.02, plot.y + plot.height / 2);
+  await page.mouse.move(plot.x + plot.width * 0.5, plot.y + plot.height / 2);
+  const layer = Number(await page.inputValue('#layer-slider'));
+  assert.ok(layer > 0);
+  const governing = await page.locator('.cm-governing').textContent();
+  const expected = await page.evaluate((i) => {
+    const l = window.rotlangPlayground.analysis().layers;
+    return l.instructions[l.instructionIndex[i]].text;
+  }, layer);
+  assert.equal(governing, expected);
+  await page.close();
+});
+
+test('a share link restores the state', async () => {
+  const page = await open();
+  await type(page, 'B!, +30');
+  await page.fill('#layers', '40');
+  await page.fill('#layer-height', '0.25');
+  await page.selectOption('#shape', 'circle');
+  await settled(page, 'B!, +30');
+  await page.focus('#layer-slider');
+  await page.keyboard.press('Home');
+  for (let i = 0; i < 7; i++) await page.keyboard.press('ArrowRight');
+  await page.click('#share');
+  const link = await page.inputValue('#share-link');
+  assert.match(link, /#/);
+  await page.close();
+  const again = await open(link.slice(link.indexOf('#')));
+  await settled(again, 'B!, +30');
+  assert.equal(await again.inputValue('#layers'), '40');
+  assert.equal(await again.inputValue('#layer-height'), '0.25');
+  assert.equal(await again.inputValue('#shape'), 'circle');
+  assert.equal(await again.inputValue('#layer-slider'), '7');
+  assert.equal(await again.locator('#plot svg circle').count(), 40);
+  assert.ok(await again.locator('#preview svg circle').count() > 0, 'circle outline');
+  await again.close();
+});
+
+async function drop(page, name, text) {
+  await page.evaluate(([n, t]) => {
+    const dt = new DataTransfer();
+    dt.items.add(new File([t], n, { type: 'application/json' }));
+    document.body.dispatchEvent(new DragEvent('dragover', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+  }, [name, text]);
+}
+
+test('a dropped profile fills the editor and the model; a non-JSON one is refused', async () => {
+  const page = await open();
+  const profile = {
+    name: 'My PLA 0.16', type: 'process', layer_height: '0.16', initial_layer_print_height: '0.24',
+    bottom_shell_layers: '5', top_shell_layers: '6', sparse_infill_rotate_template: '+10L25%, -10l25%',
+    solid_infill_rotate_template: '0, 90', sparse_infill_pattern: 'grid', sparse_infill_density: '20%',
+  };
+  await drop(page, 'pla.json', JSON.stringify(profile, null, 2));
+  await settled(page, '+10L25%, -10l25%');
+  assert.equal(await page.inputValue('#layer-height'), '0.16');
+  assert.equal(await page.inputValue('#first-layer'), '0.24');
+  assert.equal(await page.inputValue('#bottom-shells'), '5');
+  assert.equal(await page.inputValue('#top-shells'), '6');
+  assert.equal(await page.inputValue('#pattern'), 'grid');
+  assert.match(await page.textContent('#profile-templates'), /Profile My PLA 0\.16: 2 templates/);
+  // The solid template is one click away.
+  await page.click('#profile-templates button:has-text("solid_infill_rotate_template")');
+  await settled(page, '0, 90');
+  assert.equal(await page.inputValue('#target'), 'solid');
+  await shot(page, 'profile');
+  await drop(page, 'notes.txt', 'this is not JSON {');
+  await page.waitForFunction(() => /refused: notes\.txt is not a JSON profile/.test(document.querySelector('#status').textContent));
+  assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString()), '0, 90', 'the editor is kept');
+  await page.close();
+});
+
+test('hostile input: a 1 MB paste is refused, a million layers plot, ten million are refused', async () => {
+  const page = await open();
+  await type(page, '0, 90');
+  const big = '+10L25%, '.repeat(120_000);
+  await page.click('.cm-content');
+  await page.evaluate((t) => {
+    const dt = new DataTransfer();
+    dt.setData('text/plain', t);
+    document.querySelector('.cm-content').dispatchEvent(new ClipboardEvent('paste', { clipboardData: dt, bubbles: true, cancelable: true }));
+  }, big);
+  await page.waitForFunction(() => /refused: that would make the template/.test(document.querySelector('#status').textContent));
+  assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString()), '0, 90');
+  // Still responsive: typing works.
+  await type(page, '+45');
+  await page.fill('#layers', '1000000');
+  await page.waitForFunction(() => /1,000,000 layers/.test(document.querySelector('#status').textContent), null, { timeout: 30_000 });
+  assert.equal(await page.locator('#plot svg path.columns').count(), 1);
+  await page.fill('#layers', '10000000');
+  await page.waitForFunction(() => /refused: 10,000,000 layers asked for/.test(document.querySelector('#status').textContent));
+  await page.fill('#layers', '-3');
+  await page.waitForFunction(() => /^model: /.test(document.querySelector('#status').textContent));
+  assert.deepEqual(page.errors, []);
+  await page.close();
+});
+
+test('readable at phone width: no sideways scrolling', async () => {
+  const page = await open('', { width: 390, height: 844 });
+  await type(page, '+10L25%, -10l25%, -10L25%, +10l25%');
+  const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+  assert.ok(overflow <= 0, `${overflow}px wider than the screen`);
+  await shot(page, 'phone');
+  await page.close();
+});
+
+test('screenshot for the README', async () => {
+  const page = await open();
+  await type(page, '+10L25%, -10l25%, -10L25%, +10l25%');
+  await page.focus('#layer-slider');
+  await page.keyboard.press('Home');
+  for (let i = 0; i < 30; i++) await page.keyboard.press('ArrowRight');
+  await page.screenshot({ path: join(artifacts, 'playground.png') });
+  await page.close();
+});

@@ -188,11 +188,11 @@ fn decimal(x: f64, decimals: u32) -> Decimal {
         let mut frac = n % scale;
         if frac > 0 {
             let mut digits = decimals as usize;
-            while frac % 1000 == 0 {
+            while frac.is_multiple_of(1000) {
                 frac /= 1000;
                 digits -= 3;
             }
-            while frac % 10 == 0 {
+            while frac.is_multiple_of(10) {
                 frac /= 10;
                 digits -= 1;
             }

@@ -68,7 +68,7 @@ fn every_example_reports_its_code() {
             "{}",
             doc.code
         );
-        if let Some(_) = doc.code.strip_prefix("orcaslicer::") {
+        if doc.code.starts_with("orcaslicer::") {
             // Findings of the OrcaSlicer reading, not diagnostics of the parser.
             let model = Model::cube20();
             let mut layers = crate::dialect::orcaslicer::layers(

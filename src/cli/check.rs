@@ -47,7 +47,7 @@ pub struct CheckArgs {
     #[arg(long)]
     pub deny_warnings: bool,
     /// Apply every fix and print the fixed templates (diagnostics go to stderr).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "format")]
     pub fix: bool,
     /// With --fix: rewrite files in place instead of printing them.
     #[arg(long, requires = "fix")]

@@ -157,7 +157,7 @@ fn parse_range(text: &str) -> Result<LayerRange, String> {
             let n = number(t)?;
             LayerRange {
                 start: n,
-                end: Some(n + 1),
+                end: Some(n.saturating_add(1)),
             }
         }
         Some((a, b)) => {
@@ -594,7 +594,17 @@ mod tests {
             };
             assert!(e.to_string().contains("must be"), "{e}");
         }
-        for range in ["5..5", "x..3", "3..1"] {
+        // Huge numbers are refused, by the parser or against the model, without overflow.
+        for range in [usize::MAX.to_string(), format!("0..={}", usize::MAX)] {
+            match Cli::try_parse_from(["expand", "0", "--range", &range]) {
+                Err(_) => {}
+                Ok(cli) => {
+                    let code = run(&cli.args, &mut Vec::new(), &mut Vec::new());
+                    assert!(code.is_err(), "{range}");
+                }
+            }
+        }
+        for range in ["5..5", "x..3", "3..1", "-1..3", ""] {
             assert!(Cli::try_parse_from(["expand", "0", "--range", range]).is_err());
         }
         let (code, _, _) = expand(&["0", "--range", "90..101"]);

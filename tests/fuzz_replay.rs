@@ -16,7 +16,7 @@ const DIR: &str = env!("CARGO_MANIFEST_DIR");
 /// Replayed here.
 const HERE: &[&str] = &["eval", "fmt", "parse"];
 /// Replayed by `lsp/tests/fuzz_replay.rs`.
-const LSP: &[&str] = &["lsp_framing", "lsp_json"];
+const LSP: &[&str] = &["lsp_framing", "lsp_json", "lsp_profiles"];
 
 #[test]
 fn parse_corpus() {

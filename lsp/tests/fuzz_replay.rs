@@ -5,6 +5,8 @@
 mod lsp_framing;
 #[path = "../../fuzz/bodies/lsp_json.rs"]
 mod lsp_json;
+#[path = "../../fuzz/bodies/lsp_profiles.rs"]
+mod lsp_profiles;
 #[path = "../../fuzz/bodies/replay.rs"]
 #[allow(dead_code)] // `targets` is for the root crate's check
 mod replay;
@@ -19,4 +21,9 @@ fn lsp_json_corpus() {
 #[test]
 fn lsp_framing_corpus() {
     replay::replay(DIR, "lsp_framing", lsp_framing::run);
+}
+
+#[test]
+fn lsp_profiles_corpus() {
+    replay::replay(DIR, "lsp_profiles", lsp_profiles::run);
 }

@@ -901,3 +901,16 @@ fn completions_man_and_version() {
         );
     }
 }
+
+#[test]
+fn invisible_characters_get_a_caret_and_keep_columns() {
+    // After a zero-width character, columns still count the file's characters.
+    let (golden, code) = run(&["check", "0, \u{feff}90, +30X5"], None);
+    assert_eq!(code, 1);
+    assert!(golden.contains("<template>:1:4\n"), "{golden}");
+    assert!(
+        golden.contains("<template>:1:12\n"),
+        "the X is character 12: {golden}"
+    );
+    assert!(golden.contains("0, ???90, +30X5"), "{golden}");
+}

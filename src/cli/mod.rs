@@ -184,23 +184,18 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
     for (input, diagnostics) in reports {
         let long = input.text.lines().any(|l| l.len() > LONG_LINE);
         let index = LineIndex::new(&input.text);
-        let id = files.add(
-            input.name.clone(),
-            if long {
-                String::new()
-            } else {
-                visible(&input.text)
-            },
-            (0, 0),
-        );
+        let id = if long {
+            files.add(input.name.clone(), "", (0, 0))
+        } else {
+            files.add(input.name.clone(), &input.text, (0, 0))
+        };
         for d in diagnostics.iter() {
             let (file, d) = if long {
                 // A 1 MB one-line template would be printed whole under every diagnostic:
                 // show a window around the diagnostic instead.
                 // Line and column numbers stay the file's (`1:123`, not the excerpt's).
                 let (excerpt, at, d) = excerpt(input, &index, d);
-                let excerpt = visible(&excerpt);
-                (files.add(input.name.clone(), excerpt, at), d)
+                (files.add(input.name.clone(), &excerpt, at), d)
             } else {
                 (id, d.clone())
             };
@@ -263,7 +258,7 @@ fn excerpt(
 /// The text as shown under a diagnostic: control characters (a NUL, an escape) would be
 /// invisible or would drive the terminal, and zero-width ones invisible, so each becomes
 /// `?`s of the same byte length.
-fn visible(text: &str) -> String {
+pub(super) fn visible(text: &str) -> String {
     // Zero-width characters (a byte-order mark, a zero-width space) would leave the caret
     // under nothing.
     let hidden = |c: char| {

@@ -7,7 +7,10 @@ use codespan_reporting::files::{Error, Files};
 
 struct Source {
     name: String,
+    /// The text as shown: invisible characters made visible, byte for byte.
     text: String,
+    /// The text itself, when it differs from `text`: columns count its characters.
+    original: Option<String>,
     line_starts: Vec<usize>,
     /// Lines before the text starts, in the input it comes from.
     lines_before: usize,
@@ -22,12 +25,15 @@ pub(super) struct Sources {
 
 impl Sources {
     /// Adds a text starting `at` = (lines, characters) into its input; returns its id.
-    pub fn add(&mut self, name: String, text: String, at: (usize, usize)) -> usize {
+    pub fn add(&mut self, name: String, original: &str, at: (usize, usize)) -> usize {
+        let text = super::visible(original);
+        let original = (text != original).then(|| original.to_owned());
         let mut line_starts = vec![0];
         line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
         self.list.push(Source {
             name,
             text,
+            original,
             line_starts,
             lines_before: at.0,
             columns_before: at.1,
@@ -73,7 +79,8 @@ impl<'a> Files<'a> for Sources {
     ) -> Result<usize, Error> {
         let source = self.get(id)?;
         let range = self.line_range(id, line_index)?;
-        let column = codespan_reporting::files::column_index(&source.text, range, byte_index);
+        let text = source.original.as_deref().unwrap_or(&source.text);
+        let column = codespan_reporting::files::column_index(text, range, byte_index);
         let before = if line_index == 0 {
             source.columns_before
         } else {

@@ -28,10 +28,12 @@ that is not printed or written: its remaining errors are reported instead (exit 
 Exit status: 0 when every input is clean or has only warnings, 1 when any has an
 error, 2 on a usage error.")]
 pub struct CheckArgs {
-    /// Templates to check, each one input. Put `--` before a template that begins with `-`.
+    /// Templates to check, each one input; `-` is stdin. Put `--` before a template that
+    /// begins with `-`.
     #[arg(value_name = "TEMPLATE", allow_negative_numbers = true)]
     pub templates: Vec<String>,
-    /// Read a template from a file (one template per file; newlines are separators). Repeatable.
+    /// Read a template from a file (one template per file; newlines are separators; `-` is
+    /// stdin). Repeatable.
     #[arg(long = "file", short = 'f', value_name = "PATH")]
     pub files: Vec<PathBuf>,
     /// Which setting the template is for.

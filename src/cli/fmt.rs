@@ -20,10 +20,10 @@ Examples:
 Exit status: 0 when done (or, with --check, already canonical), 1 on a template
 with errors or, with --check, one that would change; 2 on a usage error.")]
 pub struct FmtArgs {
-    /// Templates to format. Put `--` before a template that begins with `-`.
+    /// Templates to format; `-` is stdin. Put `--` before a template that begins with `-`.
     #[arg(value_name = "TEMPLATE", allow_negative_numbers = true)]
     pub templates: Vec<String>,
-    /// Format a template file. Repeatable.
+    /// Format a template file (`-` is stdin). Repeatable.
     #[arg(long = "file", short = 'f', value_name = "PATH")]
     pub files: Vec<PathBuf>,
     /// Check only: print nothing on stdout, name each input that is not in canonical form

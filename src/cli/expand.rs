@@ -419,16 +419,20 @@ impl Writer<'_> {
                 out.write_all(b",")?;
             }
             // The number helper prints finite numbers in plain decimal form, which is
-            // valid JSON (angles are always finite).
-            write!(
-                out,
-                "\n{{\"index\":{},\"bottom\":{},\"top\":{},\"angle\":{},\"fill\":\"{}\",\"instruction\":",
-                l.index,
-                number::height(l.bottom),
-                number::height(l.top),
-                number::angle(number::wrap(l.angle, self.wrap)),
-                self.fill(&l)
-            )?;
+            // valid JSON (angles are always finite). Pieces, not `write!`: this loop runs
+            // once per layer.
+            out.write_all(b"\n{\"index\":")?;
+            out.write_all(number::integer(l.index as u64).as_str().as_bytes())?;
+            out.write_all(b",\"bottom\":")?;
+            out.write_all(number::height(l.bottom).as_str().as_bytes())?;
+            out.write_all(b",\"top\":")?;
+            out.write_all(number::height(l.top).as_str().as_bytes())?;
+            out.write_all(b",\"angle\":")?;
+            let angle = number::wrap(l.angle, self.wrap);
+            out.write_all(number::angle(angle).as_str().as_bytes())?;
+            out.write_all(b",\"fill\":\"")?;
+            out.write_all(self.fill(&l).as_bytes())?;
+            out.write_all(b"\",\"instruction\":")?;
             if cached.span != l.instruction {
                 cached.span = l.instruction;
                 cached.text = match l.instruction {

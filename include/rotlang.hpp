@@ -125,6 +125,9 @@ public:
         detail::check(rotlang_model_layer_count(&m, &n));
         return n;
     }
+    /// The number of layers as given, unchecked (0 for a model that cannot have any);
+    /// the evaluation checks the model. Saves the copy `size()` makes to check it.
+    std::size_t layers_given() const noexcept { return list_ ? heights_.size() : model_.layers; }
     /// The C struct, pointing into this object's heights (valid while it lives unchanged).
     RotlangModel c() const {
         RotlangModel m = model_;
@@ -204,7 +207,7 @@ public:
     Expansion expand(const Model& model, const Options& options = {}, std::size_t first = 0,
                      std::size_t count = ROTLANG_TO_TOP) const {
         RotlangModel m = model.c();
-        std::size_t total = model.size();
+        std::size_t total = model.layers_given();
         std::size_t n = count == static_cast<std::size_t>(ROTLANG_TO_TOP)
                             ? (first < total ? total - first : 0)
                             : count;
@@ -231,7 +234,7 @@ public:
     /// Every layer's angle in degrees.
     std::vector<double> angles(const Model& model, const Options& options = {}) const {
         RotlangModel m = model.c();
-        std::vector<double> out(model.size());
+        std::vector<double> out(model.layers_given());
         RotlangOptions o = options.c();
         detail::check(rotlang_expand(handle_.get(), &m, &o, 0, ROTLANG_TO_TOP, out.data(), nullptr,
                                      out.size(), nullptr),

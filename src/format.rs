@@ -4,16 +4,21 @@
 //! separators; it never touches an instruction's text, which is why it cannot change the
 //! meaning. Empty instructions (which rotlang ignores) disappear.
 
-use crate::{Target, parse};
+use crate::Target;
 
-/// The canonical form of a template, or `None` when it has errors (a template that does not
-/// parse is left for the user to fix; guessing could change its meaning).
+/// The canonical form of a template, or `None` when it has any error, whether or not it
+/// is among the diagnostics listed (a template that does not parse is left for the user
+/// to fix; guessing could change its meaning, and an instruction that failed would be
+/// missing from the output). Streams: no IR is kept, whatever the template's size.
 pub fn format(text: &str, target: Target) -> Option<String> {
-    let parse = parse(text, target);
-    if parse.has_errors() {
-        return None;
-    }
-    Some(canonical(text, &parse.template))
+    let mut out = String::with_capacity(text.len());
+    let collected = crate::syntax::parse_each(text, target, |ins| {
+        if !out.is_empty() {
+            out.push_str(", ");
+        }
+        out.push_str(&text[ins.span.range()]);
+    });
+    (collected.errors == 0).then_some(out)
 }
 
 /// Joins the instructions' texts with `, `.

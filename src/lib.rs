@@ -21,7 +21,10 @@ pub mod format;
 pub mod ir;
 mod lint;
 pub mod number;
+pub mod profile;
 mod syntax;
+
+pub use syntax::MAX_DIAGNOSTICS;
 
 pub use diagnostic::{Diagnostic, Fix, Label, LineIndex, Severity, Span};
 pub use ir::*;
@@ -54,4 +57,11 @@ impl Parse {
 /// Parse a template for the given target (sparse or solid infill).
 pub fn parse(text: &str, target: Target) -> Parse {
     syntax::parse(text, target)
+}
+
+/// The diagnostics of a template, without its IR: `Parse::template` is empty, everything
+/// else is as [`parse`] gives it. Memory stays within the text and the capped diagnostics
+/// whatever the template's size (what `rotlang check` uses).
+pub fn check(text: &str, target: Target) -> Parse {
+    syntax::parse_each(text, target, drop).into_parse(Template::default())
 }

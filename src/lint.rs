@@ -47,113 +47,122 @@ pub(crate) fn instruction(text: &str, ins: &Instruction, target: Target, out: &m
     }
 }
 
-/// Warnings about separators: `+30/ 50%`, `+30 /50%`.
-pub(crate) fn spacing(template: &Template, chunks: &[Chunk<'_>], out: &mut Sink) {
-    space_after_joint(template, chunks, out);
-    // `+30 /50%`: a space splits what looks like one instruction into two.
-    for (i, pair) in chunks.windows(2).enumerate() {
-        let (prev, next) = (pair[0], pair[1]);
-        // A joint (`+30 /50%`), a lone `#` unit (`+30/5 #`) or a repeat count
-        // (`+45/10 *2`) cut off by a space; `#14` on its own is a documented form.
-        let cut_off = next
-            .text
-            .starts_with(|c: char| Joint::from_symbol(c).is_some() && c != '#')
-            || next.text == "#"
-            || (next.text.starts_with('*')
-                && next.text[1..].starts_with(|c: char| c.is_ascii_digit()));
-        if next.after_space_only
-            && prev
-                .text
-                .ends_with(|c: char| c.is_ascii_digit() || c == '%')
-            && cut_off
-        {
-            // `+30 / 50%`: a lone joint with its count cut off too: join all three.
-            let count = chunks.get(i + 2).filter(|c| {
-                next.text.len() == 1
-                    && next.text != "#"
-                    && c.after_space_only
-                    && c.text.starts_with(|ch: char| {
-                        ch.is_ascii_digit() || matches!(ch, '-' | 'B' | 'T')
-                    })
-            });
-            let end = count.map_or(next.span.start, |c| c.span.start);
-            let gap = Span::new(prev.span.end, end);
-            let joined = match count {
-                Some(c) => format!("{}{}{}", prev.text, next.text, c.text),
-                None => format!("{}{}", prev.text, next.text),
-            };
-            let mut d = Diagnostic::warning(
-                "rotlang::space-splits-instruction",
-                format!("`{}` starts a new instruction", next.text),
-            )
-            .with_primary(
-                next.span,
-                "read as an instruction of its own (a turn of 0°)",
-            )
-            .with_secondary(
-                Span::new(prev.span.end, next.span.start),
-                "because of this space",
-            );
-            if let Some(c) = count {
-                d = d.with_secondary(c.span, "and this one too").with_fix(
-                    "join the three",
-                    gap,
-                    next.text,
-                );
-            } else {
-                d = d.with_fix("join the two", gap, "");
-            }
-            out.push(d.with_help(format!(
-                "did you mean `{joined}`? Otherwise separate them with a comma"
-            )));
+/// Warnings about separators (`+30/ 50%`, `+30 /50%`), on chunks as they stream by: a
+/// pair of neighbours is looked at once the chunk after them is known. Each chunk comes
+/// with whether it was read as a valid instruction.
+#[derive(Default)]
+pub(crate) struct Spacing<'a> {
+    window: [Option<(Chunk<'a>, bool)>; 2],
+}
+
+impl<'a> Spacing<'a> {
+    pub fn push(&mut self, chunk: Chunk<'a>, valid: bool, out: &mut Sink) {
+        if let [Some(prev), Some(next)] = self.window {
+            space_after_joint(prev, next, out);
+            pair(prev.0, next.0, Some(chunk), out);
         }
+        self.window = [self.window[1], Some((chunk, valid))];
+    }
+
+    pub fn finish(self, out: &mut Sink) {
+        if let [Some(prev), Some(next)] = self.window {
+            space_after_joint(prev, next, out);
+            pair(prev.0, next.0, None, out);
+        }
+    }
+}
+
+/// `+30 /50%`: a space splits what looks like one instruction into two. `after` is the
+/// chunk after `next`, if any.
+fn pair(prev: Chunk<'_>, next: Chunk<'_>, after: Option<Chunk<'_>>, out: &mut Sink) {
+    // A joint (`+30 /50%`), a lone `#` unit (`+30/5 #`) or a repeat count
+    // (`+45/10 *2`) cut off by a space; `#14` on its own is a documented form.
+    let cut_off = next
+        .text
+        .starts_with(|c: char| Joint::from_symbol(c).is_some() && c != '#')
+        || next.text == "#"
+        || (next.text.starts_with('*') && next.text[1..].starts_with(|c: char| c.is_ascii_digit()));
+    if next.after_space_only
+        && prev
+            .text
+            .ends_with(|c: char| c.is_ascii_digit() || c == '%')
+        && cut_off
+    {
+        // `+30 / 50%`: a lone joint with its count cut off too: join all three.
+        let count = after.filter(|c| {
+            next.text.len() == 1
+                && next.text != "#"
+                && c.after_space_only
+                && c.text
+                    .starts_with(|ch: char| ch.is_ascii_digit() || matches!(ch, '-' | 'B' | 'T'))
+        });
+        let end = count.map_or(next.span.start, |c| c.span.start);
+        let gap = Span::new(prev.span.end, end);
+        let joined = match count {
+            Some(c) => format!("{}{}{}", prev.text, next.text, c.text),
+            None => format!("{}{}", prev.text, next.text),
+        };
+        let mut d = Diagnostic::warning(
+            "rotlang::space-splits-instruction",
+            format!("`{}` starts a new instruction", next.text),
+        )
+        .with_primary(
+            next.span,
+            "read as an instruction of its own (a turn of 0°)",
+        )
+        .with_secondary(
+            Span::new(prev.span.end, next.span.start),
+            "because of this space",
+        );
+        if let Some(c) = count {
+            d = d.with_secondary(c.span, "and this one too").with_fix(
+                "join the three",
+                gap,
+                next.text,
+            );
+        } else {
+            d = d.with_fix("join the two", gap, "");
+        }
+        out.push(d.with_help(format!(
+            "did you mean `{joined}`? Otherwise separate them with a comma"
+        )));
     }
 }
 
 /// `+30/ 50%`, `+30# 10`, `+10L 25%`: a space after a joint splits the instruction from
 /// its count, and both halves are legal: a one-layer turn, then an instruction of its own
-/// (`50%` is the absolute direction 180°). Only pairs of valid instructions get here; a
-/// second half that cannot stand alone is an error of the parser.
-fn space_after_joint(template: &Template, chunks: &[Chunk<'_>], out: &mut Sink) {
-    let parsed = |c: &Chunk<'_>| {
-        let i = template
-            .instructions
-            .partition_point(|ins| ins.span.start < c.span.start);
-        template
-            .instructions
-            .get(i)
-            .is_some_and(|ins| ins.span == c.span)
-    };
-    for pair in chunks.windows(2) {
-        let (prev, next) = (pair[0], pair[1]);
-        // `+30 / 50%`: the lone `/` is itself cut off; the check below joins all three.
-        let lone_joint = prev.after_space_only
-            && prev
-                .text
-                .starts_with(|c: char| Joint::from_symbol(c).is_some());
-        if lone_joint
-            || !(crate::syntax::after_joint(&prev, &next) && parsed(&prev) && parsed(&next))
-        {
-            continue;
-        }
-        let gap = Span::new(prev.span.end, next.span.start);
-        out.push(
-            Diagnostic::warning(
-                "rotlang::space-splits-instruction",
-                format!("`{}` starts a new instruction", next.text),
-            )
-            .with_primary(
-                next.span,
-                "read as an instruction of its own, not as the count of the joint",
-            )
-            .with_secondary(gap, "because of this space")
-            .with_fix("remove the space", gap, "")
-            .with_help(format!(
-                "did you mean `{}{}`? Otherwise separate them with a comma",
-                prev.text, next.text
-            )),
-        );
+/// (`50%` is the absolute direction 180°). Only pairs of valid instructions are warned
+/// about; a second half that cannot stand alone is an error of the parser.
+fn space_after_joint(
+    (prev, prev_valid): (Chunk<'_>, bool),
+    (next, next_valid): (Chunk<'_>, bool),
+    out: &mut Sink,
+) {
+    // `+30 / 50%`: the lone `/` is itself cut off; the check below joins all three.
+    let lone_joint = prev.after_space_only
+        && prev
+            .text
+            .starts_with(|c: char| Joint::from_symbol(c).is_some());
+    if lone_joint || !(crate::syntax::after_joint(&prev, &next) && prev_valid && next_valid) {
+        return;
     }
+    let gap = Span::new(prev.span.end, next.span.start);
+    out.push(
+        Diagnostic::warning(
+            "rotlang::space-splits-instruction",
+            format!("`{}` starts a new instruction", next.text),
+        )
+        .with_primary(
+            next.span,
+            "read as an instruction of its own, not as the count of the joint",
+        )
+        .with_secondary(gap, "because of this space")
+        .with_fix("remove the space", gap, "")
+        .with_help(format!(
+            "did you mean `{}{}`? Otherwise separate them with a comma",
+            prev.text, next.text
+        )),
+    );
 }
 
 fn fmt_deg(d: f64) -> String {

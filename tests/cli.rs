@@ -292,6 +292,7 @@ fn fmt_prints_canonical_form() {
         0,
         [
             "fmt",
+            "--force",
             "0 90  +30/50%",
             "  +10L25%,-10l25%\n\n#5 ,",
             "10,,20"
@@ -594,7 +595,7 @@ fn dash_is_stdin() {
         "stdin_dash_fmt_file",
         0,
         ["fmt", "--file", "-"],
-        Some("0 90\n")
+        Some("0,90\n")
     );
     golden!(
         "stdin_dash_expand",

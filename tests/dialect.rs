@@ -406,3 +406,138 @@ fn cli_expand_dialect() {
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("expected `rotlang` or `orcaslicer`"), "{err}");
 }
+
+/// The compat lint on every corpus case, on the case's model: every case OrcaSlicer reads
+/// differently (`differs`, `nan`, `hangs`) is flagged by a finding on the model; a `same`
+/// case gets only rule-based findings (counted here, so that a change shows).
+#[test]
+fn compat_flags_every_case_orcaslicer_reads_differently() {
+    use rotlang::Target;
+    use rotlang::dialect::compat::{self, CODES, DIFFERS, RULES};
+    let models = named_models();
+    let mut rule_findings: BTreeMap<&str, usize> = BTreeMap::new();
+    let mut same_with_rules = 0;
+    let mut failures = Vec::new();
+    for case in cases("cases.jsonl") {
+        let model = &models[case.model.as_str().expect("model name")];
+        let diagnostics = compat::compat(&case.template, Target::Sparse, model, Options::default());
+        let codes: Vec<&str> = diagnostics.iter().map(|d| d.code).collect();
+        let status = case.orcaslicer.status.as_str();
+        let wanted = match status {
+            "differs" => Some(DIFFERS),
+            "nan" => Some(NAN),
+            "hangs" => Some(HANGS),
+            _ => None,
+        };
+        let on_model: Vec<&str> = codes
+            .iter()
+            .copied()
+            .filter(|c| !RULES.contains(c))
+            .collect();
+        let ok = match wanted {
+            Some(code) => on_model.contains(&code),
+            None => on_model.is_empty(),
+        };
+        if !ok || codes.iter().any(|c| !CODES.contains(c)) {
+            failures.push(format!(
+                "{:?} on {} ({status}): {codes:?}",
+                case.template, case.model
+            ));
+        }
+        for d in &diagnostics {
+            let severity_ok =
+                matches!(d.code, c if [HANGS, NAN, UNDEFINED].contains(&c)) == d.is_error();
+            if !severity_ok || d.labels.is_empty() {
+                failures.push(format!("{:?}: bad diagnostic {d:?}", case.template));
+            }
+        }
+        if status == "same" && !codes.is_empty() {
+            same_with_rules += 1;
+            for c in codes {
+                *rule_findings.entry(c).or_insert(0) += 1;
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    eprintln!("same cases with rule-based findings: {same_with_rules}: {rule_findings:?}");
+}
+
+/// `rotlang fmt` leaves a template alone when OrcaSlicer would read the canonical form
+/// differently (`10,,20` is 10, 0, 20 for it), unless `--force`; `--write` keeps the file.
+#[test]
+fn cli_fmt_keeps_orcaslicer_meaning() {
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(args)
+            .output()
+            .expect("run rotlang");
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let (code, out, err) = run(&["fmt", "10,,20", "+10 +20"]);
+    assert_eq!(code, Some(1));
+    assert_eq!(out, "10,,20\n+10, +20\n");
+    assert!(
+        err.contains("would change what OrcaSlicer does") && err.contains("--force"),
+        "{err}"
+    );
+    let (code, out, _) = run(&["fmt", "--force", "10,,20"]);
+    assert_eq!((code, out.as_str()), (Some(0), "10, 20\n"));
+    let dir = std::env::temp_dir().join(format!("rotlang-dialect-fmt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("a.rot");
+    std::fs::write(&path, "0 90\n").unwrap();
+    let (code, out, _) = run(&["fmt", "--write", "--file", path.to_str().unwrap()]);
+    assert_eq!((code, out.as_str()), (Some(1), ""));
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "0 90\n");
+    let (code, _, _) = run(&[
+        "fmt",
+        "--write",
+        "--force",
+        "--file",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0));
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "0, 90\n");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Every `orcaslicer::` code `rotlang explain` documents: its example gets that code from
+/// the compat lint on the 20 mm cube, at the documented severity.
+#[test]
+fn explained_compat_examples_report_their_code() {
+    use rotlang::Target;
+    let docs: Vec<_> = rotlang::explain::codes()
+        .iter()
+        .filter(|d| d.code.starts_with("orcaslicer::"))
+        .collect();
+    assert_eq!(docs.len(), rotlang::dialect::compat::CODES.len());
+    for doc in docs {
+        let found = rotlang::dialect::compat(
+            doc.example,
+            Target::Sparse,
+            &Model::cube20(),
+            Options::default(),
+        );
+        let d = found
+            .iter()
+            .find(|d| d.code == doc.code)
+            .unwrap_or_else(|| {
+                panic!(
+                    "{} example {:?}: {:?}",
+                    doc.code,
+                    doc.example,
+                    found.iter().map(|d| d.code).collect::<Vec<_>>()
+                )
+            });
+        assert_eq!(d.severity.as_str(), doc.severity, "{}", doc.code);
+    }
+}

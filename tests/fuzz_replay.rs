@@ -17,6 +17,8 @@ const DIR: &str = env!("CARGO_MANIFEST_DIR");
 const HERE: &[&str] = &["eval", "fmt", "parse"];
 /// Replayed by `lsp/tests/fuzz_replay.rs`.
 const LSP: &[&str] = &["lsp_framing", "lsp_json", "lsp_profiles"];
+/// Replayed by `capi/tests/fuzz_replay.rs`.
+const CAPI: &[&str] = &["capi"];
 
 #[test]
 fn parse_corpus() {
@@ -36,7 +38,7 @@ fn fmt_corpus() {
 /// A new target must be added to one of the replay lists (and get a corpus).
 #[test]
 fn every_target_is_replayed() {
-    let mut listed: Vec<&str> = HERE.iter().chain(LSP).copied().collect();
+    let mut listed: Vec<&str> = HERE.iter().chain(LSP).chain(CAPI).copied().collect();
     listed.sort();
     assert_eq!(replay::targets(DIR), listed);
 }

@@ -498,3 +498,23 @@ proptest! {
         prop_assert_eq!(rotlang::format::format(&text, target).is_none(), parse.has_errors());
     }
 }
+
+proptest! {
+    #![proptest_config(Config { cases: cases(), ..Config::default() })]
+
+    /// The streaming entry points (`check`, `format`) agree with `parse`.
+    #[test]
+    fn streaming_entry_points_agree(text in long_template(), target in any_target()) {
+        let parse = rotlang::parse(&text, target);
+        let checked = rotlang::check(&text, target);
+        prop_assert_eq!(&checked.diagnostics, &parse.diagnostics);
+        prop_assert_eq!((checked.errors, checked.warnings, checked.omitted), (parse.errors, parse.warnings, parse.omitted));
+        prop_assert!(checked.template.instructions.is_empty());
+        let formatted = rotlang::format::format(&text, target);
+        if parse.has_errors() {
+            prop_assert_eq!(formatted, None);
+        } else {
+            prop_assert_eq!(formatted, Some(rotlang::format::canonical(&text, &parse.template)));
+        }
+    }
+}

@@ -1,7 +1,7 @@
 """Check, expand, explain and format infill rotation templates (rotlang)."""
 
 from array import array
-from typing import List, Literal, Optional, Sequence, Union, overload
+from typing import Dict, List, Literal, Optional, Sequence, Union, overload
 
 __version__: str
 DIALECTS: List[str]
@@ -106,3 +106,5 @@ def evaluate_layers(
 def format(template: str, target: Target = "sparse") -> str: ...
 def format_angle(degrees: float) -> str: ...
 def explain(template: str, model: Optional[Model] = None, target: Target = "sparse") -> str: ...
+def explain_code(code: str) -> Optional[Dict[str, str]]:
+    """``code``, ``severity``, ``summary``, ``explanation``, ``example``, ``fix``."""

@@ -71,7 +71,7 @@ pub struct EvaluatorState {
 
 impl EvaluatorState {
     fn new(owner: Owner) -> Result<EvaluatorState, Failure> {
-        let cell = Cell::try_new(owner, |o| open(o))?;
+        let cell = Cell::try_new(owner, open)?;
         Ok(EvaluatorState { cell })
     }
 

@@ -2,6 +2,7 @@
 
 use std::ffi::c_char;
 
+use rotlang::dialect::{self, orcaslicer};
 use rotlang::eval::{self, Layer, Model};
 
 use crate::model::{RotlangDialect, Settings};
@@ -59,6 +60,20 @@ pub extern "C" fn rotlang_finding_code(kind: u32) -> *const c_char {
 /// The layers of a model under a template in one dialect.
 pub enum Stream<'a> {
     Rotlang(eval::Layers<'a>),
+    OrcaSlicer(orcaslicer::Layers<'a>),
+}
+
+fn to_c(finding: &dialect::Finding) -> RotlangFinding {
+    let kind = match finding.code {
+        dialect::HANGS => RotlangFindingKind::Hangs,
+        dialect::UNDEFINED => RotlangFindingKind::Undefined,
+        _ => RotlangFindingKind::Nan,
+    };
+    RotlangFinding {
+        kind,
+        first_layer: finding.first_layer,
+        layers: finding.layers,
+    }
 }
 
 impl<'a> Stream<'a> {
@@ -78,10 +93,12 @@ impl<'a> Stream<'a> {
                     settings.options,
                 )))
             }
-            RotlangDialect::Orcaslicer => Err(Failure::with(
-                RotlangStatus::DialectUnavailable,
-                "the OrcaSlicer dialect is not in this build yet",
-            )),
+            // OrcaSlicer reads raw text, valid or not: parse errors do not matter.
+            RotlangDialect::Orcaslicer => Ok(Stream::OrcaSlicer(orcaslicer::layers(
+                &data.text,
+                model,
+                settings.options,
+            ))),
         }
     }
 
@@ -89,6 +106,7 @@ impl<'a> Stream<'a> {
     pub fn layer_position(&self) -> usize {
         match self {
             Stream::Rotlang(layers) => layers.position(),
+            Stream::OrcaSlicer(layers) => layers.position(),
         }
     }
 
@@ -96,6 +114,7 @@ impl<'a> Stream<'a> {
     pub fn findings(&self) -> Vec<RotlangFinding> {
         match self {
             Stream::Rotlang(_) => Vec::new(),
+            Stream::OrcaSlicer(layers) => layers.findings().iter().map(to_c).collect(),
         }
     }
 
@@ -110,6 +129,11 @@ impl<'a> Stream<'a> {
             // `fold`, not `next`: the rotlang stream keeps its state in registers across
             // layers that way (see `eval::Layers::fold`). It has no findings.
             Stream::Rotlang(layers) => (layers.fold(init, f), Vec::new()),
+            Stream::OrcaSlicer(mut layers) => {
+                let result = layers.by_ref().fold(init, f);
+                let found = layers.findings().iter().map(to_c).collect();
+                (result, found)
+            }
         }
     }
 
@@ -130,6 +154,7 @@ impl Iterator for Stream<'_> {
     fn next(&mut self) -> Option<Layer> {
         match self {
             Stream::Rotlang(layers) => layers.next(),
+            Stream::OrcaSlicer(layers) => layers.next(),
         }
     }
 }

@@ -16,6 +16,22 @@ pub const SOURCE: &str = "rotlang";
 
 pub fn diagnostics(doc: &Document, uri: &Uri, pos: &Positions) -> Vec<Diagnostic> {
     let mut out = Vec::new();
+    if let Some((len, limit)) = doc.too_large {
+        out.push(Diagnostic {
+            range: pos.range(rotlang::Span::new(0, 0)),
+            severity: Some(DiagnosticSeverity::WARNING),
+            code: Some(NumberOrString::String(
+                "rotlang-lsp::document-too-large".into(),
+            )),
+            source: Some(SOURCE.into()),
+            message: format!(
+                "this document is {len} bytes; rotlang checks documents up to {limit} bytes \
+                 (setting `rotlang.maxDocumentBytes`)"
+            ),
+            ..Diagnostic::default()
+        });
+        return out;
+    }
     if let Some((offset, message)) = &doc.json_error {
         let range = pos.range(rotlang::Span::new(*offset, *offset));
         out.push(Diagnostic {

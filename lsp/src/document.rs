@@ -98,6 +98,9 @@ pub struct Document {
     pub regions: Vec<Region>,
     /// For JSON documents that are not valid JSON: where and why (reported once).
     pub json_error: Option<(usize, String)>,
+    /// For documents over the size limit: their size and the limit. Their text is not
+    /// kept and they have no templates.
+    pub too_large: Option<(usize, usize)>,
 }
 
 impl Document {
@@ -153,6 +156,19 @@ impl Document {
             version,
             regions,
             json_error,
+            too_large: None,
+        }
+    }
+
+    /// A document of `len` bytes, over the `limit`: not parsed, its text dropped.
+    pub fn too_large(len: usize, limit: usize, kind: Kind, version: i32) -> Document {
+        Document {
+            text: String::new(),
+            kind,
+            version,
+            regions: Vec::new(),
+            json_error: None,
+            too_large: Some((len, limit)),
         }
     }
 

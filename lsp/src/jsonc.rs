@@ -3,69 +3,10 @@
 //! span found in the blanked text is therefore a span of the document as written.
 
 /// The document with `//` and `/* */` comments and trailing commas replaced by spaces
-/// (line breaks inside block comments kept, so line numbers do not move). Strings are
-/// copied untouched. An unterminated block comment runs to the end, as editors show it.
+/// (line breaks kept, so line numbers do not move). Strings are copied untouched. The
+/// library's reader (`rotlang::profile::json::strip_jsonc`), shared with the CLI.
 pub fn blank(doc: &str) -> String {
-    let mut out = doc.as_bytes().to_vec();
-    let bytes = doc.as_bytes();
-    let mut i = 0;
-    // The last comma seen outside strings and not yet followed by a value: blanked if the
-    // next significant byte closes an object or array.
-    let mut pending_comma: Option<usize> = None;
-    // The last significant byte: a comma right after `{`, `[`, `,` or `:` follows no value,
-    // so it is an error to report, not a trailing comma.
-    let mut last = b'{';
-    while i < bytes.len() {
-        let byte = bytes[i];
-        if byte == b',' && !matches!(last, b'{' | b'[' | b',' | b':') {
-            pending_comma = Some(i);
-        }
-        if !matches!(byte, b' ' | b'\t' | b'\n' | b'\r' | b'/') {
-            last = byte;
-        }
-        match byte {
-            b'"' => {
-                pending_comma = None;
-                i += 1;
-                while i < bytes.len() && bytes[i] != b'"' {
-                    i += if bytes[i] == b'\\' { 2 } else { 1 };
-                }
-                i += 1;
-            }
-            b'/' if bytes.get(i + 1) == Some(&b'/') => {
-                while i < bytes.len() && bytes[i] != b'\n' && bytes[i] != b'\r' {
-                    out[i] = b' ';
-                    i += 1;
-                }
-            }
-            b'/' if bytes.get(i + 1) == Some(&b'*') => {
-                let end = doc[i + 2..]
-                    .find("*/")
-                    .map_or(bytes.len(), |e| i + 2 + e + 2);
-                for b in &mut out[i..end] {
-                    if *b != b'\n' && *b != b'\r' {
-                        *b = b' ';
-                    }
-                }
-                i = end;
-            }
-            b',' => i += 1,
-            b'}' | b']' => {
-                if let Some(comma) = pending_comma.take() {
-                    out[comma] = b' ';
-                }
-                i += 1;
-            }
-            b' ' | b'\t' | b'\n' | b'\r' => i += 1,
-            _ => {
-                pending_comma = None;
-                i += 1;
-            }
-        }
-    }
-    // Only ASCII bytes were replaced, each whole character of a comment byte by byte, so
-    // the result is UTF-8 again; the fallback is never taken.
-    String::from_utf8(out).unwrap_or_else(|_| doc.to_string())
+    rotlang::profile::json::strip_jsonc(doc).into_owned()
 }
 
 #[cfg(test)]

@@ -136,6 +136,18 @@ impl Backend {
     }
 
     async fn open(&self, uri: Uri, text: String, kind: Kind, version: i32) {
+        let limit = self.state().model.max_document_bytes;
+        if text.len() > limit {
+            let doc = Arc::new(Document::too_large(text.len(), limit, kind, version));
+            drop(text);
+            let encoding = {
+                let mut state = self.state();
+                state.documents.insert(uri.clone(), doc.clone());
+                state.encoding
+            };
+            self.publish(uri, doc, encoding).await;
+            return;
+        }
         let Some(doc) = guard(|| Arc::new(Document::new(text, kind, version))) else {
             return;
         };

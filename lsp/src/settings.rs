@@ -3,7 +3,7 @@
 //! Accepted from `initializationOptions`, `workspace/didChangeConfiguration` and
 //! `workspace/configuration`, either as `{"rotlang": {...}}` or as the inner object
 //! itself. Keys: `layers`, `layerHeight`, `firstLayerHeight`, `bottomShellLayers`,
-//! `topShellLayers`. Each source sends the whole section, so a key it leaves out is back
+//! `topShellLayers`, and `maxDocumentBytes` (the largest document checked). Each source sends the whole section, so a key it leaves out is back
 //! at its default (removing a setting restores the default); an unusable value keeps its
 //! previous value, so one typo does not throw away the rest, and is reported.
 
@@ -13,6 +13,9 @@ use serde_json::Value;
 /// (well below the evaluator's own limit).
 pub const MAX_LAYERS: usize = 1_000_000;
 const MAX_SHELLS: u32 = 10_000;
+/// Documents larger than this are not checked (one diagnostic says so): templates are a
+/// line of text, and a pasted log file must not cost the editor hundreds of megabytes.
+pub const DEFAULT_MAX_DOCUMENT_BYTES: usize = 4 << 20;
 use rotlang::eval::{MAX_LAYER_HEIGHT as MAX_HEIGHT, MIN_LAYER_HEIGHT as MIN_HEIGHT};
 
 /// The model previews are evaluated on. The default is the documentation's 20 mm cube as
@@ -25,6 +28,9 @@ pub struct ModelSettings {
     pub first_layer_height: Option<f64>,
     pub bottom_shell_layers: u32,
     pub top_shell_layers: u32,
+    /// The largest document (bytes) the server parses; `maxDocumentBytes` raises it up to
+    /// the largest message the server reads.
+    pub max_document_bytes: usize,
 }
 
 impl Default for ModelSettings {
@@ -35,6 +41,7 @@ impl Default for ModelSettings {
             first_layer_height: None,
             bottom_shell_layers: 3,
             top_shell_layers: 4,
+            max_document_bytes: DEFAULT_MAX_DOCUMENT_BYTES,
         }
     }
 }
@@ -84,6 +91,10 @@ impl ModelSettings {
                     &mut self.top_shell_layers,
                     whole(value, 0, MAX_SHELLS.into()).map(|n| n as u32),
                 ),
+                "maxDocumentBytes" => set(
+                    &mut self.max_document_bytes,
+                    whole(value, 1024, crate::transport::MAX_MESSAGE as u64),
+                ),
                 // The VS Code extension's own settings (`rotlang.server.path`,
                 // `rotlang.trace.server`) arrive in the same section.
                 "server" | "trace" => continue,
@@ -116,6 +127,7 @@ impl ModelSettings {
             "firstLayerHeight" => self.first_layer_height = previous.first_layer_height,
             "bottomShellLayers" => self.bottom_shell_layers = previous.bottom_shell_layers,
             "topShellLayers" => self.top_shell_layers = previous.top_shell_layers,
+            "maxDocumentBytes" => self.max_document_bytes = previous.max_document_bytes,
             _ => {}
         }
     }
@@ -156,12 +168,13 @@ impl ModelSettings {
 }
 
 /// The settings keys, as clients write them.
-pub const KEYS: [&str; 5] = [
+pub const KEYS: [&str; 6] = [
     "layers",
     "layerHeight",
     "firstLayerHeight",
     "bottomShellLayers",
     "topShellLayers",
+    "maxDocumentBytes",
 ];
 
 /// A value or key as quoted in a warning: a pasted megabyte must not become the message.
@@ -179,6 +192,10 @@ fn expected(key: &str) -> String {
         "layers" => {
             format!("a whole number from 1 to {MAX_LAYERS} expected; kept the previous value")
         }
+        "maxDocumentBytes" => format!(
+            "a whole number of bytes from 1024 to {} expected; kept the previous value",
+            crate::transport::MAX_MESSAGE
+        ),
         "bottomShellLayers" | "topShellLayers" => {
             format!("a whole number from 0 to {MAX_SHELLS} expected; kept the previous value")
         }

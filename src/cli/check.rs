@@ -17,6 +17,8 @@ Examples:
   echo '+30/50 %' | rotlang check         from stdin
   rotlang check --target solid 'S/, +10'  as a solid_infill_rotate_template
   rotlang check --format json '+30X5'     one JSON object per input, one per line
+  rotlang check profiles/ project.3mf     every template in presets, exports, projects
+  rotlang check --compat orcaslicer process.json   where OrcaSlicer reads it differently
   rotlang check --fix '+30°, 10,,20'      print the template with every fix applied
   rotlang check --fix --write -f a.rot    apply the fixes to a.rot in place
   rotlang check -f - < a.rot              `-` is stdin, as a template or a file
@@ -24,12 +26,14 @@ Examples:
 `--fix` applies the fix of every diagnostic that has one (the `fix:` lines of the
 report), again and again until none is left. A template that still has errors after
 that is not printed or written: its remaining errors are reported instead (exit 1).
+It works on templates and --file (not on profiles or folders).
 
 Exit status: 0 when every input is clean or has only warnings, 1 when any has an
-error, 2 on a usage error.")]
+error or a file cannot be read (the other files are still checked), 2 on a usage error.")]
 pub struct CheckArgs {
-    /// Templates to check, each one input; `-` is stdin. Put `--` before a template that
-    /// begins with `-`.
+    /// Templates to check, each one input, or files and folders: an argument naming an
+    /// existing path is read as a profile (.json, .jsonc, .ini, .3mf) or template (.rot).
+    /// `-` is stdin. Put `--` before a template that begins with `-`.
     #[arg(value_name = "TEMPLATE", allow_negative_numbers = true)]
     pub templates: Vec<String>,
     /// Read a template from a file (one template per file; newlines are separators; `-` is
@@ -49,11 +53,16 @@ pub struct CheckArgs {
     #[arg(long)]
     pub deny_warnings: bool,
     /// Apply every fix and print the fixed templates (diagnostics go to stderr).
-    #[arg(long, conflicts_with = "format")]
+    #[arg(long, conflicts_with_all = ["format", "compat"])]
     pub fix: bool,
     /// With --fix: rewrite files in place instead of printing them.
     #[arg(long, requires = "fix")]
     pub write: bool,
+    /// Also compare with a slicer's own reading (`orcaslicer`): where its angles part from
+    /// rotlang's on the model (the profile's own, or the 20 mm cube), where it hangs or
+    /// computes NaN angles, and constructs it reads differently.
+    #[arg(long, value_enum, value_name = "SLICER")]
+    pub compat: Option<super::files::CompatArg>,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
@@ -65,6 +74,15 @@ pub enum Format {
 
 /// Runs the check; returns the exit code.
 pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
+    // Files, folders (an argument naming an existing path is one) and the compat lint.
+    if super::files::wanted(args) {
+        if args.fix {
+            return Err(UsageError(
+                "--fix works on templates and --file PATH, not on profiles or folders".into(),
+            ));
+        }
+        return super::files::check(args, out);
+    }
     let inputs = gather(&args.templates, &args.files)?;
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     if let Some(note) = pieces_note("check", &args.templates) {
@@ -75,7 +93,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
     }
     let parses: Vec<_> = inputs
         .iter()
-        .map(|i| crate::parse(&i.text, args.target.into()))
+        .map(|i| crate::check(&i.text, args.target.into()))
         .collect();
     let failed =
         |p: &crate::Parse| p.has_errors() || (args.deny_warnings && !p.diagnostics.is_empty());

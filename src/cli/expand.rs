@@ -51,6 +51,13 @@ pub struct ExpandArgs {
     /// Read the template from a file (newlines separate instructions); `-` is stdin.
     #[arg(long, short = 'f', value_name = "PATH")]
     pub file: Option<PathBuf>,
+    /// Take the template (of --target), the model and the base direction from a profile:
+    /// an OrcaSlicer preset (.json), an exported .ini or a .3mf project. Layer heights,
+    /// shell counts and infill direction come from the profile (notes on stderr name every
+    /// default used); the object is 20 mm tall unless --height, --layers or --model; a
+    /// --base other than 0 replaces the profile's direction.
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["template", "file"])]
+    pub profile: Option<PathBuf>,
     /// Which setting the template is for (solid signs are errors in a solid template).
     #[arg(long, value_enum, default_value_t)]
     pub target: TargetArg,
@@ -179,7 +186,38 @@ fn parse_range(text: &str) -> Result<LayerRange, String> {
 /// Runs the expansion; returns the exit code.
 pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     // The model first: a usage error should not wait for stdin.
-    let resolved = args.model.resolve()?;
+    let mut resolved = args.model.resolve()?;
+    let mut base = args.base;
+    let input = match &args.profile {
+        Some(path) => {
+            let p = super::files::profile_template(path, args.target.into(), args.model.height)?;
+            for note in &p.notes {
+                writeln!(err, "note: {note}").map_err(|e| UsageError(e.to_string()))?;
+            }
+            if args.model.model.is_none() && args.model.layers.is_none() {
+                resolved = Resolved {
+                    model: p.model,
+                    source: path.display().to_string(),
+                };
+            }
+            if base == 0.0 {
+                base = p.base;
+            }
+            Input {
+                name: path.display().to_string(),
+                text: p.text,
+                path: Some(path.clone()),
+            }
+        }
+        None => {
+            let templates: Vec<String> = args.template.iter().cloned().collect();
+            let files: Vec<PathBuf> = args.file.iter().cloned().collect();
+            gather(&templates, &files)?
+                .into_iter()
+                .next()
+                .ok_or_else(|| UsageError("no template given".into()))?
+        }
+    };
     let len = resolved.model.len();
     let (start, end) = match args.range {
         None => (0, len),
@@ -195,14 +233,8 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
             (r.start, end)
         }
     };
-    let templates: Vec<String> = args.template.iter().cloned().collect();
-    let files: Vec<PathBuf> = args.file.iter().cloned().collect();
-    let input = gather(&templates, &files)?
-        .into_iter()
-        .next()
-        .ok_or_else(|| UsageError("no template given".into()))?;
     let options = Options {
-        base: args.base,
+        base,
         seed: args.seed,
     };
     let writer = Writer {
@@ -220,13 +252,15 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
                 Format::Csv => writer.csv(layers, out),
                 Format::Table => writer.table(layers, out),
                 Format::Json => {
-                    let header = json_header(args, &input, &empty, &resolved, start, end);
+                    let header = json_header(args, options, &input, &empty, &resolved, start, end);
                     writer.json(layers, &header, out)
                 }
             }
         });
     }
-    let parse = crate::parse(&input.text, args.target.into());
+    // The IR is not kept: a megabyte template costs a small multiple of its size.
+    let (parse, layers) =
+        eval::parse_layers(&input.text, args.target.into(), &resolved.model, options);
     let write_error = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     let json = args.format == Format::Json;
     if parse.has_errors() && json {
@@ -247,12 +281,11 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     if parse.has_errors() {
         return Ok(1);
     }
-    let layers = eval::layers(&parse.template, &resolved.model, options);
     let result = match args.format {
         Format::Csv => writer.csv(layers, out),
         Format::Table => writer.table(layers, out),
         Format::Json => {
-            let header = json_header(args, &input, &parse, &resolved, start, end);
+            let header = json_header(args, options, &input, &parse, &resolved, start, end);
             writer.json(layers, &header, out)
         }
     };
@@ -272,6 +305,7 @@ fn report(input: &Input, diagnostics: &[crate::Diagnostic], color: ColorArg) -> 
 /// Everything of the JSON object before its `layers`: the template, model and options.
 fn json_header(
     args: &ExpandArgs,
+    options: Options,
     input: &Input,
     parse: &crate::Parse,
     resolved: &Resolved,
@@ -304,7 +338,7 @@ fn json_header(
         },
         "options": {
             "dialect": match args.dialect { eval::Dialect::Rotlang => "rotlang", eval::Dialect::OrcaSlicer => "orcaslicer" },
-            "base": serde_json::from_str::<serde_json::Value>(number::angle(args.base).as_str()).unwrap_or_default(),
+            "base": serde_json::from_str::<serde_json::Value>(number::angle(options.base).as_str()).unwrap_or_default(),
             "seed": args.seed,
             "wrap": args.wrap.name(),
             "range": {"start": start, "end": end},

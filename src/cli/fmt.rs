@@ -33,6 +33,11 @@ pub struct FmtArgs {
     /// Rewrite files in place instead of printing (templates from arguments are printed).
     #[arg(long)]
     pub write: bool,
+    /// Format even where OrcaSlicer would read the result differently (`0,,90` is
+    /// 0, 0, 90 for OrcaSlicer, `0, 90` is 0, 90); without it such a template is left as
+    /// it is (printed unchanged) and the exit status is 1.
+    #[arg(long)]
+    pub force: bool,
     /// Which setting the templates are for.
     #[arg(long, value_enum, default_value_t)]
     pub target: TargetArg,
@@ -49,20 +54,40 @@ pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i
     }
     let mut code = 0;
     for input in &inputs {
-        let parse = crate::parse(&input.text, args.target.into());
-        if parse.has_errors() {
+        // Diagnostics and the canonical form each in one streaming pass: no IR is kept.
+        let parse = crate::check(&input.text, args.target.into());
+        let formatted = crate::format::format(&input.text, args.target.into());
+        let Some(formatted) = formatted.filter(|_| !parse.has_errors()) else {
             let report = render_human(&[(input, &parse.diagnostics)], args.color.enabled(false));
             err.write_all(report.as_bytes()).map_err(io)?;
             writeln!(err, "{}: not formatted: fix the errors first", input.name).map_err(io)?;
             code = 1;
             continue;
-        }
-        let formatted = crate::format::canonical(&input.text, &parse.template);
+        };
         // A file keeps one trailing newline; the template itself is the rest.
         let current = input
             .text
             .strip_suffix('\n')
             .map_or(input.text.as_str(), |t| t.strip_suffix('\r').unwrap_or(t));
+        // Canonical for rotlang, but OrcaSlicer may read the new text differently.
+        if !args.check
+            && !args.force
+            && current != formatted
+            && let Some(why) = crate::dialect::compat::orcaslicer_change(current, &formatted)
+        {
+            writeln!(
+                err,
+                "{}: not formatted: `{formatted}` would change what OrcaSlicer does ({why}); \
+                 pass --force to format anyway",
+                input.name
+            )
+            .map_err(io)?;
+            if !args.write || input.path.is_none() {
+                writeln!(out, "{current}").map_err(io)?;
+            }
+            code = 1;
+            continue;
+        }
         if args.check {
             if current != formatted {
                 writeln!(

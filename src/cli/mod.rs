@@ -9,6 +9,7 @@ pub mod completions;
 mod dialect;
 pub mod expand;
 pub mod explain;
+pub mod files;
 pub mod fmt;
 pub mod model;
 mod sources;

@@ -6,8 +6,12 @@
 //! on any text, so that a slicer can replace OrcaSlicer's code without changing existing
 //! profiles, and so that a user can see where the two part.
 
+pub mod compat;
 pub mod orcaslicer;
 
+pub use compat::compat;
+
+use crate::diagnostic::Span;
 use std::fmt;
 use std::str::FromStr;
 
@@ -30,6 +34,9 @@ pub struct Finding {
     /// How many layers are concerned: for a hang or undefined behaviour, every layer from
     /// `first_layer` up; for NaN, the NaN layers seen so far (not necessarily contiguous).
     pub layers: usize,
+    /// The token at fault (byte range in the text): the one read when OrcaSlicer crashes,
+    /// the one governing the first NaN layer; `None` for a hang (a loop over many tokens).
+    pub span: Option<Span>,
 }
 
 /// Which reading of a template: rotlang's (SEMANTICS sections 1–9) or OrcaSlicer's exact

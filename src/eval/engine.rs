@@ -41,9 +41,10 @@ enum Extent {
 }
 
 /// An instruction prepared for evaluation: everything the engine needs, in the form
-/// it needs it, computed once per evaluation instead of once per layer.
+/// it needs it, computed once per evaluation instead of once per layer. 56 bytes: with
+/// the IR dropped, this is what a huge template costs the evaluator.
 #[derive(Clone, Copy, Debug)]
-struct Step {
+pub(crate) struct Step {
     span: Span,
     /// `α`, the angle in degrees.
     alpha: f64,
@@ -54,13 +55,16 @@ struct Step {
     joint: Joint,
     flipped: bool,
     fill: Fill,
-    extent: Extent,
+    /// The extent, stored as a kind and a value (an `Extent` field would take 16 bytes
+    /// and make a step 64).
+    extent_kind: ExtentKind,
+    extent_value: f64,
     /// The turn `d` a relative set-up makes (section 3, "The turn").
     turn: f64,
 }
 
 impl Step {
-    fn new(instruction: &Instruction, model: &Model) -> Step {
+    pub(crate) fn new(instruction: &Instruction, model: &Model) -> Step {
         let alpha = finite(instruction.degrees());
         // A count of `n` layers (section 3); 0, or nonsense (negative, NaN) from a
         // hand-built IR, is one layer turning by α.
@@ -103,8 +107,34 @@ impl Step {
             joint: instruction.shape(),
             flipped: instruction.is_flipped(),
             fill: instruction.fill(),
-            extent,
+            extent_kind: match extent {
+                Extent::OneLayer => ExtentKind::OneLayer,
+                Extent::Layers(_) => ExtentKind::Layers,
+                Extent::Length(_) => ExtentKind::Length,
+            },
+            extent_value: match extent {
+                Extent::OneLayer => 0.0,
+                Extent::Layers(v) | Extent::Length(v) => v,
+            },
             turn,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum ExtentKind {
+    OneLayer,
+    Layers,
+    Length,
+}
+
+impl Step {
+    #[inline]
+    fn extent(&self) -> Extent {
+        match self.extent_kind {
+            ExtentKind::OneLayer => Extent::OneLayer,
+            ExtentKind::Layers => Extent::Layers(self.extent_value),
+            ExtentKind::Length => Extent::Length(self.extent_value),
         }
     }
 }
@@ -112,22 +142,16 @@ impl Step {
 /// The evaluation state after some layers. Cloning it is a checkpoint.
 #[derive(Clone, Debug)]
 pub(crate) struct Engine {
-    /// Shared, so that a checkpoint costs O(instructions) words, not a copy of the steps.
-    steps: Arc<[Step]>,
-    /// The live (not spent) positions form a circular doubly linked list: a walk skips
-    /// spent one-time instructions in O(1). A removed position keeps its `next`, so the
-    /// walk can still step off an instruction it has just spent.
-    next: Vec<usize>,
-    prev: Vec<usize>,
+    /// Shared, so that a checkpoint costs a few words, not a copy of the steps. A `Vec`
+    /// (not `Arc<[Step]>`), so that steps collected during a parse are not copied again.
+    steps: Arc<Vec<Step>>,
+    /// The live positions; `None` until a one-time instruction is spent (until then
+    /// position `c` is followed by `c + 1`, and a template without `!` costs nothing here).
+    links: Option<Box<Links>>,
     cursor: usize,
-    /// `stamp[c] == walk`: position `c` was set up by the current walk (section 4's
-    /// "already set up" rule, which makes every walk end).
-    stamp: Vec<u64>,
+    /// What walks over dummies need; `None` until the first such walk.
+    walks: Option<Box<Walks>>,
     walk: u64,
-    /// `chains[c]`: what a walk starting at position `c` does, valid while `spent` is the
-    /// one recorded with it. A walk is a function of the cursor and of which instructions
-    /// are live, so a long run of dummies is crossed once, not on every layer.
-    chains: Vec<Option<(usize, Chain)>>,
     /// How many one-time instructions are spent.
     spent: usize,
     base: f64,
@@ -148,19 +172,20 @@ pub(crate) struct Engine {
 
 impl Engine {
     pub fn new(template: &Template, model: &Model, options: Options) -> Engine {
-        let steps: Arc<[Step]> = template
+        let steps = template
             .instructions
             .iter()
             .map(|i| Step::new(i, model))
             .collect();
-        let n = steps.len();
+        Engine::from_steps(Arc::new(steps), options)
+    }
+
+    pub fn from_steps(steps: Arc<Vec<Step>>, options: Options) -> Engine {
         Engine {
-            next: (0..n).map(|c| (c + 1) % n).collect(),
-            prev: (0..n).map(|c| (c + n - 1) % n).collect(),
+            links: None,
             cursor: 0,
-            stamp: vec![0; n],
+            walks: None,
             walk: 0,
-            chains: vec![None; n],
             spent: 0,
             steps,
             base: finite(options.base),
@@ -193,7 +218,7 @@ impl Engine {
                 let extent = self
                     .steps
                     .get(self.current)
-                    .map_or(Extent::OneLayer, |s| s.extent);
+                    .map_or(Extent::OneLayer, Step::extent);
                 self.ze = measure(extent, at, model);
             } else {
                 self.start_range(at, model);
@@ -238,7 +263,8 @@ impl Engine {
         self.joint = Joint::Linear;
         self.flipped = false;
         let start = self.cursor;
-        let chain = match self.chains.get(start) {
+        let cached = self.walks.as_ref().and_then(|w| w.chains.get(start));
+        let chain = match cached {
             // The common walk: one instruction that sets a range.
             _ if self.steps.get(start).is_some_and(|s| !s.dummy) => Chain {
                 dummies: None,
@@ -259,7 +285,7 @@ impl Engine {
             Then::SetUp(c) => {
                 self.set_up(c, at, model);
                 if !self.all_spent() {
-                    self.cursor = self.next[c];
+                    self.cursor = self.next(c);
                 }
             }
             Then::Stop(c) => self.cursor = c,
@@ -277,14 +303,16 @@ impl Engine {
         let mut c = start;
         let then = loop {
             // `c` is live here.
-            if self.stamp[c] == self.walk {
+            let n = self.steps.len();
+            let walks = self.walks.get_or_insert_with(|| Box::new(Walks::new(n)));
+            if walks.stamp[c] == self.walk {
                 break Then::Stop(c);
             }
             let step = self.steps[c];
             if !step.dummy {
                 break Then::SetUp(c);
             }
-            self.stamp[c] = self.walk;
+            walks.stamp[c] = self.walk;
             // Each dummy commits (`a0 += d`), then sets `a0` (absolute) or `d` (relative).
             let effect = dummies.get_or_insert(Dummies {
                 reset: None,
@@ -313,7 +341,7 @@ impl Engine {
                     break Then::Exhausted;
                 }
             }
-            c = self.next[c];
+            c = self.next(c);
             // After a dummy the walk goes on, but not past the wrap to a live first position.
             if c == 0 {
                 break Then::Stop(c);
@@ -321,7 +349,7 @@ impl Engine {
         };
         let chain = Chain { dummies, then };
         if self.spent == spent_before
-            && let Some(slot) = self.chains.get_mut(start)
+            && let Some(slot) = self.walks.as_mut().and_then(|w| w.chains.get_mut(start))
         {
             *slot = Some((spent_before, chain));
         }
@@ -349,7 +377,7 @@ impl Engine {
         self.fill = step.fill;
         self.current = c;
         self.runs_left = step.runs.saturating_sub(1);
-        self.ze = measure(step.extent, at, model);
+        self.ze = measure(step.extent(), at, model);
     }
 
     fn all_spent(&self) -> bool {
@@ -357,10 +385,61 @@ impl Engine {
     }
 
     fn spend(&mut self, c: usize) {
-        let (p, n) = (self.prev[c], self.next[c]);
-        self.next[p] = n;
-        self.prev[n] = p;
+        let len = self.steps.len();
+        let links = self.links.get_or_insert_with(|| Box::new(Links::new(len)));
+        let (p, n) = (links.prev[c], links.next[c]);
+        links.next[p] = n;
+        links.prev[n] = p;
         self.spent += 1;
+    }
+
+    /// The live position after `c` (or the one a just-spent `c` was followed by).
+    #[inline]
+    fn next(&self, c: usize) -> usize {
+        match &self.links {
+            Some(links) => links.next[c],
+            None if c + 1 < self.steps.len() => c + 1,
+            None => 0,
+        }
+    }
+}
+
+/// The live (not spent) positions form a circular doubly linked list: a walk skips spent
+/// one-time instructions in O(1). A removed position keeps its `next`, so the walk can
+/// still step off an instruction it has just spent.
+#[derive(Clone, Debug)]
+struct Links {
+    next: Vec<usize>,
+    prev: Vec<usize>,
+}
+
+impl Links {
+    fn new(n: usize) -> Links {
+        Links {
+            next: (0..n).map(|c| (c + 1) % n).collect(),
+            prev: (0..n).map(|c| (c + n - 1) % n).collect(),
+        }
+    }
+}
+
+/// The state of walks over dummies (section 4).
+#[derive(Clone, Debug)]
+struct Walks {
+    /// `stamp[c] == walk`: position `c` was set up by the current walk (section 4's
+    /// "already set up" rule, which makes every walk end).
+    stamp: Vec<u64>,
+    /// `chains[c]`: what a walk starting at position `c` does, valid while `spent` is the
+    /// one recorded with it. A walk is a function of the cursor and of which instructions
+    /// are live, so a long run of dummies is crossed once, not on every layer.
+    chains: Vec<Option<(usize, Chain)>>,
+}
+
+impl Walks {
+    fn new(n: usize) -> Walks {
+        Walks {
+            stamp: vec![0; n],
+            chains: vec![None; n],
+        }
     }
 }
 
@@ -414,5 +493,14 @@ fn measure(extent: Extent, at: &Cursor, model: &Model) -> f64 {
                 model.top_at(at, j as usize)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_step_is_small() {
+        // What a huge template costs the evaluator per instruction (see eval::parse_layers).
+        assert!(std::mem::size_of::<super::Step>() <= 56);
     }
 }

@@ -85,6 +85,31 @@ pub fn layers<'a>(template: &'a Template, model: &'a Model, options: Options) ->
     }
 }
 
+/// Parses `text` and streams its layers on `model`, without keeping the IR: what stays
+/// is the evaluator's prepared form of each instruction (56 bytes), so a template of
+/// megabytes costs a small multiple of its size. The layers are bitwise those of
+/// [`layers`] on `crate::parse(text, target).template`; the returned `Parse` has every
+/// diagnostic and an empty `template`.
+pub fn parse_layers<'a>(
+    text: &str,
+    target: crate::Target,
+    model: &'a Model,
+    options: Options,
+) -> (crate::Parse, Layers<'a>) {
+    // An exact upper bound on the instructions: the steps are allocated once, not grown.
+    let chunks = crate::syntax::count_chunks(text);
+    let mut steps = Vec::with_capacity(chunks);
+    let collected = crate::syntax::parse_each(text, target, |ins| {
+        steps.push(engine::Step::new(&ins, model));
+    });
+    let layers = Layers {
+        model,
+        engine: Engine::from_steps(std::sync::Arc::new(steps), options),
+        at: Cursor::new(model),
+    };
+    (collected.into_parse(crate::Template::default()), layers)
+}
+
 /// The stream of layers returned by [`layers`]. Cloning it is cheap (O(instructions)).
 #[derive(Clone, Debug)]
 pub struct Layers<'a> {

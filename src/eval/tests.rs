@@ -454,3 +454,47 @@ fn long_chains_of_dummies_cost_o1_per_layer() {
     // A walk per layer over every dummy would be 2e9 set-ups: minutes, not this.
     assert!(start.elapsed().as_secs() < 10, "{:?}", start.elapsed());
 }
+
+#[test]
+fn parse_layers_is_layers_of_the_parse() {
+    let models = [
+        Model::cube20(),
+        Model::uniform(5_000, 0.1, Some(0.3))
+            .unwrap()
+            .with_shells(2, 5),
+        Model::from_heights(vec![0.3, 0.2, 0.15, 0.15, 0.2, 0.25, 0.1], 0.2).unwrap(),
+    ];
+    let texts = [
+        "5, 10!, +20, +10L25%, -10l25%",
+        "0*, +30*, 45!*, +10/5, -5~3, B!, T, #14 +15R",
+        "+10L99999999, +5*3/1e6#, 1:4, -1:8/1:2",
+        "0,,X, +30X5, 90",
+        "\"0, 90\"",
+    ];
+    for model in &models {
+        for text in texts {
+            for target in [Target::Sparse, Target::Solid] {
+                let options = Options {
+                    base: 15.0,
+                    seed: 3,
+                };
+                let parse = parse(text, target);
+                let (streamed, layers_of_text) = parse_layers(text, target, model, options);
+                assert_eq!(streamed.diagnostics, parse.diagnostics, "{text}");
+                assert!(streamed.template.instructions.is_empty());
+                let want: Vec<Layer> = layers(&parse.template, model, options).collect();
+                let got: Vec<Layer> = layers_of_text.collect();
+                assert_eq!(got.len(), want.len());
+                for (g, w) in got.iter().zip(&want) {
+                    assert_eq!(
+                        g.angle.to_bits(),
+                        w.angle.to_bits(),
+                        "{text} layer {}",
+                        g.index
+                    );
+                    assert_eq!(g, w);
+                }
+            }
+        }
+    }
+}

@@ -68,19 +68,9 @@ fn every_example_reports_its_code() {
             "{}",
             doc.code
         );
-        if doc.code.starts_with("orcaslicer::") {
-            // Findings of the OrcaSlicer reading, not diagnostics of the parser.
-            let model = Model::cube20();
-            let mut layers = crate::dialect::orcaslicer::layers(
-                doc.example,
-                &model,
-                crate::eval::Options::default(),
-            );
-            layers.by_ref().for_each(drop);
-            let found: Vec<_> = layers.findings().iter().map(|f| f.code).collect();
-            assert!(found.contains(&doc.code), "{}: {found:?}", doc.code);
+        let Some(_) = doc.code.strip_prefix("rotlang::") else {
             continue;
-        }
+        };
         // A safety net that no known template reaches.
         if doc.code == "rotlang::invalid-instruction" {
             continue;

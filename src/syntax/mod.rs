@@ -9,9 +9,9 @@ use pest::Parser;
 use pest::error::{ErrorVariant, InputLocation};
 
 use crate::diagnostic::{Diagnostic, Severity, Span};
-use crate::{Parse, Target, Template};
+use crate::{Instruction, Parse, Target, Template};
 use grammar::{RotParser, Rule};
-use split::Chunk;
+use split::{Chunk, Piece, Pieces};
 
 /// At most this many diagnostics are kept per template; a 1 MB file of garbage must not
 /// produce a million reports.
@@ -40,6 +40,18 @@ pub(crate) struct Collected {
     pub errors: usize,
     pub warnings: usize,
     pub omitted: usize,
+}
+
+impl Collected {
+    pub fn into_parse(self, template: Template) -> Parse {
+        Parse {
+            template,
+            diagnostics: self.diagnostics,
+            omitted: self.omitted,
+            errors: self.errors,
+            warnings: self.warnings,
+        }
+    }
 }
 
 impl Sink {
@@ -81,7 +93,7 @@ impl Sink {
     }
 
     /// The diagnostics in source order, with a last one saying how many were dropped.
-    fn finish(mut self) -> Collected {
+    pub fn finish(mut self) -> Collected {
         self.list
             .sort_by_key(|d| (d.primary_span().start, std::cmp::Reverse(d.severity)));
         let kept_errors = self.list.len() - self.kept_warnings;
@@ -127,10 +139,30 @@ impl Sink {
 }
 
 pub(crate) fn parse(text: &str, target: Target) -> Parse {
+    let mut instructions = Vec::new();
+    let collected = parse_each(text, target, |ins| instructions.push(ins));
+    collected.into_parse(Template { instructions })
+}
+
+/// How many instructions `text` has at most (its non-empty chunks), without parsing.
+pub(crate) fn count_chunks(text: &str) -> usize {
+    Pieces::new(text, 0)
+        .filter(|p| matches!(p, Piece::Chunk(_)))
+        .count()
+}
+
+/// Parses a template, handing each instruction to `emit` in order instead of keeping
+/// them: memory is the text, one batch of pest tokens and the capped diagnostics, whatever
+/// the template's size (for `check`, `fmt` and the evaluator's own compact form).
+pub(crate) fn parse_each(
+    text: &str,
+    target: Target,
+    mut emit: impl FnMut(Instruction),
+) -> Collected {
     let mut sink = Sink::default();
     // `"0, 90"`: a template copied with its quotes. One diagnostic for the pair, and the
     // inside is read as the template it surely is.
-    let split = match quoted(text) {
+    let pieces = match quoted(text) {
         Some((open, close)) => {
             let inner = Span::new(open.end, close.start);
             sink.push(
@@ -147,36 +179,65 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
                 )
                 .with_help("write the template's text alone: `0, 90`, not `\"0, 90\"`"),
             );
-            split::split(&text[inner.range()]).shifted(inner.start)
+            Pieces::new(&text[inner.range()], inner.start)
         }
-        None => split::split(text),
+        None => Pieces::new(text, 0),
     };
-    let mut instructions = Vec::with_capacity(split.chunks.len());
-    let mut empties = split.empties.iter().peekable();
+    let mut pieces = pieces.peekable();
     let mut previous: Option<Chunk<'_>> = None;
+    let mut spacing = crate::lint::Spacing::default();
+    let mut batch: Vec<Piece<'_>> = Vec::new();
     // Fast path: valid text parses in one pest call per batch of instructions (per-call
     // set-up dominates the cost of short instructions; batches keep pest's token queue in
     // cache on megabyte templates). A batch's items are exactly its chunks; when a batch
     // fails, each of its chunks is parsed on its own for its own diagnostics.
-    let chunks = &split.chunks;
-    let mut first = 0;
-    while first < chunks.len() {
-        let start = chunks[first].span.start;
-        let mut end = first + 1;
-        while end < chunks.len() && chunks[end].span.end - start <= BATCH_BYTES {
-            end += 1;
+    loop {
+        batch.clear();
+        let mut start = None;
+        while let Some(piece) = pieces.next_if(|p| match (p, start) {
+            (Piece::Chunk(c), Some(s)) => c.span.end - s <= BATCH_BYTES,
+            _ => true,
+        }) {
+            if let (Piece::Chunk(c), None) = (piece, start) {
+                start = Some(c.span.start);
+            }
+            batch.push(piece);
         }
-        let batch = &chunks[first..end];
-        let batch_text = &text[start..batch[batch.len() - 1].span.end];
+        if batch.is_empty() {
+            break;
+        }
+        let Some(start) = start else {
+            // Empty instructions with no chunk after them: at the end (`0, 90,,`, `,`).
+            for piece in &batch {
+                if let Piece::Empty(span) = piece {
+                    sink.push(empty_instruction(text, *span, previous.is_some()));
+                }
+            }
+            continue;
+        };
+        let last_end = batch
+            .iter()
+            .rev()
+            .find_map(|p| match p {
+                Piece::Chunk(c) => Some(c.span.end),
+                Piece::Empty(_) => None,
+            })
+            .unwrap_or(start);
+        let batch_text = &text[start..last_end];
         let mut items = RotParser::parse(Rule::template, batch_text)
             .into_iter()
             .flatten()
             .flat_map(|t| t.into_inner())
             .filter(|p| p.as_rule() == Rule::item);
-        for chunk in batch {
-            while let Some(span) = empties.next_if(|s| s.start < chunk.span.start) {
-                sink.push(empty_instruction(*span, previous.is_some()));
-            }
+        for piece in &batch {
+            let chunk = match piece {
+                Piece::Empty(span) => {
+                    sink.push(empty_instruction(text, *span, previous.is_some()));
+                    continue;
+                }
+                Piece::Chunk(chunk) => chunk,
+            };
+            let mut valid = false;
             let parsed = match items.next() {
                 Some(item)
                     if Span::new(item.as_span().start(), item.as_span().end()).shift(start)
@@ -201,7 +262,8 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
                     match lowerer.instruction(pair) {
                         Some(ins) => {
                             crate::lint::instruction(text, &ins, target, &mut sink);
-                            instructions.push(ins);
+                            emit(ins);
+                            valid = true;
                         }
                         // Every instruction left out of the IR is an error: should lowering
                         // ever drop one without saying why, say it here.
@@ -220,24 +282,12 @@ pub(crate) fn parse(text: &str, target: Target) -> Parse {
                 Err(_) if !sink.keeps(Severity::Error) => sink.count(Severity::Error),
                 Err(err) => sink.push(chunk_error(text, chunk, previous.as_ref(), err)),
             }
+            spacing.push(*chunk, valid, &mut sink);
             previous = Some(*chunk);
         }
-        first = end;
     }
-    // Empty instructions after the last one (`0, 90,`, or `,` alone).
-    for span in empties {
-        sink.push(empty_instruction(*span, false));
-    }
-    let template = Template { instructions };
-    crate::lint::spacing(&template, &split.chunks, &mut sink);
-    let collected = sink.finish();
-    Parse {
-        template,
-        diagnostics: collected.diagnostics,
-        omitted: collected.omitted,
-        errors: collected.errors,
-        warnings: collected.warnings,
-    }
+    spacing.finish(&mut sink);
+    sink.finish()
 }
 
 /// The spans of a pair of quotes around the whole template (separators aside).
@@ -276,9 +326,15 @@ fn unreachable_error(text: &str) -> pest::error::Error<Rule> {
     )
 }
 
-/// `after_instruction`: between two instructions, where the fix leaves one separator; at
-/// either end of the template the fix removes the whole run.
-fn empty_instruction(span: Span, after_instruction: bool) -> Diagnostic {
+/// `after_instruction`: between two instructions the fix leaves one separator; at either
+/// end of the template (`, +10`, `0, 90,,`, `,` alone) it removes the whole run.
+fn empty_instruction(text: &str, span: Span, after_instruction: bool) -> Diagnostic {
+    // At the end, the span stops at the last comma: what follows is nothing or separators.
+    let trailing = text
+        .get(span.end..)
+        .and_then(|rest| rest.chars().next())
+        .is_none_or(split::is_separator);
+    let after_instruction = after_instruction && !trailing;
     Diagnostic::warning(
         "rotlang::empty-instruction",
         "an empty instruction is ignored",

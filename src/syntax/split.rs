@@ -12,7 +12,8 @@ pub(crate) struct Chunk<'a> {
     pub after_space_only: bool,
 }
 
-/// What the splitter found besides instructions: empty instructions (`,,`, a leading `,`).
+/// The whole split at once (for tests: the parser streams [`Pieces`]).
+#[cfg(test)]
 #[derive(Debug, Default)]
 pub(crate) struct Split<'a> {
     pub chunks: Vec<Chunk<'a>>,
@@ -20,35 +21,69 @@ pub(crate) struct Split<'a> {
     pub empties: Vec<Span>,
 }
 
-impl Split<'_> {
-    /// The same split with every span moved right by `offset` bytes (for a split of a
-    /// slice of the template).
-    pub fn shifted(mut self, offset: usize) -> Self {
-        for c in &mut self.chunks {
-            c.span = c.span.shift(offset);
-        }
-        for e in &mut self.empties {
-            *e = e.shift(offset);
-        }
-        self
-    }
-}
-
 pub(crate) fn is_separator(c: char) -> bool {
     matches!(c, ',' | ' ' | '\t' | '\r' | '\n')
 }
 
+#[cfg(test)]
 pub(crate) fn split(text: &str) -> Split<'_> {
     let mut out = Split::default();
-    let bytes = text.as_bytes();
-    let mut i = 0;
-    let mut first = true;
-    // A byte-order mark some editors write at the start of a file is not part of the
-    // template: skipped like a separator (spans stay offsets into the whole text).
-    if text.starts_with('\u{feff}') {
-        i = '\u{feff}'.len_utf8();
+    for piece in Pieces::new(text, 0) {
+        match piece {
+            Piece::Empty(span) => out.empties.push(span),
+            Piece::Chunk(chunk) => out.chunks.push(chunk),
+        }
     }
-    while i < bytes.len() {
+    out
+}
+
+/// What the splitter finds, in source order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Piece<'a> {
+    /// A separator run holding an empty instruction (`,,`, a leading `,`).
+    Empty(Span),
+    Chunk(Chunk<'a>),
+}
+
+/// The pieces of a template one at a time, so that a parse holds no list of them (a
+/// megabyte template has hundreds of thousands).
+pub(crate) struct Pieces<'a> {
+    text: &'a str,
+    /// Added to every span: the position of `text` in the whole template.
+    offset: usize,
+    i: usize,
+    first: bool,
+    pending: Option<Chunk<'a>>,
+}
+
+impl<'a> Pieces<'a> {
+    pub fn new(text: &'a str, offset: usize) -> Self {
+        // A byte-order mark some editors write at the start of a file is not part of the
+        // template: skipped like a separator (spans stay offsets into the whole text).
+        let bom = if offset == 0 && text.starts_with('\u{feff}') {
+            '\u{feff}'.len_utf8()
+        } else {
+            0
+        };
+        Pieces {
+            text,
+            offset,
+            i: bom,
+            first: true,
+            pending: None,
+        }
+    }
+}
+
+impl<'a> Iterator for Pieces<'a> {
+    type Item = Piece<'a>;
+
+    fn next(&mut self) -> Option<Piece<'a>> {
+        if let Some(chunk) = self.pending.take() {
+            return Some(Piece::Chunk(chunk));
+        }
+        let bytes = self.text.as_bytes();
+        let mut i = self.i;
         // A separator run.
         let sep_start = i;
         let mut commas = 0;
@@ -56,35 +91,36 @@ pub(crate) fn split(text: &str) -> Split<'_> {
             commas += usize::from(bytes[i] == b',');
             i += 1;
         }
-        let at_end = i == bytes.len();
         // A leading comma (`,` alone too) or two commas in one run (`10,,` too) enclose
         // an instruction with nothing in it. One trailing comma only ends the last
         // instruction: common style, which OrcaSlicer drops as well (SEMANTICS 10.2).
-        let empty = if first { commas >= 1 } else { commas >= 2 };
-        if empty {
-            // At the end, up to the last comma: a file's final newline is not part of it.
-            let end = if at_end {
-                sep_start + text[sep_start..i].rfind(',').map_or(0, |c| c + 1)
-            } else {
-                i
-            };
-            out.empties.push(Span::new(sep_start, end));
-        }
-        if at_end {
-            break;
+        let empty = if self.first { commas >= 1 } else { commas >= 2 };
+        if i == bytes.len() {
+            self.i = i;
+            if empty {
+                // Up to the last comma: a file's final newline is not part of it.
+                let end = sep_start + self.text[sep_start..i].rfind(',').map_or(0, |c| c + 1);
+                return Some(Piece::Empty(Span::new(sep_start, end).shift(self.offset)));
+            }
+            return None;
         }
         let start = i;
         while i < bytes.len() && !is_separator(bytes[i] as char) {
             i += 1;
         }
-        out.chunks.push(Chunk {
-            text: &text[start..i],
-            span: Span::new(start, i),
-            after_space_only: !first && commas == 0,
-        });
-        first = false;
+        self.i = i;
+        let chunk = Chunk {
+            text: &self.text[start..i],
+            span: Span::new(start, i).shift(self.offset),
+            after_space_only: !self.first && commas == 0,
+        };
+        self.first = false;
+        if empty {
+            self.pending = Some(chunk);
+            return Some(Piece::Empty(Span::new(sep_start, start).shift(self.offset)));
+        }
+        Some(Piece::Chunk(chunk))
     }
-    out
 }
 
 #[cfg(test)]

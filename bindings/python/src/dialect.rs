@@ -1,13 +1,14 @@
-//! The parts that depend on library modules landing separately: the OrcaSlicer dialect
-//! and `explain`. Until they are in, they raise NotImplementedError.
+//! The OrcaSlicer dialect, and `explain`.
 
-use pyo3::exceptions::{PyNotImplementedError, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use rotlang_core::Target;
 use rotlang_core::eval::{Model, Options};
 
-use crate::Evaluated;
+use rotlang_core::dialect::orcaslicer;
+
+use crate::{Evaluated, Finding};
 
 pub const NAMES: [&str; 2] = ["rotlang", "orcaslicer"];
 
@@ -29,21 +30,56 @@ impl Dialect {
     }
 }
 
+/// Evaluates `text` in a dialect other than rotlang's (which needs a parse first).
 pub fn evaluate(
-    _py: Python<'_>,
-    _dialect: Dialect,
-    _text: &str,
-    _model: &Model,
-    _options: Options,
-    _want_fills: bool,
+    py: Python<'_>,
+    dialect: Dialect,
+    text: &str,
+    model: &Model,
+    options: Options,
+    want_fills: bool,
 ) -> PyResult<Evaluated> {
-    Err(PyNotImplementedError::new_err(
-        "the OrcaSlicer dialect is not in this build of rotlang yet",
-    ))
+    match dialect {
+        Dialect::OrcaSlicer => Ok(py.detach(|| {
+            let mut layers = orcaslicer::layers(text, model, options);
+            let mut angles = Vec::with_capacity(model.len());
+            let mut fills = Vec::new();
+            for layer in layers.by_ref() {
+                angles.push(layer.angle);
+                if want_fills {
+                    fills.push(layer.fill.name());
+                }
+            }
+            let findings = layers
+                .findings()
+                .iter()
+                .map(|f| Finding {
+                    code: f.code.to_string(),
+                    message: f.message.clone(),
+                    first_layer: f.first_layer,
+                    layers: f.layers,
+                })
+                .collect();
+            Evaluated {
+                angles,
+                fills,
+                findings,
+            }
+        })),
+        Dialect::Rotlang => Err(PyValueError::new_err("the rotlang dialect parses first")),
+    }
 }
 
-pub fn explain(_py: Python<'_>, _text: &str, _target: Target, _model: Option<&Model>) -> PyResult<String> {
-    Err(PyNotImplementedError::new_err(
-        "explain is not in this build of rotlang yet",
-    ))
+/// The template in words (`rotlang::explain::template`) on `model` (default: the cube).
+pub fn explain(py: Python<'_>, text: &str, target: Target, model: Option<&Model>) -> String {
+    let cube;
+    let model = match model {
+        Some(m) => m,
+        None => {
+            cube = Model::cube20();
+            &cube
+        }
+    };
+    // Evaluating the layer ranges can take a while on tall models: let Python run.
+    py.detach(|| rotlang_core::explain::template(text, target, model))
 }

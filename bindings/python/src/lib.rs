@@ -6,7 +6,7 @@
 
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyList};
+use pyo3::types::{PyBytes, PyDict, PyList};
 
 use rotlang_core::eval::{self, Model as RustModel, Options};
 use rotlang_core::{Diagnostic as RustDiagnostic, Target};
@@ -383,9 +383,37 @@ fn format(py: Python<'_>, template: &str, target: &str) -> PyResult<String> {
 /// The template in plain words, each instruction with its layer range on `model`.
 #[pyfunction]
 #[pyo3(signature = (template, model=None, target="sparse"))]
-fn explain(py: Python<'_>, template: &str, model: Option<&Model>, target: &str) -> PyResult<String> {
+fn explain(
+    py: Python<'_>,
+    template: &str,
+    model: Option<&Model>,
+    target: &str,
+) -> PyResult<String> {
     let target = self::target(target)?;
-    dialect::explain(py, template, target, model.map(|m| &m.inner))
+    Ok(dialect::explain(
+        py,
+        template,
+        target,
+        model.map(|m| &m.inner),
+    ))
+}
+
+/// The documentation of a diagnostic code (`"rotlang::unknown-sign"` or `"unknown-sign"`):
+/// a dict with `code`, `severity`, `summary`, `explanation`, `example`, `fix`; `None`
+/// for a code rotlang does not have.
+#[pyfunction]
+fn explain_code<'py>(py: Python<'py>, code: &str) -> PyResult<Option<Bound<'py, PyDict>>> {
+    let Some(doc) = rotlang_core::explain::code(code) else {
+        return Ok(None);
+    };
+    let dict = PyDict::new(py);
+    dict.set_item("code", doc.code)?;
+    dict.set_item("severity", doc.severity)?;
+    dict.set_item("summary", doc.summary)?;
+    dict.set_item("explanation", doc.explanation)?;
+    dict.set_item("example", doc.example)?;
+    dict.set_item("fix", doc.fix)?;
+    Ok(Some(dict))
 }
 
 /// Wraps an angle into `[0, 360)` and prints it without float noise (`"30"`, `"22.5"`).
@@ -410,5 +438,6 @@ fn rotlang(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(format, m)?)?;
     m.add_function(wrap_pyfunction!(format_angle, m)?)?;
     m.add_function(wrap_pyfunction!(explain, m)?)?;
+    m.add_function(wrap_pyfunction!(explain_code, m)?)?;
     Ok(())
 }

@@ -145,8 +145,12 @@ def test_format_and_format_angle():
 
 
 def test_explain_describes_each_instruction():
-    words = rotlang.explain("+10/5mm, -10", rotlang.Model.cube20())
-    assert "+10/5mm" in words and "-10" in words
+    words = rotlang.explain("+10/5mm, -10", rotlang.Model.uniform(50, 0.2))
+    assert "+10/5mm" in words and "-10" in words and "50 layers" in words
+    assert rotlang.explain("+30°") != rotlang.explain("+30")  # the error is mentioned
+    doc = rotlang.explain_code("unknown-sign")
+    assert doc["code"] == "rotlang::unknown-sign" and doc["severity"] == "error" and doc["fix"]
+    assert rotlang.explain_code("rotlang::no-such-code") is None
 
 
 def test_one_template_from_many_threads():

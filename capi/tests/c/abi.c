@@ -109,6 +109,61 @@ static void diagnostics(void) {
     STATUS(rotlang_template_free(t), ROTLANG_STATUS_OK);
 }
 
+/* The OrcaSlicer dialect: any text, OrcaSlicer's angles, its defects as findings. */
+static void orcaslicer(void) {
+    RotlangOptions orca = {0, 0, ROTLANG_DIALECT_ORCASLICER};
+    RotlangModel cube = rotlang_model_uniform(100, 0.2, 0);
+    double angles[100];
+    RotlangFinding items[4];
+    RotlangFindings findings = {items, 4, 0};
+
+    /* `10!, 5*` makes OrcaSlicer loop forever from layer 1; rotlang holds the angle. */
+    RotlangTemplate *hang = parse("10!, 5*");
+    STATUS(rotlang_expand(hang, &cube, &orca, 0, ROTLANG_TO_TOP, angles, NULL, 100, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 1 && items[0].kind == ROTLANG_FINDING_KIND_HANGS);
+    CHECK(items[0].first_layer == 1 && items[0].layers == 99);
+    CHECK(angles[0] == 10 && angles[1] == 10 && angles[99] == 10);
+    /* Not enough room: the count still says how many there are. */
+    RotlangFindings none = {NULL, 0, 0};
+    STATUS(rotlang_expand(hang, &cube, &orca, 0, ROTLANG_TO_TOP, angles, NULL, 100, &none), ROTLANG_STATUS_OK);
+    CHECK(none.count == 1);
+    /* Findings only cover the layers evaluated: layer 0 alone has no hang yet. */
+    STATUS(rotlang_expand(hang, &cube, &orca, 0, 1, angles, NULL, 1, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 0);
+    RotlangEvaluator *e = NULL;
+    STATUS(rotlang_evaluator_new(hang, &cube, &orca, &e), ROTLANG_STATUS_OK);
+    RotlangLayer layer;
+    STATUS(rotlang_evaluator_layer(e, 50, &layer), ROTLANG_STATUS_OK);
+    CHECK(layer.angle == 10);
+    STATUS(rotlang_evaluator_findings(e, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 1 && items[0].kind == ROTLANG_FINDING_KIND_HANGS);
+    STATUS(rotlang_evaluator_free(e), ROTLANG_STATUS_OK);
+    STATUS(rotlang_template_free(hang), ROTLANG_STATUS_OK);
+
+    /* Text rotlang rejects still has OrcaSlicer angles; random access equals the batch. */
+    RotlangTemplate *bad = parse("+30°, X, 0x10*2, nan");
+    int errors = 0;
+    STATUS(rotlang_template_has_errors(bad, &errors), ROTLANG_STATUS_OK);
+    CHECK(errors == 1);
+    STATUS(rotlang_expand(bad, &cube, &orca, 0, ROTLANG_TO_TOP, angles, NULL, 100, &findings), ROTLANG_STATUS_OK);
+    STATUS(rotlang_evaluator_new(bad, &cube, &orca, &e), ROTLANG_STATUS_OK);
+    for (size_t k = 0; k < 200; k++) {
+        size_t i = (k * 61) % 100;
+        STATUS(rotlang_evaluator_layer(e, i, &layer), ROTLANG_STATUS_OK);
+        CHECK(layer.angle == angles[i] && isfinite(layer.angle));
+    }
+    STATUS(rotlang_evaluator_free(e), ROTLANG_STATUS_OK);
+    STATUS(rotlang_template_free(bad), ROTLANG_STATUS_OK);
+
+    /* `1:4`: a quarter turn for rotlang, 1 degree for OrcaSlicer (SEMANTICS 10.2). */
+    RotlangTemplate *flip = parse("1:4");
+    double mine[5];
+    STATUS(rotlang_expand(flip, &cube, NULL, 0, 5, mine, NULL, 5, NULL), ROTLANG_STATUS_OK);
+    STATUS(rotlang_expand(flip, &cube, &orca, 0, 5, angles, NULL, 5, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 0 && mine[4] == 90 && angles[4] == 1);
+    STATUS(rotlang_template_free(flip), ROTLANG_STATUS_OK);
+}
+
 static void hostile(void) {
     RotlangTemplate *t = parse("+10, -10");
     RotlangTemplate *out = (RotlangTemplate *)1;
@@ -237,6 +292,37 @@ static void threads(void) {
     STATUS(rotlang_template_free(shared), ROTLANG_STATUS_OK);
 }
 
+/* Freeing a template while other threads evaluate it: each call either finishes on the
+ * template (it holds its own reference) or, once the free went through, is refused with
+ * INVALID_HANDLE. Never a crash or a read of freed memory. */
+static RotlangTemplate *doomed;
+
+static void *racer(void *arg) {
+    (void)arg;
+    RotlangModel model = rotlang_model_uniform(2000, 0.2, 0);
+    double *angles = malloc(sizeof(double) * 2000);
+    size_t unexpected = 0, refused = 0;
+    for (int round = 0; round < 400 && refused < 3; round++) {
+        RotlangStatus s = rotlang_expand(doomed, &model, NULL, 0, ROTLANG_TO_TOP, angles, NULL, 2000, NULL);
+        if (s == ROTLANG_STATUS_INVALID_HANDLE) refused++;
+        else if (s != ROTLANG_STATUS_OK || angles[1999] != angles[1999 % 2]) unexpected++;
+    }
+    free(angles);
+    return (void *)unexpected;
+}
+
+static void free_while_evaluating(void) {
+    doomed = parse("0, 90");
+    pthread_t tid[3];
+    for (size_t i = 0; i < 3; i++) CHECK(pthread_create(&tid[i], NULL, racer, NULL) == 0);
+    STATUS(rotlang_template_free(doomed), ROTLANG_STATUS_OK);
+    for (size_t i = 0; i < 3; i++) {
+        void *unexpected = NULL;
+        CHECK(pthread_join(tid[i], &unexpected) == 0);
+        CHECK(unexpected == NULL);
+    }
+}
+
 /* Arguments (optional): layers per thread, threads. */
 int main(int argc, char **argv) {
     if (argc > 2) {
@@ -247,8 +333,10 @@ int main(int argc, char **argv) {
     versions();
     evaluates();
     diagnostics();
+    orcaslicer();
     hostile();
     threads();
+    free_while_evaluating();
     if (failures) {
         fprintf(stderr, "%d of %d checks failed\n", failures, checks);
         return 1;

@@ -52,11 +52,14 @@ pub fn scratch(name: &str) -> PathBuf {
 }
 
 pub fn run(command: &mut Command) -> Output {
-    let output = command
+    // cargo puts `target/<profile>` on LD_LIBRARY_PATH for tests, and an older
+    // `librotlang_capi.so` uplifted there by `cargo build` would win over the one beside
+    // this test binary: the programs find theirs through their rpath only.
+    command
+        .env_remove("LD_LIBRARY_PATH")
         .stdin(Stdio::null())
         .output()
-        .unwrap_or_else(|e| panic!("run {command:?}: {e}"));
-    output
+        .unwrap_or_else(|e| panic!("run {command:?}: {e}"))
 }
 
 pub fn check(command: &mut Command) -> Output {

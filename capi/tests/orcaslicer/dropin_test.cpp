@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "Print.hpp"
+#include "rotlang.hpp"
 
 namespace Slic3r {
 double calculate_infill_rotation_angle(const PrintObject* object, size_t layer_id, const double& fixed_infill_angle,
@@ -33,6 +34,7 @@ using namespace Slic3r;
 struct Case {
     std::string model, status, text;
     std::vector<double> degrees;  // NaN: OrcaSlicer's angle is NaN there
+    std::vector<double> on_raft;  // the dialect on the raft object's own layer tops
 };
 
 struct ModelSpec {
@@ -94,7 +96,10 @@ int main(int argc, char** argv) {
     }
 
     // One Print per model (its shell counts) and one object per model, plus the same
-    // object on a 1.5 mm raft: the angles must not move with the raft.
+    // object on a 1.5 mm raft. On the raft, OrcaSlicer measures layer tops as
+    // print_z - object_print_z_min, which can differ from the running sums in the last
+    // bit (and so break a tie the other way): the expectation there is the dialect on
+    // exactly those tops, computed here through rotlang.hpp.
     std::map<std::string, std::unique_ptr<Print>> prints;
     std::map<std::string, std::unique_ptr<PrintObject>> objects, rafted;
     for (const auto& [name, m] : specs) {
@@ -104,6 +109,21 @@ int main(int argc, char** argv) {
         objects[name] = std::make_unique<PrintObject>(print.get(), m.heights, m.layer_height, 0.0);
         rafted[name] = std::make_unique<PrintObject>(print.get(), m.heights, m.layer_height, 1.5);
         prints[name] = std::move(print);
+    }
+    for (Case& c : cases) {
+        const PrintObject* raft = rafted.at(c.model).get();
+        std::vector<double> heights;
+        double below = 0;
+        for (const Layer* l : raft->layers()) {
+            double top = l->print_z - raft->slicing_parameters().object_print_z_min;
+            heights.push_back(top - below);
+            below = top;
+        }
+        const ModelSpec& m = specs.at(c.model);
+        rotlang::Options orca;
+        orca.dialect = rotlang::Dialect::OrcaSlicer;
+        c.on_raft = rotlang::Template(c.text).angles(
+            rotlang::Model::from_heights(heights, m.layer_height).shells(m.bottom, m.top), orca);
     }
 
     std::atomic<size_t> checked{0}, failed{0}, raft_diffs{0};
@@ -129,9 +149,9 @@ int main(int argc, char** argv) {
                         std::fprintf(stderr, "%s on %s (%s), layer %zu: got %.9g, expected %.9g\n", c.text.c_str(),
                                      c.model.c_str(), c.status.c_str(), i, got, c.degrees[i]);
                 }
-                if (!close(on_raft, got) && raft_diffs++ < 10)
-                    std::fprintf(stderr, "%s on %s with a raft, layer %zu: %.9g, without: %.9g\n", c.text.c_str(),
-                                 c.model.c_str(), i, on_raft, got);
+                if (!close(on_raft, c.on_raft[i]) && raft_diffs++ < 10)
+                    std::fprintf(stderr, "%s on %s with a raft, layer %zu: %.9g, expected %.9g\n", c.text.c_str(),
+                                 c.model.c_str(), i, on_raft, c.on_raft[i]);
             }
         }
     };
@@ -156,7 +176,7 @@ int main(int argc, char** argv) {
     bool reslice_ok = after != before && after == calculate_infill_rotation_angle(&fresh, 5, fixed, "+10/5mm");
     clear_infill_rotation_cache();
 
-    std::printf("checked %zu layers of %zu cases on %zu threads: %zu failed, %zu moved on a raft\n", checked.load(),
+    std::printf("checked %zu layers of %zu cases on %zu threads: %zu failed, %zu failed on a raft\n", checked.load(),
                 cases.size(), static_cast<size_t>(threads), failed.load(), raft_diffs.load());
     if (!fixed_ok) std::fprintf(stderr, "the fixed angle is not returned for an empty template\n");
     if (!reslice_ok) std::fprintf(stderr, "a re-sliced object kept its old table\n");

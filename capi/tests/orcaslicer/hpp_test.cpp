@@ -77,6 +77,15 @@ int main() {
         CHECK(e.status() == ROTLANG_STATUS_OUT_OF_RANGE);
     }
 
+    // The OrcaSlicer dialect: any text, its defects as findings.
+    rotlang::Options orca;
+    orca.dialect = rotlang::Dialect::OrcaSlicer;
+    rotlang::Expansion hang = rotlang::Template(std::string_view("10!, 5*")).expand(cube, orca);
+    CHECK(hang.findings.size() == 1 && hang.findings[0].code == "orcaslicer::hangs" &&
+          hang.findings[0].first_layer == 1 && hang.angles[99] == 10);
+    rotlang::Evaluator orca_ev = bad.evaluator(cube, orca);
+    CHECK(std::isfinite(orca_ev.layer(42).angle) && orca_ev.findings().empty());
+
     // Move semantics: the moved-to template works, the handle is freed once.
     rotlang::Template moved = std::move(tpl);
     CHECK(moved.angles(cube) == angles);

@@ -116,7 +116,7 @@ impl Layers<'_> {
         self.findings
     }
 
-    fn halt(&mut self, code: &'static str, layer: usize) {
+    fn halt(&mut self, code: &'static str, layer: usize, span: Option<Span>) {
         self.halted = true;
         let left = self.model.len() - layer;
         let message = if code == HANGS {
@@ -133,10 +133,11 @@ impl Layers<'_> {
             message,
             first_layer: layer,
             layers: left,
+            span,
         });
     }
 
-    fn record_nan(&mut self, layer: usize) {
+    fn record_nan(&mut self, layer: usize, span: Option<Span>) {
         match self.nan {
             Some(at) => self.findings[at].layers += 1,
             None => {
@@ -148,6 +149,7 @@ impl Layers<'_> {
                     ),
                     first_layer: layer,
                     layers: 1,
+                    span,
                 });
             }
         }
@@ -198,12 +200,16 @@ impl Iterator for Layers<'_> {
                 Outcome::Angle(a) if a.is_finite() => a,
                 Outcome::Angle(_) => self.below,
                 Outcome::Nan(clamped) => {
-                    self.record_nan(index);
+                    self.record_nan(index, instruction);
                     clamped.filter(|a| a.is_finite()).unwrap_or(self.below)
                 }
                 Outcome::Halt(halt) => {
+                    let at_fault = match halt {
+                        Halt::Hang => None,
+                        Halt::Undefined => instruction,
+                    };
                     instruction = None;
-                    self.halt(halt.code(), index);
+                    self.halt(halt.code(), index, at_fault);
                     self.below
                 }
             }

@@ -1,0 +1,392 @@
+//! `rotlang check PATH…` and `--compat orcaslicer`: templates in files (OrcaSlicer presets,
+//! `.ini` exports, `.3mf` projects, folders of them) and the OrcaSlicer compat lint; and
+//! `rotlang expand --profile PATH`.
+//!
+//! Every diagnostic is moved from the template into the file (through JSON and XML
+//! escapes), so reports show the file, the line and column in it, and the key (and object).
+
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use super::check::{CheckArgs, Format};
+use super::{Input, UsageError, diagnostic_json, render_human};
+use crate::Target;
+use crate::diagnostic::{Diagnostic, LineIndex, Severity};
+use crate::dialect::compat;
+use crate::eval::{Model, Options};
+use crate::profile::{self, DEFAULT_OBJECT_HEIGHT, Found, Kind, Profile, ProfileError};
+
+/// `--compat`: which slicer to compare with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum CompatArg {
+    /// OrcaSlicer's own reading (SEMANTICS section 10)
+    Orcaslicer,
+}
+
+/// Whether `check` has files or the compat lint to run (else the plain template path).
+pub(crate) fn wanted(args: &CheckArgs) -> bool {
+    args.compat.is_some()
+        || args
+            .templates
+            .iter()
+            .any(|t| Path::new(t).exists() || looks_like_a_file(t))
+        || args
+            .files
+            .iter()
+            .any(|f| Kind::from_extension(f).is_some_and(|k| k != Kind::Template))
+}
+
+/// One text diagnostics point into (a template argument, a file, a 3mf entry).
+struct Unit {
+    input: Input,
+    diagnostics: Vec<Diagnostic>,
+    /// Per template in this text: its JSON report (for `--format json`).
+    reports: Vec<serde_json::Value>,
+}
+
+#[derive(Default)]
+struct Run {
+    units: Vec<Unit>,
+    file_errors: Vec<ProfileError>,
+    /// Information for the human report (`note: ...` lines).
+    notes: Vec<String>,
+    templates: usize,
+    files: usize,
+    errors: usize,
+    warnings: usize,
+}
+
+pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
+    let target: Target = args.target.into();
+    let compat = args.compat.is_some();
+    let mut run = Run::default();
+    let many = args.templates.len() > 1;
+    for (i, arg) in args.templates.iter().enumerate() {
+        let path = Path::new(arg);
+        if path.is_dir() {
+            let (files, errors) = profile::files_under(path);
+            if files.is_empty() && errors.is_empty() {
+                run.notes.push(format!(
+                    "{}: no .rot, .json, .jsonc, .ini or .3mf file in this folder",
+                    path.display()
+                ));
+            }
+            run.file_errors.extend(errors);
+            for file in files {
+                run.file(&file, target, compat);
+            }
+        } else if path.exists() {
+            run.file(path, target, compat);
+        } else {
+            let name = if many {
+                format!("<template {}>", i + 1)
+            } else {
+                "<template>".to_owned()
+            };
+            if looks_like_a_file(arg) {
+                run.notes.push(format!(
+                    "{name}: `{arg}` is read as a template: there is no such file"
+                ));
+            }
+            run.template(name, arg.clone(), None, target, compat);
+        }
+    }
+    for path in &args.files {
+        run.file(path, target, compat);
+    }
+    if args.templates.is_empty() && args.files.is_empty() {
+        let input = super::gather(&[], &[])?.remove(0);
+        run.template(input.name, input.text, None, target, compat);
+    }
+    run.report(args, out)?;
+    let failed =
+        run.errors > 0 || !run.file_errors.is_empty() || (args.deny_warnings && run.warnings > 0);
+    Ok(i32::from(failed))
+}
+
+/// `profile.json`, `presets/a.ini`: a name with a known extension, no spaces or commas.
+fn looks_like_a_file(arg: &str) -> bool {
+    !arg.contains([' ', ',']) && Kind::from_extension(Path::new(arg)).is_some()
+}
+
+impl Run {
+    fn template(
+        &mut self,
+        name: String,
+        text: String,
+        path: Option<PathBuf>,
+        target: Target,
+        compat: bool,
+    ) {
+        let mut diagnostics = crate::parse(&text, target).diagnostics;
+        if compat {
+            diagnostics.extend(compat::compat(
+                &text,
+                target,
+                &Model::cube20(),
+                Options::default(),
+            ));
+        }
+        self.count(&diagnostics);
+        self.templates += 1;
+        let index = LineIndex::new(&text);
+        let report = serde_json::json!({
+            "input": text, "name": name, "file": path.as_ref().map(|p| p.display().to_string()),
+            "key": null, "object": null,
+            "diagnostics": diagnostics.iter().map(|d| diagnostic_json(&index, d)).collect::<Vec<_>>(),
+            "errors": diagnostics.iter().filter(|d| d.is_error()).count(),
+            "warnings": diagnostics.iter().filter(|d| !d.is_error()).count(),
+        });
+        self.units.push(Unit {
+            input: Input { name, text, path },
+            diagnostics,
+            reports: vec![report],
+        });
+    }
+
+    fn count(&mut self, diagnostics: &[Diagnostic]) {
+        for d in diagnostics {
+            match d.severity {
+                Severity::Error => self.errors += 1,
+                Severity::Warning => self.warnings += 1,
+            }
+        }
+    }
+
+    fn file(&mut self, path: &Path, target: Target, compat: bool) {
+        self.files += 1;
+        let profile = match profile::read(path) {
+            Ok(p) => p,
+            Err(e) => {
+                self.file_errors.push(e);
+                return;
+            }
+        };
+        if profile.kind == Some(Kind::Template) {
+            let text = profile.templates[0].text.clone();
+            let name = path.display().to_string();
+            self.template(name, text, Some(path.to_owned()), target, compat);
+            return;
+        }
+        self.profile(profile, compat);
+    }
+
+    fn profile(&mut self, profile: Profile, compat: bool) {
+        let mut units: Vec<Unit> = profile
+            .sources
+            .iter()
+            .map(|s| Unit {
+                input: Input {
+                    name: s.name.clone(),
+                    text: s.text.clone(),
+                    path: Some(profile.path.clone()),
+                },
+                diagnostics: Vec::new(),
+                reports: Vec::new(),
+            })
+            .collect();
+        let file = profile.path.display().to_string();
+        if profile.templates.is_empty() && !profile.has_errors() {
+            self.notes
+                .push(format!("{file}: no infill rotation template in this file"));
+        }
+        let mut model_notes: BTreeMap<String, ()> = BTreeMap::new();
+        for found in &profile.templates {
+            let parse = crate::parse(&found.text, found.target);
+            let mut diagnostics = parse.diagnostics;
+            if compat {
+                let pm =
+                    profile.model(found.target, found.object.as_deref(), DEFAULT_OBJECT_HEIGHT);
+                for n in &pm.notes {
+                    model_notes.insert(format!("{file}: {n}"), ());
+                }
+                diagnostics.extend(compat::compat(
+                    &found.text,
+                    found.target,
+                    &pm.model,
+                    pm.options,
+                ));
+            }
+            self.templates += 1;
+            self.count(&diagnostics);
+            let unit = &mut units[found.source];
+            let moved: Vec<Diagnostic> = diagnostics
+                .into_iter()
+                .map(|d| into_file(d, found))
+                .collect();
+            let index = LineIndex::new(&unit.input.text);
+            unit.reports.push(serde_json::json!({
+                "input": found.text, "name": format!("{}: {}", unit.input.name, found.label()),
+                "file": file, "source": unit.input.name, "key": found.key, "object": found.object,
+                "target": match found.target { Target::Sparse => "sparse", Target::Solid => "solid" },
+                "diagnostics": moved.iter().map(|d| diagnostic_json(&index, d)).collect::<Vec<_>>(),
+                "errors": moved.iter().filter(|d| d.is_error()).count(),
+                "warnings": moved.iter().filter(|d| !d.is_error()).count(),
+            }));
+            unit.diagnostics.extend(moved);
+        }
+        for note in &profile.notes {
+            let d = if note.error {
+                Diagnostic::error("profile::invalid", note.message.clone())
+            } else {
+                Diagnostic::warning("profile::value", note.message.clone())
+            }
+            .with_primary(note.span, "here");
+            self.count(std::slice::from_ref(&d));
+            let unit = &mut units[note.source];
+            let index = LineIndex::new(&unit.input.text);
+            unit.reports.push(serde_json::json!({
+                "name": unit.input.name, "file": file, "source": unit.input.name,
+                "key": null, "object": null,
+                "diagnostics": [diagnostic_json(&index, &d)],
+                "errors": usize::from(note.error), "warnings": usize::from(!note.error),
+            }));
+            unit.diagnostics.push(d);
+        }
+        self.notes.extend(model_notes.into_keys());
+        self.units.extend(units);
+    }
+
+    fn report(&self, args: &CheckArgs, out: &mut dyn Write) -> Result<(), UsageError> {
+        let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+        match args.format {
+            Format::Json => {
+                for unit in &self.units {
+                    for r in &unit.reports {
+                        writeln!(out, "{r}").map_err(io)?;
+                    }
+                }
+                for e in &self.file_errors {
+                    let obj = serde_json::json!({"file": e.path.display().to_string(), "error": e.message});
+                    writeln!(out, "{obj}").map_err(io)?;
+                }
+            }
+            Format::Human => {
+                let reports: Vec<(&Input, &[Diagnostic])> = self
+                    .units
+                    .iter()
+                    .filter(|u| !u.diagnostics.is_empty())
+                    .map(|u| (&u.input, u.diagnostics.as_slice()))
+                    .collect();
+                out.write_all(render_human(&reports, args.color.enabled(true)).as_bytes())
+                    .map_err(io)?;
+                for e in &self.file_errors {
+                    writeln!(out, "error: {e}").map_err(io)?;
+                }
+                for n in &self.notes {
+                    writeln!(out, "note: {n}").map_err(io)?;
+                }
+                writeln!(out, "{}", self.summary()).map_err(io)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn summary(&self) -> String {
+        let plural = |n: usize, w: &str| {
+            if n == 1 {
+                format!("1 {w}")
+            } else {
+                format!("{n} {w}s")
+            }
+        };
+        let mut what = plural(self.templates, "template");
+        if self.files > 0 {
+            what.push_str(&format!(" in {}", plural(self.files, "file")));
+        }
+        let mut parts = vec![what];
+        if self.errors > 0 {
+            parts.push(plural(self.errors, "error"));
+        }
+        if self.warnings > 0 {
+            parts.push(plural(self.warnings, "warning"));
+        }
+        if !self.file_errors.is_empty() {
+            parts.push(format!(
+                "{} not readable",
+                plural(self.file_errors.len(), "file")
+            ));
+        }
+        let failed = self.errors > 0 || !self.file_errors.is_empty();
+        let head = if failed { "failed" } else { "ok" };
+        if parts.len() == 1 {
+            parts.push("no problems".to_owned());
+        }
+        format!("{head}: {}", parts.join(", "))
+    }
+}
+
+/// A template's diagnostic moved into the file it came from: spans through the offset
+/// map, and the message naming the key (and object).
+fn into_file(mut d: Diagnostic, found: &Found) -> Diagnostic {
+    for l in &mut d.labels {
+        l.span = found.span_in_source(l.span);
+    }
+    if let Some(fix) = &mut d.fix {
+        // A fix inside an escape cannot be applied to the file as it stands.
+        let moved = found.span_in_source(fix.span);
+        if moved.len() == fix.span.len() {
+            fix.span = moved;
+        } else {
+            d.fix = None;
+        }
+    }
+    if found.key.is_some() {
+        d.message = format!("{}: {}", found.label(), d.message);
+    }
+    d
+}
+
+/// `rotlang expand --profile PATH`: the template of `target` in the file (the project's
+/// own for a 3mf), on the profile's model unless the command line gives one.
+pub(crate) struct ProfileTemplate {
+    pub text: String,
+    pub model: Model,
+    pub base: f64,
+    pub notes: Vec<String>,
+}
+
+pub(crate) fn profile_template(
+    path: &Path,
+    target: Target,
+    height: Option<f64>,
+) -> Result<ProfileTemplate, UsageError> {
+    let profile = profile::read(path).map_err(|e| UsageError(e.to_string()))?;
+    let key = profile::TEMPLATE_KEYS
+        .iter()
+        .find(|(_, t)| *t == target)
+        .map_or("", |(k, _)| *k);
+    let found = profile
+        .templates
+        .iter()
+        .find(|f| f.target == target && f.object.is_none())
+        .or_else(|| profile.templates.iter().find(|f| f.target == target))
+        .ok_or_else(|| UsageError(format!("{}: no `{key}` in this file", path.display())))?;
+    let pm = profile.model(
+        target,
+        found.object.as_deref(),
+        height.unwrap_or(DEFAULT_OBJECT_HEIGHT),
+    );
+    let mut notes = pm.notes;
+    notes.insert(
+        0,
+        format!(
+            "{}: {} `{}`, base {}° ({} layers of {} mm, B = {}, T = {})",
+            path.display(),
+            found.label(),
+            found.text,
+            pm.options.base,
+            pm.model.len(),
+            pm.model.layer_height(),
+            pm.model.bottom_shells(),
+            pm.model.top_shells()
+        ),
+    );
+    Ok(ProfileTemplate {
+        text: found.text.clone(),
+        model: pm.model,
+        base: pm.options.base,
+        notes,
+    })
+}

@@ -1,0 +1,299 @@
+//! OrcaSlicer `.3mf` projects: a zip whose `Metadata/project_settings.config` is the
+//! project's JSON settings and whose `Metadata/model_settings.config` is XML with
+//! per-object (and per-part) `<metadata key=… value=…/>` overrides.
+//!
+//! Archives are untrusted: an entry is inflated only up to [`MAX_ENTRY_BYTES`] (a zip
+//! bomb stops there with an error), whatever size its header claims; a corrupt or
+//! truncated archive, a bad checksum, or XML that does not parse is an error for the file.
+
+use std::io::{Cursor, Read};
+
+use super::json::OffsetMap;
+use super::{Found, Profile, Settings, Source, TEMPLATE_KEYS, json_file, utf8};
+use crate::Span;
+
+/// Settings files are kilobytes; a project's whole model settings a few megabytes.
+pub const MAX_ENTRY_BYTES: u64 = 16 * 1024 * 1024;
+
+const PROJECT: &str = "Metadata/project_settings.config";
+const MODEL: &str = "Metadata/model_settings.config";
+
+pub(super) fn read(name: &str, bytes: &[u8], profile: &mut Profile) -> Result<(), String> {
+    let mut archive = zip::ZipArchive::new(Cursor::new(bytes))
+        .map_err(|e| format!("not a readable 3mf (zip) archive: {e}"))?;
+    let mut any = false;
+    if let Some(text) = entry(&mut archive, PROJECT)? {
+        any = true;
+        let source = profile.sources.len();
+        profile.sources.push(Source {
+            name: format!("{name}!{PROJECT}"),
+            text,
+        });
+        json_file(profile, source, None, false);
+    }
+    if let Some(text) = entry(&mut archive, MODEL)? {
+        any = true;
+        let source = profile.sources.len();
+        profile.sources.push(Source {
+            name: format!("{name}!{MODEL}"),
+            text,
+        });
+        model_settings(profile, source)?;
+    }
+    // Parts are collected before their object ends: back to document order.
+    profile
+        .templates
+        .sort_by_key(|f| (f.source, f.span_in_source(crate::Span::new(0, 0)).start));
+    if !any {
+        return Err(format!(
+            "a zip archive without {PROJECT} or {MODEL}: not an OrcaSlicer project"
+        ));
+    }
+    Ok(())
+}
+
+/// The text of entry `path`, `None` if the archive has none; inflation is capped.
+fn entry(
+    archive: &mut zip::ZipArchive<Cursor<&[u8]>>,
+    path: &str,
+) -> Result<Option<String>, String> {
+    let file = match archive.by_name(path) {
+        Ok(f) => f,
+        Err(zip::result::ZipError::FileNotFound) => return Ok(None),
+        Err(e) => return Err(format!("{path}: cannot read the entry: {e}")),
+    };
+    if file.size() > MAX_ENTRY_BYTES {
+        return Err(format!(
+            "{path}: claims {} bytes once inflated, more than the {} MiB a settings file can be",
+            file.size(),
+            MAX_ENTRY_BYTES >> 20
+        ));
+    }
+    let mut bytes = Vec::new();
+    // The header may lie: the cap holds whatever it says.
+    file.take(MAX_ENTRY_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("{path}: corrupt or truncated entry: {e}"))?;
+    if bytes.len() as u64 > MAX_ENTRY_BYTES {
+        return Err(format!(
+            "{path}: inflates beyond {} MiB (a zip bomb?)",
+            MAX_ENTRY_BYTES >> 20
+        ));
+    }
+    utf8(&bytes).map(Some).map_err(|e| format!("{path}: {e}"))
+}
+
+/// Where an element sits: inside an object, or a part of one.
+#[derive(Default)]
+struct Scope {
+    /// Metadata of the current object (or part): key, value, value's contents span, map.
+    entries: Vec<(String, String, Span, OffsetMap)>,
+    id: Option<String>,
+}
+
+/// `<config><object id=…><metadata key=… value=…/><part id=…><metadata …/></part></object>`.
+fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
+    use quick_xml::events::Event;
+    let text = profile.sources[source].text.clone();
+    let mut reader = quick_xml::Reader::from_str(&text);
+    reader.config_mut().check_end_names = true;
+    // object, then (inside it) a part.
+    let mut object: Option<Scope> = None;
+    let mut part: Option<Scope> = None;
+    let mut object_name = String::new();
+    loop {
+        let start = reader.buffer_position() as usize;
+        let event = reader.read_event().map_err(|e| {
+            let at = reader.error_position() as usize;
+            let (line, col) = crate::diagnostic::LineIndex::new(&text).line_col(at.min(text.len()));
+            format!("{MODEL}: invalid XML at {line}:{col}: {e}")
+        })?;
+        let end = (reader.buffer_position() as usize).min(text.len());
+        match event {
+            Event::Eof => break,
+            Event::Start(e) | Event::Empty(e) => {
+                let empty = text.as_bytes().get(end.saturating_sub(2)) == Some(&b'/');
+                let name = e.local_name();
+                let tag = &text[start..end];
+                match name.as_ref() {
+                    "object" if object.is_none() => {
+                        object = Some(Scope {
+                            id: attribute(tag, "id").map(|(v, ..)| v),
+                            ..Scope::default()
+                        });
+                        object_name.clear();
+                        if empty {
+                            finish_object(profile, source, object.take(), &object_name);
+                        }
+                    }
+                    "part" if object.is_some() && part.is_none() => {
+                        part = Some(Scope {
+                            id: attribute(tag, "id").map(|(v, ..)| v),
+                            ..Scope::default()
+                        });
+                        if empty {
+                            part = None;
+                        }
+                    }
+                    "metadata" if object.is_some() => {
+                        if let (Some((key, ..)), Some((value, span, map))) =
+                            (attribute(tag, "key"), attribute(tag, "value"))
+                        {
+                            let map = shift(map, start);
+                            let span = Span::new(span.start + start, span.end + start);
+                            if let Some(p) = part.as_mut() {
+                                p.entries.push((key, value, span, map));
+                            } else if let Some(o) = object.as_mut() {
+                                if key == "name" {
+                                    object_name = value.clone();
+                                }
+                                o.entries.push((key, value, span, map));
+                            }
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            Event::End(e) => match e.local_name().as_ref() {
+                "part" if part.is_some() => {
+                    let p = part.take().unwrap_or_default();
+                    let part_name = p
+                        .entries
+                        .iter()
+                        .find(|(k, ..)| k == "name")
+                        .map(|(_, v, ..)| v.clone())
+                        .or(p.id.clone())
+                        .unwrap_or_default();
+                    let owner = object_label(object.as_ref(), &object_name);
+                    collect(profile, source, p, &format!("{owner} / part {part_name}"));
+                }
+                "object" if object.is_some() => {
+                    finish_object(profile, source, object.take(), &object_name);
+                }
+                _ => {}
+            },
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+fn object_label(object: Option<&Scope>, name: &str) -> String {
+    match (name, object.and_then(|o| o.id.as_deref())) {
+        ("", Some(id)) => format!("#{id}"),
+        ("", None) => "(unnamed)".to_owned(),
+        (n, _) => n.to_owned(),
+    }
+}
+
+fn finish_object(profile: &mut Profile, source: usize, object: Option<Scope>, name: &str) {
+    if let Some(o) = object {
+        let label = object_label(Some(&o), name);
+        collect(profile, source, o, &label);
+    }
+}
+
+/// The templates and model settings of one object (or part).
+fn collect(profile: &mut Profile, source: usize, scope: Scope, label: &str) {
+    let mut settings = Settings::default();
+    for (key, value, span, map) in scope.entries {
+        if let Some(&(_, target)) = TEMPLATE_KEYS.iter().find(|(k, _)| *k == key) {
+            profile.templates.push(Found {
+                key: Some(key),
+                object: Some(label.to_owned()),
+                target,
+                text: value,
+                source,
+                map,
+            });
+        } else if super::MODEL_KEYS.contains(&key.as_str()) {
+            settings.set(&key, value, source, span);
+        }
+    }
+    if !settings.values.is_empty() {
+        profile.objects.push((label.to_owned(), settings));
+    }
+}
+
+/// A map built on a tag's text, moved to the tag's place in the document.
+fn shift(map: OffsetMap, by: usize) -> OffsetMap {
+    map.shifted(by)
+}
+
+/// The value of attribute `name` in the raw tag text: unescaped, the span of its contents
+/// within the tag, and the map from the value to the tag text.
+fn attribute(tag: &str, name: &str) -> Option<(String, Span, OffsetMap)> {
+    let bytes = tag.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        // Find `name` `=` quote, at an attribute boundary.
+        let rest = &tag[i..];
+        let at = rest.find(name)?;
+        let pos = i + at;
+        let before_ok = pos > 0 && bytes[pos - 1].is_ascii_whitespace();
+        let mut j = pos + name.len();
+        while j < bytes.len() && bytes[j].is_ascii_whitespace() {
+            j += 1;
+        }
+        if before_ok && bytes.get(j) == Some(&b'=') {
+            j += 1;
+            while j < bytes.len() && bytes[j].is_ascii_whitespace() {
+                j += 1;
+            }
+            let quote = *bytes.get(j)?;
+            if quote == b'"' || quote == b'\'' {
+                let open = j + 1;
+                let close = open + tag[open..].find(quote as char)?;
+                let (text, map) = unescape_xml(&tag[open..close], open);
+                return Some((text, Span::new(open, close), map));
+            }
+        }
+        i = pos + name.len();
+    }
+    None
+}
+
+/// XML entities (`&amp;` `&lt;` `&gt;` `&quot;` `&apos;` `&#N;` `&#xH;`) decoded, with the
+/// map from the text to the raw value (which starts at `doc` in the tag). An unknown or
+/// malformed entity stays as written.
+pub(super) fn unescape_xml(raw: &str, doc: usize) -> (String, OffsetMap) {
+    let mut text = String::with_capacity(raw.len());
+    let mut map = OffsetMap::starting_at(doc);
+    let mut run = 0;
+    let mut i = 0;
+    while let Some(at) = raw[i..].find('&') {
+        let amp = i + at;
+        let Some(semi) = raw[amp..].find(';').map(|s| amp + s) else {
+            break;
+        };
+        let entity = &raw[amp + 1..semi];
+        let decoded = match entity {
+            "amp" => Some('&'),
+            "lt" => Some('<'),
+            "gt" => Some('>'),
+            "quot" => Some('"'),
+            "apos" => Some('\''),
+            _ => entity
+                .strip_prefix("#x")
+                .or_else(|| entity.strip_prefix("#X"))
+                .map(|h| u32::from_str_radix(h, 16))
+                .or_else(|| entity.strip_prefix('#').map(str::parse::<u32>))
+                .and_then(Result::ok)
+                .and_then(char::from_u32),
+        };
+        match decoded {
+            Some(c) => {
+                map.push_verbatim(text.len(), doc + run, amp - run);
+                text.push_str(&raw[run..amp]);
+                map.push_escape(text.len(), c.len_utf8(), doc + amp, semi + 1 - amp);
+                text.push(c);
+                run = semi + 1;
+                i = semi + 1;
+            }
+            None => i = amp + 1,
+        }
+    }
+    map.push_verbatim(text.len(), doc + run, raw.len() - run);
+    text.push_str(&raw[run..]);
+    (text, map)
+}

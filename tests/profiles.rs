@@ -1,0 +1,442 @@
+//! Profiles, presets and projects: the fixtures of `tests/fixtures/profiles/` read by the
+//! library and by `rotlang check` / `rotlang expand --profile`, and hostile files (corrupt,
+//! truncated and bomb archives, text that is not UTF-8, huge files, wrong JSON types): an
+//! error for that file, the other files still checked, never a panic.
+#![cfg(feature = "3mf")]
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use proptest::prelude::*;
+use rotlang::Target;
+use rotlang::profile::{self, Kind};
+
+const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/profiles");
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(FIXTURES).join(name)
+}
+
+fn rotlang(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(args)
+        .output()
+        .expect("run rotlang");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A scratch folder removed on drop.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(name: &str) -> Scratch {
+        let dir =
+            std::env::temp_dir().join(format!("rotlang-profiles-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Scratch(dir)
+    }
+
+    fn file(&self, name: &str, bytes: &[u8]) -> PathBuf {
+        let path = self.0.join(name);
+        std::fs::write(&path, bytes).unwrap();
+        path
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn zip_of(entries: &[(&str, &[u8])]) -> Vec<u8> {
+    let mut out = std::io::Cursor::new(Vec::new());
+    {
+        let mut z = zip::ZipWriter::new(&mut out);
+        let options = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Deflated);
+        for (name, bytes) in entries {
+            z.start_file(*name, options).unwrap();
+            z.write_all(bytes).unwrap();
+        }
+        z.finish().unwrap();
+    }
+    out.into_inner()
+}
+
+#[test]
+fn the_project_fixture() {
+    let p = profile::read(&fixture("project.3mf")).unwrap();
+    assert_eq!(p.kind, Some(Kind::ThreeMf));
+    let found: Vec<(String, Option<String>, &str)> = p
+        .templates
+        .iter()
+        .map(|f| (f.label(), f.object.clone(), f.text.as_str()))
+        .collect();
+    assert_eq!(
+        found,
+        [
+            ("sparse_infill_rotate_template".to_owned(), None, "+90/5mm"),
+            ("solid_infill_rotate_template".to_owned(), None, ""),
+            (
+                "sparse_infill_rotate_template (object Lid & hinge)".to_owned(),
+                Some("Lid & hinge".to_owned()),
+                "0, 1:4"
+            ),
+            (
+                "solid_infill_rotate_template (object Lid & hinge / part Hinge)".to_owned(),
+                Some("Lid & hinge / part Hinge".to_owned()),
+                "+15#10"
+            ),
+        ]
+    );
+    // `&#x2B;15#10`: the `#` of the template is the file's `#`; the `+` is the reference.
+    let hinge = &p.templates[3];
+    let xml = &p.sources[hinge.source].text;
+    assert_eq!(
+        &xml[hinge.span_in_source(rotlang::Span::new(0, 1)).range()],
+        "&#x2B;"
+    );
+    assert_eq!(
+        &xml[hinge.span_in_source(rotlang::Span::new(3, 4)).range()],
+        "#"
+    );
+    // The project's model; the Lid's own layer height overrides it.
+    let m = p.model(Target::Sparse, None, 20.0);
+    assert_eq!((m.model.layer_height(), m.model.top_shells()), (0.2, 5));
+    assert_eq!(m.model.layer_bounds(0), Some((0.0, 0.3)));
+    let lid = p.model(Target::Sparse, Some("Lid & hinge"), 20.0);
+    assert_eq!(lid.model.layer_height(), 0.16);
+}
+
+#[test]
+fn presets_inherit_from_their_parents() {
+    let p = profile::read(&fixture("orca/process/0.28mm Draft @Rotlang.json")).unwrap();
+    let m = p.model(Target::Sparse, None, 20.0);
+    assert_eq!(m.model.layer_height(), 0.28);
+    assert_eq!(
+        m.model.bottom_shells(),
+        3,
+        "from fdm_process_rotlang_common.json"
+    );
+    assert_eq!(m.options.base, 30.0, "a number, not a string");
+    assert!(m.notes.is_empty(), "{:?}", m.notes);
+    let inherited = &p.settings.values["bottom_shell_layers"];
+    assert!(
+        inherited
+            .inherited_from
+            .as_ref()
+            .unwrap()
+            .ends_with("fdm_process_rotlang_common.json")
+    );
+    // The parent is not beside this one: each default is a note that says so.
+    let p = profile::read(&fixture("user-overrides.jsonc")).unwrap();
+    let m = p.model(Target::Sparse, None, 20.0);
+    assert_eq!(m.model.layer_height(), 0.16);
+    assert_eq!(m.notes.len(), 4, "{:?}", m.notes);
+    assert!(
+        m.notes[0].contains("parent preset `0.20mm Standard @Rotlang` (inherits) was not found")
+    );
+}
+
+#[test]
+fn check_runs_over_the_fixture_folder() {
+    let (code, out, err) = rotlang(&["check", "--color", "never", FIXTURES]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.ends_with("ok: 15 templates in 8 files, no problems\n"),
+        "{out}"
+    );
+    let (code, out, _) = rotlang(&[
+        "check",
+        "--compat",
+        "orcaslicer",
+        "--color",
+        "never",
+        FIXTURES,
+    ]);
+    assert_eq!(code, 0, "warnings only: {out}");
+    // File, line:column in the file (inside the 3mf entry), key and object.
+    assert!(out.contains("warning[orcaslicer::fraction]: sparse_infill_rotate_template (object Lid & hinge): OrcaSlicer has no `α:β` angles: it reads `1:4` as 1°"), "{out}");
+    assert!(
+        out.contains("project.3mf!Metadata/model_settings.config:14:61"),
+        "{out}"
+    );
+    assert!(
+        out.contains("warning[orcaslicer::space-separated-list]: solid_infill_rotate_template"),
+        "{out}"
+    );
+    assert!(out.contains("0.12mm Fine @Rotlang.json:12:39"), "{out}");
+    assert!(
+        out.contains("warning[orcaslicer::text-after-bang]"),
+        "{out}"
+    );
+    assert!(out.contains("user-overrides.jsonc:8:49"), "{out}");
+    assert!(
+        out.contains("note: ") && out.contains("OrcaSlicer's default 45° is used"),
+        "{out}"
+    );
+    assert!(
+        out.ends_with("ok: 15 templates in 8 files, 9 warnings\n"),
+        "{out}"
+    );
+}
+
+#[test]
+fn check_json_names_file_key_and_object() {
+    let (code, out, _) = rotlang(&[
+        "check",
+        "--compat",
+        "orcaslicer",
+        "--format",
+        "json",
+        &fixture("project.3mf").display().to_string(),
+    ]);
+    assert_eq!(code, 0);
+    let reports: Vec<serde_json::Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(reports.len(), 4);
+    let lid = &reports[2];
+    assert_eq!(lid["key"], "sparse_infill_rotate_template");
+    assert_eq!(lid["object"], "Lid & hinge");
+    assert!(lid["file"].as_str().unwrap().ends_with("project.3mf"));
+    assert!(
+        lid["source"]
+            .as_str()
+            .unwrap()
+            .ends_with("project.3mf!Metadata/model_settings.config")
+    );
+    let codes: Vec<&str> = lid["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["code"].as_str().unwrap())
+        .collect();
+    assert!(codes.contains(&"orcaslicer::fraction"), "{codes:?}");
+    // Line and column of the primary label in the entry (1-based, as people count).
+    let fraction = lid["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|d| d["code"] == "orcaslicer::fraction")
+        .unwrap();
+    assert_eq!(
+        (fraction["line"].as_u64(), fraction["column"].as_u64()),
+        (Some(14), Some(61))
+    );
+}
+
+#[test]
+fn an_argument_naming_a_file_is_a_file() {
+    let dir = Scratch::new("names");
+    let json = dir.file("p.json", br#"{"sparse_infill_rotate_template": "+30X5"}"#);
+    let (code, out, _) = rotlang(&["check", "--color", "never", &json.display().to_string()]);
+    assert_eq!(code, 1);
+    assert!(
+        out.contains(
+            "error[rotlang::unknown-sign]: sparse_infill_rotate_template: unknown sign `X`"
+        ),
+        "{out}"
+    );
+    assert!(out.contains("p.json:1:39"), "{out}");
+    // Not a file: a template, with a note.
+    let (code, out, _) = rotlang(&["check", "--color", "never", "missing.json"]);
+    assert_eq!(code, 1);
+    assert!(
+        out.contains(
+            "note: <template>: `missing.json` is read as a template: there is no such file"
+        ),
+        "{out}"
+    );
+}
+
+#[test]
+fn expand_with_a_profile() {
+    let ini = fixture("export.ini").display().to_string();
+    let (code, out, err) = rotlang(&["expand", "--profile", &ini, "--format", "csv"]);
+    assert_eq!(code, 0, "{err}");
+    // `5, 10!, +20` on 0.3 + 0.24 mm layers, base 45 (sparse_infill_direction).
+    let rows: Vec<&str> = out.lines().skip(1).take(3).collect();
+    assert_eq!(
+        rows,
+        [
+            "0,0,0.3,50,sparse,0,1,5",
+            "1,0.3,0.54,55,sparse,3,6,10!",
+            "2,0.54,0.78,75,sparse,8,11,+20"
+        ]
+    );
+    assert!(
+        err.contains("base 45° (84 layers of 0.24 mm, B = 4, T = 5)"),
+        "{err}"
+    );
+    // The profile's model unless the command line gives one; --base replaces the direction.
+    let (_, out, _) = rotlang(&[
+        "expand",
+        "--profile",
+        &ini,
+        "--layers",
+        "2",
+        "--base",
+        "10",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(out.lines().count(), 3);
+    assert!(out.contains("\n0,0,0.2,15,"), "{out}");
+    let (code, _, err) = rotlang(&[
+        "expand",
+        "--profile",
+        &fixture("orca/filament/Generic PLA @Rotlang.json")
+            .display()
+            .to_string(),
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("no `sparse_infill_rotate_template` in this file"),
+        "{err}"
+    );
+}
+
+#[test]
+fn hostile_files_fail_alone() {
+    let dir = Scratch::new("hostile");
+    let good = dir.file(
+        "good.json",
+        "\u{feff}{\r\n  \"sparse_infill_rotate_template\": \"0, 90\"\r\n}\r\n".as_bytes(),
+    );
+    let project = std::fs::read(fixture("project.3mf")).unwrap();
+    let truncated = dir.file("truncated.3mf", &project[..project.len() / 2]);
+    let mut flipped = project.clone();
+    for b in flipped.iter_mut().skip(200).step_by(97) {
+        *b ^= 0x5a;
+    }
+    let corrupt = dir.file("corrupt.3mf", &flipped);
+    let not_zip = dir.file("fake.3mf", b"PK\x03\x04 this is not a zip archive");
+    let bomb = dir.file(
+        "bomb.3mf",
+        &zip_of(&[("Metadata/project_settings.config", &vec![b' '; 20 << 20])]),
+    );
+    let latin1 = dir.file(
+        "latin1.json",
+        b"{\"sparse_infill_rotate_template\": \"45\xb0\"}",
+    );
+    let types = dir.file(
+        "types.json",
+        br#"{"sparse_infill_rotate_template": ["0", 90], "layer_height": {"x": 1}}"#,
+    );
+    let empty_zip = dir.file("empty.3mf", &zip_of(&[("3D/3dmodel.model", b"<model/>")]));
+    let bad_xml = dir.file(
+        "badxml.3mf",
+        &zip_of(&[(
+            "Metadata/model_settings.config",
+            b"<config><object id=\"1\"><metadata key=\"a\" value=\"b\"/></part></config>",
+        )]),
+    );
+    let huge = dir.0.join("huge.ini");
+    std::fs::File::create(&huge)
+        .unwrap()
+        .set_len(profile::MAX_FILE_BYTES + 1)
+        .unwrap();
+    let path = |p: &PathBuf| p.display().to_string();
+    let args = [
+        &good, &truncated, &corrupt, &not_zip, &bomb, &latin1, &types, &empty_zip, &bad_xml, &huge,
+    ];
+    let mut argv = vec!["check".to_owned(), "--color".to_owned(), "never".to_owned()];
+    argv.extend(args.iter().map(|p| path(p)));
+    let argv: Vec<&str> = argv.iter().map(String::as_str).collect();
+    let (code, out, err) = rotlang(&argv);
+    assert_eq!(code, 1, "{out}{err}");
+    assert!(err.is_empty(), "{err}");
+    for (file, message) in [
+        ("truncated.3mf", "not a readable 3mf (zip) archive"),
+        ("fake.3mf", "not a readable 3mf (zip) archive"),
+        ("bomb.3mf", "more than the 16 MiB a settings file can be"),
+        ("latin1.json", "not UTF-8 text (invalid byte at offset 37)"),
+        ("empty.3mf", "not an OrcaSlicer project"),
+        ("badxml.3mf", "invalid XML at 1:53"),
+        ("huge.ini", "larger than 64 MiB"),
+    ] {
+        assert!(
+            out.lines()
+                .any(|l| l.starts_with("error: ") && l.contains(file) && l.contains(message)),
+            "{file}: {message}\n{out}"
+        );
+    }
+    assert!(out.contains("corrupt.3mf"), "{out}");
+    assert!(out.contains("error[profile::invalid]: `sparse_infill_rotate_template` should be a template (a string), not `90`"), "{out}");
+    assert!(
+        out.contains("warning[profile::value]: `layer_height` should be a string or a number"),
+        "{out}"
+    );
+    // good.json (BOM, CRLF) is read and is clean.
+    assert!(!out.contains("good.json"), "{out}");
+}
+
+/// A zip whose headers claim a small entry that inflates to far more: the cap holds.
+#[test]
+fn lying_sizes_are_capped() {
+    let mut bytes = zip_of(&[("Metadata/project_settings.config", &vec![b' '; 20 << 20])]);
+    let real = (20u32 << 20).to_le_bytes();
+    // Every uncompressed-size field (local header and central directory) says 100 bytes.
+    let mut at = 0;
+    while let Some(p) = bytes[at..].windows(4).position(|w| w == real) {
+        let i = at + p;
+        bytes[i..i + 4].copy_from_slice(&100u32.to_le_bytes());
+        at = i + 4;
+    }
+    let result = profile::parse(Path::new("lying.3mf"), &bytes);
+    let err = result.expect_err("a lying archive is an error");
+    assert!(err.message.contains("project_settings.config"), "{err}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// Any bytes, under any of the names: a profile or an error, never a panic.
+    #[test]
+    fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..600), ext in 0usize..5) {
+        let name = ["a.json", "a.jsonc", "a.ini", "a.3mf", "a.rot"][ext];
+        if let Ok(p) = profile::parse(Path::new(name), &bytes) {
+            for f in &p.templates {
+                let text = &p.sources[f.source].text;
+                let span = f.span_in_source(rotlang::Span::new(0, f.text.len()));
+                prop_assert!(span.end <= text.len());
+            }
+            let _ = p.model(Target::Sparse, None, 20.0);
+        }
+    }
+
+    /// The project fixture with a few bytes changed: read or refused, never a panic.
+    #[test]
+    fn damaged_projects_never_panic(edits in proptest::collection::vec((any::<usize>(), any::<u8>()), 1..6)) {
+        let mut bytes = std::fs::read(fixture("project.3mf")).unwrap();
+        for (at, b) in edits {
+            let i = at % bytes.len();
+            bytes[i] = b;
+        }
+        let _ = profile::parse(Path::new("p.3mf"), &bytes);
+    }
+
+    /// JSON-ish text made of the characters that matter: templates map inside the file.
+    #[test]
+    fn jsonish_text_maps_inside_the_file(parts in proptest::collection::vec(proptest::sample::select(vec![
+        "{", "}", "[", "]", ",", ":", "\"", "\\", "\\u00b0", "\\ud835", "//", "/*", "*/", "\n", " ",
+        "\"sparse_infill_rotate_template\"", "\"layer_height\"", "0.2", "+30", "°", "𝕏", "true",
+    ]), 0..40)) {
+        let doc = parts.concat();
+        let p = profile::parse(Path::new("x.jsonc"), doc.as_bytes()).unwrap();
+        for f in &p.templates {
+            let span = f.span_in_source(rotlang::Span::new(0, f.text.len()));
+            prop_assert!(doc.get(span.range()).is_some(), "{span:?} in {doc:?}");
+        }
+        let _ = profile::json::strip_jsonc(&doc);
+    }
+}

@@ -16,14 +16,15 @@ pub mod diagnostic;
 pub mod dialect;
 pub mod eval;
 pub mod explain;
+pub mod fix;
 pub mod format;
 #[cfg(feature = "infill")]
 pub mod infill;
 pub mod ir;
 mod lint;
 pub mod number;
-pub mod profile;
 pub mod plot;
+pub mod profile;
 mod syntax;
 
 pub use syntax::MAX_DIAGNOSTICS;

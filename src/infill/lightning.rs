@@ -12,7 +12,13 @@ use geo::Coord;
 use super::Region;
 use super::clip::{Edges, Frame};
 
-pub(crate) fn lightning(region: &Region, centre: Coord, theta: f64, spacing: f64, out: &mut Vec<Vec<Coord>>) {
+pub(crate) fn lightning(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    spacing: f64,
+    out: &mut Vec<Vec<Coord>>,
+) {
     let frame = Frame::new(centre, 0.0);
     let mut edges = Edges::new(region.rings(), &frame);
     let gap = 2.5 * spacing;

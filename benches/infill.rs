@@ -58,7 +58,11 @@ fn object_100_layers(bencher: Bencher, pattern: Pattern) {
         let prepared = Region::new(&region, W).expect("region");
         let mut schedule = Schedule::new(&template, &model, Options::default(), settings);
         (0..100)
-            .map(|i| schedule.layer(i, &prepared).map_or(0, |l| l.map_or(0, |l| l.paths.polylines.len())))
+            .map(|i| {
+                schedule
+                    .layer(i, &prepared)
+                    .map_or(0, |l| l.map_or(0, |l| l.paths.polylines.len()))
+            })
             .sum::<usize>()
     });
 }

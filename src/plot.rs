@@ -97,7 +97,9 @@ pub const LINE_COLOUR: &str = "#1f4e9c";
 pub const POINT_COLOUR: &str = "#2a7f62";
 /// The colour of solid layers' markers.
 pub const SOLID_COLOUR: &str = "#e07000";
-const SHADES: [&str; 6] = ["#e8eef9", "#fbeee0", "#e6f4ea", "#f6e6f2", "#fff8d6", "#e6f3f7"];
+const SHADES: [&str; 6] = [
+    "#e8eef9", "#fbeee0", "#e6f4ea", "#f6e6f2", "#fff8d6", "#e6f3f7",
+];
 
 /// What one pixel column of the chart holds.
 #[derive(Clone, Debug)]
@@ -156,7 +158,9 @@ fn gather(template: &Template, model: &Model, options: eval::Options, plot: &Plo
         angle_max = angle_max.max(a);
         let solid = layer.fill != Fill::Sparse;
         let direction = wrap180(a);
-        let row = ((1.0 - direction / 180.0) * directions.h).round().clamp(0.0, u16::MAX as f64) as u16;
+        let row = ((1.0 - direction / 180.0) * directions.h)
+            .round()
+            .clamp(0.0, u16::MAX as f64) as u16;
         let column = columns[c].get_or_insert_with(|| Column {
             first: a,
             min: a,
@@ -193,7 +197,12 @@ fn wrap180(angle: f64) -> f64 {
 
 /// The chart's layout for these inputs (what [`svg`] draws with): tests and tools use it
 /// to find where a layer's angle is drawn.
-pub fn layout(template: &Template, model: &Model, options: eval::Options, plot: &PlotOptions) -> Layout {
+pub fn layout(
+    template: &Template,
+    model: &Model,
+    options: eval::Options,
+    plot: &PlotOptions,
+) -> Layout {
     let data = gather(template, model, options, plot);
     layout_of(&data, plot)
 }
@@ -212,7 +221,11 @@ fn layout_of(data: &Data, plot: &PlotOptions) -> Layout {
 
 /// An axis range holding `[lo, hi]` with round ends, and its tick step.
 fn nice_range(lo: f64, hi: f64) -> (f64, f64, f64) {
-    let (lo, hi) = if hi - lo < 1e-9 { (lo - 45.0, hi + 45.0) } else { (lo, hi) };
+    let (lo, hi) = if hi - lo < 1e-9 {
+        (lo - 45.0, hi + 45.0)
+    } else {
+        (lo, hi)
+    };
     let step = nice_step((hi - lo) / 5.0);
     ((lo / step).floor() * step, (hi / step).ceil() * step, step)
 }
@@ -274,7 +287,13 @@ pub(crate) fn shorten(text: &str, max: usize) -> String {
 
 /// The SVG chart of `template`'s angles on `model`. `source` is the template's text
 /// (instruction labels are cut out of it by their spans).
-pub fn svg(template: &Template, model: &Model, options: eval::Options, source: &str, plot: &PlotOptions) -> String {
+pub fn svg(
+    template: &Template,
+    model: &Model,
+    options: eval::Options,
+    source: &str,
+    plot: &PlotOptions,
+) -> String {
     let data = gather(template, model, options, plot);
     let layout = layout_of(&data, plot);
     let (a, d) = (layout.angles, layout.directions);
@@ -286,7 +305,10 @@ pub fn svg(template: &Template, model: &Model, options: eval::Options, source: &
         h = num(plot.height, 1)
     );
     let _ = write!(s, r##"<rect width="100%" height="100%" fill="#ffffff"/>"##);
-    let title = plot.title.clone().unwrap_or_else(|| format!("template: {}", shorten(source, 90)));
+    let title = plot
+        .title
+        .clone()
+        .unwrap_or_else(|| format!("template: {}", shorten(source, 90)));
     let _ = write!(
         s,
         r#"<text x="{}" y="20" font-size="15" font-weight="bold">{}</text>"#,
@@ -325,7 +347,11 @@ pub fn svg(template: &Template, model: &Model, options: eval::Options, source: &
                     num(r.h, 2)
                 );
             }
-            let text = template.instructions.get(index).and_then(|i| source.get(i.span.range())).unwrap_or("");
+            let text = template
+                .instructions
+                .get(index)
+                .and_then(|i| source.get(i.span.range()))
+                .unwrap_or("");
             let room = (width / 7.0) as usize;
             if room >= 2 && !text.trim().is_empty() {
                 let _ = write!(
@@ -345,7 +371,11 @@ pub fn svg(template: &Template, model: &Model, options: eval::Options, source: &
     for (c, col) in data.columns.iter().enumerate() {
         let Some(col) = col else { continue };
         let x = a.x + c as f64 + 0.5;
-        let (lo, hi) = if col.first <= col.last { (col.min, col.max) } else { (col.max, col.min) };
+        let (lo, hi) = if col.first <= col.last {
+            (col.min, col.max)
+        } else {
+            (col.max, col.min)
+        };
         let mut values = vec![col.first, lo, hi, col.last];
         values.dedup();
         for v in values {

@@ -7,18 +7,22 @@ use rotlang::eval::{Model, Options};
 use rotlang::plot::{self, PlotOptions};
 
 fn render(svg: &str, name: &str) -> Pixmap {
-    let tree = resvg::usvg::Tree::from_str(svg, &resvg::usvg::Options::default()).expect("valid SVG");
+    let tree =
+        resvg::usvg::Tree::from_str(svg, &resvg::usvg::Options::default()).expect("valid SVG");
     let size = tree.size().to_int_size();
     let mut pixmap = Pixmap::new(size.width(), size.height()).expect("a picture of some size");
     resvg::render(&tree, Transform::default(), &mut pixmap.as_mut());
-    let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("pictures-{name}.png"));
+    let path =
+        std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("pictures-{name}.png"));
     pixmap.save_png(&path).expect("the PNG is written");
     pixmap
 }
 
 fn pixel(p: &Pixmap, x: f64, y: f64) -> (u8, u8, u8) {
     let (x, y) = (x.round() as u32, y.round() as u32);
-    let c = p.pixel(x.min(p.width() - 1), y.min(p.height() - 1)).expect("inside the picture");
+    let c = p
+        .pixel(x.min(p.width() - 1), y.min(p.height() - 1))
+        .expect("inside the picture");
     (c.red(), c.green(), c.blue())
 }
 
@@ -42,7 +46,10 @@ fn plot_line_and_points_are_where_the_angles_say() {
     let text = "+2, 0*, +3";
     let template = rotlang::parse(text, rotlang::Target::Sparse).template;
     let model = Model::cube20();
-    let options = Options { base: 10.0, seed: 0 };
+    let options = Options {
+        base: 10.0,
+        seed: 0,
+    };
     let style = PlotOptions::default();
     let svg = plot::svg(&template, &model, options, text, &style);
     let layout = plot::layout(&template, &model, options, &style);
@@ -53,9 +60,18 @@ fn plot_line_and_points_are_where_the_angles_say() {
     for l in layers.iter().step_by(7) {
         let x = layout.x((l.bottom + l.top) / 2.0);
         let y = layout.y_angle(l.angle);
-        assert!(found(&picture, x, y, 2, line), "layer {}: no line at ({x}, {y}) for {}°", l.index, l.angle);
+        assert!(
+            found(&picture, x, y, 2, line),
+            "layer {}: no line at ({x}, {y}) for {}°",
+            l.index,
+            l.angle
+        );
         let yd = layout.y_direction(l.angle.rem_euclid(180.0));
-        assert!(found(&picture, x, yd, 2, dots), "layer {}: no point at ({x}, {yd})", l.index);
+        assert!(
+            found(&picture, x, yd, 2, dots),
+            "layer {}: no point at ({x}, {yd})",
+            l.index
+        );
     }
     // And not everywhere: the line is absent well away from the angle (angles rise).
     let l = &layers[50];
@@ -63,7 +79,11 @@ fn plot_line_and_points_are_where_the_angles_say() {
     for dy in [-40.0, 40.0] {
         let y = layout.y_angle(l.angle) + dy;
         if y > layout.angles.y && y < layout.angles.y + layout.angles.h {
-            assert!(!found(&picture, x, y, 1, line), "a line at ({x}, {y}), far from {}°", l.angle);
+            assert!(
+                !found(&picture, x, y, 1, line),
+                "a line at ({x}, {y}), far from {}°",
+                l.angle
+            );
         }
     }
 }
@@ -83,7 +103,13 @@ fn plot_marks_solid_layers() {
         let x = layout.x((l.bottom + l.top) / 2.0);
         let y = layout.y_direction(l.angle.rem_euclid(180.0));
         let is_solid = l.fill != rotlang::Fill::Sparse;
-        assert_eq!(found(&picture, x, y, 1, solid), is_solid, "layer {} ({:?})", l.index, l.fill);
+        assert_eq!(
+            found(&picture, x, y, 1, solid),
+            is_solid,
+            "layer {} ({:?})",
+            l.index,
+            l.fill
+        );
     }
 }
 
@@ -123,8 +149,17 @@ mod preview {
                 columns: 2,
                 ..PreviewOptions::default()
             };
-            let svg = preview::render(&template, &model, Options::default(), text, &region, &settings, 0..2, &options)
-                .expect("the preview is drawn");
+            let svg = preview::render(
+                &template,
+                &model,
+                Options::default(),
+                text,
+                &region,
+                &settings,
+                0..2,
+                &options,
+            )
+            .expect("the preview is drawn");
             let picture = render(&svg, &format!("preview-{pattern}"));
             for panel in 0..2 {
                 let (scale, offset) = preview::transform(&region, panel, &options);
@@ -141,17 +176,35 @@ mod preview {
                             continue;
                         }
                         coloured += 1;
-                        let (x, y) = ((px as f64 - offset.x) / scale, -(py as f64 - offset.y) / scale);
-                        let ok = [(0.0, 0.0), (slack, 0.0), (-slack, 0.0), (0.0, slack), (0.0, -slack)]
-                            .iter()
-                            .any(|(dx, dy)| inside(&region, x + dx, y + dy));
-                        assert!(ok, "{pattern} panel {panel}: a line pixel at ({x:.2}, {y:.2}) mm, outside the ring");
+                        let (x, y) = (
+                            (px as f64 - offset.x) / scale,
+                            -(py as f64 - offset.y) / scale,
+                        );
+                        let ok = [
+                            (0.0, 0.0),
+                            (slack, 0.0),
+                            (-slack, 0.0),
+                            (0.0, slack),
+                            (0.0, -slack),
+                        ]
+                        .iter()
+                        .any(|(dx, dy)| inside(&region, x + dx, y + dy));
+                        assert!(
+                            ok,
+                            "{pattern} panel {panel}: a line pixel at ({x:.2}, {y:.2}) mm, outside the ring"
+                        );
                     }
                 }
-                assert!(coloured > 2000, "{pattern} panel {panel}: only {coloured} line pixels");
+                assert!(
+                    coloured > 2000,
+                    "{pattern} panel {panel}: only {coloured} line pixels"
+                );
                 // The hole's middle is not drawn on.
                 let (r, g, b) = pixel(&picture, offset.x, offset.y);
-                assert!(r.max(g).max(b) - r.min(g).min(b) < 80, "the hole is coloured");
+                assert!(
+                    r.max(g).max(b) - r.min(g).min(b) < 80,
+                    "the hole is coloured"
+                );
             }
         }
     }
@@ -167,7 +220,9 @@ fn readme_pictures_render() {
         let coloured = picture
             .pixels()
             .iter()
-            .filter(|c| c.red().max(c.green()).max(c.blue()) - c.red().min(c.green()).min(c.blue()) > 80)
+            .filter(|c| {
+                c.red().max(c.green()).max(c.blue()) - c.red().min(c.green()).min(c.blue()) > 80
+            })
             .count();
         assert!(coloured > 1000, "{name}: {coloured} coloured pixels");
     }

@@ -26,7 +26,11 @@ errors (nothing is drawn), 2 on a usage error.")]
 pub struct PlotArgs {
     /// The template, e.g. '+30/50%'. Put `--` before one that begins with `-`.
     /// Without it, the template is read from --file or stdin.
-    #[arg(value_name = "TEMPLATE", allow_negative_numbers = true, conflicts_with = "file")]
+    #[arg(
+        value_name = "TEMPLATE",
+        allow_negative_numbers = true,
+        conflicts_with = "file"
+    )]
     pub template: Option<String>,
     /// Read the template from a file (newlines separate instructions).
     #[arg(long, short = 'f', value_name = "PATH")]
@@ -57,13 +61,31 @@ pub struct PlotArgs {
 #[derive(clap::Args, Debug, Default)]
 pub struct ModelArgs {
     /// A uniform model tall enough for an object of MM millimetres, e.g. --height 42.
-    #[arg(long, value_name = "MM", help_heading = "Model", conflicts_with = "model", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "MM",
+        help_heading = "Model",
+        conflicts_with = "model",
+        allow_negative_numbers = true
+    )]
     pub height: Option<f64>,
     /// The standard layer height h in mm [default: 0.2].
-    #[arg(long, value_name = "MM", help_heading = "Model", conflicts_with = "model", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "MM",
+        help_heading = "Model",
+        conflicts_with = "model",
+        allow_negative_numbers = true
+    )]
     pub layer_height: Option<f64>,
     /// The first layer's height in mm [default: the layer height].
-    #[arg(long, value_name = "MM", help_heading = "Model", conflicts_with = "model", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "MM",
+        help_heading = "Model",
+        conflicts_with = "model",
+        allow_negative_numbers = true
+    )]
     pub first_layer_height: Option<f64>,
     /// A model from a JSON file, as for `rotlang expand --model`.
     #[arg(long, value_name = "PATH", help_heading = "Model")]
@@ -75,7 +97,13 @@ pub struct ModelArgs {
     #[arg(long, value_name = "N", help_heading = "Model")]
     pub top_shell_layers: Option<u32>,
     /// The base infill direction in degrees, added to every angle (e.g. --base 45).
-    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, help_heading = "Model")]
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 0.0,
+        allow_negative_numbers = true,
+        help_heading = "Model"
+    )]
     pub base: f64,
     /// The seed of the random joints `~` and `^`.
     #[arg(long, value_name = "N", default_value_t = 0, help_heading = "Model")]
@@ -91,7 +119,9 @@ impl ModelArgs {
         let model = match (&self.model, layers, self.height) {
             (Some(path), _, _) => super::expand::model_file(path)?,
             (None, Some(n), _) => Model::uniform(n, h, h0).map_err(invalid)?,
-            (None, None, Some(height)) => Model::from_total_height(height, h, h0).map_err(invalid)?,
+            (None, None, Some(height)) => {
+                Model::from_total_height(height, h, h0).map_err(invalid)?
+            }
             (None, None, None) if self.layer_height.is_some() || h0.is_some() => {
                 return Err(UsageError(
                     "--layer-height and --first-layer-height need the model's size (--height MM, or \
@@ -159,9 +189,12 @@ pub(super) fn template(
 /// Writes `text` to `path`, or to `out` when there is none.
 pub(super) fn emit(text: &str, path: Option<&Path>, out: &mut dyn Write) -> Result<(), UsageError> {
     match path {
-        Some(path) => std::fs::write(path, text).map_err(|e| UsageError(format!("cannot write {}: {e}", path.display()))),
+        Some(path) => std::fs::write(path, text)
+            .map_err(|e| UsageError(format!("cannot write {}: {e}", path.display()))),
         None => match out.write_all(text.as_bytes()) {
-            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(UsageError(format!("cannot write output: {e}"))),
+            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                Err(UsageError(format!("cannot write output: {e}")))
+            }
             _ => Ok(()),
         },
     }
@@ -179,7 +212,13 @@ pub fn run(args: &PlotArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<
         height: args.size.1,
         title: args.title.clone(),
     };
-    let svg = crate::plot::svg(&parse.template, &model, args.model.options(), &input.text, &options);
+    let svg = crate::plot::svg(
+        &parse.template,
+        &model,
+        args.model.options(),
+        &input.text,
+        &options,
+    );
     emit(&svg, args.out.as_deref(), out)?;
     Ok(0)
 }

@@ -34,7 +34,11 @@ Exit status: 0 on success, 1 when the template has errors, 2 on a usage error.")
 pub struct PreviewArgs {
     /// The template, e.g. '+30/50%'. Put `--` before one that begins with `-`.
     /// Without it, the template is read from --file or stdin.
-    #[arg(value_name = "TEMPLATE", allow_negative_numbers = true, conflicts_with = "file")]
+    #[arg(
+        value_name = "TEMPLATE",
+        allow_negative_numbers = true,
+        conflicts_with = "file"
+    )]
     pub template: Option<String>,
     /// Read the template from a file (newlines separate instructions).
     #[arg(long, short = 'f', value_name = "PATH")]
@@ -43,13 +47,24 @@ pub struct PreviewArgs {
     #[arg(long, value_enum, default_value_t)]
     pub target: TargetArg,
     /// The infill pattern.
-    #[arg(long, short = 'p', value_enum, default_value_t, help_heading = "Infill")]
+    #[arg(
+        long,
+        short = 'p',
+        value_enum,
+        default_value_t,
+        help_heading = "Infill"
+    )]
     pub pattern: PatternArg,
     /// The infill density in percent, e.g. 20 or 20%.
     #[arg(long, short = 'd', value_name = "PERCENT", default_value = "20", value_parser = parse_density, help_heading = "Infill")]
     pub density: f64,
     /// The nozzle diameter (line width) in mm.
-    #[arg(long, value_name = "MM", default_value_t = 0.4, help_heading = "Infill")]
+    #[arg(
+        long,
+        value_name = "MM",
+        default_value_t = 0.4,
+        help_heading = "Infill"
+    )]
     pub nozzle: f64,
     /// Where the pattern is anchored: the object's centre, or the origin for every object.
     #[arg(long, value_enum, default_value_t, help_heading = "Infill")]
@@ -58,10 +73,21 @@ pub struct PreviewArgs {
     #[arg(long, value_enum, default_value_t, help_heading = "Infill")]
     pub solid_pattern: PatternArg,
     /// The region: square, circle, ring, star, l, or a FILE (.svg or .json).
-    #[arg(long, short = 's', value_name = "SHAPE", default_value = "square", help_heading = "Region")]
+    #[arg(
+        long,
+        short = 's',
+        value_name = "SHAPE",
+        default_value = "square",
+        help_heading = "Region"
+    )]
     pub shape: String,
     /// The width of a built-in shape in mm.
-    #[arg(long, value_name = "MM", default_value_t = 20.0, help_heading = "Region")]
+    #[arg(
+        long,
+        value_name = "MM",
+        default_value_t = 20.0,
+        help_heading = "Region"
+    )]
     pub size: f64,
     /// The layers to show: A..B (B excluded), A..=B, or one index [default: 0..8].
     #[arg(long, value_name = "A..B", value_parser = parse_layers)]
@@ -140,7 +166,9 @@ fn parse_density(s: &str) -> Result<f64, String> {
     if v > 0.0 && v <= 100.0 {
         Ok(v / 100.0)
     } else {
-        Err(format!("the density must be above 0% and at most 100%, found {s:?}"))
+        Err(format!(
+            "the density must be above 0% and at most 100%, found {s:?}"
+        ))
     }
 }
 
@@ -159,7 +187,10 @@ fn parse_layers(s: &str) -> Result<Range<usize>, String> {
         return Err(format!("the range {s:?} holds no layer"));
     }
     if range.len() > MAX_PANELS {
-        return Err(format!("{s:?} is {} layers; a preview shows at most {MAX_PANELS}", range.len()));
+        return Err(format!(
+            "{s:?} is {} layers; a preview shows at most {MAX_PANELS}",
+            range.len()
+        ));
     }
     Ok(range)
 }
@@ -167,7 +198,9 @@ fn parse_layers(s: &str) -> Result<Range<usize>, String> {
 /// The region `--shape` names.
 pub fn shape(name: &str, size: f64) -> Result<MultiPolygon<f64>, UsageError> {
     if !(size.is_finite() && size > 0.0 && size <= 10_000.0) {
-        return Err(UsageError(format!("--size must be between 0 and 10000 mm, found {size}")));
+        return Err(UsageError(format!(
+            "--size must be between 0 and 10000 mm, found {size}"
+        )));
     }
     let r = size / 2.0;
     Ok(match name.to_ascii_lowercase().as_str() {
@@ -251,15 +284,33 @@ fn path_rings(d: &str, rings: &mut Vec<Vec<Coord>>) -> Result<(), String> {
             }
             S::Quadratic { x1, y1, x, y } => {
                 let (p0, p1, p2) = (at, Coord { x: x1, y: -y1 }, Coord { x, y: -y });
-                curve(&|t| p0 * ((1.0 - t) * (1.0 - t)) + p1 * (2.0 * t * (1.0 - t)) + p2 * (t * t), &mut ring);
+                curve(
+                    &|t| p0 * ((1.0 - t) * (1.0 - t)) + p1 * (2.0 * t * (1.0 - t)) + p2 * (t * t),
+                    &mut ring,
+                );
                 at = p2;
             }
-            S::CurveTo { x1, y1, x2, y2, x, y } => {
-                let (p0, p1, p2, p3) = (at, Coord { x: x1, y: -y1 }, Coord { x: x2, y: -y2 }, Coord { x, y: -y });
+            S::CurveTo {
+                x1,
+                y1,
+                x2,
+                y2,
+                x,
+                y,
+            } => {
+                let (p0, p1, p2, p3) = (
+                    at,
+                    Coord { x: x1, y: -y1 },
+                    Coord { x: x2, y: -y2 },
+                    Coord { x, y: -y },
+                );
                 curve(
                     &|t| {
                         let u = 1.0 - t;
-                        p0 * (u * u * u) + p1 * (3.0 * u * u * t) + p2 * (3.0 * u * t * t) + p3 * (t * t * t)
+                        p0 * (u * u * u)
+                            + p1 * (3.0 * u * u * t)
+                            + p2 * (3.0 * u * t * t)
+                            + p3 * (t * t * t)
                     },
                     &mut ring,
                 );
@@ -321,7 +372,7 @@ fn nest(rings: Vec<Vec<Coord>>) -> MultiPolygon<f64> {
     };
     let mut polygons: Vec<(usize, Polygon<f64>)> = Vec::new();
     for (i, r) in rings.iter().enumerate() {
-        if parents[i].len() % 2 == 0 {
+        if parents[i].len().is_multiple_of(2) {
             polygons.push((i, Polygon::new(close(r), vec![])));
         }
     }
@@ -339,11 +390,18 @@ fn nest(rings: Vec<Vec<Coord>>) -> MultiPolygon<f64> {
 }
 
 /// Runs `rotlang preview`; returns the exit code.
-pub fn run(args: &PreviewArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
+pub fn run(
+    args: &PreviewArgs,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> Result<i32, UsageError> {
     let model = args.model.build(None)?;
     let region = shape(&args.shape, args.size)?;
     if !(0.01..=10.0).contains(&args.nozzle) {
-        return Err(UsageError(format!("--nozzle must be between 0.01 and 10 mm, found {}", args.nozzle)));
+        return Err(UsageError(format!(
+            "--nozzle must be between 0.01 and 10 mm, found {}",
+            args.nozzle
+        )));
     }
     let (input, parse) = match template(&args.template, &args.file, args.target, args.color, err)? {
         Ok(t) => t,
@@ -376,10 +434,21 @@ pub fn run(args: &PreviewArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resu
                 columns: args.columns.clamp(1, 64),
                 ..PreviewOptions::default()
             };
-            preview::render(&parse.template, &model, options, &input.text, &region, &settings, range, &preview)
-                .map_err(fail)?
+            preview::render(
+                &parse.template,
+                &model,
+                options,
+                &input.text,
+                &region,
+                &settings,
+                range,
+                &preview,
+            )
+            .map_err(fail)?
         }
-        Format::Json => json(&parse.template, &model, options, &region, &settings, range).map_err(fail)?,
+        Format::Json => {
+            json(&parse.template, &model, options, &region, &settings, range).map_err(fail)?
+        }
     };
     emit(&text, args.out.as_deref(), out)?;
     Ok(0)
@@ -415,7 +484,8 @@ fn json(
             "polylines": fill.paths.polylines.iter().map(|p| p.0.iter().map(|c| [c.x, c.y]).collect::<Vec<_>>()).collect::<Vec<_>>(),
         }));
     }
-    let mut text = serde_json::to_string(&serde_json::json!({ "layers": layers })).unwrap_or_default();
+    let mut text =
+        serde_json::to_string(&serde_json::json!({ "layers": layers })).unwrap_or_default();
     text.push('\n');
     Ok(text)
 }

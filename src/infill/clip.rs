@@ -22,7 +22,7 @@ impl Frame {
         Frame { centre, cos, sin }
     }
 
-    pub fn to_local(&self, p: Coord) -> Coord {
+    pub fn to_local(self, p: Coord) -> Coord {
         let d = p - self.centre;
         Coord {
             x: d.x * self.cos + d.y * self.sin,
@@ -30,7 +30,7 @@ impl Frame {
         }
     }
 
-    pub fn to_world(&self, q: Coord) -> Coord {
+    pub fn to_world(self, q: Coord) -> Coord {
         Coord {
             x: self.centre.x + q.x * self.cos - q.y * self.sin,
             y: self.centre.y + q.x * self.sin + q.y * self.cos,
@@ -123,7 +123,8 @@ impl Edges {
         for &i in &self.strips[self.strip(y)] {
             let Edge { a, b } = self.edges[i as usize];
             if (a.y <= y) != (b.y <= y) {
-                self.crossings.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+                self.crossings
+                    .push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
             }
         }
         self.crossings.sort_unstable_by(f64::total_cmp);
@@ -155,7 +156,11 @@ impl Edges {
         for (k, w) in pts.windows(2).enumerate() {
             let (p, q) = (w[0], w[1]);
             let (lo, hi) = (p.y.min(q.y), p.y.max(q.y));
-            if hi < self.min.y || lo > self.max.y || p.x.max(q.x) < self.min.x || p.x.min(q.x) > self.max.x {
+            if hi < self.min.y
+                || lo > self.max.y
+                || p.x.max(q.x) < self.min.x
+                || p.x.min(q.x) > self.max.x
+            {
                 continue;
             }
             self.segment = self.segment.wrapping_add(1);

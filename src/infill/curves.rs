@@ -39,14 +39,21 @@ pub(crate) fn gyroid(
     let period = TAU * scale;
     let per_period = (period / (region.nozzle() / 4.0)).clamp(8.0, 16.0);
     let step = TAU / per_period;
-    let (s0, s1) = ((u0 / scale / step).floor() as i64, (u1 / scale / step).ceil() as i64);
+    let (s0, s1) = (
+        (u0 / scale / step).floor() as i64,
+        (u1 / scale / step).ceil() as i64,
+    );
     // Both branches' offsets at every sample: the trigonometry is done once per sample
     // and shared by every wave (they differ by whole periods).
     let samples: Vec<(f64, f64, f64)> = (s0..=s1)
         .map(|i| {
             let u = i as f64 * step;
             let (su, cu) = u.sin_cos();
-            let (a, b, c) = if along_y { (sz, cu, su * cz) } else { (su, cz, sz * cu) };
+            let (a, b, c) = if along_y {
+                (sz, cu, su * cz)
+            } else {
+                (su, cz, sz * cu)
+            };
             let r = a.hypot(b);
             let phi = b.atan2(a);
             let delta = (-c / r).clamp(-1.0, 1.0).acos();
@@ -56,7 +63,9 @@ pub(crate) fn gyroid(
     // The whole periods to shift each branch by to cover [v0, v1].
     let (lo, hi) = samples
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &(_, p, m)| (l.min(p.min(m)), h.max(p.max(m))));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &(_, p, m)| {
+            (l.min(p.min(m)), h.max(p.max(m)))
+        });
     let (m0, m1) = (
         ((v0 / scale - hi) / TAU).floor() as i64,
         ((v1 / scale - lo) / TAU).ceil() as i64,
@@ -70,12 +79,18 @@ pub(crate) fn gyroid(
             curve.extend(samples.iter().map(|&(u, plus, minus)| {
                 let v = (if branch == 0 { plus } else { minus } + shift) * scale;
                 let u = u * scale;
-                if along_y { Coord { x: v, y: u } } else { Coord { x: u, y: v } }
+                if along_y {
+                    Coord { x: v, y: u }
+                } else {
+                    Coord { x: u, y: v }
+                }
             }));
             let (lo, hi) = curve
                 .iter()
                 .map(|p| if along_y { p.x } else { p.y })
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(v), h.max(v))
+                });
             if hi < v0 || lo > v1 {
                 continue;
             }
@@ -92,7 +107,13 @@ pub(crate) fn gyroid(
 
 /// The Archimedean spiral `r = spacing·φ/2π` about `centre`, starting in direction θ,
 /// from the region's nearest point out to its farthest.
-pub(crate) fn spiral(region: &Region, centre: Coord, theta: f64, spacing: f64, out: &mut Vec<Vec<Coord>>) {
+pub(crate) fn spiral(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    spacing: f64,
+    out: &mut Vec<Vec<Coord>>,
+) {
     let frame = Frame::new(centre, theta);
     let mut edges = Edges::new(region.rings(), &frame);
     let (min, max) = (edges.min, edges.max);
@@ -160,7 +181,8 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
                     .iter()
                     .enumerate()
                     .max_by(|(_, a), (_, b)| {
-                        (a.x * direction.x + a.y * direction.y).total_cmp(&(b.x * direction.x + b.y * direction.y))
+                        (a.x * direction.x + a.y * direction.y)
+                            .total_cmp(&(b.x * direction.x + b.y * direction.y))
                     })
                     .map_or(0, |(i, _)| i);
                 pts.rotate_left(start);

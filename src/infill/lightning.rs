@@ -12,7 +12,13 @@ use geo::Coord;
 use super::Region;
 use super::clip::{Edges, Frame};
 
-pub(crate) fn lightning(region: &Region, centre: Coord, theta: f64, spacing: f64, out: &mut Vec<Vec<Coord>>) {
+pub(crate) fn lightning(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    spacing: f64,
+    out: &mut Vec<Vec<Coord>>,
+) {
     let frame = Frame::new(centre, 0.0);
     let mut edges = Edges::new(region.rings(), &frame);
     let gap = 2.5 * spacing;
@@ -44,7 +50,7 @@ pub(crate) fn lightning(region: &Region, centre: Coord, theta: f64, spacing: f64
             let to_centre = centre - p;
             let dist = length(to_centre);
             if dist > 1e-9 {
-                let turn = if k % 2 == 0 { 10f64 } else { -10.0 }.to_radians();
+                let turn = if k.is_multiple_of(2) { 10f64 } else { -10.0 }.to_radians();
                 let main = rotate(to_centre / dist, turn);
                 let reach = 0.8 * dist;
                 let fork = p + main * (0.4 * reach);

@@ -161,7 +161,10 @@ impl FromStr for Pattern {
             .find(|p| p.name().eq_ignore_ascii_case(s.trim()))
             .ok_or_else(|| {
                 let names: Vec<&str> = Pattern::ALL.iter().map(|p| p.name()).collect();
-                format!("unknown pattern {s:?}; expected one of {}", names.join(", "))
+                format!(
+                    "unknown pattern {s:?}; expected one of {}",
+                    names.join(", ")
+                )
             })
     }
 }

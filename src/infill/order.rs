@@ -64,10 +64,12 @@ fn monotonic_order(mut paths: Vec<Vec<Coord>>, frame: &Frame) -> Vec<Vec<Coord>>
             p.reverse();
         }
     }
-    let key = |p: &Vec<Coord>| p.first().map_or((0.0, 0.0), |&a| {
-        let q = frame.to_local(a);
-        (q.y, q.x)
-    });
+    let key = |p: &Vec<Coord>| {
+        p.first().map_or((0.0, 0.0), |&a| {
+            let q = frame.to_local(a);
+            (q.y, q.x)
+        })
+    };
     paths.sort_by(|a, b| {
         let (ka, kb) = (key(a), key(b));
         ka.0.total_cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
@@ -83,10 +85,7 @@ fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
     if n <= 2 {
         return paths;
     }
-    let ends: Vec<[Coord; 2]> = paths
-        .iter()
-        .map(|p| [p[0], p[p.len() - 1]])
-        .collect();
+    let ends: Vec<[Coord; 2]> = paths.iter().map(|p| [p[0], p[p.len() - 1]]).collect();
     let mut used = vec![false; n];
     let mut order: Vec<(usize, bool)> = Vec::with_capacity(n);
     used[0] = true;
@@ -207,8 +206,12 @@ impl Grid {
     }
 
     fn cell_of(&self, p: Coord) -> (usize, usize) {
-        let cx = ((p.x - self.min.x) / self.cell).floor().clamp(0.0, (self.nx - 1) as f64) as usize;
-        let cy = ((p.y - self.min.y) / self.cell).floor().clamp(0.0, (self.ny - 1) as f64) as usize;
+        let cx = ((p.x - self.min.x) / self.cell)
+            .floor()
+            .clamp(0.0, (self.nx - 1) as f64) as usize;
+        let cy = ((p.y - self.min.y) / self.cell)
+            .floor()
+            .clamp(0.0, (self.ny - 1) as f64) as usize;
         (cx, cy)
     }
 

@@ -53,7 +53,11 @@ const GAP: f64 = 16.0;
 
 /// The mapping from region coordinates (mm, y up) to the pixels of panel number `index`
 /// (y down): `(scale, offset)` with `pixel = (x·scale + offset.x, −y·scale + offset.y)`.
-pub fn transform(region: &MultiPolygon<f64>, index: usize, options: &PreviewOptions) -> (f64, Coord) {
+pub fn transform(
+    region: &MultiPolygon<f64>,
+    index: usize,
+    options: &PreviewOptions,
+) -> (f64, Coord) {
     let (min, max) = bounds(region);
     let size = max - min;
     let inner = options.panel - 2.0 * MARGIN;
@@ -98,7 +102,11 @@ fn bounds(region: &MultiPolygon<f64>) -> (Coord, Coord) {
 
 /// The colour of the `i`-th of `n` paths: a hue from blue (first) to red (last).
 pub fn colour(i: usize, n: usize) -> String {
-    let t = if n <= 1 { 0.0 } else { i as f64 / (n - 1) as f64 };
+    let t = if n <= 1 {
+        0.0
+    } else {
+        i as f64 / (n - 1) as f64
+    };
     format!("hsl({:.0},85%,42%)", 240.0 * (1.0 - t))
 }
 
@@ -138,12 +146,21 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
             for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
                 for (k, &c) in ring.0.iter().enumerate() {
                     let (x, y) = px(c);
-                    let _ = write!(outline, "{}{} {}", if k == 0 { 'M' } else { 'L' }, num(x, 2), num(y, 2));
+                    let _ = write!(
+                        outline,
+                        "{}{} {}",
+                        if k == 0 { 'M' } else { 'L' },
+                        num(x, 2),
+                        num(y, 2)
+                    );
                 }
                 outline.push('Z');
             }
         }
-        let _ = write!(s, r##"<path d="{outline}" fill="#eeeeee" fill-rule="evenodd" stroke="none"/>"##);
+        let _ = write!(
+            s,
+            r##"<path d="{outline}" fill="#eeeeee" fill-rule="evenodd" stroke="none"/>"##
+        );
         let n = panel.paths.polylines.len();
         let stroke = (nozzle * scale).max(1.0);
         if options.travel {
@@ -151,7 +168,14 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
             for w in panel.paths.polylines.windows(2) {
                 if let (Some(&a), Some(&b)) = (w[0].0.last(), w[1].0.first()) {
                     let ((x0, y0), (x1, y1)) = (px(a), px(b));
-                    let _ = write!(travel, "M{} {}L{} {}", num(x0, 2), num(y0, 2), num(x1, 2), num(y1, 2));
+                    let _ = write!(
+                        travel,
+                        "M{} {}L{} {}",
+                        num(x0, 2),
+                        num(y0, 2),
+                        num(x1, 2),
+                        num(y1, 2)
+                    );
                 }
             }
             let _ = write!(
@@ -163,7 +187,13 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
             let mut d = String::new();
             for (k, &c) in line.0.iter().enumerate() {
                 let (x, y) = px(c);
-                let _ = write!(d, "{}{} {}", if k == 0 { 'M' } else { 'L' }, num(x, 2), num(y, 2));
+                let _ = write!(
+                    d,
+                    "{}{} {}",
+                    if k == 0 { 'M' } else { 'L' },
+                    num(x, 2),
+                    num(y, 2)
+                );
             }
             let _ = write!(
                 s,
@@ -206,7 +236,11 @@ pub fn layers(
             .and_then(|s| source.get(s.range()))
             .map_or_else(|| "(holds)".to_owned(), |t| shorten(t, 28));
         let kind = match l.fill {
-            Fill::Sparse => format!("{} {}%", fill.params.pattern, num(fill.params.density * 100.0, 1)),
+            Fill::Sparse => format!(
+                "{} {}%",
+                fill.params.pattern,
+                num(fill.params.density * 100.0, 1)
+            ),
             solid => format!("{} ({})", solid.name(), fill.params.pattern),
         };
         let title = format!(

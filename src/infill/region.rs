@@ -148,14 +148,9 @@ impl Region {
         let mut paths: Vec<Vec<Coord>> = Vec::new();
         match params.pattern {
             Pattern::Lines => straight::families(self, centre, theta, &[0.0], w / rho, &mut paths),
-            Pattern::Grid => straight::families(
-                self,
-                centre,
-                theta,
-                &[0.0, 90.0],
-                2.0 * w / rho,
-                &mut paths,
-            ),
+            Pattern::Grid => {
+                straight::families(self, centre, theta, &[0.0, 90.0], 2.0 * w / rho, &mut paths)
+            }
             Pattern::Triangles => straight::families(
                 self,
                 centre,
@@ -174,7 +169,9 @@ impl Region {
                 curves::gyroid(self, centre, theta, scale, params.z, &mut paths);
             }
             Pattern::Spiral => curves::spiral(self, centre, theta, w / rho, &mut paths),
-            Pattern::Lightning => lightning::lightning(self, centre, theta, 2.0 * w / rho, &mut paths),
+            Pattern::Lightning => {
+                lightning::lightning(self, centre, theta, 2.0 * w / rho, &mut paths)
+            }
         }
         let min_segment = w / 10.0;
         paths.retain_mut(|p| order::simplify(p, min_segment));
@@ -189,7 +186,8 @@ fn clean(region: &MultiPolygon<f64>) -> MultiPolygon<f64> {
         let mut c: Vec<Coord> = ring.0.clone();
         c.dedup();
         let ring = LineString::new(c);
-        (ring.0.len() >= 3 && Polygon::new(ring.clone(), vec![]).unsigned_area() > 0.0).then_some(ring)
+        (ring.0.len() >= 3 && Polygon::new(ring.clone(), vec![]).unsigned_area() > 0.0)
+            .then_some(ring)
     };
     MultiPolygon::new(
         region
@@ -275,7 +273,10 @@ pub(crate) fn convex_inset(region: &MultiPolygon<f64>, d: f64) -> Option<MultiPo
         return Some(MultiPolygon::new(vec![]));
     }
     out.push(out[0]);
-    Some(MultiPolygon::new(vec![Polygon::new(LineString::new(out), vec![])]))
+    Some(MultiPolygon::new(vec![Polygon::new(
+        LineString::new(out),
+        vec![],
+    )]))
 }
 
 pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
@@ -284,5 +285,8 @@ pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
 
 pub(crate) fn signed_area(ring: &[Coord]) -> f64 {
     let n = ring.len();
-    (0..n).map(|i| cross(ring[i], ring[(i + 1) % n])).sum::<f64>() / 2.0
+    (0..n)
+        .map(|i| cross(ring[i], ring[(i + 1) % n]))
+        .sum::<f64>()
+        / 2.0
 }

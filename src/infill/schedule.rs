@@ -88,7 +88,12 @@ pub struct Schedule<'a> {
 }
 
 impl<'a> Schedule<'a> {
-    pub fn new(template: &'a Template, model: &'a Model, options: eval::Options, settings: Settings) -> Self {
+    pub fn new(
+        template: &'a Template,
+        model: &'a Model,
+        options: eval::Options,
+        settings: Settings,
+    ) -> Self {
         Schedule {
             evaluator: Evaluator::new(template, model, options),
             settings,
@@ -109,10 +114,14 @@ impl<'a> Schedule<'a> {
         let Some(layer) = self.evaluator.layer(index) else {
             return Ok(None);
         };
-        let params = self
-            .settings
-            .params(layer.fill, layer.angle, (layer.bottom + layer.top) / 2.0);
+        let params =
+            self.settings
+                .params(layer.fill, layer.angle, (layer.bottom + layer.top) / 2.0);
         let paths = region.fill(&params)?;
-        Ok(Some(LayerFill { layer, params, paths }))
+        Ok(Some(LayerFill {
+            layer,
+            params,
+            paths,
+        }))
     }
 }

@@ -75,7 +75,8 @@ pub fn holed_square(side: f64, radius: f64) -> MultiPolygon<f64> {
 /// object, or its bare `coordinates` (`[[[x, y], ...], [hole...]]` for one polygon,
 /// one more level of brackets for several). Coordinates in mm.
 pub fn from_json(text: &str) -> Result<MultiPolygon<f64>, String> {
-    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
+    let value: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
     let coordinates = match &value {
         serde_json::Value::Object(o) => o
             .get("coordinates")
@@ -93,7 +94,10 @@ pub fn from_json(text: &str) -> Result<MultiPolygon<f64>, String> {
     };
     let polygons: Vec<&serde_json::Value> = match depth {
         3 => vec![coordinates],
-        4 => coordinates.as_array().map(|a| a.iter().collect()).unwrap_or_default(),
+        4 => coordinates
+            .as_array()
+            .map(|a| a.iter().collect())
+            .unwrap_or_default(),
         _ => {
             return Err(
                 "expected a multi-polygon: [[[[x, y], ...], [hole...]], ...] or one polygon [[[x, y], ...]]"
@@ -114,13 +118,18 @@ pub fn from_json(text: &str) -> Result<MultiPolygon<f64>, String> {
         let points = r.as_array().ok_or("a ring must be an array of points")?;
         let coords = points.iter().map(point).collect::<Result<Vec<_>, _>>()?;
         if coords.len() < 3 {
-            return Err(format!("a ring needs at least three points, found {}", coords.len()));
+            return Err(format!(
+                "a ring needs at least three points, found {}",
+                coords.len()
+            ));
         }
         Ok(LineString::new(coords))
     };
     let mut out = Vec::new();
     for polygon in polygons {
-        let rings = polygon.as_array().ok_or("a polygon must be an array of rings")?;
+        let rings = polygon
+            .as_array()
+            .ok_or("a polygon must be an array of rings")?;
         let (first, holes) = rings.split_first().ok_or("a polygon needs an outline")?;
         let holes = holes.iter().map(ring).collect::<Result<Vec<_>, _>>()?;
         out.push(Polygon::new(ring(first)?, holes));

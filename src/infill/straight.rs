@@ -37,7 +37,13 @@ pub(crate) fn families(
 /// A honeycomb of side `side` whose "vertical" walls run along θ: in the frame turned by
 /// θ − 90°, zigzags along x (two walls per cell) joined by walls along y (one per cell),
 /// three walls of length `side` per cell of area `3√3/2·side²`.
-pub(crate) fn hexagons(region: &Region, centre: Coord, theta: f64, side: f64, out: &mut Vec<Vec<Coord>>) {
+pub(crate) fn hexagons(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    side: f64,
+    out: &mut Vec<Vec<Coord>>,
+) {
     let frame = Frame::new(centre, theta - std::f64::consts::FRAC_PI_2);
     let mut edges = Edges::new(region.rings(), &frame);
     let a = side;
@@ -67,7 +73,10 @@ pub(crate) fn hexagons(region: &Region, centre: Coord, theta: f64, side: f64, ou
             if high && y + a <= max.y && y + 2.0 * a >= min.y && x >= min.x && x <= max.x {
                 // The wall from this high point up to the next zigzag's low point.
                 local.clear();
-                edges.clip(&[Coord { x, y: y + a }, Coord { x, y: y + 2.0 * a }], &mut local);
+                edges.clip(
+                    &[Coord { x, y: y + a }, Coord { x, y: y + 2.0 * a }],
+                    &mut local,
+                );
                 out.extend(local.drain(..).map(|p| to_world(&frame, p)));
             }
         }

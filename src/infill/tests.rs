@@ -66,7 +66,8 @@ fn distance_to_boundary(rings: &[Vec<Coord>], p: Coord) -> f64 {
         for w in r.windows(2) {
             let (a, b) = (w[0], w[1]);
             let ab = b - a;
-            let t = (((p - a).x * ab.x + (p - a).y * ab.y) / (ab.x * ab.x + ab.y * ab.y)).clamp(0.0, 1.0);
+            let t = (((p - a).x * ab.x + (p - a).y * ab.y) / (ab.x * ab.x + ab.y * ab.y))
+                .clamp(0.0, 1.0);
             let q = a + ab * t;
             best = best.min((p - q).x.hypot((p - q).y));
         }
@@ -130,7 +131,10 @@ fn gyroid_lambda_is_the_mean_wall_length() {
         length / (TAU * TAU)
     };
     let m = 200;
-    let mean = (0..m).map(|k| lambda((k as f64 + 0.5) * PI / 2.0 / m as f64)).sum::<f64>() / m as f64;
+    let mean = (0..m)
+        .map(|k| lambda((k as f64 + 0.5) * PI / 2.0 / m as f64))
+        .sum::<f64>()
+        / m as f64;
     assert!((mean - GYROID_LAMBDA).abs() < 1e-4, "{mean}");
 }
 
@@ -147,7 +151,11 @@ fn every_pattern_stays_inside_every_shape() {
                     assert!(!paths.polylines.is_empty(), "{label}: nothing");
                     assert_inside(&label, &region, &paths, W);
                     assert_segments(&label, &paths, W);
-                    assert_eq!(prepared.fill(&params).unwrap(), paths, "{label}: not deterministic");
+                    assert_eq!(
+                        prepared.fill(&params).unwrap(),
+                        paths,
+                        "{label}: not deterministic"
+                    );
                 }
             }
         }
@@ -181,7 +189,10 @@ fn density_is_what_was_asked() {
                 let label = format!("{pattern} on {name} ×{k:.1} at {rho}");
                 match pattern {
                     Pattern::Lightning => {
-                        let d = density(&prepared, &prepared.fill(&Params::new(pattern, rho, W)).unwrap());
+                        let d = density(
+                            &prepared,
+                            &prepared.fill(&Params::new(pattern, rho, W)).unwrap(),
+                        );
                         check(d > 0.1 * rho && d <= 1.1 * rho, format!("{label}: {d}"));
                     }
                     Pattern::Gyroid => {
@@ -192,17 +203,26 @@ fn density_is_what_was_asked() {
                             let z = period / 4.0 * (i as f64 + 0.5) / n as f64;
                             let params = Params::new(pattern, rho, W).z(z).angle(30.0);
                             let d = density(&prepared, &prepared.fill(&params).unwrap());
-                            check(d > 0.85 * rho && d < 1.3 * rho, format!("{label} at z {z}: {d}"));
+                            check(
+                                d > 0.85 * rho && d < 1.3 * rho,
+                                format!("{label} at z {z}: {d}"),
+                            );
                             sum += d;
                         }
                         let mean = sum / n as f64;
-                        check((mean / rho - 1.0).abs() < 0.1, format!("{label}: mean {mean}"));
+                        check(
+                            (mean / rho - 1.0).abs() < 0.1,
+                            format!("{label}: mean {mean}"),
+                        );
                     }
                     _ => {
                         for angle in [0.0, 30.0, 71.0] {
                             let params = Params::new(pattern, rho, W).angle(angle);
                             let d = density(&prepared, &prepared.fill(&params).unwrap());
-                            check((d / rho - 1.0).abs() < 0.1, format!("{label} at {angle}°: {d}"));
+                            check(
+                                (d / rho - 1.0).abs() < 0.1,
+                                format!("{label} at {angle}°: {d}"),
+                            );
                         }
                     }
                 }
@@ -236,7 +256,8 @@ fn straight_patterns_run_along_the_scheduled_angle() {
             pattern,
             ..Settings::default()
         };
-        let mut schedule = Schedule::new(&template, &model, Options { base: 5.0, seed: 0 }, settings);
+        let mut schedule =
+            Schedule::new(&template, &model, Options { base: 5.0, seed: 0 }, settings);
         for index in [0, 1, 7, 50] {
             let fill = schedule.layer(index, &region).unwrap().unwrap();
             let theta = 5.0 + 37.0 * (index + 1) as f64;
@@ -245,10 +266,15 @@ fn straight_patterns_run_along_the_scheduled_angle() {
             for line in &fill.paths.polylines {
                 let d = direction(line.0[0], line.0[1]);
                 let family = offsets.iter().position(|o| same_direction(d, theta + o));
-                let family = family.unwrap_or_else(|| panic!("{pattern} layer {index}: a line at {d}°, θ = {theta}"));
+                let family = family.unwrap_or_else(|| {
+                    panic!("{pattern} layer {index}: a line at {d}°, θ = {theta}")
+                });
                 seen[family] = true;
             }
-            assert!(seen.iter().all(|&s| s), "{pattern} layer {index}: families {seen:?}");
+            assert!(
+                seen.iter().all(|&s| s),
+                "{pattern} layer {index}: families {seen:?}"
+            );
         }
     }
 }
@@ -257,20 +283,31 @@ fn straight_patterns_run_along_the_scheduled_angle() {
 fn every_pattern_turns_with_the_angle() {
     let region = Region::new(&shapes::l_shape(20.0), W).unwrap();
     for pattern in Pattern::ALL {
-        let a = region.fill(&Params::new(pattern, 0.2, W).angle(10.0)).unwrap();
-        let b = region.fill(&Params::new(pattern, 0.2, W).angle(70.0)).unwrap();
+        let a = region
+            .fill(&Params::new(pattern, 0.2, W).angle(10.0))
+            .unwrap();
+        let b = region
+            .fill(&Params::new(pattern, 0.2, W).angle(70.0))
+            .unwrap();
         assert_ne!(a.polylines, b.polylines, "{pattern} ignores the angle");
     }
     // Concentric: each loop starts at its farthest point in direction θ.
     let square = Region::new(&shapes::square(20.0), W).unwrap();
-    let loops = square.fill(&Params::new(Pattern::Concentric, 0.2, W).angle(45.0)).unwrap();
+    let loops = square
+        .fill(&Params::new(Pattern::Concentric, 0.2, W).angle(45.0))
+        .unwrap();
     for l in &loops.polylines {
         let start = l.0[0];
-        assert!(start.x > 0.0 && start.y > 0.0 && (start.x - start.y).abs() < 1e-9, "{start:?}");
+        assert!(
+            start.x > 0.0 && start.y > 0.0 && (start.x - start.y).abs() < 1e-9,
+            "{start:?}"
+        );
         assert_eq!(l.0.first(), l.0.last(), "loops are closed");
     }
     // Spiral: it starts in direction θ from the centre.
-    let spiral = square.fill(&Params::new(Pattern::Spiral, 0.2, W).angle(120.0)).unwrap();
+    let spiral = square
+        .fill(&Params::new(Pattern::Spiral, 0.2, W).angle(120.0))
+        .unwrap();
     // The end nearest the centre is the centre itself; the vertex after it shows the way.
     let (line, at_start) = spiral
         .polylines
@@ -282,16 +319,28 @@ fn every_pattern_turns_with_the_angle() {
             p.x.hypot(p.y).total_cmp(&q.x.hypot(q.y))
         })
         .unwrap();
-    let next = if at_start { line.0[1] } else { line.0[line.0.len() - 2] };
+    let next = if at_start {
+        line.0[1]
+    } else {
+        line.0[line.0.len() - 2]
+    };
     let angle = next.y.atan2(next.x).to_degrees();
-    assert!((angle - 120.0).abs() < 25.0, "the spiral starts at {angle}°");
+    assert!(
+        (angle - 120.0).abs() < 25.0,
+        "the spiral starts at {angle}°"
+    );
 }
 
 #[test]
 fn hexagons_give_the_density_asked_not_two_thirds() {
     // The seed's side of 3w/(√3ρ) would give 2/3 of it.
     let region = Region::new(&shapes::square(60.0), W).unwrap();
-    let d = density(&region, &region.fill(&Params::new(Pattern::Hexagons, 0.2, W)).unwrap());
+    let d = density(
+        &region,
+        &region
+            .fill(&Params::new(Pattern::Hexagons, 0.2, W))
+            .unwrap(),
+    );
     assert!((d - 0.2).abs() < 0.01, "{d}");
 }
 
@@ -302,10 +351,15 @@ fn holes_are_excluded_exactly_even_when_concave() {
     let star = shapes::star(8.0, 3.0);
     let mut hole = star.0[0].exterior().clone();
     hole.0.reverse();
-    let region = MultiPolygon::new(vec![Polygon::new(shapes::square(30.0).0[0].exterior().clone(), vec![hole])]);
+    let region = MultiPolygon::new(vec![Polygon::new(
+        shapes::square(30.0).0[0].exterior().clone(),
+        vec![hole],
+    )]);
     let prepared = Region::new(&region, W).unwrap();
     for pattern in Pattern::ALL {
-        let paths = prepared.fill(&Params::new(pattern, 0.3, W).angle(12.0)).unwrap();
+        let paths = prepared
+            .fill(&Params::new(pattern, 0.3, W).angle(12.0))
+            .unwrap();
         assert_inside(&format!("{pattern} around a star hole"), &region, &paths, W);
         assert!(!paths.polylines.is_empty());
     }
@@ -324,7 +378,10 @@ fn centring_object_or_global() {
             .unwrap()
     };
     // Object: the pattern moves with the object.
-    let (a, b) = (fill(&near, Centring::Object), fill(&moved, Centring::Object));
+    let (a, b) = (
+        fill(&near, Centring::Object),
+        fill(&moved, Centring::Object),
+    );
     let shifted: Vec<f64> = a.polylines.iter().map(|l| l.0[0].y + 1.0).collect();
     let mut bys: Vec<f64> = b.polylines.iter().map(|l| l.0[0].y).collect();
     let mut shifted_sorted = shifted.clone();
@@ -345,7 +402,9 @@ fn centring_object_or_global() {
 fn travel_is_reported_and_short() {
     let region = Region::new(&shapes::holed_square(40.0, 10.0), W).unwrap();
     for pattern in Pattern::ALL {
-        let paths = region.fill(&Params::new(pattern, 0.2, W).angle(20.0)).unwrap();
+        let paths = region
+            .fill(&Params::new(pattern, 0.2, W).angle(20.0))
+            .unwrap();
         let travel: f64 = paths
             .polylines
             .windows(2)
@@ -358,14 +417,23 @@ fn travel_is_reported_and_short() {
         let length: f64 = paths
             .polylines
             .iter()
-            .flat_map(|l| l.0.windows(2).map(|s| (s[1] - s[0]).x.hypot((s[1] - s[0]).y)))
+            .flat_map(|l| {
+                l.0.windows(2)
+                    .map(|s| (s[1] - s[0]).x.hypot((s[1] - s[0]).y))
+            })
             .sum();
         assert!((length - paths.length).abs() < 1e-6, "{pattern}");
     }
     // Lines on a square go back and forth: about 2 mm of travel between lines 2 mm apart.
     let square = Region::new(&shapes::square(40.0), W).unwrap();
-    let lines = square.fill(&Params::new(Pattern::Lines, 0.2, W).angle(20.0)).unwrap();
-    assert!(lines.travel < 2.5 * lines.polylines.len() as f64, "{}", lines.travel);
+    let lines = square
+        .fill(&Params::new(Pattern::Lines, 0.2, W).angle(20.0))
+        .unwrap();
+    assert!(
+        lines.travel < 2.5 * lines.polylines.len() as f64,
+        "{}",
+        lines.travel
+    );
 }
 
 #[test]
@@ -385,7 +453,11 @@ fn solid_signs_use_their_fill_kind() {
         (Fill::Rectilinear, Pattern::Lines, 1.0, Order::Nearest),
     ] {
         let p = settings.params(fill, 30.0, 1.0);
-        assert_eq!((p.pattern, p.density, p.order), (pattern, density, order), "{fill:?}");
+        assert_eq!(
+            (p.pattern, p.density, p.order),
+            (pattern, density, order),
+            "{fill:?}"
+        );
     }
     // Through a template: `M` layers are monotonic lines, all the same way, in order.
     let template = crate::parse("30M, 60", crate::Target::Sparse).template;
@@ -404,7 +476,10 @@ fn solid_signs_use_their_fill_kind() {
     let d = density(&region, &m.paths);
     assert!((d - 1.0).abs() < 0.1, "{d}");
     let sparse = schedule.layer(1, &region).unwrap().unwrap();
-    assert_eq!((sparse.params.pattern, sparse.params.angle), (Pattern::Gyroid, 60.0));
+    assert_eq!(
+        (sparse.params.pattern, sparse.params.angle),
+        (Pattern::Gyroid, 60.0)
+    );
     assert!(schedule.layer(100, &region).unwrap().is_none());
 }
 
@@ -421,7 +496,10 @@ fn bad_input_is_an_error_not_a_panic() {
         assert!(fill(&square, &params).is_err(), "{params:?}");
     }
     assert!(matches!(Region::new(&square, 0.0), Err(Error::Nozzle(_))));
-    assert!(matches!(Region::new(&scaled(&square, 1e6), W), Err(Error::Coordinate(_))));
+    assert!(matches!(
+        Region::new(&scaled(&square, 1e6), W),
+        Err(Error::Coordinate(_))
+    ));
     let nan = scaled(&square, f64::NAN);
     assert!(Region::new(&nan, W).is_err());
     // A kilometre square at 100% with a 0.01 mm nozzle: refused, not attempted.
@@ -432,11 +510,24 @@ fn bad_input_is_an_error_not_a_panic() {
     ));
     // Degenerate regions fill with nothing.
     let sliver = shapes::square(0.3);
-    assert_eq!(fill(&sliver, &Params::new(Pattern::Grid, 0.2, W)).unwrap(), Toolpaths::default());
-    assert_eq!(fill(&MultiPolygon::new(vec![]), &Params::new(Pattern::Grid, 0.2, W)).unwrap(), Toolpaths::default());
+    assert_eq!(
+        fill(&sliver, &Params::new(Pattern::Grid, 0.2, W)).unwrap(),
+        Toolpaths::default()
+    );
+    assert_eq!(
+        fill(
+            &MultiPolygon::new(vec![]),
+            &Params::new(Pattern::Grid, 0.2, W)
+        )
+        .unwrap(),
+        Toolpaths::default()
+    );
     assert!(shapes::from_json("[[[0,0],[1,0]]]").is_err());
     assert!(shapes::from_json("{\"type\": \"Point\"}").is_err());
-    let region = shapes::from_json(r#"{"type": "Polygon", "coordinates": [[[0,0],[10,0],[10,10],[0,10],[0,0]]]}"#).unwrap();
+    let region = shapes::from_json(
+        r#"{"type": "Polygon", "coordinates": [[[0,0],[10,0],[10,10],[0,10],[0,0]]]}"#,
+    )
+    .unwrap();
     assert_eq!(region.0.len(), 1);
 }
 
@@ -500,10 +591,16 @@ fn timing() {
             for &rho in &[0.05, 0.2, 1.0] {
                 let t = std::time::Instant::now();
                 let prepared = Region::new(&region, W).unwrap();
-                let paths = prepared.fill(&Params::new(pattern, rho, W).angle(17.0)).unwrap();
+                let paths = prepared
+                    .fill(&Params::new(pattern, rho, W).angle(17.0))
+                    .unwrap();
                 let t1 = t.elapsed();
                 assert_inside("x", &region, &paths, W);
-                eprintln!("{name} {pattern} {rho}: fill {t1:?} check {:?} paths {}", t.elapsed() - t1, paths.polylines.len());
+                eprintln!(
+                    "{name} {pattern} {rho}: fill {t1:?} check {:?} paths {}",
+                    t.elapsed() - t1,
+                    paths.polylines.len()
+                );
             }
         }
     }

@@ -426,9 +426,7 @@ fn travel_is_reported_and_short() {
     }
     // Lines on a square go back and forth: about 2 mm of travel between lines 2 mm apart.
     let square = Region::new(&shapes::square(40.0), W).unwrap();
-    let lines = square
-        .fill(&Params::new(Pattern::Lines, 0.2, W).angle(20.0))
-        .unwrap();
+    let lines = square.fill(&Params::new(Pattern::Lines, 0.2, W)).unwrap();
     assert!(
         lines.travel < 2.5 * lines.polylines.len() as f64,
         "{}",

@@ -185,9 +185,7 @@ fn clean(region: &MultiPolygon<f64>) -> MultiPolygon<f64> {
     let keep = |ring: &LineString<f64>| {
         let mut c: Vec<Coord> = ring.0.clone();
         c.dedup();
-        let ring = LineString::new(c);
-        (ring.0.len() >= 3 && Polygon::new(ring.clone(), vec![]).unsigned_area() > 0.0)
-            .then_some(ring)
+        (c.len() >= 3 && signed_area(&c) != 0.0).then(|| LineString::new(c))
     };
     MultiPolygon::new(
         region

@@ -580,26 +580,3 @@ proptest! {
         prop_assert!(paths.travel.is_finite() && paths.length.is_finite());
     }
 }
-
-#[test]
-#[ignore]
-fn timing() {
-    for (name, region) in shapes() {
-        for pattern in Pattern::ALL {
-            for &rho in &[0.05, 0.2, 1.0] {
-                let t = std::time::Instant::now();
-                let prepared = Region::new(&region, W).unwrap();
-                let paths = prepared
-                    .fill(&Params::new(pattern, rho, W).angle(17.0))
-                    .unwrap();
-                let t1 = t.elapsed();
-                assert_inside("x", &region, &paths, W);
-                eprintln!(
-                    "{name} {pattern} {rho}: fill {t1:?} check {:?} paths {}",
-                    t.elapsed() - t1,
-                    paths.polylines.len()
-                );
-            }
-        }
-    }
-}

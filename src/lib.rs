@@ -16,10 +16,14 @@ pub mod diagnostic;
 pub mod dialect;
 pub mod eval;
 pub mod explain;
+pub mod fix;
 pub mod format;
+#[cfg(feature = "infill")]
+pub mod infill;
 pub mod ir;
 mod lint;
 pub mod number;
+pub mod plot;
 pub mod profile;
 mod syntax;
 

@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use rotlang::cli;
 
 /// rotlang: check, format and expand infill rotation templates.
@@ -22,6 +22,10 @@ Examples:
   rotlang check '+10L25%, -10l25%'
   rotlang fmt '0 90  +30/50%'
   rotlang expand '+10L25%, -10l25%' --layers 200 --layer-height 0.1
+  rotlang plot '+10L25%, -10l25%' --out angles.svg
+  rotlang preview '+45' --pattern grid --density 20 --out layers.svg
+  rotlang explain '+10L25%, -10l25%'
+  rotlang explain rotlang::space-splits-instruction
 Run `rotlang help COMMAND` for a command's options and examples."
 )]
 struct Cli {
@@ -37,17 +41,45 @@ enum Command {
     Fmt(cli::fmt::FmtArgs),
     /// Print the angle and fill of every layer of a model.
     Expand(cli::expand::ExpandArgs),
+    /// Draw the angle against height as an SVG chart.
+    Plot(cli::plot::PlotArgs),
+    /// Draw the infill of some layers (SVG), or list its paths (JSON).
+    Preview(cli::preview::PreviewArgs),
+    /// Explain a template in plain words, or a diagnostic code.
+    Explain(cli::explain::ExplainArgs),
+    /// Print a shell completion script (bash, zsh, fish, powershell, elvish).
+    Completions(cli::completions::CompletionsArgs),
+    /// Print the manual page (roff), of rotlang or of one command.
+    Man(cli::completions::ManArgs),
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let argv: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let cli = match Cli::try_parse_from(&argv) {
+        Ok(cli) => cli,
+        Err(e) => {
+            // `check -50%Z1cm`: a template that begins with `-`, not an unknown option.
+            if let Some(message) = cli::args::template_after_dashdash(&e, &argv) {
+                let _ = write!(std::io::stderr(), "{message}");
+                return ExitCode::from(2);
+            }
+            e.exit()
+        }
+    };
     let stdout = std::io::stdout();
     let mut out = std::io::BufWriter::new(stdout.lock());
     let mut err = std::io::stderr();
     let result = match &cli.command {
-        Command::Check(args) => cli::check::run(args, &mut out),
+        Command::Check(args) => cli::check::run(args, &mut out, &mut err),
         Command::Fmt(args) => cli::fmt::run(args, &mut out, &mut err),
         Command::Expand(args) => cli::expand::run(args, &mut out, &mut err),
+        Command::Plot(args) => cli::plot::run(args, &mut out, &mut err),
+        Command::Preview(args) => cli::preview::run(args, &mut out, &mut err),
+        Command::Explain(args) => cli::explain::run(args, &mut out),
+        Command::Completions(args) => cli::completions::completions(args, Cli::command(), &mut out),
+        Command::Man(args) => cli::completions::man(args, Cli::command(), &mut out),
     };
     let flushed = out.flush();
     match result {

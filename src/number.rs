@@ -99,7 +99,8 @@ pub fn wrap(degrees: f64, wrap: Wrap) -> f64 {
     let Some(m) = wrap.modulus() else {
         return rounded;
     };
-    if !rounded.is_finite() {
+    if !rounded.is_finite() || (0.0..m).contains(&rounded) {
+        // Already in range (the common case): no remainder to take.
         return rounded;
     }
     // `rem_euclid` leaves noise (`370.1 % 360 = 10.100000000000023`) and can round up to
@@ -187,19 +188,19 @@ fn decimal(x: f64, decimals: u32) -> Decimal {
         let mut frac = n % scale;
         if frac > 0 {
             let mut digits = decimals as usize;
-            while frac % 10 == 0 {
+            while frac.is_multiple_of(1000) {
+                frac /= 1000;
+                digits -= 3;
+            }
+            while frac.is_multiple_of(10) {
                 frac /= 10;
                 digits -= 1;
             }
             out.push(b".");
-            let mut tmp = [b'0'; 20];
-            let mut i = digits;
-            while i > 0 {
-                i -= 1;
-                tmp[i] = b'0' + (frac % 10) as u8;
-                frac /= 10;
-            }
-            out.push(&tmp[..digits]);
+            // Leading zeros of the fraction, then its digits.
+            let width = frac.ilog10() as usize + 1;
+            out.push(&[b'0'; 9][..digits - width]);
+            write_u64(&mut out, frac);
         }
     } else if r.is_finite() && r.abs() < 1e21 {
         // Plain digits (Rust's `Display` is the shortest round-trip form, no exponent).
@@ -211,17 +212,31 @@ fn decimal(x: f64, decimals: u32) -> Decimal {
     out
 }
 
+/// Two decimal digits per step.
+const PAIRS: &[u8; 200] = b"\
+0001020304050607080910111213141516171819\
+2021222324252627282930313233343536373839\
+4041424344454647484950515253545556575859\
+6061626364656667686970717273747576777879\
+8081828384858687888990919293949596979899";
+
 /// Writes the decimal digits of `n`.
 fn write_u64(out: &mut Decimal, mut n: u64) {
     let mut tmp = [0u8; 20];
     let mut i = tmp.len();
-    loop {
+    while n >= 100 {
+        let pair = (n % 100) as usize * 2;
+        n /= 100;
+        i -= 2;
+        tmp[i..i + 2].copy_from_slice(&PAIRS[pair..pair + 2]);
+    }
+    if n >= 10 {
+        let pair = n as usize * 2;
+        i -= 2;
+        tmp[i..i + 2].copy_from_slice(&PAIRS[pair..pair + 2]);
+    } else {
         i -= 1;
-        tmp[i] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
+        tmp[i] = b'0' + n as u8;
     }
     out.push(&tmp[i..]);
 }

@@ -462,12 +462,7 @@ fn expand_default_cube_table() {
         .map(|r| r.split_whitespace().nth(3).unwrap())
         .collect();
     // The documented sequence: 5, 10, 30, 5, 25, 5, 25.
-    assert_eq!(
-        angles,
-        [
-            "5.0000", "10.0000", "30.0000", "5.0000", "25.0000", "5.0000", "25.0000"
-        ]
-    );
+    assert_eq!(angles, ["5", "10", "30", "5", "25", "5", "25"]);
 }
 
 #[test]
@@ -567,4 +562,356 @@ fn expand_errors_and_bad_models() {
         2,
         ["expand", "0", "--layers", "3", "--layer-height", "-0.2"]
     );
+}
+
+// ── issue 9: the CLI as a newcomer meets it ──────────────────────────────────────────────
+
+/// The stdout of a golden run.
+fn stdout_of(golden: &str) -> &str {
+    let out = golden.split("----- stdout -----\n").nth(1).unwrap();
+    out.split("----- stderr -----").next().unwrap()
+}
+
+#[test]
+fn space_after_a_joint_warns_with_a_fix() {
+    golden!(
+        "space_after_joint",
+        0,
+        ["check", "+30/ 50%", "+30# 10", "+10L 25%, -10l 25%"]
+    );
+    // The count cannot stand alone: the message names the space, not a missing joint.
+    golden!("space_after_joint_error", 1, ["check", "+30/ 5cm"]);
+}
+
+#[test]
+fn dash_is_stdin() {
+    golden!(
+        "stdin_dash_check",
+        0,
+        ["check", "0, 90", "-"],
+        Some("+30/50%")
+    );
+    golden!(
+        "stdin_dash_fmt_file",
+        0,
+        ["fmt", "--file", "-"],
+        Some("0,90\n")
+    );
+    golden!(
+        "stdin_dash_expand",
+        0,
+        ["expand", "-", "--layers", "2", "--format", "csv"],
+        Some("+45")
+    );
+    golden!(
+        "stdin_dash_twice",
+        2,
+        ["check", "-", "--file", "-"],
+        Some("0")
+    );
+}
+
+#[test]
+fn numbers_have_no_float_noise() {
+    golden!(
+        "numbers_wrapped_csv",
+        0,
+        [
+            "expand",
+            "+10L25%, -10l25%, -90, +0.1, -0.1",
+            "--layers",
+            "12",
+            "--layer-height",
+            "0.1",
+            "--wrap",
+            "180",
+            "--format",
+            "csv"
+        ]
+    );
+    // On many layers and every wrap: no exponent, no negative zero, no 180/360 after
+    // wrapping, heights to the micrometre, angles to 1e-9.
+    for wrap in ["none", "360", "180"] {
+        let (golden, code) = run(
+            &[
+                "expand",
+                "+10L25%, -10l25%, -30N7, +1:3/3, 0.1, -45$5, +360/2",
+                "--layers",
+                "3000",
+                "--layer-height",
+                "0.1",
+                "--first-layer-height",
+                "0.3",
+                "--wrap",
+                wrap,
+                "--format",
+                "csv",
+            ],
+            None,
+        );
+        assert_eq!(code, 0);
+        for line in stdout_of(&golden).lines().skip(1) {
+            let f: Vec<&str> = line.split(',').collect();
+            for (i, v) in f[1..4].iter().enumerate() {
+                assert!(!v.contains(['e', 'E']) && *v != "-0", "{line}");
+                let decimals = v.split('.').nth(1).map_or(0, str::len);
+                assert!(decimals <= if i < 2 { 6 } else { 9 }, "{line}");
+                assert!(!v.ends_with('0') || !v.contains('.'), "{line}");
+            }
+            let angle: f64 = f[3].parse().unwrap();
+            match wrap {
+                "360" => assert!((0.0..360.0).contains(&angle), "{line}"),
+                "180" => assert!((0.0..180.0).contains(&angle), "{line}"),
+                _ => {}
+            }
+        }
+    }
+}
+
+#[test]
+fn negative_option_values_say_the_range() {
+    golden!("negative_layers", 2, ["expand", "0", "--layers", "-5"]);
+    golden!("negative_seed", 2, ["expand", "0", "--seed", "-1"]);
+    golden!(
+        "negative_shells",
+        2,
+        ["expand", "0", "--bottom-shell-layers", "-1"]
+    );
+    golden!("negative_template_first", 2, ["check", "-50%Z1cm"]);
+}
+
+#[test]
+fn unquoted_templates_get_a_note() {
+    golden!("pieces_check", 0, ["check", "0,", "90"]);
+    golden!("pieces_unit", 1, ["check", "+30/50", "%"]);
+    golden!("pieces_fmt", 0, ["fmt", "0,", "90"]);
+}
+
+#[test]
+fn long_lines_report_the_files_column() {
+    let template = format!("{}+30X5", "0, ".repeat(200));
+    let (golden, code) = run(&["check", &template], None);
+    assert_eq!(code, 1);
+    // The `X` is at byte 603, column 604 of line 1.
+    assert!(golden.contains("┌─ <template>:1:604\n"), "{golden}");
+    assert!(
+        golden.contains("\n1 │ "),
+        "the file's line number: {golden}"
+    );
+    let (golden, _) = run(&["check", &format!("0,\n{template}")], None);
+    assert!(golden.contains("┌─ <template>:2:604\n"), "{golden}");
+    assert!(golden.contains("\n2 │ "), "{golden}");
+}
+
+#[test]
+fn model_files_with_defaults_maps_and_named_fields() {
+    let dir = TempDir::new("models");
+    dir.file(
+        "one.json",
+        r#"{"layer_heights": [0.3, 0.2, 0.2], "layer_height": 0.2}"#,
+    );
+    dir.file(
+        "map.json",
+        r#"{"tall": {"layer_heights": [0.2, 0.2], "layer_height": 0.2, "bottom_shell_layers": 1},
+            "short": {"layer_heights": [0.3], "layer_height": 0.2}}"#,
+    );
+    dir.file(
+        "bad.json",
+        r#"{"layer_heights": [0.2, "x"], "layer_height": 0.2}"#,
+    );
+    dir.file(
+        "shells.json",
+        r#"{"layer_heights": [0.2], "layer_height": 0.2, "top_shell_layers": -1}"#,
+    );
+    let path = |name: &str| dir.0.join(name).display().to_string();
+    for (name, code, model) in [
+        ("model_default_shells", 0, path("one.json")),
+        ("model_map_named", 0, format!("{}:tall", path("map.json"))),
+        ("model_map_without_name", 2, path("map.json")),
+        (
+            "model_map_unknown_name",
+            2,
+            format!("{}:wide", path("map.json")),
+        ),
+        ("model_field_named", 2, path("bad.json")),
+        ("model_shells_named", 2, path("shells.json")),
+    ] {
+        let (golden, got) = run_in(
+            &dir,
+            &["expand", "B, +1", "--model", &model, "--format", "json"],
+        );
+        // JSON is long: the model echo and the exit code are what is pinned.
+        let shown = match golden.find("\"model\":") {
+            Some(at) => format!(
+                "{}…{}",
+                &golden[..golden.find("----- stdout -----").unwrap() + 19],
+                &golden[at..golden[at..].find('}').map_or(golden.len(), |e| at + e + 1)]
+            ),
+            None => golden.clone(),
+        };
+        insta::assert_snapshot!(name, shown);
+        assert_eq!(got, code, "{golden}");
+    }
+}
+
+#[test]
+fn consistency() {
+    golden!("degree_word_help", 1, ["check", "45deg", "+30°/5"]);
+    golden!("second_repeat_count", 1, ["check", "+30*3*2"]);
+    golden!("comma_alone", 0, ["check", ","]);
+    golden!("trailing_commas", 0, ["check", "0, 90,", "0, 90,,"]);
+    golden!(
+        "solid_target_labels_solid",
+        0,
+        ["expand", "+30", "--target", "solid", "--layers", "2"]
+    );
+    golden!(
+        "table_wide_index",
+        0,
+        ["expand", "+1", "--layers", "100001", "--range", "99998.."]
+    );
+    golden!(
+        "expand_json_errors",
+        1,
+        ["expand", "+30X5", "--format", "json"]
+    );
+    golden!("expand_help", 0, ["expand", "--help"]);
+    let dir = TempDir::new("bom");
+    let bom = dir.file("bom.rot", "\u{feff}0, 90\n");
+    let (golden, code) = run_in(&dir, &["check", "--file", bom.to_str().unwrap()]);
+    insta::assert_snapshot!("byte_order_mark_skipped", golden);
+    assert_eq!(code, 0);
+}
+
+#[test]
+fn check_fix_prints_writes_and_refuses() {
+    golden!(
+        "check_fix",
+        0,
+        ["check", "--fix", "\"+30°, 10,,20\"", "+30 /50%"]
+    );
+    golden!(
+        "check_fix_refuses_errors",
+        1,
+        ["check", "--fix", "45deg, +30X5"]
+    );
+    let dir = TempDir::new("fix");
+    let file = dir.file("a.rot", "+30°\n10,,20\n");
+    let (golden, code) = run_in(
+        &dir,
+        &[
+            "check",
+            "--fix",
+            "--write",
+            "--file",
+            file.to_str().unwrap(),
+        ],
+    );
+    insta::assert_snapshot!("check_fix_write", golden);
+    assert_eq!(code, 0);
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "+30\n10, 20\n");
+    let bad = dir.file("b.rot", "+30°, +30X5\n");
+    let (_, code) = run_in(
+        &dir,
+        &["check", "--fix", "--write", "--file", bad.to_str().unwrap()],
+    );
+    assert_eq!(code, 1);
+    assert_eq!(
+        std::fs::read_to_string(&bad).unwrap(),
+        "+30°, +30X5\n",
+        "a file that keeps errors is not written"
+    );
+    golden!("check_write_needs_fix", 2, ["check", "--write", "0"]);
+}
+
+#[test]
+fn explain_codes_and_templates() {
+    golden!(
+        "explain_code",
+        0,
+        ["explain", "rotlang::space-splits-instruction"]
+    );
+    golden!("explain_code_short", 0, ["explain", "degree-sign"]);
+    golden!(
+        "explain_unknown_code",
+        2,
+        ["explain", "rotlang::no-such-code"]
+    );
+    golden!("explain_list", 0, ["explain", "--list"]);
+    golden!("explain_template", 0, ["explain", "+10L25%, -10l25%"]);
+    golden!(
+        "explain_template_model",
+        0,
+        ["explain", "B!, +30, +15#5", "--layers", "20"]
+    );
+    golden!("explain_template_errors", 1, ["explain", "+30X5, 90"]);
+    golden!("explain_stdin", 0, ["explain", "-"], Some("0, 90"));
+}
+
+#[test]
+fn expand_range() {
+    golden!(
+        "expand_range",
+        0,
+        ["expand", "+10", "--range", "5..8", "--format", "csv"]
+    );
+    golden!(
+        "expand_range_inclusive_single",
+        0,
+        ["expand", "+10", "--range", "99"]
+    );
+    golden!(
+        "expand_range_outside",
+        2,
+        ["expand", "+10", "--range", "95..101"]
+    );
+}
+
+#[test]
+fn completions_man_and_version() {
+    for shell in ["bash", "zsh", "fish", "powershell"] {
+        let (golden, code) = run(&["completions", shell], None);
+        assert_eq!(code, 0, "{golden}");
+        let out = stdout_of(&golden);
+        for word in ["check", "fmt", "expand", "explain", "deny-warnings", "wrap"] {
+            assert!(out.contains(word), "{shell} completes {word}");
+        }
+    }
+    let (golden, code) = run(&["man"], None);
+    assert_eq!(code, 0);
+    let page = stdout_of(&golden);
+    assert!(
+        page.starts_with(".ie") || page.contains(".TH rotlang 1"),
+        "{page}"
+    );
+    assert!(page.contains("explain"), "{page}");
+    let (golden, code) = run(&["man", "expand"], None);
+    assert_eq!(code, 0);
+    assert!(
+        stdout_of(&golden).contains(".TH rotlang-expand 1"),
+        "{golden}"
+    );
+    assert!(stdout_of(&golden).contains("\\-\\-range"), "{golden}");
+    golden!("man_unknown", 2, ["man", "nope"]);
+    for command in ["check", "fmt", "expand", "explain", "completions", "man"] {
+        let (golden, code) = run(&[command, "--version"], None);
+        assert_eq!(code, 0, "{golden}");
+        assert!(
+            stdout_of(&golden).contains(env!("CARGO_PKG_VERSION")),
+            "{golden}"
+        );
+    }
+}
+
+#[test]
+fn invisible_characters_get_a_caret_and_keep_columns() {
+    // After a zero-width character, columns still count the file's characters.
+    let (golden, code) = run(&["check", "0, \u{feff}90, +30X5"], None);
+    assert_eq!(code, 1);
+    assert!(golden.contains("<template>:1:4\n"), "{golden}");
+    assert!(
+        golden.contains("<template>:1:12\n"),
+        "the X is character 12: {golden}"
+    );
+    assert!(golden.contains("0, ???90, +30X5"), "{golden}");
 }

@@ -368,11 +368,11 @@ fn cli_expand_dialect() {
     assert_eq!(code, Some(0), "{err}");
     assert_eq!(
         out,
-        "index,bottom,top,angle,fill,start,end\n0,0.0,0.2,0.0,sparse,0,4\n1,0.2,0.4,0.0,sparse,0,4\n"
+        "index,bottom,top,angle,fill,start,end,instruction\n0,0,0.2,0,sparse,0,4,0 90\n1,0.2,0.4,0,sparse,0,4,0 90\n"
     );
     let (code, out, _) = run(&["expand", "0 90", "--layers", "2", "--format", "csv"]);
     assert_eq!(code, Some(0));
-    assert!(out.contains("\n1,0.2,0.4,90.0,"), "{out}");
+    assert!(out.contains("\n1,0.2,0.4,90,"), "{out}");
     let (code, out, err) = run(&[
         "expand",
         "--dialect",
@@ -384,10 +384,7 @@ fn cli_expand_dialect() {
         "csv",
     ]);
     assert_eq!(code, Some(0));
-    assert!(
-        out.ends_with("2,0.4,0.6000000000000001,10.0,sparse,,\n"),
-        "{out}"
-    );
+    assert!(out.ends_with("2,0.4,0.6,10,sparse,,,\n"), "{out}");
     assert!(
         err.contains("warning[orcaslicer::hangs]") && err.contains("layer 1"),
         "{err}"
@@ -404,7 +401,7 @@ fn cli_expand_dialect() {
         "csv",
     ]);
     assert_eq!(code, Some(0), "{err}");
-    assert!(out.contains("\n0,0.0,0.2,"), "{out}");
+    assert!(out.contains("\n0,0,0.2,"), "{out}");
     let (code, _, err) = run(&["expand", "--dialect", "klipper", "0"]);
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("expected `rotlang` or `orcaslicer`"), "{err}");

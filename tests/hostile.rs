@@ -275,10 +275,18 @@ fn characters_outside_ascii() {
     for c in [
         "°", "ℕ", "α", "𝕏", "\u{feff}", "\u{200b}", "\u{fffd}", "é", "\u{301}", "🙂",
     ] {
-        rejected(c, c);
+        if c == "\u{feff}" {
+            // A byte-order mark at the start of a file is skipped (editors write one);
+            // anywhere else it is an error.
+            assert!(!survive(c, c).has_errors());
+            assert!(!survive(c, &format!("{c}, +10")).has_errors());
+            rejected("+10, {c}", &format!("+10, {c}"));
+        } else {
+            rejected(c, c);
+            rejected(&format!("{c}, +10"), &format!("{c}, +10"));
+        }
         rejected(&format!("+30{c}"), &format!("+30{c}"));
         rejected(&format!("+30/{c}5"), &format!("+30/{c}5"));
-        rejected(&format!("{c}, +10"), &format!("{c}, +10"));
         rejected(&format!("+10/5{c}%"), &format!("+10/5{c}%"));
         rejected(&format!("{c}×1M"), &c.repeat(MB / c.len()));
         rejected(

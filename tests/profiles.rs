@@ -268,9 +268,9 @@ fn expand_with_a_profile() {
     assert_eq!(
         rows,
         [
-            "0,0.0,0.3,50.0,sparse,0,1",
-            "1,0.3,0.54,55.0,sparse,3,6",
-            "2,0.54,0.78,75.0,sparse,8,11"
+            "0,0,0.3,50,sparse,0,1,5",
+            "1,0.3,0.54,55,sparse,3,6,10!",
+            "2,0.54,0.78,75,sparse,8,11,+20"
         ]
     );
     assert!(
@@ -290,7 +290,7 @@ fn expand_with_a_profile() {
         "csv",
     ]);
     assert_eq!(out.lines().count(), 3);
-    assert!(out.contains("\n0,0.0,0.2,15.0,"), "{out}");
+    assert!(out.contains("\n0,0,0.2,15,"), "{out}");
     let (code, _, err) = rotlang(&[
         "expand",
         "--profile",

@@ -1,4 +1,4 @@
-// Builds rotlang.wasm: cargo with the `wasm` profile (opt-level "z", LTO, strip), then
+// Builds rotlang.wasm and rotlang-full.wasm: cargo with the `wasm` profile (opt-level "z", LTO, strip), then
 // wasm-opt -Oz from the `binaryen` npm package (a devDependency: `npm ci` here first; left
 // out with a warning when missing), then copies the module beside rotlang.js. Honours
 // CARGO_TARGET_DIR (tests share the workspace's target/). The optimised module is cached
@@ -24,42 +24,52 @@ try {
 } catch (e) {
   if (e.code !== 'ENOENT') throw e; // no rustup: let cargo say what is missing
 }
-execFileSync('cargo', [
-  'build', '--profile', 'wasm', '--target', 'wasm32-unknown-unknown', '-p', 'rotlang-wasm',
-  ...process.argv.slice(2),
-], {
-  cwd: root,
-  stdio: ['ignore', 'inherit', 'inherit'],
-  env: { ...process.env, CARGO_TARGET_DIR: targetDir },
-});
+// Two modules from one crate: rotlang.wasm (the package's core, `rotlang`) and
+// rotlang-full.wasm (feature `full`, `rotlang/full`: profile reading for the playground).
+// Cargo keeps both builds; only the final copy differs.
 const outDir = join(targetDir, 'wasm32-unknown-unknown', 'wasm');
-const built = join(outDir, 'rotlang_wasm.wasm');
-const hash = createHash('sha256').update(readFileSync(built)).digest('hex').slice(0, 16);
-const optimised = join(outDir, `rotlang_wasm.opt-${hash}.wasm`);
 // binaryen from this package's devDependencies, or from the caller's (the playground's).
 const wasmOpt = [here, process.cwd()]
   .map((d) => join(d, 'node_modules', 'binaryen', 'bin', 'wasm-opt'))
   .find(existsSync);
-let source = built;
-if (existsSync(optimised)) {
-  source = optimised;
-} else if (wasmOpt) {
-  const tmp = `${optimised}.${process.pid}.tmp`;
-  // The features rustc enables by default for wasm32-unknown-unknown.
-  execFileSync(process.execPath, [
-    wasmOpt, '-Oz', '--strip-debug', '--strip-producers',
-    '--enable-bulk-memory', '--enable-sign-ext', '--enable-mutable-globals',
-    '--enable-nontrapping-float-to-int', '--enable-multivalue', '--enable-reference-types',
-    built, '-o', tmp,
-  ], { stdio: ['ignore', 'inherit', 'inherit'] });
-  renameSync(tmp, optimised);
-  source = optimised;
-} else {
-  console.error('build.mjs: binaryen is not installed (npm ci in bindings/js or web): rotlang.wasm is not run through wasm-opt');
+if (!wasmOpt) {
+  console.error('build.mjs: binaryen is not installed (npm ci in bindings/js or web): the modules are not run through wasm-opt');
 }
-const out = join(here, 'rotlang.wasm');
-// Copy then rename: tests that build at the same time never read half a file.
-const tmp = `${out}.${process.pid}.tmp`;
-copyFileSync(source, tmp);
-renameSync(tmp, out);
-console.error(`rotlang.wasm: ${statSync(out).size} bytes (cargo: ${statSync(built).size})`);
+
+function build(features, name) {
+  execFileSync('cargo', [
+    'build', '--profile', 'wasm', '--target', 'wasm32-unknown-unknown', '-p', 'rotlang-wasm',
+    ...(features ? ['--features', features] : []),
+  ], {
+    cwd: root,
+    stdio: ['ignore', 'inherit', 'inherit'],
+    env: { ...process.env, CARGO_TARGET_DIR: targetDir },
+  });
+  const built = join(outDir, 'rotlang_wasm.wasm');
+  const hash = createHash('sha256').update(readFileSync(built)).digest('hex').slice(0, 16);
+  const optimised = join(outDir, `rotlang_wasm.opt-${hash}.wasm`);
+  let source = built;
+  if (existsSync(optimised)) {
+    source = optimised;
+  } else if (wasmOpt) {
+    const tmp = `${optimised}.${process.pid}.tmp`;
+    // The features rustc enables by default for wasm32-unknown-unknown.
+    execFileSync(process.execPath, [
+      wasmOpt, '-Oz', '--strip-debug', '--strip-producers',
+      '--enable-bulk-memory', '--enable-sign-ext', '--enable-mutable-globals',
+      '--enable-nontrapping-float-to-int', '--enable-multivalue', '--enable-reference-types',
+      built, '-o', tmp,
+    ], { stdio: ['ignore', 'inherit', 'inherit'] });
+    renameSync(tmp, optimised);
+    source = optimised;
+  }
+  const out = join(here, name);
+  // Copy then rename: tests that build at the same time never read half a file.
+  const tmp = `${out}.${process.pid}.tmp`;
+  copyFileSync(source, tmp);
+  renameSync(tmp, out);
+  console.error(`${name}: ${statSync(out).size} bytes (cargo: ${statSync(built).size})`);
+}
+
+build(null, 'rotlang.wasm');
+build('full', 'rotlang-full.wasm');

@@ -5,7 +5,7 @@
 export const FILLS: readonly ['sparse', 'dense', 'solid', 'concentric', 'monotonic', 'rectilinear'];
 export type Fill = (typeof FILLS)[number];
 
-export type ErrorKind = 'template' | 'model' | 'options' | 'limit' | 'unavailable' | 'internal';
+export type ErrorKind = 'template' | 'model' | 'options' | 'limit' | 'profile' | 'unavailable' | 'internal';
 
 /** Thrown on bad input (never a crash): `kind` says what was wrong. */
 export class RotlangError extends Error {
@@ -71,7 +71,10 @@ export interface Model {
 export interface Options {
   /** Which setting the template is for (solid signs are errors in a solid template). */
   target?: 'sparse' | 'solid';
-  /** How the text is read: rotlang's grammar, or OrcaSlicer's own reader (when built in). */
+  /**
+   * How the text is read: rotlang's grammar, or exactly as OrcaSlicer's own code reads it
+   * (any text, valid or not; its angles, with finite ones where it hangs or yields NaN).
+   */
   dialect?: 'rotlang' | 'orcaslicer';
   model?: Model;
   /** The base direction in degrees (the profile's infill direction). */
@@ -117,9 +120,25 @@ export interface ExpandResult {
   /** Index into `instructions` of the instruction that governs each layer; -1 when it holds. */
   instructionIndex: Int32Array;
   instructions: Instruction[];
+  /** rotlang dialect: each instruction in plain words (as the editor hover says it). */
+  words: string[];
   model: { layers: number; layerHeight: number; height: number; bottomShells: number; topShells: number };
-  /** OrcaSlicer dialect only: what OrcaSlicer would do wrong (hang, undefined, NaN layers). */
-  findings?: Finding[];
+  dialect: 'rotlang' | 'orcaslicer';
+  /** OrcaSlicer dialect: where OrcaSlicer hangs, crashes or computes NaN, in the layers returned. */
+  findings: Finding[];
+}
+
+export interface Comparison {
+  /** Layers in the model. */
+  layers: number;
+  /** The template has errors in rotlang (then only OrcaSlicer's findings are given). */
+  rotlangErrors: boolean;
+  /** The first layer whose direction differs (modulo 360), or null. */
+  firstDifference: { layer: number; rotlang: number; orcaslicer: number } | null;
+  differingLayers: number;
+  /** Layers that rotlang fills solid and OrcaSlicer (which has no solid signs) leaves sparse. */
+  solidLayersLost: number;
+  findings: Finding[];
 }
 
 export interface Sign {
@@ -134,3 +153,22 @@ export function check(text: string, options?: Options): CheckResult;
 export function format(text: string, options?: Options): string;
 export function expand(text: string, options?: ExpandOptions): ExpandResult;
 export function signs(): Sign[];
+export function compare(text: string, options?: Options): Comparison;
+/** The template in plain words on the model (what `rotlang explain TEMPLATE` prints). */
+export function explain(text: string, options?: Options): string;
+export interface CodeDoc {
+  code: string;
+  severity: 'error' | 'warning';
+  summary: string;
+  explanation: string;
+  example: string;
+  fix: string;
+}
+/**
+ * The OrcaSlicer compat lint: where OrcaSlicer reads the template differently (codes
+ * `orcaslicer::…`), by rule and on the model, with fixes where one keeps both readings.
+ */
+export function compat(text: string, options?: Options): Diagnostic[];
+
+/** A diagnostic code explained (what `rotlang explain CODE` prints); null for an unknown code. */
+export function explainCode(code: string): CodeDoc | null;

@@ -10,7 +10,7 @@ use std::pin::Pin;
 use std::sync::{Arc, Mutex};
 use std::task::{Context, Poll};
 
-use tokio::io::AsyncWrite;
+use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
 
 /// A writer that keeps what the server writes.
 #[derive(Clone, Default)]
@@ -33,15 +33,66 @@ impl AsyncWrite for Captured {
     }
 }
 
+/// The client's bytes, one message at a time (cut before each `Content-Length`), with a
+/// few turns of the (single-threaded) runtime between messages and before the end of
+/// input: as a client waits for answers, and since the end of input (or `exit`) cancels
+/// what is pending. No timers, so runs are deterministic.
+struct Client {
+    data: Vec<u8>,
+    at: usize,
+    turns: u32,
+}
+
+/// Turns of the runtime given to the server after each message.
+const TURNS: u32 = 64;
+
+impl AsyncRead for Client {
+    fn poll_read(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &mut ReadBuf<'_>,
+    ) -> Poll<io::Result<()>> {
+        let this = &mut *self;
+        if this.turns > 0 {
+            this.turns -= 1;
+            cx.waker().wake_by_ref();
+            return Poll::Pending;
+        }
+        if this.at < this.data.len() {
+            let rest = &this.data[this.at..];
+            let next = rest
+                .windows(15)
+                .skip(1)
+                .position(|w| w.eq_ignore_ascii_case(b"Content-Length:"))
+                .map_or(rest.len(), |i| i + 1);
+            let n = buf.remaining().min(next);
+            buf.put_slice(&rest[..n]);
+            this.at += n;
+            this.turns = TURNS;
+            return Poll::Ready(Ok(()));
+        }
+        Poll::Ready(Ok(()))
+    }
+}
+
 pub fn run(data: &[u8]) {
+    check_frames(&session(data));
+}
+
+/// What the server writes when a client sends `data` and closes its side.
+pub fn session(data: &[u8]) -> Vec<u8> {
     let runtime = tokio::runtime::Builder::new_current_thread()
         .build()
         .expect("a runtime");
     let output = Captured::default();
-    let input = io::Cursor::new(data.to_vec());
+    let input = Client {
+        data: data.to_vec(),
+        at: 0,
+        turns: 0,
+    };
     runtime.block_on(rotlang_lsp::server::serve(input, output.clone()));
     let written = output.0.lock().expect("not poisoned").clone();
-    check_frames(&written);
+    written
 }
 
 /// Every frame the server wrote is `Content-Length: n\r\n\r\n` and n bytes of JSON.

@@ -172,7 +172,7 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
 fn hash_roles(text: &str, at: usize) -> (bool, bool) {
     let before = text.get(..at).unwrap_or("");
     let start = before
-        .rfind(|c: char| matches!(c, ',' | ' ' | '\t' | '\r' | '\n'))
+        .rfind([',', ' ', '\t', '\r', '\n'])
         .map_or(0, |i| i + 1);
     let typed = &before[start..];
     // The angle's own sign is not a flip, and `%` after the angle is not a joint.

@@ -3,7 +3,9 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use super::{ColorArg, Input, TargetArg, UsageError, diagnostic_json, gather, render_human};
+use super::{
+    ColorArg, Input, TargetArg, UsageError, diagnostic_json, gather, pieces_note, render_human,
+};
 use crate::diagnostic::LineIndex;
 
 #[derive(clap::Args, Debug)]
@@ -17,16 +19,25 @@ Examples:
   rotlang check --format json '+30X5'     one JSON object per input, one per line
   rotlang check profiles/ project.3mf     every template in presets, exports, projects
   rotlang check --compat orcaslicer process.json   where OrcaSlicer reads it differently
+  rotlang check --fix '+30°, 10,,20'      print the template with every fix applied
+  rotlang check --fix --write -f a.rot    apply the fixes to a.rot in place
+  rotlang check -f - < a.rot              `-` is stdin, as a template or a file
+
+`--fix` applies the fix of every diagnostic that has one (the `fix:` lines of the
+report), again and again until none is left. A template that still has errors after
+that is not printed or written: its remaining errors are reported instead (exit 1).
+It works on templates and --file (not on profiles or folders).
 
 Exit status: 0 when every input is clean or has only warnings, 1 when any has an
 error or a file cannot be read (the other files are still checked), 2 on a usage error.")]
 pub struct CheckArgs {
     /// Templates to check, each one input, or files and folders: an argument naming an
     /// existing path is read as a profile (.json, .jsonc, .ini, .3mf) or template (.rot).
-    /// Put `--` before a template that begins with `-`.
+    /// `-` is stdin. Put `--` before a template that begins with `-`.
     #[arg(value_name = "TEMPLATE", allow_negative_numbers = true)]
     pub templates: Vec<String>,
-    /// Read a template from a file (one template per file; newlines are separators). Repeatable.
+    /// Read a template from a file (one template per file; newlines are separators; `-` is
+    /// stdin). Repeatable.
     #[arg(long = "file", short = 'f', value_name = "PATH")]
     pub files: Vec<PathBuf>,
     /// Which setting the template is for.
@@ -41,6 +52,12 @@ pub struct CheckArgs {
     /// Treat warnings as errors (exit 1).
     #[arg(long)]
     pub deny_warnings: bool,
+    /// Apply every fix and print the fixed templates (diagnostics go to stderr).
+    #[arg(long, conflicts_with_all = ["format", "compat"])]
+    pub fix: bool,
+    /// With --fix: rewrite files in place instead of printing them.
+    #[arg(long, requires = "fix")]
+    pub write: bool,
     /// Also compare with a slicer's own reading (`orcaslicer`): where its angles part from
     /// rotlang's on the model (the profile's own, or the 20 mm cube), where it hangs or
     /// computes NaN angles, and constructs it reads differently.
@@ -56,12 +73,24 @@ pub enum Format {
 }
 
 /// Runs the check; returns the exit code.
-pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
+pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     // Files, folders (an argument naming an existing path is one) and the compat lint.
     if super::files::wanted(args) {
+        if args.fix {
+            return Err(UsageError(
+                "--fix works on templates and --file PATH, not on profiles or folders".into(),
+            ));
+        }
         return super::files::check(args, out);
     }
     let inputs = gather(&args.templates, &args.files)?;
+    let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    if let Some(note) = pieces_note("check", &args.templates) {
+        err.write_all(note.as_bytes()).map_err(io)?;
+    }
+    if args.fix {
+        return fix(args, &inputs, out, err);
+    }
     let parses: Vec<_> = inputs
         .iter()
         .map(|i| crate::check(&i.text, args.target.into()))
@@ -69,7 +98,6 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     let failed =
         |p: &crate::Parse| p.has_errors() || (args.deny_warnings && !p.diagnostics.is_empty());
     let code = i32::from(parses.iter().any(failed));
-    let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     match args.format {
         Format::Json => {
             for (input, parse) in inputs.iter().zip(&parses) {
@@ -99,7 +127,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
             let errors = parses.iter().map(|p| p.errors).sum();
             let warnings = parses.iter().map(|p| p.warnings).sum();
             let omitted: usize = parses.iter().map(|p| p.omitted).sum();
-            let mut summary = summary(inputs.len(), errors, warnings);
+            let mut summary = summary(inputs.len(), errors, warnings, args.deny_warnings);
             if omitted > 0 {
                 summary.push_str(&format!(" ({omitted} not shown)"));
             }
@@ -109,7 +137,81 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     Ok(code)
 }
 
-fn summary(inputs: usize, errors: usize, warnings: usize) -> String {
+/// `check --fix`: every fix applied; the fixed text printed or written, unless errors
+/// remain (then their report, exit 1).
+fn fix(
+    args: &CheckArgs,
+    inputs: &[Input],
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> Result<i32, UsageError> {
+    let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    let mut code = 0;
+    let (mut applied, mut written) = (0, 0);
+    for input in inputs {
+        let fixed = crate::fix::apply_all(&input.text, args.target.into());
+        applied += fixed.applied;
+        let left = Input {
+            text: fixed.text.clone(),
+            ..input.clone()
+        };
+        let shown = |p: &crate::Diagnostic| p.code != "rotlang::too-many-diagnostics";
+        let warnings = fixed.parse.diagnostics.iter().filter(|d| shown(d)).count();
+        if !fixed.parse.diagnostics.is_empty() {
+            let report = render_human(
+                &[(&left, &fixed.parse.diagnostics)],
+                args.color.enabled(false),
+            );
+            err.write_all(report.as_bytes()).map_err(io)?;
+        }
+        if fixed.parse.has_errors() {
+            writeln!(
+                err,
+                "{}: not fixed: errors remain that have no automatic fix",
+                input.name
+            )
+            .map_err(io)?;
+            code = 1;
+            continue;
+        }
+        if args.deny_warnings && warnings > 0 {
+            code = 1;
+        }
+        match (&input.path, args.write) {
+            (Some(path), true) => {
+                if fixed.text != input.text {
+                    super::fmt::write_atomically(path, &fixed.text)
+                        .map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
+                    written += 1;
+                }
+            }
+            _ => {
+                let text = fixed.text.strip_suffix('\n').unwrap_or(&fixed.text);
+                writeln!(out, "{text}").map_err(io)?;
+            }
+        }
+    }
+    let plural = |n: usize, w: &str| {
+        if n == 1 {
+            format!("1 {w}")
+        } else {
+            format!("{n} {w}s")
+        }
+    };
+    let fixes = if applied == 1 {
+        "1 fix".to_owned()
+    } else {
+        format!("{applied} fixes")
+    };
+    let mut line = format!("fixed: {fixes} applied");
+    if args.write {
+        line.push_str(&format!(", {} rewritten", plural(written, "file")));
+    }
+    writeln!(err, "{line}").map_err(io)?;
+    Ok(code)
+}
+
+fn summary(inputs: usize, errors: usize, warnings: usize, deny_warnings: bool) -> String {
     let what = if inputs == 1 {
         "1 template".to_owned()
     } else {
@@ -124,6 +226,10 @@ fn summary(inputs: usize, errors: usize, warnings: usize) -> String {
     };
     match (errors, warnings) {
         (0, 0) => format!("ok: {what}, no problems"),
+        (0, w) if deny_warnings => format!(
+            "failed: {what}, {} (denied by --deny-warnings)",
+            plural(w, "warning")
+        ),
         (0, w) => format!("ok: {what}, {}", plural(w, "warning")),
         (e, 0) => format!("failed: {what}, {}", plural(e, "error")),
         (e, w) => format!(

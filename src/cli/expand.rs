@@ -1,12 +1,13 @@
 //! `rotlang expand`: the angle and fill of every layer of a model, streamed.
 
 use std::io::{BufWriter, ErrorKind, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use serde::Deserialize;
-
-use super::{ColorArg, Input, TargetArg, UsageError, gather, read_file};
-use crate::eval::{self, Layer, Model, Options};
+use super::model::{ModelArgs, Resolved};
+use super::{ColorArg, Input, TargetArg, UsageError, args, diagnostic_json, gather};
+use crate::diagnostic::LineIndex;
+use crate::eval::{self, Layer, Options};
+use crate::number;
 
 #[derive(clap::Args, Debug)]
 #[command(after_long_help = "\
@@ -15,30 +16,39 @@ Examples:
   rotlang expand '+30/50%' --layers 300 --layer-height 0.12 --first-layer-height 0.2
   rotlang expand '+10L25%, -10l25%' --height 42 --wrap 180 --format csv > angles.csv
   rotlang expand 'B!, +30' --model part.json --format json
+  rotlang expand '+30/50%' --model models.json:first-layer   one model of a map of models
+  rotlang expand '+30/50%' --range 40..60            layers 40 to 59 only
   rotlang expand -- -50%Z1cm                          a template that begins with '-'
   rotlang expand --file profile.rot --base 45         from a file, infill direction 45°
+  rotlang expand - < profile.rot                      `-` is stdin (also --file -)
 
 A --model file is one JSON object, like an entry of the conformance models.json:
   {\"layer_heights\": [0.3, 0.2, 0.2], \"layer_height\": 0.2,
    \"bottom_shell_layers\": 3, \"top_shell_layers\": 4, \"description\": \"optional\"}
+(the shell counts default to 3 and 4), or an object of such objects by name: then
+--model FILE:NAME picks one.
 
-Output columns: the layer index, its bottom and top height (mm), the angle (degrees, base
-included), the fill (sparse, or dense/solid/concentric/monotonic/rectilinear for solid
-signs) and the governing instruction (byte offsets start..end into the template; none when
-every instruction is spent and the angle holds).
+Output columns: the layer index, its bottom and top height (mm, to the micrometre), the
+angle (degrees, base included, to 1e-9°), the fill (sparse, or dense/solid/concentric/
+monotonic/rectilinear for solid signs; solid for every layer with --target solid) and
+the governing instruction: its text in the table; in CSV its byte offsets start,end
+into the template and its text; in JSON {\"start\", \"end\", \"text\"}. It is empty
+(null in JSON, `(holds)` in the table) when every instruction is spent and the angle
+holds. JSON also echoes the template, the model and the options.
 
 Exit status: 0 on success (warnings are printed to stderr), 1 when the template has
-errors (nothing is expanded), 2 on a usage error (bad model, conflicting options).")]
+errors (nothing is expanded; with --format json the diagnostics are printed as JSON, as
+`rotlang check --format json` does), 2 on a usage error (bad model, conflicting options).")]
 pub struct ExpandArgs {
     /// The template to expand, e.g. '+30/50%'. Put `--` before one that begins with `-`.
-    /// Without it, the template is read from --file or stdin.
+    /// Without it, the template is read from --file or stdin; `-` is stdin.
     #[arg(
         value_name = "TEMPLATE",
         allow_negative_numbers = true,
         conflicts_with = "file"
     )]
     pub template: Option<String>,
-    /// Read the template from a file (newlines separate instructions).
+    /// Read the template from a file (newlines separate instructions); `-` is stdin.
     #[arg(long, short = 'f', value_name = "PATH")]
     pub file: Option<PathBuf>,
     /// Take the template (of --target), the model and the base direction from a profile:
@@ -52,59 +62,21 @@ pub struct ExpandArgs {
     #[arg(long, value_enum, default_value_t)]
     pub target: TargetArg,
 
-    /// A uniform model of N layers (see --layer-height, --first-layer-height).
-    /// Without --layers, --height or --model: the documentation's 20 mm cube.
-    #[arg(long, value_name = "N", help_heading = "Model", conflicts_with_all = ["height", "model"])]
-    pub layers: Option<usize>,
-    /// A uniform model tall enough for an object of MM millimetres, e.g. --height 42.
-    #[arg(
-        long,
-        value_name = "MM",
-        help_heading = "Model",
-        conflicts_with = "model",
-        allow_negative_numbers = true
-    )]
-    pub height: Option<f64>,
-    /// The standard layer height h in mm, with --layers or --height [default: 0.2].
-    /// `#` lengths count it, and counts reaching past the top extend by it.
-    #[arg(
-        long,
-        value_name = "MM",
-        help_heading = "Model",
-        conflicts_with = "model",
-        allow_negative_numbers = true
-    )]
-    pub layer_height: Option<f64>,
-    /// The first layer's height in mm, with --layers or --height [default: the layer height].
-    #[arg(
-        long,
-        value_name = "MM",
-        help_heading = "Model",
-        conflicts_with = "model",
-        allow_negative_numbers = true
-    )]
-    pub first_layer_height: Option<f64>,
-    /// A model from a JSON file: {"layer_heights": [...], "layer_height": H,
-    /// "bottom_shell_layers": B, "top_shell_layers": T} (one models.json entry).
-    #[arg(long, value_name = "PATH", help_heading = "Model")]
-    pub model: Option<PathBuf>,
-    /// The bottom shell layer count, what `B` counts [default: 3, or the --model file's].
-    #[arg(long, value_name = "N", help_heading = "Model")]
-    pub bottom_shell_layers: Option<u32>,
-    /// The top shell layer count, what `T` counts [default: 4, or the --model file's].
-    #[arg(long, value_name = "N", help_heading = "Model")]
-    pub top_shell_layers: Option<u32>,
+    #[command(flatten)]
+    pub model: ModelArgs,
 
     /// The base infill direction in degrees, added to every angle (e.g. --base 45).
     #[arg(
         long,
         value_name = "DEG",
         default_value_t = 0.0,
+        value_parser = args::finite,
         allow_negative_numbers = true
     )]
     pub base: f64,
     /// The seed of the random joints `~` and `^`: the same seed gives the same angles.
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = args::seed,
+          allow_negative_numbers = true)]
     pub seed: u64,
     /// `rotlang`: the language as documented; `orcaslicer`: exactly the angles OrcaSlicer
     /// computes, for any text (valid or not); where it hangs, crashes or yields NaN the
@@ -115,9 +87,15 @@ pub struct ExpandArgs {
     /// [0, 360)), or `180` (into [0, 180): infill lines at θ and θ+180° are the same lines).
     #[arg(long, value_enum, default_value_t)]
     pub wrap: Wrap,
-    /// `table`: aligned columns for people; `csv`: `index,bottom,top,angle,fill,start,end`;
-    /// `json`: {"layers":[{"index":0,"bottom":0.0,"top":0.2,"angle":30.0,"fill":"sparse",
-    /// "instruction":{"start":0,"end":3}}, ...]}.
+    /// Print only layers A to B-1 (`A..B`), A to B (`A..=B`), from A (`A..`), below B
+    /// (`..B`), or layer N alone (`N`). Layers are numbered from 0.
+    #[arg(long, value_name = "A..B", value_parser = parse_range)]
+    pub range: Option<LayerRange>,
+    /// `table`: aligned columns for people; `csv`:
+    /// `index,bottom,top,angle,fill,start,end,instruction`; `json`: {"template": ...,
+    /// "model": {...}, "options": {...}, "diagnostics": [...], "layers": [{"index":0,
+    /// "bottom":0,"top":0.2,"angle":30,"fill":"sparse","instruction":{"start":0,"end":3,
+    /// "text":"+30"}}, ...]}.
     #[arg(long, value_enum, default_value_t)]
     pub format: Format,
     /// Colour the diagnostics printed to stderr.
@@ -139,18 +117,19 @@ pub enum Wrap {
 }
 
 impl Wrap {
-    fn apply(self, angle: f64) -> f64 {
-        let wrapped = match self {
-            Wrap::None => angle,
-            Wrap::Full => angle.rem_euclid(360.0),
-            Wrap::Half => angle.rem_euclid(180.0),
-        };
-        // `rem_euclid` can round up to the modulus itself for tiny negative angles, and
-        // `-0.0` would print as such: both are 0 here.
+    fn number(self) -> number::Wrap {
         match self {
-            Wrap::Full if wrapped >= 360.0 => 0.0,
-            Wrap::Half if wrapped >= 180.0 => 0.0,
-            _ => wrapped + 0.0,
+            Wrap::None => number::Wrap::None,
+            Wrap::Full => number::Wrap::Turn,
+            Wrap::Half => number::Wrap::HalfTurn,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Wrap::None => "none",
+            Wrap::Full => "360",
+            Wrap::Half => "180",
         }
     }
 }
@@ -162,35 +141,64 @@ pub enum Format {
     Table,
     /// Comma-separated values with a header line
     Csv,
-    /// One JSON object: {"layers": [...]}
+    /// One JSON object: {"template": ..., "layers": [...]}
     Json,
 }
 
-/// One entry of the conformance `models.json`.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ModelFile {
-    layer_heights: Vec<f64>,
-    layer_height: f64,
-    bottom_shell_layers: u32,
-    top_shell_layers: u32,
-    #[serde(default, rename = "description")]
-    _description: Option<String>,
+/// Layers `start..end` (end exclusive; `None`: to the top).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LayerRange {
+    pub start: usize,
+    pub end: Option<usize>,
+}
+
+fn parse_range(text: &str) -> Result<LayerRange, String> {
+    let t = text.trim();
+    let number = |s: &str| -> Result<usize, String> {
+        s.trim().parse::<usize>().map_err(|_| {
+            format!("`{s}` is not a layer number: write A..B, A..=B, A.., ..B or N, with whole numbers from 0")
+        })
+    };
+    let range = match t.split_once("..") {
+        None => {
+            let n = number(t)?;
+            LayerRange {
+                start: n,
+                end: Some(n.saturating_add(1)),
+            }
+        }
+        Some((a, b)) => {
+            let start = if a.is_empty() { 0 } else { number(a)? };
+            let end = match b.strip_prefix('=') {
+                Some(b) => Some(number(b)?.saturating_add(1)),
+                None if b.is_empty() => None,
+                None => Some(number(b)?),
+            };
+            LayerRange { start, end }
+        }
+    };
+    if range.end.is_some_and(|e| e <= range.start) {
+        return Err(format!("`{t}` is empty: the end must be above the start"));
+    }
+    Ok(range)
 }
 
 /// Runs the expansion; returns the exit code.
 pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     // The model first: a usage error should not wait for stdin.
-    let mut model = model(args)?;
+    let mut resolved = args.model.resolve()?;
     let mut base = args.base;
     let input = match &args.profile {
         Some(path) => {
-            let p = super::files::profile_template(path, args.target.into(), args.height)?;
+            let p = super::files::profile_template(path, args.target.into(), args.model.height)?;
             for note in &p.notes {
                 writeln!(err, "note: {note}").map_err(|e| UsageError(e.to_string()))?;
             }
-            if args.model.is_none() && args.layers.is_none() {
-                model = p.model;
+            if args.model.model.is_none() && args.model.layers.is_none() {
+                resolved = Resolved {
+                    model: p.model,
+                    source: path.display().to_string(),
+                };
             }
             if base == 0.0 {
                 base = p.base;
@@ -210,18 +218,62 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
                 .ok_or_else(|| UsageError("no template given".into()))?
         }
     };
+    let len = resolved.model.len();
+    let (start, end) = match args.range {
+        None => (0, len),
+        Some(r) => {
+            let end = r.end.unwrap_or(len);
+            if r.start >= len || end > len {
+                return Err(UsageError(format!(
+                    "--range {}..{end} is outside the model: its layers are 0 to {}",
+                    r.start,
+                    len - 1
+                )));
+            }
+            (r.start, end)
+        }
+    };
     let options = Options {
         base,
         seed: args.seed,
     };
+    let writer = Writer {
+        text: &input.text,
+        wrap: args.wrap.number(),
+        solid_target: args.target == TargetArg::Solid,
+        start,
+        end,
+    };
     if args.dialect == eval::Dialect::OrcaSlicer {
-        return super::dialect::expand(&input.text, &model, options, err, |layers| {
-            write_layers(layers, &input.text, args, out)
+        // No grammar, so no diagnostics: JSON echoes none.
+        let empty = crate::Parse::default();
+        return super::dialect::expand(&input.text, &resolved.model, options, err, |layers| {
+            match args.format {
+                Format::Csv => writer.csv(layers, out),
+                Format::Table => writer.table(layers, out),
+                Format::Json => {
+                    let header = json_header(args, options, &input, &empty, &resolved, start, end);
+                    writer.json(layers, &header, out)
+                }
+            }
         });
     }
     // The IR is not kept: a megabyte template costs a small multiple of its size.
-    let (parse, layers) = eval::parse_layers(&input.text, args.target.into(), &model, options);
-    let write_error = |e: std::io::Error| UsageError(format!("cannot write to stderr: {e}"));
+    let (parse, layers) =
+        eval::parse_layers(&input.text, args.target.into(), &resolved.model, options);
+    let write_error = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    let json = args.format == Format::Json;
+    if parse.has_errors() && json {
+        // The same object `check --format json` prints.
+        let index = LineIndex::new(&input.text);
+        let diagnostics: Vec<_> = parse
+            .diagnostics
+            .iter()
+            .map(|d| diagnostic_json(&index, d))
+            .collect();
+        let obj = serde_json::json!({"input": input.text, "name": input.name, "diagnostics": diagnostics});
+        writeln!(out, "{obj}").map_err(write_error)?;
+    }
     if !parse.diagnostics.is_empty() {
         err.write_all(report(&input, &parse.diagnostics, args.color).as_bytes())
             .map_err(write_error)?;
@@ -229,7 +281,15 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     if parse.has_errors() {
         return Ok(1);
     }
-    match write_layers(layers, &input.text, args, out) {
+    let result = match args.format {
+        Format::Csv => writer.csv(layers, out),
+        Format::Table => writer.table(layers, out),
+        Format::Json => {
+            let header = json_header(args, options, &input, &parse, &resolved, start, end);
+            writer.json(layers, &header, out)
+        }
+    };
+    match result {
         Ok(()) => Ok(0),
         // The reader went away (`| head`): what it wanted was written.
         Err(e) if e.kind() == ErrorKind::BrokenPipe => Ok(0),
@@ -242,138 +302,229 @@ fn report(input: &Input, diagnostics: &[crate::Diagnostic], color: ColorArg) -> 
     super::render_diagnostics(input, diagnostics, color.enabled(false))
 }
 
-/// The model the options describe (exit 2 on any problem, with the reason).
-fn model(args: &ExpandArgs) -> Result<Model, UsageError> {
-    let h = args.layer_height.unwrap_or(0.2);
-    let h0 = args.first_layer_height;
-    let invalid = |e: eval::ModelError| UsageError(format!("invalid model: {e}"));
-    let model = match (&args.model, args.layers, args.height) {
-        (Some(path), _, _) => model_file(path)?,
-        (None, Some(layers), _) => Model::uniform(layers, h, h0).map_err(invalid)?,
-        (None, None, Some(height)) => Model::from_total_height(height, h, h0).map_err(invalid)?,
-        (None, None, None) if args.layer_height.is_some() || h0.is_some() => {
-            return Err(UsageError(
-                "--layer-height and --first-layer-height need --layers N or --height MM \
-                 (without them the model is the 20 mm cube)"
-                    .into(),
-            ));
-        }
-        (None, None, None) => Model::cube20(),
-    };
-    let (bottom, top) = (
-        args.bottom_shell_layers.unwrap_or(model.bottom_shells()),
-        args.top_shell_layers.unwrap_or(model.top_shells()),
-    );
-    Ok(model.with_shells(bottom, top))
-}
-
-fn model_file(path: &Path) -> Result<Model, UsageError> {
-    let text = read_file(path)?;
-    let file: ModelFile = serde_json::from_str(&text).map_err(|e| {
-        UsageError(format!(
-            "invalid model file {}: {e}\n  expected one JSON object like \
-             {{\"layer_heights\": [0.3, 0.2, 0.2], \"layer_height\": 0.2, \
-             \"bottom_shell_layers\": 3, \"top_shell_layers\": 4}}",
-            path.display()
-        ))
-    })?;
-    Model::from_heights(file.layer_heights, file.layer_height)
-        .map(|m| m.with_shells(file.bottom_shell_layers, file.top_shell_layers))
-        .map_err(|e| UsageError(format!("invalid model file {}: {e}", path.display())))
-}
-
-/// Writes every layer as it is evaluated: memory stays constant however many layers.
-fn write_layers(
-    layers: impl ExactSizeIterator<Item = Layer>,
-    text: &str,
+/// Everything of the JSON object before its `layers`: the template, model and options.
+fn json_header(
     args: &ExpandArgs,
-    out: &mut dyn Write,
-) -> std::io::Result<()> {
-    // Our own buffer, so that each small write is a static call into it and only full
-    // buffers go through `dyn Write`.
-    let mut out = BufWriter::with_capacity(1 << 16, out);
-    let wrap = args.wrap;
-    match args.format {
-        Format::Csv => {
-            writeln!(out, "index,bottom,top,angle,fill,start,end")?;
-            for l in layers {
-                write!(
-                    out,
-                    "{},{:?},{:?},{:?},{},",
-                    l.index,
-                    l.bottom,
-                    l.top,
-                    wrap.apply(l.angle),
-                    l.fill.name()
-                )?;
-                match l.instruction {
-                    Some(s) => writeln!(out, "{},{}", s.start, s.end)?,
-                    None => writeln!(out, ",")?,
-                }
-            }
-        }
-        Format::Json => {
-            out.write_all(b"{\"layers\":[")?;
-            for l in layers {
-                if l.index > 0 {
-                    out.write_all(b",")?;
-                }
-                // `{:?}` prints the shortest round-trip form with a `.0` or an exponent,
-                // which is valid JSON for every finite number (angles are always finite).
-                write!(
-                    out,
-                    "\n{{\"index\":{},\"bottom\":{:?},\"top\":{:?},\"angle\":{:?},\"fill\":\"{}\",\"instruction\":",
-                    l.index,
-                    l.bottom,
-                    l.top,
-                    wrap.apply(l.angle),
-                    l.fill.name()
-                )?;
-                match l.instruction {
-                    Some(s) => write!(out, "{{\"start\":{},\"end\":{}}}}}", s.start, s.end)?,
-                    None => out.write_all(b"null}")?,
-                }
-            }
-            out.write_all(b"\n]}\n")?;
-        }
-        Format::Table => {
-            let width = layers.len().saturating_sub(1).to_string().len().max(5);
-            writeln!(
-                out,
-                "{:>width$}  {:>10}  {:>10}  {:>12}  {:<11}  instruction",
-                "layer", "bottom", "top", "angle", "fill"
-            )?;
-            for l in layers {
-                write_table_row(&mut out, &l, text, wrap, width)?;
-            }
+    options: Options,
+    input: &Input,
+    parse: &crate::Parse,
+    resolved: &Resolved,
+    start: usize,
+    end: usize,
+) -> String {
+    let model = &resolved.model;
+    let num = |x: f64| -> serde_json::Value {
+        serde_json::from_str(number::height(x).as_str()).unwrap_or(serde_json::Value::Null)
+    };
+    let first = model.layer_bounds(0).map_or(0.0, |(b, t)| t - b);
+    let index = LineIndex::new(&input.text);
+    let diagnostics: Vec<_> = parse
+        .diagnostics
+        .iter()
+        .map(|d| diagnostic_json(&index, d))
+        .collect();
+    let head = serde_json::json!({
+        "template": input.text,
+        "name": input.name,
+        "target": match args.target { TargetArg::Sparse => "sparse", TargetArg::Solid => "solid" },
+        "model": {
+            "source": resolved.source,
+            "layers": model.len(),
+            "layer_height": num(model.layer_height()),
+            "first_layer_height": num(first),
+            "height": num(model.object_height()),
+            "bottom_shell_layers": model.bottom_shells(),
+            "top_shell_layers": model.top_shells(),
+        },
+        "options": {
+            "dialect": match args.dialect { eval::Dialect::Rotlang => "rotlang", eval::Dialect::OrcaSlicer => "orcaslicer" },
+            "base": serde_json::from_str::<serde_json::Value>(number::angle(options.base).as_str()).unwrap_or_default(),
+            "seed": args.seed,
+            "wrap": args.wrap.name(),
+            "range": {"start": start, "end": end},
+        },
+        "diagnostics": diagnostics,
+    });
+    // The object without its closing brace, for `"layers"` to follow.
+    let mut s = head.to_string();
+    s.pop();
+    s
+}
+
+/// Writes layers in each format. Every layer is written as it is evaluated: memory stays
+/// constant however many layers.
+struct Writer<'t> {
+    text: &'t str,
+    wrap: number::Wrap,
+    /// With --target solid every layer is solid infill (the evaluator only knows the
+    /// solid signs of sparse templates).
+    solid_target: bool,
+    start: usize,
+    end: usize,
+}
+
+/// The last instruction looked up and its rendering: consecutive layers mostly share one.
+struct Cached {
+    span: Option<crate::Span>,
+    text: String,
+}
+
+impl Writer<'_> {
+    fn fill(&self, l: &Layer) -> &'static str {
+        if self.solid_target && l.fill == crate::Fill::Sparse {
+            "solid"
+        } else {
+            l.fill.name()
         }
     }
-    out.flush()
+
+    fn instruction(&self, l: &Layer) -> &str {
+        l.instruction
+            .and_then(|s| self.text.get(s.range()))
+            .unwrap_or("")
+    }
+
+    fn layers<I: Iterator<Item = Layer>>(&self, layers: I) -> impl Iterator<Item = Layer> {
+        layers.skip(self.start).take(self.end - self.start)
+    }
+
+    fn csv(&self, layers: impl Iterator<Item = Layer>, out: &mut dyn Write) -> std::io::Result<()> {
+        // Our own buffer, so that each small write is a static call into it and only full
+        // buffers go through `dyn Write`.
+        let mut out = BufWriter::with_capacity(1 << 16, out);
+        out.write_all(b"index,bottom,top,angle,fill,start,end,instruction\n")?;
+        let mut cached = Cached {
+            span: None,
+            text: ",,\n".into(),
+        };
+        // A layer's bottom is the top below it, bitwise: formatted once.
+        let mut below = (f64::NAN, number::height(0.0));
+        for l in self.layers(layers) {
+            out.write_all(number::integer(l.index as u64).as_str().as_bytes())?;
+            out.write_all(b",")?;
+            let bottom = if l.bottom.to_bits() == below.0.to_bits() {
+                below.1
+            } else {
+                number::height(l.bottom)
+            };
+            out.write_all(bottom.as_str().as_bytes())?;
+            out.write_all(b",")?;
+            let top = number::height(l.top);
+            out.write_all(top.as_str().as_bytes())?;
+            below = (l.top, top);
+            out.write_all(b",")?;
+            let angle = number::wrap(l.angle, self.wrap);
+            out.write_all(number::angle(angle).as_str().as_bytes())?;
+            out.write_all(b",")?;
+            out.write_all(self.fill(&l).as_bytes())?;
+            out.write_all(b",")?;
+            if cached.span != l.instruction {
+                cached.span = l.instruction;
+                cached.text = match l.instruction {
+                    Some(s) => format!(
+                        "{},{},{}\n",
+                        s.start,
+                        s.end,
+                        csv_field(self.instruction(&l))
+                    ),
+                    None => ",,\n".into(),
+                };
+            }
+            out.write_all(cached.text.as_bytes())?;
+        }
+        out.flush()
+    }
+
+    fn json(
+        &self,
+        layers: impl Iterator<Item = Layer>,
+        header: &str,
+        out: &mut dyn Write,
+    ) -> std::io::Result<()> {
+        let mut out = BufWriter::with_capacity(1 << 16, out);
+        out.write_all(header.as_bytes())?;
+        out.write_all(b",\"layers\":[")?;
+        let mut cached = Cached {
+            span: None,
+            text: "null}".into(),
+        };
+        for (i, l) in self.layers(layers).enumerate() {
+            if i > 0 {
+                out.write_all(b",")?;
+            }
+            // The number helper prints finite numbers in plain decimal form, which is
+            // valid JSON (angles are always finite). Pieces, not `write!`: this loop runs
+            // once per layer.
+            out.write_all(b"\n{\"index\":")?;
+            out.write_all(number::integer(l.index as u64).as_str().as_bytes())?;
+            out.write_all(b",\"bottom\":")?;
+            out.write_all(number::height(l.bottom).as_str().as_bytes())?;
+            out.write_all(b",\"top\":")?;
+            out.write_all(number::height(l.top).as_str().as_bytes())?;
+            out.write_all(b",\"angle\":")?;
+            let angle = number::wrap(l.angle, self.wrap);
+            out.write_all(number::angle(angle).as_str().as_bytes())?;
+            out.write_all(b",\"fill\":\"")?;
+            out.write_all(self.fill(&l).as_bytes())?;
+            out.write_all(b"\",\"instruction\":")?;
+            if cached.span != l.instruction {
+                cached.span = l.instruction;
+                cached.text = match l.instruction {
+                    Some(s) => format!(
+                        "{{\"start\":{},\"end\":{},\"text\":{}}}}}",
+                        s.start,
+                        s.end,
+                        serde_json::Value::from(self.instruction(&l))
+                    ),
+                    None => "null}".into(),
+                };
+            }
+            out.write_all(cached.text.as_bytes())?;
+        }
+        out.write_all(b"\n]}\n")?;
+        out.flush()
+    }
+
+    fn table(
+        &self,
+        layers: impl Iterator<Item = Layer>,
+        out: &mut dyn Write,
+    ) -> std::io::Result<()> {
+        let mut out = BufWriter::with_capacity(1 << 16, out);
+        // Wide enough for the last index shown: 100,000 layers need six digits.
+        let width = self.end.saturating_sub(1).to_string().len().max(5);
+        writeln!(
+            out,
+            "{:>width$}  {:>10}  {:>10}  {:>14}  {:<11}  instruction",
+            "layer", "bottom", "top", "angle", "fill"
+        )?;
+        for l in self.layers(layers) {
+            let instruction = l
+                .instruction
+                .and_then(|s| self.text.get(s.range()))
+                .unwrap_or("(holds)");
+            writeln!(
+                out,
+                "{:>width$}  {:>10}  {:>10}  {:>14}  {:<11}  {}",
+                l.index,
+                number::height(l.bottom),
+                number::height(l.top),
+                number::angle(number::wrap(l.angle, self.wrap)),
+                self.fill(&l),
+                instruction.trim()
+            )?;
+        }
+        out.flush()
+    }
 }
 
-fn write_table_row(
-    out: &mut impl Write,
-    l: &Layer,
-    text: &str,
-    wrap: Wrap,
-    width: usize,
-) -> std::io::Result<()> {
-    let instruction = l
-        .instruction
-        .and_then(|s| text.get(s.range()))
-        .unwrap_or("(holds)");
-    // Heights to the micrometre (slicers keep no finer), angles to 1e-4° (the corpus's
-    // tolerance): running sums print as 0.600, not 0.6000000000000001.
-    writeln!(
-        out,
-        "{:>width$}  {:>10.3}  {:>10.3}  {:>12.4}  {:<11}  {}",
-        l.index,
-        l.bottom,
-        l.top,
-        wrap.apply(l.angle),
-        l.fill.name(),
-        instruction.trim()
-    )
+/// A CSV field: quoted when it holds a quote, comma or line break (`"` is the inch unit).
+fn csv_field(text: &str) -> std::borrow::Cow<'_, str> {
+    if text.contains(['"', ',', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\"")).into()
+    } else {
+        text.into()
+    }
 }
 
 #[cfg(test)]
@@ -403,10 +554,13 @@ mod tests {
         assert_eq!((code, err.as_str()), (Ok(0), ""));
         let lines: Vec<&str> = out.lines().collect();
         assert_eq!(lines.len(), 101);
-        assert_eq!(lines[0], "index,bottom,top,angle,fill,start,end");
-        assert_eq!(lines[1], "0,0.0,0.2,5.0,sparse,0,1");
-        assert_eq!(lines[2], "1,0.2,0.4,10.0,sparse,3,6");
-        assert_eq!(lines[5].split(',').nth(3), Some("25.0"));
+        assert_eq!(
+            lines[0],
+            "index,bottom,top,angle,fill,start,end,instruction"
+        );
+        assert_eq!(lines[1], "0,0,0.2,5,sparse,0,1,5");
+        assert_eq!(lines[2], "1,0.2,0.4,10,sparse,3,6,10!");
+        assert_eq!(lines[5].split(',').nth(3), Some("25"));
     }
 
     #[test]
@@ -422,7 +576,7 @@ mod tests {
         assert_eq!(layers[0]["fill"], "sparse");
         assert_eq!(
             layers[0]["instruction"],
-            serde_json::json!({"start": 0, "end": 6})
+            serde_json::json!({"start": 0, "end": 6, "text": "+30/3!"})
         );
         assert_eq!(layers[2]["angle"], 30.0);
         // Spent: the angle holds and no instruction governs.
@@ -437,10 +591,10 @@ mod tests {
         assert!(rows[0].contains("layer") && rows[0].contains("instruction"));
         assert!(rows[1].ends_with("sparse       +90"), "{rows:?}");
         assert!(
-            rows[2].contains("90.0000") && rows[2].contains("monotonic"),
+            rows[2].contains(" 90  ") && rows[2].contains("monotonic"),
             "{rows:?}"
         );
-        assert!(rows[3].contains(" 0.0000"), "{rows:?}");
+        assert!(rows[3].contains("  0  "), "{rows:?}");
     }
 
     #[test]
@@ -458,9 +612,7 @@ mod tests {
     #[test]
     fn usage_errors() {
         for argv in [
-            &["0", "--layers", "0"][..],
-            &["0", "--layers", "10", "--layer-height=-1"],
-            &["0", "--height", "nan"],
+            &["0", "--layers", "10", "--layer-height=-1"][..],
             &["0", "--layer-height", "0.1"],
             &["0", "--model", "/nonexistent/model.json"],
         ] {
@@ -468,6 +620,36 @@ mod tests {
             assert!(code.is_err(), "{argv:?}: {code:?}");
         }
         assert!(Cli::try_parse_from(["expand", "0", "--layers", "5", "--height", "3"]).is_err());
+        for bad in [
+            ["--layers", "0"],
+            ["--layers", "-5"],
+            ["--seed", "-1"],
+            ["--base", "nan"],
+            ["--height", "nan"],
+        ] {
+            let Err(e) = Cli::try_parse_from(["expand", "0", bad[0], bad[1]]) else {
+                panic!("{bad:?} is refused");
+            };
+            assert!(e.to_string().contains("must be"), "{e}");
+        }
+        // Huge numbers are refused, by the parser or against the model, without overflow.
+        for range in [usize::MAX.to_string(), format!("0..={}", usize::MAX)] {
+            match Cli::try_parse_from(["expand", "0", "--range", &range]) {
+                Err(_) => {}
+                Ok(cli) => {
+                    let code = run(&cli.args, &mut Vec::new(), &mut Vec::new());
+                    assert!(code.is_err(), "{range}");
+                }
+            }
+        }
+        for range in ["5..5", "x..3", "3..1", "-1..3", ""] {
+            assert!(Cli::try_parse_from(["expand", "0", "--range", range]).is_err());
+        }
+        let (code, _, _) = expand(&["0", "--range", "90..101"]);
+        assert!(
+            code.expect_err("past the top")
+                .contains("layers are 0 to 99")
+        );
         assert!(Cli::try_parse_from(["expand", "0", "--file", "x.rot"]).is_err());
     }
 
@@ -494,7 +676,7 @@ mod tests {
         // B = 1 from the file: one layer turning 10°.
         assert_eq!(
             out.lines().nth(2).and_then(|l| l.split(',').nth(3)),
-            Some("20.0")
+            Some("20")
         );
         let (_, out, _) = expand(&[
             "+10B",
@@ -508,11 +690,11 @@ mod tests {
         // B = 2: 20° over layers of 0.3 and 0.2 mm, by progress in height.
         assert_eq!(
             out.lines().nth(1).and_then(|l| l.split(',').nth(3)),
-            Some("12.0")
+            Some("12")
         );
         assert_eq!(
             out.lines().nth(2).and_then(|l| l.split(',').nth(3)),
-            Some("20.0")
+            Some("20")
         );
         for (name, text, says) in [
             (

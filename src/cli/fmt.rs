@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use super::{ColorArg, TargetArg, UsageError, gather, render_human};
+use super::{ColorArg, TargetArg, UsageError, gather, pieces_note, render_human};
 
 #[derive(clap::Args, Debug)]
 #[command(after_long_help = "\
@@ -15,17 +15,19 @@ Examples:
   rotlang fmt '0 90  +30/50%'            prints `0, 90, +30/50%`
   rotlang fmt --file a.rot --write       rewrites a.rot in place
   rotlang fmt --check --file a.rot       exit 1 if a.rot is not canonical (for CI)
+  rotlang fmt - < a.rot                  `-` is stdin (also `--file -`)
 
 Exit status: 0 when done (or, with --check, already canonical), 1 on a template
 with errors or, with --check, one that would change; 2 on a usage error.")]
 pub struct FmtArgs {
-    /// Templates to format. Put `--` before a template that begins with `-`.
+    /// Templates to format; `-` is stdin. Put `--` before a template that begins with `-`.
     #[arg(value_name = "TEMPLATE", allow_negative_numbers = true)]
     pub templates: Vec<String>,
-    /// Format a template file. Repeatable.
+    /// Format a template file (`-` is stdin). Repeatable.
     #[arg(long = "file", short = 'f', value_name = "PATH")]
     pub files: Vec<PathBuf>,
-    /// Print nothing; exit 1 if any input is not in canonical form.
+    /// Check only: print nothing on stdout, name each input that is not in canonical form
+    /// on stderr, and exit 1 if there is any.
     #[arg(long, conflicts_with = "write")]
     pub check: bool,
     /// Rewrite files in place instead of printing (templates from arguments are printed).
@@ -47,6 +49,9 @@ pub struct FmtArgs {
 pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     let inputs = gather(&args.templates, &args.files)?;
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    if let Some(note) = pieces_note("fmt", &args.templates) {
+        err.write_all(note.as_bytes()).map_err(io)?;
+    }
     let mut code = 0;
     for input in &inputs {
         // Diagnostics and the canonical form each in one streaming pass: no IR is kept.
@@ -107,7 +112,7 @@ pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i
 
 /// Writes through a temporary file beside `path` and renames it over `path`, so an
 /// interrupted write never leaves a half-written template behind.
-fn write_atomically(path: &std::path::Path, text: &str) -> std::io::Result<()> {
+pub(crate) fn write_atomically(path: &std::path::Path, text: &str) -> std::io::Result<()> {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())

@@ -3,17 +3,23 @@
 //! Lives in the library (behind the `cli` feature) so integration tests and the binary
 //! share one implementation; `src/main.rs` only dispatches.
 
+pub mod args;
 pub mod check;
+pub mod completions;
 mod dialect;
 pub mod expand;
+pub mod explain;
 pub mod files;
 pub mod fmt;
+pub mod model;
+pub mod plot;
+pub mod preview;
+mod sources;
 
 use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};
 
 use codespan_reporting::diagnostic as cs;
-use codespan_reporting::files::SimpleFiles;
 use codespan_reporting::term::{self, termcolor};
 
 use crate::Target;
@@ -112,12 +118,27 @@ fn read_bounded(reader: impl Read, name: &str) -> Result<String, UsageError> {
     })
 }
 
-/// Templates from arguments, then files; stdin when there are neither.
+/// Templates from arguments, then files; stdin when there are neither. A template or a
+/// file `-` is stdin (read once).
 pub fn gather(templates: &[String], files: &[PathBuf]) -> Result<Vec<Input>, UsageError> {
-    let mut inputs: Vec<Input> = templates
-        .iter()
-        .enumerate()
-        .map(|(i, t)| Input {
+    let mut stdin_read = false;
+    let mut stdin = || -> Result<Input, UsageError> {
+        if std::mem::replace(&mut stdin_read, true) {
+            return Err(UsageError("`-` (stdin) can be given only once".into()));
+        }
+        Ok(Input {
+            name: "<stdin>".into(),
+            text: read_bounded(std::io::stdin().lock(), "stdin")?,
+            path: None,
+        })
+    };
+    let mut inputs = Vec::new();
+    for (i, t) in templates.iter().enumerate() {
+        if t == "-" {
+            inputs.push(stdin()?);
+            continue;
+        }
+        inputs.push(Input {
             name: if templates.len() == 1 {
                 "<template>".into()
             } else {
@@ -125,9 +146,13 @@ pub fn gather(templates: &[String], files: &[PathBuf]) -> Result<Vec<Input>, Usa
             },
             text: t.clone(),
             path: None,
-        })
-        .collect();
+        });
+    }
     for path in files {
+        if path.as_os_str() == "-" {
+            inputs.push(stdin()?);
+            continue;
+        }
         inputs.push(Input {
             name: path.display().to_string(),
             text: read_file(path)?,
@@ -152,7 +177,7 @@ pub fn gather(templates: &[String], files: &[PathBuf]) -> Result<Vec<Input>, Usa
 
 /// Renders diagnostics of many inputs as one terminal report (codespan-reporting).
 pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String {
-    let mut files = SimpleFiles::new();
+    let mut files = sources::Sources::default();
     let mut buffer = if color {
         termcolor::Buffer::ansi()
     } else {
@@ -162,21 +187,18 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
     for (input, diagnostics) in reports {
         let long = input.text.lines().any(|l| l.len() > LONG_LINE);
         let index = LineIndex::new(&input.text);
-        let id = files.add(
-            input.name.clone(),
-            if long {
-                String::new()
-            } else {
-                visible(&input.text)
-            },
-        );
+        let id = if long {
+            files.add(input.name.clone(), "", (0, 0))
+        } else {
+            files.add(input.name.clone(), &input.text, (0, 0))
+        };
         for d in diagnostics.iter() {
             let (file, d) = if long {
                 // A 1 MB one-line template would be printed whole under every diagnostic:
                 // show a window around the diagnostic instead.
-                let (name, excerpt, d) = excerpt(input, &index, d);
-                let excerpt = visible(&excerpt);
-                (files.add(name, excerpt), d)
+                // Line and column numbers stay the file's (`1:123`, not the excerpt's).
+                let (excerpt, at, d) = excerpt(input, &index, d);
+                (files.add(input.name.clone(), &excerpt, at), d)
             } else {
                 (id, d.clone())
             };
@@ -197,8 +219,13 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
 const LONG_LINE: usize = 400;
 
 /// A window of the input around a diagnostic's primary label (itself cut to a few dozen
-/// bytes), and the diagnostic moved into it.
-fn excerpt(input: &Input, index: &LineIndex<'_>, d: &Diagnostic) -> (String, String, Diagnostic) {
+/// bytes), where it starts (lines and characters before it on its first line), and the
+/// diagnostic moved into it.
+fn excerpt(
+    input: &Input,
+    index: &LineIndex<'_>,
+    d: &Diagnostic,
+) -> (String, (usize, usize), Diagnostic) {
     let text = &input.text;
     let primary = d.primary_span();
     let start = floor_char_boundary(text, primary.start.saturating_sub(60));
@@ -228,19 +255,25 @@ fn excerpt(input: &Input, index: &LineIndex<'_>, d: &Diagnostic) -> (String, Str
         f.span = clip(f.span);
     }
     let (line, col) = index.line_col(start);
-    let name = format!("{} (excerpt from line {line}, column {col})", input.name);
-    (name, text[start..end].to_owned(), moved)
+    (text[start..end].to_owned(), (line - 1, col - 1), moved)
 }
 
 /// The text as shown under a diagnostic: control characters (a NUL, an escape) would be
-/// invisible or would drive the terminal, so each becomes a `?` of the same byte length.
-fn visible(text: &str) -> String {
-    if !text.contains(|c: char| c.is_control() && !matches!(c, '\n' | '\t' | '\r')) {
+/// invisible or would drive the terminal, and zero-width ones invisible, so each becomes
+/// `?`s of the same byte length.
+pub(super) fn visible(text: &str) -> String {
+    // Zero-width characters (a byte-order mark, a zero-width space) would leave the caret
+    // under nothing.
+    let hidden = |c: char| {
+        (c.is_control() && !matches!(c, '\n' | '\t' | '\r'))
+            || matches!(c, '\u{feff}' | '\u{200b}'..='\u{200f}' | '\u{2060}')
+    };
+    if !text.contains(hidden) {
         return text.to_owned();
     }
     text.chars()
         .map(|c| {
-            if c.is_control() && !matches!(c, '\n' | '\t' | '\r') {
+            if hidden(c) {
                 "?".repeat(c.len_utf8())
             } else {
                 c.to_string()
@@ -296,6 +329,33 @@ pub fn diagnostic_json(index: &LineIndex<'_>, d: &Diagnostic) -> serde_json::Val
             "title": f.title, "start": f.span.start, "end": f.span.end, "replacement": f.replacement,
         })),
     })
+}
+
+/// A note when template arguments look like the pieces of one template the shell split at
+/// its spaces (`check 0, 90`, `check +30/50 %`): an argument ending in `,`, a lone unit, or
+/// one that begins with a joint.
+pub fn pieces_note(command: &str, templates: &[String]) -> Option<String> {
+    // An argument with a space or a newline in it was quoted: the user splits on purpose.
+    if templates.len() < 2 || templates.iter().any(|t| t.contains(char::is_whitespace)) {
+        return None;
+    }
+    let piece = |(i, t): (usize, &String)| {
+        (i + 1 < templates.len() && t.ends_with(','))
+            || ["%", "mm", "cm", "m", "'", "\"", "#"].contains(&t.as_str())
+            || (i > 0
+                && t.starts_with(|c: char| crate::Joint::from_symbol(c).is_some() && c != '#'))
+    };
+    if !templates.iter().enumerate().any(piece) {
+        return None;
+    }
+    let joined = templates.join(" ");
+    let quoted = format!("'{}'", joined.replace('\'', r"'\''"));
+    Some(format!(
+        "note: the {} arguments look like the pieces of one template, split by the shell at \
+         its spaces; each is read as a template of its own.\n      \
+         To pass one template, quote it: rotlang {command} {quoted}\n",
+        templates.len()
+    ))
 }
 
 /// Plain one-line-per-diagnostic rendering, for places where a full report would be noise.

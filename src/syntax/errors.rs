@@ -221,7 +221,7 @@ impl Failure<'_> {
             )
             .with_primary(span, "a unit of angle")
             .with_fix(format!("remove `{word}`"), span, "")
-            .with_help("every angle is in degrees already: write `+30`, not `+30deg`");
+            .with_help(self.degrees_help(pos, word.len()));
         }
         if let Some(unit) = is_unit_start(rest).or(rest.starts_with('%').then_some("%"))
             && let Some(before) = ["mm", "cm", "m", "'", "\"", "%", "#"]
@@ -473,7 +473,7 @@ impl Failure<'_> {
             return Diagnostic::error("rotlang::degree-sign", "angles are written without `°`")
                 .with_primary(here, "a degree sign")
                 .with_fix("remove the `°`", here, "")
-                .with_help("every angle is in degrees already: write `+30`, not `+30°`");
+                .with_help(self.degrees_help(pos, c.len_utf8()));
         }
         if c.is_ascii_digit() {
             let len = rest
@@ -555,6 +555,15 @@ impl Failure<'_> {
         )
         .with_primary(here, "not part of the language")
         .with_help("templates are digits and the signs `+ - % : * ! / # | $ ~ ^ ' \"`, letters `D S O M R N n Z z L l U u Q q B T m c`, separated by commas or spaces")
+    }
+
+    /// "write `45`, not `45deg`": this instruction without its unit of angle.
+    fn degrees_help(&self, pos: usize, len: usize) -> String {
+        let without = format!("{}{}", &self.text[..pos], &self.text[pos + len..]);
+        format!(
+            "every angle is in degrees already: write `{without}`, not `{}`",
+            self.text
+        )
     }
 
     /// Whether the instruction parses with `len` bytes at `pos` replaced.

@@ -208,6 +208,21 @@ impl Lowerer<'_> {
             Rule::star => {
                 let times = pair.into_inner().next();
                 match times {
+                    Some(n) if trailing && ins.repeat.is_some() => {
+                        // `+30*3*2`: `*3` already repeats it; moving `*2` would not help.
+                        let first = ins.repeat.map_or(span, |r| r.span);
+                        self.diagnostics.push(
+                            Diagnostic::error(
+                                "rotlang::repeat-after-joint",
+                                "an instruction has one repeat count",
+                            )
+                            .with_primary(span, format!("a second repeat count `{}`", n.as_str()))
+                            .with_secondary(first, "the instruction is already repeated here")
+                            .with_fix("remove the second repeat count", span, "")
+                            .with_help("keep one repeat count, right after the angle: `+30*6` runs the instruction 6 times"),
+                        );
+                        false
+                    }
                     Some(n) if trailing => {
                         let n_text = n.as_str().to_owned();
                         let angle_end = ins.angle.as_ref().map_or(ins.span.start, |a| a.span.end);

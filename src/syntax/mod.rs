@@ -207,11 +207,10 @@ pub(crate) fn parse_each(
             break;
         }
         let Some(start) = start else {
-            // Empty instructions with no chunk after them cannot happen (the splitter
-            // reports an empty one only before a chunk), but would be reported here.
+            // Empty instructions with no chunk after them: at the end (`0, 90,,`, `,`).
             for piece in &batch {
                 if let Piece::Empty(span) = piece {
-                    sink.push(empty_instruction(*span, previous.is_some()));
+                    sink.push(empty_instruction(text, *span, previous.is_some()));
                 }
             }
             continue;
@@ -233,7 +232,7 @@ pub(crate) fn parse_each(
         for piece in &batch {
             let chunk = match piece {
                 Piece::Empty(span) => {
-                    sink.push(empty_instruction(*span, previous.is_some()));
+                    sink.push(empty_instruction(text, *span, previous.is_some()));
                     continue;
                 }
                 Piece::Chunk(chunk) => chunk,
@@ -327,7 +326,15 @@ fn unreachable_error(text: &str) -> pest::error::Error<Rule> {
     )
 }
 
-fn empty_instruction(span: Span, after_instruction: bool) -> Diagnostic {
+/// `after_instruction`: between two instructions the fix leaves one separator; at either
+/// end of the template (`, +10`, `0, 90,,`, `,` alone) it removes the whole run.
+fn empty_instruction(text: &str, span: Span, after_instruction: bool) -> Diagnostic {
+    // At the end, the span stops at the last comma: what follows is nothing or separators.
+    let trailing = text
+        .get(span.end..)
+        .and_then(|rest| rest.chars().next())
+        .is_none_or(split::is_separator);
+    let after_instruction = after_instruction && !trailing;
     Diagnostic::warning(
         "rotlang::empty-instruction",
         "an empty instruction is ignored",

@@ -58,10 +58,17 @@ pub(crate) struct Pieces<'a> {
 
 impl<'a> Pieces<'a> {
     pub fn new(text: &'a str, offset: usize) -> Self {
+        // A byte-order mark some editors write at the start of a file is not part of the
+        // template: skipped like a separator (spans stay offsets into the whole text).
+        let bom = if offset == 0 && text.starts_with('\u{feff}') {
+            '\u{feff}'.len_utf8()
+        } else {
+            0
+        };
         Pieces {
             text,
             offset,
-            i: 0,
+            i: bom,
             first: true,
             pending: None,
         }
@@ -84,13 +91,19 @@ impl<'a> Iterator for Pieces<'a> {
             commas += usize::from(bytes[i] == b',');
             i += 1;
         }
+        // A leading comma (`,` alone too) or two commas in one run (`10,,` too) enclose
+        // an instruction with nothing in it. One trailing comma only ends the last
+        // instruction: common style, which OrcaSlicer drops as well (SEMANTICS 10.2).
+        let empty = if self.first { commas >= 1 } else { commas >= 2 };
         if i == bytes.len() {
             self.i = i;
+            if empty {
+                // Up to the last comma: a file's final newline is not part of it.
+                let end = sep_start + self.text[sep_start..i].rfind(',').map_or(0, |c| c + 1);
+                return Some(Piece::Empty(Span::new(sep_start, end).shift(self.offset)));
+            }
             return None;
         }
-        // A leading comma or two commas in one run enclose an instruction with nothing in
-        // it. A trailing comma is common style and is not flagged.
-        let empty = if self.first { commas >= 1 } else { commas >= 2 };
         let start = i;
         while i < bytes.len() && !is_separator(bytes[i] as char) {
             i += 1;
@@ -133,7 +146,12 @@ mod tests {
         assert_eq!(split(", +10").empties, [Span::new(0, 2)]);
         assert_eq!(split("10, , 20").empties, [Span::new(2, 6)]);
         assert!(split("10, 20,").empties.is_empty());
+        assert_eq!(split("10,,\n").empties, [Span::new(2, 4)]);
+        assert_eq!(split(",").empties, [Span::new(0, 1)]);
+        assert_eq!(split(" ,\n").empties, [Span::new(0, 2)]);
         assert!(split("10 20").empties.is_empty());
+        assert!(split("10 20\n").empties.is_empty());
+        assert_eq!(texts("\u{feff}0, 90"), ["0", "90"]);
     }
 
     #[test]

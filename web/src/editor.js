@@ -105,7 +105,7 @@ export function showDiagnostics(view, diagnostics) {
     return {
       from,
       to,
-      severity: d.severity === 'error' ? 'error' : 'warning',
+      severity: d.severity === 'error' ? 'error' : d.severity === 'info' ? 'info' : 'warning',
       source: d.code,
       message: d.help ? `${d.message}\nhelp: ${d.help}` : d.message,
       actions,

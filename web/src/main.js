@@ -112,7 +112,7 @@ async function analyse() {
   if (id !== seq || text !== view.state.doc.toString()) return; // stale
   analysis = r;
   analysedText = text;
-  showDiagnostics(view, r.check.diagnostics);
+  showDiagnostics(view, [...r.check.diagnostics, ...(r.compat ?? []).map((d) => ({ ...d, severity: 'info' }))]);
   renderProblems(r.check);
   renderCompat(r);
   $('explain').textContent = typeof r.explain === 'string' ? r.explain : '';
@@ -161,14 +161,27 @@ function renderCompat(r) {
   const ul = $('compat-list');
   ul.replaceChildren();
   const add = (html) => { const li = document.createElement('li'); li.innerHTML = html; ul.append(li); };
-  for (const d of r.compat ?? []) add(`<code>${esc(d.code)}</code> ${esc(d.message)}`);
-  for (const f of r.layers?.findings ?? []) add(`<code>${esc(f.code)}</code> ${esc(f.message)} (from layer ${f.firstLayer ?? f.first_layer}, ${f.layers} layer${f.layers === 1 ? '' : 's'})`);
-  if (r.compatError) add(esc(r.compatError));
-  if (!ul.children.length) {
-    add(!r.compatAvailable
-      ? 'OrcaSlicer compatibility findings need a rotlang build with the dialect.'
-      : 'No findings: OrcaSlicer reads this template as rotlang does.');
+  const c = r.compare;
+  if (r.compareError) add(`not compared: ${esc(r.compareError)}`);
+  if (!c) return;
+  if (c.rotlangErrors) {
+    add('rotlang rejects this template; OrcaSlicer reads it anyway. Choose <em>as OrcaSlicer reads it</em> to plot its angles.');
+  } else if (c.firstDifference) {
+    const d = c.firstDifference;
+    add(`OrcaSlicer reads it differently: from layer ${d.layer} (${deg(d.rotlang)} in rotlang, ${deg(d.orcaslicer)} in OrcaSlicer); ${c.differingLayers} of ${c.layers} layers differ.`);
   }
+  if (c.solidLayersLost > 0) {
+    add(`OrcaSlicer has no solid signs: ${c.solidLayersLost} solid layer${c.solidLayersLost === 1 ? '' : 's'} would be sparse there.`);
+  }
+  const coded = new Set();
+  for (const d of r.compat ?? []) {
+    coded.add(d.code);
+    add(`<code>${esc(d.code)}</code> ${esc(d.message)}${d.fix ? ` <small>(fix: ${esc(d.fix.title)})</small>` : ''}`);
+  }
+  for (const f of c.findings) {
+    if (!coded.has(f.code)) add(`<code>${esc(f.code)}</code> ${esc(f.message)}`);
+  }
+  if (!ul.children.length) add('OrcaSlicer reads this template as rotlang does on this model.');
 }
 
 // ---- plot, slider, preview -----------------------------------------------------------
@@ -255,7 +268,7 @@ function hover(pos) {
   const dom = document.createElement('div');
   dom.className = 'tip';
   let html = `<code>${esc(ins.text)}</code>`;
-  const words = analysis.words?.[k];
+  const words = l?.words?.[k];
   if (words) html += ` ${esc(words)}`;
   if (l) {
     const g = l.ranges[k];
@@ -313,28 +326,41 @@ window.addEventListener('hashchange', () => {
   if (s) applyState(s);
 });
 
-async function loadProfile(name, text) {
+async function loadProfile(file) {
   try {
-    const p = await engine.request('profile', { name, text });
+    const bytes = await file.arrayBuffer();
+    const p = await engine.request('profile', { name: file.name, bytes });
     const holder = $('profile-templates');
     holder.replaceChildren();
     const m = p.model;
     applyState({
-      layerHeight: m.layerHeight, firstLayerHeight: m.firstLayerHeight,
+      layers: m.layers, layerHeight: m.layerHeight, firstLayerHeight: m.firstLayerHeight ?? '',
       bottomShells: m.bottomShells, topShells: m.topShells, base: p.base,
       pattern: ['grid', 'triangles'].includes(p.pattern) ? p.pattern : undefined,
       density: Number.isFinite(p.density) ? p.density : undefined,
       target: p.templates[0].target, text: p.templates[0].text,
     });
     const label = document.createElement('p');
-    label.textContent = `Profile ${p.name}: ${p.templates.length} template${p.templates.length === 1 ? '' : 's'}`;
+    const title = p.presetName ?? p.name;
+    label.textContent = `Profile ${title}: ${p.templates.length} template${p.templates.length === 1 ? '' : 's'}`;
     holder.append(label);
     for (const t of p.templates) {
       const b = document.createElement('button');
       b.type = 'button';
-      b.textContent = `${t.key}: ${t.text.length > 40 ? `${t.text.slice(0, 40)}…` : t.text || '(empty)'}`;
+      const key = t.key ?? 'template';
+      b.textContent = `${key}${t.object ? ` (${t.object})` : ''}: ${t.text.length > 40 ? `${t.text.slice(0, 40)}…` : t.text || '(empty)'}`;
       b.addEventListener('click', () => applyState({ target: t.target, text: t.text }));
       holder.append(b, ' ');
+    }
+    const notes = p.notes.filter((n) => n.error || /not set/.test(n.message) === false);
+    if (notes.length) {
+      const ul = document.createElement('ul');
+      for (const n of notes.slice(0, 5)) {
+        const li = document.createElement('li');
+        li.textContent = n.message;
+        ul.append(li);
+      }
+      holder.append(ul);
     }
   } catch (e) {
     status(`refused: ${e.message}`, true);
@@ -342,7 +368,7 @@ async function loadProfile(name, text) {
 }
 $('profile').addEventListener('change', async (e) => {
   const file = e.target.files?.[0];
-  if (file) await loadProfile(file.name, await file.text());
+  if (file) await loadProfile(file);
   e.target.value = '';
 });
 document.addEventListener('dragover', (e) => { e.preventDefault(); document.body.classList.add('dragging'); });
@@ -351,7 +377,7 @@ document.addEventListener('drop', async (e) => {
   e.preventDefault();
   document.body.classList.remove('dragging');
   const file = e.dataTransfer?.files?.[0];
-  if (file) await loadProfile(file.name, await file.text());
+  if (file) await loadProfile(file);
 });
 
 for (const id of ['target', 'dialect', 'layers', 'layer-height', 'first-layer', 'bottom-shells', 'top-shells', 'base', 'seed']) {

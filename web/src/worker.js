@@ -2,11 +2,11 @@
 // never freezes the page. The main thread sends {id, op, args}; the answer is
 // {id, ok, result} or {id, ok: false, error: {kind, message, diagnostics}}.
 import { MAX_LAYERS, MAX_TEMPLATE } from './limits.js';
-import { readProfile } from './profile.js';
+import { profileExtras, MAX_PROFILE } from './profile.js';
 
 // Loaded lazily so that onmessage is set before the wasm is ready (messages sent
 // meanwhile wait for it instead of being lost).
-const rotlang = import('rotlang');
+const rotlang = import('rotlang/full');
 
 function refuse(kind, message) {
   return Object.assign(new Error(message), { kind });
@@ -49,13 +49,16 @@ const ops = {
         out.modelError = err.message;
       }
     }
-    out.compatAvailable = typeof r.compat === 'function';
-    if (out.compatAvailable && !check.hasErrors) {
+    if (!out.refused) {
       try {
-        out.compat = r.compat(state.text, options(state));
+        out.compat = r.compat(state.text, { ...options(state), dialect: undefined });
       } catch (err) {
         out.compat = [];
-        out.compatError = err.message;
+      }
+      try {
+        out.compare = r.compare(state.text, { ...options(state), dialect: undefined });
+      } catch (err) {
+        out.compareError = err.message;
       }
     }
     if (typeof r.explain === 'function' && !check.hasErrors) {
@@ -84,8 +87,22 @@ const ops = {
     if (typeof r.preview !== 'function') return null;
     return r.preview(args.text, args.options);
   },
-  async profile({ name, text }) {
-    return readProfile(name, text);
+  // rotlang's own profile reader (JSON, jsonc, .ini, .rot); a file of another name is read
+  // as JSON, and refused when it holds no template.
+  async profile({ name, bytes }) {
+    const r = await rotlang;
+    if (bytes.byteLength > MAX_PROFILE) {
+      throw refuse('limit', `${name} is ${(bytes.byteLength / 1048576).toFixed(1)} MB; profiles above ${MAX_PROFILE / 1048576} MB are refused`);
+    }
+    const known = /\.(json|jsonc|ini|rot)$/i.test(name);
+    const p = r.readProfile(known ? name : `${name}.json`, new Uint8Array(bytes));
+    if (p.templates.length === 0) {
+      const error = p.notes.find((n) => n.error);
+      throw refuse('profile', error
+        ? `${name} is not a profile rotlang can read: ${error.message}`
+        : `${name} has no sparse_infill_rotate_template or solid_infill_rotate_template`);
+    }
+    return { ...p, ...profileExtras(p.kind, bytes), name };
   },
   async signs() {
     return (await rotlang).signs();

@@ -9,6 +9,17 @@ import { chromium } from 'playwright-core';
 
 const here = dirname(fileURLToPath(import.meta.url));
 export const dist = resolve(here, '../dist');
+/** The npm package, served unbundled under /pkg/ to check it works with no bundler. */
+const pkg = resolve(here, '../../bindings/js');
+const PKG_PAGE = `<!doctype html><meta charset="utf-8"><title>rotlang, no bundler</title>
+<script type="module">
+  import { check, expand, format } from './rotlang.js';
+  window.result = {
+    message: check('+30X5').diagnostics[0].message,
+    formatted: format('0 90'),
+    angles: [...expand('0, 90', { model: { layers: 4 } }).angles],
+  };
+</script>`;
 /** Screenshots go to target/playground/ (test artifacts, not committed). */
 export const artifacts = resolve(process.env.ROTLANG_ARTIFACTS ?? resolve(here, '../../target/playground'));
 
@@ -20,8 +31,16 @@ const TYPES = {
 export function serve() {
   const server = createServer((req, res) => {
     const path = decodeURIComponent(new URL(req.url, 'http://x').pathname);
-    let file = normalize(join(dist, path));
-    if (!file.startsWith(dist)) { res.writeHead(403).end(); return; }
+    if (path === '/pkg/') {
+      res.writeHead(200, { 'content-type': TYPES['.html'] }).end(PKG_PAGE);
+      return;
+    }
+    const root = path.startsWith('/pkg/') ? pkg : dist;
+    let file = normalize(join(root, path.replace(/^\/pkg\//, '/')));
+    if (!file.startsWith(root) || (root === pkg && !/\/(rotlang|lib)\.(js|wasm)$/.test(file))) {
+      res.writeHead(403).end();
+      return;
+    }
     try {
       if (statSync(file).isDirectory()) file = join(file, 'index.html');
       const body = readFileSync(file);

@@ -49,7 +49,10 @@ async function settled(page, text) {
     const p = window.rotlangPlayground;
     return p.view.state.doc.toString() === t && p.analysedText() === t
       && document.querySelector('#status').textContent !== 'checking…';
-  }, text);
+  }, text, { timeout: 10_000 }).catch(async (e) => {
+    const doc = await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString());
+    throw new Error(`waiting for the analysis of ${JSON.stringify(text)}; the editor holds ${JSON.stringify(doc)}: ${e.message}`);
+  });
   await page.waitForTimeout(50);
 }
 
@@ -170,8 +173,10 @@ test('hover shows the instruction and its layer range; the plot highlights the g
   const tip = page.locator('.cm-tooltip-hover .tip');
   await tip.waitFor();
   const text = await tip.textContent();
-  assert.match(text, /\+30\/50%/);
+  assert.match(text, /\+30\/50% turns \+30° linearly/);
   assert.match(text, /governs \d+ of 100 layers: layers \d+–\d+/);
+  // The template in words, below the editor.
+  assert.match(await page.textContent('#explain'), /Governs \d+ of the 100 layers/);
   // Over the plot: the instruction of the layer under the mouse gets the highlight.
   const plot = await page.locator('#plot svg').boundingBox();
   await page.mouse.move(plot.x + plot.width * 0.02, plot.y + plot.height / 2);
@@ -235,6 +240,7 @@ test('a dropped profile fills the editor and the model; a non-JSON one is refuse
   assert.equal(await page.inputValue('#bottom-shells'), '5');
   assert.equal(await page.inputValue('#top-shells'), '6');
   assert.equal(await page.inputValue('#pattern'), 'grid');
+  assert.equal(await page.inputValue('#layers'), '125', 'a 20 mm object in 0.16 mm layers after 0.24');
   assert.match(await page.textContent('#profile-templates'), /Profile My PLA 0\.16: 2 templates/);
   // The solid template is one click away.
   await page.click('#profile-templates button:has-text("solid_infill_rotate_template")');
@@ -242,7 +248,7 @@ test('a dropped profile fills the editor and the model; a non-JSON one is refuse
   assert.equal(await page.inputValue('#target'), 'solid');
   await shot(page, 'profile');
   await drop(page, 'notes.txt', 'this is not JSON {');
-  await page.waitForFunction(() => /refused: notes\.txt is not a JSON profile/.test(document.querySelector('#status').textContent));
+  await page.waitForFunction(() => /refused: notes\.txt is not a profile rotlang can read: invalid JSON/.test(document.querySelector('#status').textContent));
   assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString()), '0, 90', 'the editor is kept');
   await page.close();
 });
@@ -269,6 +275,90 @@ test('hostile input: a 1 MB paste is refused, a million layers plot, ten million
   await page.fill('#layers', '-3');
   await page.waitForFunction(() => /^model: /.test(document.querySelector('#status').textContent));
   assert.deepEqual(page.errors, []);
+  await page.close();
+});
+
+test('OrcaSlicer compat findings, and the OrcaSlicer reading in the plot', async () => {
+  const page = await open();
+  await type(page, '+30/50%');
+  assert.match(await page.textContent('#compat-list'), /reads this template as rotlang does/);
+  await type(page, '10!, 5*');
+  await page.waitForFunction(() => /orcaslicer::hangs/.test(document.querySelector('#compat-list').textContent));
+  await type(page, '0 90');
+  assert.match(await page.textContent('#compat-list'), /from layer 1 \(90° in rotlang, 0° in OrcaSlicer\)/);
+  // The compat lint's findings: listed, and marked in the editor (as information).
+  assert.match(await page.textContent('#compat-list'), /orcaslicer::[a-z-]+/);
+  assert.ok(await page.locator('.cm-lintRange-info').count() > 0, 'an info squiggle');
+  // Read as OrcaSlicer does: `0 90` is 0 on every layer.
+  await page.selectOption('#dialect', 'orcaslicer');
+  await page.waitForFunction(() => window.rotlangPlayground.analysis()?.layers?.dialect === 'orcaslicer');
+  const angles = await page.locator('#plot svg circle').evaluateAll((cs) => cs.map((c) => Number(c.dataset.angle)));
+  assert.equal(angles.length, 100);
+  assert.ok(angles.every((a) => a === 0));
+  await shot(page, 'compat');
+  await page.close();
+});
+
+test('completion offers the signs with their meaning; Format gives the canonical form', async () => {
+  const page = await open();
+  await type(page, '+30');
+  await page.keyboard.press('End');
+  await page.keyboard.press('Control+Space');
+  const options = page.locator('.cm-tooltip-autocomplete li');
+  await options.first().waitFor();
+  const labels = await options.allTextContents();
+  assert.ok(labels.some((l) => l.startsWith('/')), labels.join(' | '));
+  assert.ok(labels.some((l) => l.startsWith('%')), labels.join(' | '));
+  // Pick `/` by keyboard: it is inserted after the angle.
+  const index = labels.findIndex((l) => l.startsWith('/'));
+  // CodeMirror ignores keys within 75 ms of the list opening (interactionDelay).
+  await page.waitForTimeout(200);
+  for (let i = 0; i < index; i++) await page.keyboard.press('ArrowDown');
+  assert.match(await page.locator('.cm-tooltip-autocomplete li[aria-selected]').textContent(), /^\//);
+  await page.keyboard.press('Enter');
+  await page.keyboard.type('50%');
+  await settled(page, '+30/50%');
+  await type(page, '0 90,+45');
+  await page.click('#format');
+  await settled(page, '0, 90, +45');
+  // Shift+Alt+F from the editor too.
+  await type(page, '0,90');
+  await page.keyboard.press('Shift+Alt+KeyF');
+  await settled(page, '0, 90');
+  await page.close();
+});
+
+test('the examples menu loads a documentation example', async () => {
+  const page = await open();
+  await page.selectOption('#examples', '+15#10');
+  await settled(page, '+15#10');
+  const angles = await page.evaluate(() => [...window.rotlangPlayground.analysis().layers.angles.slice(0, 21)]);
+  assert.deepEqual(angles, [...Array(10).fill(15), ...Array(10).fill(30), 45]);
+  await page.close();
+});
+
+test('keyboard only: Tab leaves the editor and reaches every control', async () => {
+  const page = await open();
+  await page.click('.cm-content');
+  const seen = [];
+  for (let i = 0; i < 30; i++) {
+    await page.keyboard.press('Tab');
+    seen.push(await page.evaluate(() => document.activeElement.id || document.activeElement.className));
+  }
+  for (const id of ['target', 'dialect', 'layers', 'layer-height', 'profile', 'plot', 'layer-slider', 'pattern', 'density', 'shape']) {
+    assert.ok(seen.includes(id), `${id} not reached by Tab: ${seen.join(', ')}`);
+  }
+  await page.close();
+});
+
+test('the npm package works in the browser with no bundler', async () => {
+  const page = await browser.context.newPage();
+  await page.goto(`${base}pkg/`);
+  await page.waitForFunction(() => window.result);
+  const r = await page.evaluate(() => window.result);
+  assert.equal(r.message, 'unknown sign `X`');
+  assert.equal(r.formatted, '0, 90');
+  assert.deepEqual(r.angles, [0, 90, 0, 90]);
   await page.close();
 });
 

@@ -7,7 +7,7 @@
 use divan::counter::ItemsCount;
 use divan::{Bencher, black_box};
 use rotlang_wasm::api::{self, Layers};
-use rotlang_wasm::options::Request;
+use rotlang_wasm::options::{Request, slot};
 
 fn main() {
     divan::main();
@@ -17,10 +17,10 @@ const TEMPLATE: &str = "5, 10!, +20, +10L25%, -10l25%";
 const LAYERS: usize = 100_000;
 
 fn request() -> Request {
-    Request::parse(&format!(
-        r#"{{"model": {{"layers": {LAYERS}, "layerHeight": 0.2, "firstLayerHeight": 0.3}}}}"#
-    ))
-    .expect("request")
+    Request::default()
+        .with(slot::LAYERS, LAYERS as f64)
+        .with(slot::LAYER_HEIGHT, 0.2)
+        .with(slot::FIRST_LAYER_HEIGHT, 0.3)
 }
 
 /// What one JS `expand` call does inside the wasm, natively.

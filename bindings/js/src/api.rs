@@ -1,9 +1,14 @@
 //! The operations behind the exports, in plain Rust (unit-testable natively): text and a
 //! request in, JSON (and for `expand`, typed arrays) out.
 
+use std::collections::HashMap;
+
+use crate::json::Value;
+use crate::obj;
+use rotlang::dialect::{Dialect, orcaslicer};
 use rotlang::eval::{self, Model};
-use rotlang::{Fill, Parse, Target};
-use serde_json::{Value, json};
+use rotlang::explain;
+use rotlang::{Fill, Parse, Span, Target};
 
 use crate::Failure;
 use crate::diagnostics;
@@ -24,13 +29,13 @@ pub struct Layers {
 }
 
 pub fn version() -> Value {
-    json!({ "version": env!("CARGO_PKG_VERSION") })
+    obj!({ "version": env!("CARGO_PKG_VERSION") })
 }
 
 pub fn check(text: &str, req: &Request) -> Result<Value, Failure> {
     let target = req.target()?;
     let parse = rotlang::parse(text, target);
-    Ok(json!({
+    Ok(obj!({
         "diagnostics": diagnostics::to_json(text, &parse.diagnostics),
         "hasErrors": parse.has_errors(),
         "omitted": parse.omitted,
@@ -43,7 +48,7 @@ pub fn check(text: &str, req: &Request) -> Result<Value, Failure> {
 pub fn format(text: &str, req: &Request) -> Result<Value, Failure> {
     let target = req.target()?;
     let parse = parse_clean(text, target)?;
-    Ok(json!({ "text": rotlang::format::canonical(text, &parse.template) }))
+    Ok(obj!({ "text": rotlang::format::canonical(text, &parse.template) }))
 }
 
 pub fn expand(
@@ -53,11 +58,10 @@ pub fn expand(
     out: &mut Layers,
 ) -> Result<Value, Failure> {
     let target = req.target()?;
+    let dialect = req.dialect()?;
     let options = req.eval_options()?;
     let model = req.model(heights)?;
     let (from, to) = range(req, &model)?;
-    let parse = parse_clean(text, target)?;
-    let spans = instruction_spans(text, &parse);
     out.angles.clear();
     out.fills.clear();
     out.instructions.clear();
@@ -65,50 +69,257 @@ pub fn expand(
     out.angles.reserve_exact(n);
     out.fills.reserve_exact(n);
     out.instructions.reserve_exact(n);
-    let starts: Vec<usize> = parse
-        .template
-        .instructions
-        .iter()
-        .map(|i| i.span.start)
-        .collect();
+    let mut words = Vec::new();
+    let (spans, findings) = match dialect {
+        Dialect::Rotlang => {
+            let parse = parse_clean(text, target)?;
+            let spans: Vec<Span> = parse.template.instructions.iter().map(|i| i.span).collect();
+            // Each instruction in words (the LSP hover's and `rotlang explain`'s text).
+            words = parse
+                .template
+                .instructions
+                .iter()
+                .map(|i| explain::instruction(i, &model))
+                .collect();
+            let stream = eval::layers(&parse.template, &model, options);
+            fill_layers(stream, from, to == model.len(), n, &spans, out);
+            (spans, Vec::new())
+        }
+        Dialect::OrcaSlicer => {
+            // OrcaSlicer's reader takes any text; its instructions are the spans its layers
+            // name. Indices are given in order of first appearance, then renumbered in
+            // order of the text.
+            let mut stream = orcaslicer::layers(text, &model, options);
+            let mut seen: HashMap<Span, i32> = HashMap::new();
+            let mut order: Vec<Span> = Vec::new();
+            let mut index_of = |span: Span| {
+                *seen.entry(span).or_insert_with(|| {
+                    order.push(span);
+                    i32::try_from(order.len() - 1).unwrap_or(-1)
+                })
+            };
+            if from > 0 {
+                stream.nth(from - 1);
+            }
+            for layer in stream.by_ref().take(n) {
+                out.angles.push(layer.angle);
+                out.fills.push(fill_code(layer.fill));
+                out.instructions
+                    .push(layer.instruction.map_or(-1, &mut index_of));
+            }
+            let mut spans = order.clone();
+            spans.sort_unstable();
+            let renumber: Vec<i32> = order
+                .iter()
+                .map(|s| {
+                    spans
+                        .binary_search(s)
+                        .map_or(-1, |i| i32::try_from(i).unwrap_or(-1))
+                })
+                .collect();
+            for i in &mut out.instructions {
+                if let Some(&r) = usize::try_from(*i).ok().and_then(|k| renumber.get(k)) {
+                    *i = r;
+                }
+            }
+            (spans, stream.findings().to_vec())
+        }
+    };
+    Ok(obj!({
+        "layers": model.len(),
+        "from": from,
+        "to": to,
+        "dialect": dialect.name(),
+        "instructions": span_list(text, &spans),
+        "words": words,
+        "findings": findings_json(&findings),
+        "model": model_json(&model),
+    }))
+}
+
+/// Writes layers `from`..`from + n` of `stream` into `out`, each with the index of its
+/// instruction in `spans` (sorted by start).
+fn fill_layers<I: Iterator<Item = eval::Layer>>(
+    mut stream: I,
+    from: usize,
+    to_top: bool,
+    n: usize,
+    spans: &[Span],
+    out: &mut Layers,
+) {
     // Runs of layers share an instruction: the last lookup is remembered.
-    let mut last: Option<(usize, i32)> = None;
+    let mut last: Option<(Span, i32)> = None;
     let mut push = |layer: eval::Layer| {
         out.angles.push(layer.angle);
         out.fills.push(fill_code(layer.fill));
         out.instructions.push(match layer.instruction {
             Some(span) => match last {
-                Some((start, index)) if start == span.start => index,
+                Some((s, index)) if s == span => index,
                 _ => {
-                    let index = starts
-                        .binary_search(&span.start)
+                    let index = spans
+                        .binary_search_by_key(&span.start, |s| s.start)
                         .map_or(-1, |i| i32::try_from(i).unwrap_or(-1));
-                    last = Some((span.start, index));
+                    last = Some((span, index));
                     index
                 }
             },
             None => -1,
         });
     };
-    // The stream (no checkpoints kept, unlike `Evaluator`), moved on to `from`. Up to the
-    // top it is folded internally (`for_each`), the evaluator's fast path; `take` would
-    // step it one `next` at a time.
-    let mut stream = eval::layers(&parse.template, &model, options);
     if from > 0 {
         stream.nth(from - 1);
     }
-    if to == model.len() {
+    // Up to the top the stream is folded internally (`for_each`), the evaluator's fast
+    // path; `take` would step it one `next` at a time.
+    if to_top {
         stream.for_each(&mut push);
     } else {
         stream.take(n).for_each(&mut push);
     }
-    Ok(json!({
-        "layers": model.len(),
-        "from": from,
-        "to": to,
-        "instructions": spans,
-        "model": model_json(&model),
+}
+
+/// The template in plain words on the model: each instruction with the layers it governs
+/// (what `rotlang explain TEMPLATE` prints).
+pub fn explain(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
+    let target = req.target()?;
+    let model = req.model(heights)?;
+    Ok(obj!({ "text": explain::template(text, target, &model) }))
+}
+
+/// A diagnostic code explained (`rotlang explain CODE`), or null for an unknown code.
+pub fn explain_code(code: &str) -> Value {
+    match explain::code(code.trim()) {
+        Some(d) => obj!({
+            "code": d.code,
+            "severity": d.severity,
+            "summary": d.summary,
+            "explanation": d.explanation,
+            "example": d.example,
+            "fix": d.fix,
+        }),
+        None => Value::Null,
+    }
+}
+
+/// The OrcaSlicer compat lint (`orcaslicer::…` codes): where OrcaSlicer reads the
+/// template differently, by rule and on the model; fixes where one keeps both readings.
+pub fn compat(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
+    let target = req.target()?;
+    let options = req.eval_options()?;
+    let model = req.model(heights)?;
+    let found = rotlang::dialect::compat(text, target, &model, options);
+    Ok(obj!({ "diagnostics": diagnostics::to_json(text, &found) }))
+}
+
+#[cfg(feature = "full")]
+/// The templates and model of a profile file (`name` picks the kind by its extension:
+/// `.json`/`.jsonc` presets, `.ini` exports, `.rot` templates), read by `rotlang::profile`.
+pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
+    let p = rotlang::profile::parse(std::path::Path::new(name), bytes).map_err(|e| Failure {
+        kind: "profile",
+        message: e.message,
+        diagnostics: None,
+    })?;
+    let target = p.templates.first().map_or(Target::Sparse, |t| t.target);
+    let pm = p.model(target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
+    let m = &pm.model;
+    let first = m
+        .layer_bounds(0)
+        .map(|(bottom, top)| rotlang::number::round_height(top - bottom));
+    let templates: Vec<Value> = p
+        .templates
+        .iter()
+        .map(|t| {
+            obj!({
+                "key": t.key,
+                "object": t.object,
+                "target": match t.target {
+                    Target::Sparse => "sparse",
+                    Target::Solid => "solid",
+                },
+                "text": t.text,
+            })
+        })
+        .collect();
+    let notes: Vec<Value> = p
+        .notes
+        .iter()
+        .map(|n| obj!({ "message": n.message, "error": n.error }))
+        .chain(
+            pm.notes
+                .iter()
+                .map(|n| obj!({ "message": n, "error": false })),
+        )
+        .collect();
+    Ok(obj!({
+        "kind": p.kind.map(|k| k.name()),
+        "templates": templates,
+        "model": obj!({
+            "layers": m.len(),
+            "layerHeight": m.layer_height(),
+            "firstLayerHeight": first,
+            "bottomShells": m.bottom_shells(),
+            "topShells": m.top_shells(),
+        }),
+        "base": pm.options.base,
+        "notes": notes,
+        "hasErrors": p.has_errors(),
     }))
+}
+
+/// How OrcaSlicer's reading differs from rotlang's on this model: the first layer whose
+/// direction differs, the solid layers it would lose, and its findings (hang, crash, NaN).
+pub fn compare(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
+    let target = req.target()?;
+    let options = req.eval_options()?;
+    let model = req.model(heights)?;
+    let parse = rotlang::parse(text, target);
+    let mut orca = orcaslicer::layers(text, &model, options);
+    let mut first_difference = Value::Null;
+    let mut differing = 0usize;
+    let mut solid_lost = 0usize;
+    if !parse.has_errors() {
+        for (ours, theirs) in eval::layers(&parse.template, &model, options).zip(orca.by_ref()) {
+            let diff = (ours.angle - theirs.angle).rem_euclid(360.0);
+            if diff > 1e-4 && diff < 360.0 - 1e-4 {
+                if differing == 0 {
+                    first_difference = obj!({
+                        "layer": ours.index,
+                        "rotlang": ours.angle,
+                        "orcaslicer": theirs.angle,
+                    });
+                }
+                differing += 1;
+            }
+            if ours.fill != theirs.fill {
+                solid_lost += 1;
+            }
+        }
+    } else {
+        orca.by_ref().for_each(drop);
+    }
+    Ok(obj!({
+        "rotlangErrors": parse.has_errors(),
+        "firstDifference": first_difference,
+        "differingLayers": differing,
+        "solidLayersLost": solid_lost,
+        "layers": model.len(),
+        "findings": findings_json(orca.findings()),
+    }))
+}
+
+fn findings_json(findings: &[rotlang::dialect::Finding]) -> Value {
+    findings
+        .iter()
+        .map(|f| {
+            obj!({
+                "code": f.code,
+                "message": f.message,
+                "firstLayer": f.first_layer,
+                "layers": f.layers,
+            })
+        })
+        .collect()
 }
 
 /// The template's parse, or the failure that carries its errors.
@@ -134,8 +345,9 @@ fn parse_clean(text: &str, target: Target) -> Result<Parse, Failure> {
 
 fn range(req: &Request, model: &Model) -> Result<(usize, usize), Failure> {
     let len = model.len();
-    let from = req.from.unwrap_or(0);
-    let to = req.to.unwrap_or(len).min(len);
+    let (from, to) = req.range()?;
+    let from = from.unwrap_or(0);
+    let to = to.unwrap_or(len).min(len);
     if from > to {
         return Err(Failure::options(format!(
             "the range {from}..{to} is empty or reversed (the model has {len} layers)"
@@ -152,28 +364,28 @@ fn range(req: &Request, model: &Model) -> Result<(usize, usize), Failure> {
 
 /// Each instruction's span, in bytes and UTF-16 units, and its text.
 fn instruction_spans(text: &str, parse: &Parse) -> Value {
-    let ins = &parse.template.instructions;
-    let map = Utf16Map::new(
-        text,
-        ins.iter()
-            .flat_map(|i| [i.span.start, i.span.end])
-            .collect(),
-    );
-    ins.iter()
-        .map(|i| {
-            json!({
-                "start": i.span.start,
-                "end": i.span.end,
-                "startUtf16": map.get(i.span.start),
-                "endUtf16": map.get(i.span.end),
-                "text": &text[i.span.range()],
+    let spans: Vec<Span> = parse.template.instructions.iter().map(|i| i.span).collect();
+    span_list(text, &spans)
+}
+
+fn span_list(text: &str, spans: &[Span]) -> Value {
+    let map = Utf16Map::new(text, spans.iter().flat_map(|s| [s.start, s.end]).collect());
+    spans
+        .iter()
+        .map(|s| {
+            obj!({
+                "start": s.start,
+                "end": s.end,
+                "startUtf16": map.get(s.start),
+                "endUtf16": map.get(s.end),
+                "text": text.get(s.range()).unwrap_or(""),
             })
         })
         .collect()
 }
 
 fn model_json(model: &Model) -> Value {
-    json!({
+    obj!({
         "layers": model.len(),
         "layerHeight": model.layer_height(),
         "height": rotlang::number::round_height(model.object_height()),
@@ -200,17 +412,17 @@ pub fn signs() -> Value {
     let mut out = Vec::new();
     for c in "/NnZz$LlUuQq~^|#".chars() {
         if let Some(j) = Joint::from_symbol(c) {
-            out.push(json!({ "sign": c.to_string(), "kind": "joint", "meaning": format!("turn {}", j.meaning()) }));
+            out.push(obj!({ "sign": c.to_string(), "kind": "joint", "meaning": format!("turn {}", j.meaning()) }));
         }
     }
     for c in "DSOMR".chars() {
         if let Some(s) = Solid::from_symbol(c) {
-            out.push(json!({ "sign": c.to_string(), "kind": "solid", "meaning": format!("the layers are {}", s.meaning()) }));
+            out.push(obj!({ "sign": c.to_string(), "kind": "solid", "meaning": format!("the layers are {}", s.meaning()) }));
         }
     }
     for u in ["mm", "cm", "m", "'", "\"", "#", "%"] {
         if let Some(unit) = Unit::from_symbol(u) {
-            out.push(json!({ "sign": u, "kind": "unit", "meaning": unit.meaning() }));
+            out.push(obj!({ "sign": u, "kind": "unit", "meaning": unit.meaning() }));
         }
     }
     for (sign, meaning) in [
@@ -223,7 +435,7 @@ pub fn signs() -> Value {
             "flip: run the shape from the end angle back to the start",
         ),
     ] {
-        out.push(json!({ "sign": sign, "kind": "mark", "meaning": meaning }));
+        out.push(obj!({ "sign": sign, "kind": "mark", "meaning": meaning }));
     }
     Value::Array(out)
 }

@@ -1,8 +1,9 @@
 //! Diagnostics as JSON for JavaScript: byte offsets (as the core has them) and UTF-16
 //! offsets (JavaScript string indices, what CodeMirror and Monaco take), line and column.
 
+use crate::json::Value;
+use crate::obj;
 use rotlang::{Diagnostic, LineIndex, Span};
-use serde_json::{Value, json};
 
 use crate::utf16::Utf16Map;
 
@@ -22,19 +23,14 @@ pub fn to_json(text: &str, diagnostics: &[Diagnostic]) -> Value {
     let map = Utf16Map::new(text, offsets);
     let lines = LineIndex::new(text);
     let span = |s: Span| {
-        json!({
+        obj!({
             "start": s.start,
             "end": s.end,
             "startUtf16": map.get(s.start),
             "endUtf16": map.get(s.end),
         })
     };
-    let with = |mut base: Value, extra: Value| {
-        if let (Value::Object(b), Value::Object(e)) = (&mut base, extra) {
-            b.extend(e);
-        }
-        base
-    };
+    let with = Value::merged;
     diagnostics
         .iter()
         .map(|d| {
@@ -42,18 +38,18 @@ pub fn to_json(text: &str, diagnostics: &[Diagnostic]) -> Value {
             let (line, column) = lines.line_col(primary.start);
             with(
                 span(primary),
-                json!({
+                obj!({
                     "code": d.code,
                     "severity": d.severity.as_str(),
                     "message": d.message,
                     "line": line,
                     "column": column,
                     "help": d.help,
-                    "labels": d.labels.iter().map(|l| with(span(l.span), json!({
+                    "labels": d.labels.iter().map(|l| with(span(l.span), obj!({
                         "message": l.message,
                         "primary": l.primary,
                     }))).collect::<Vec<_>>(),
-                    "fix": d.fix.as_ref().map(|f| with(span(f.span), json!({
+                    "fix": d.fix.as_ref().map(|f| with(span(f.span), obj!({
                         "title": f.title,
                         "replacement": f.replacement,
                     }))),

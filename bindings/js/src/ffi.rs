@@ -3,9 +3,10 @@
 //! output buffer. Single-threaded (wasm32-unknown-unknown), so the buffers are
 //! thread-locals.
 
+use std::alloc::Layout;
 use std::cell::RefCell;
 
-use serde_json::Value;
+use crate::json::Value;
 
 use crate::Failure;
 use crate::api::{self, Layers};
@@ -16,13 +17,21 @@ thread_local! {
     static LAYERS: RefCell<Layers> = RefCell::new(Layers::default());
 }
 
-/// Memory for JavaScript to write an input into; freed with [`rotlang_dealloc`].
+/// Inputs are aligned for f64 (the request slots and layer heights are f64 arrays, which
+/// JavaScript's Float64Array views and Rust's slices both need aligned).
+fn layout(len: usize) -> Option<Layout> {
+    Layout::from_size_align(len.max(1), 8).ok()
+}
+
+/// Memory for JavaScript to write an input into (8-byte aligned); freed with
+/// [`rotlang_dealloc`]. Null when it cannot be had.
 #[unsafe(no_mangle)]
 pub extern "C" fn rotlang_alloc(len: usize) -> *mut u8 {
-    let mut v = Vec::<u8>::with_capacity(len.max(1));
-    let p = v.as_mut_ptr();
-    std::mem::forget(v);
-    p
+    match layout(len) {
+        // SAFETY: the layout has a non-zero size.
+        Some(l) => unsafe { std::alloc::alloc(l) },
+        None => std::ptr::null_mut(),
+    }
 }
 
 /// Frees memory from [`rotlang_alloc`] (same length).
@@ -31,9 +40,9 @@ pub extern "C" fn rotlang_alloc(len: usize) -> *mut u8 {
 /// `ptr` and `len` must come from one call of `rotlang_alloc`, freed once.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rotlang_dealloc(ptr: *mut u8, len: usize) {
-    if !ptr.is_null() {
-        // SAFETY: the caller passes back what rotlang_alloc gave (capacity len.max(1)).
-        drop(unsafe { Vec::from_raw_parts(ptr, 0, len.max(1)) });
+    if let (false, Some(l)) = (ptr.is_null(), layout(len)) {
+        // SAFETY: the caller passes back what rotlang_alloc gave, with its length.
+        unsafe { std::alloc::dealloc(ptr, l) }
     }
 }
 
@@ -85,13 +94,13 @@ pub extern "C" fn rotlang_signs() -> i32 {
 }
 
 /// # Safety
-/// Each (pointer, length) pair must be readable memory (from `rotlang_alloc`), or a
-/// length of 0.
+/// `text`/`text_len`: UTF-8 bytes; `req`/`req_len`: the request's f64 slots
+/// (`options::slot`). Each must be readable memory (from `rotlang_alloc`), or a length of 0.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rotlang_check(
     text: *const u8,
     text_len: usize,
-    req: *const u8,
+    req: *const f64,
     req_len: usize,
 ) -> i32 {
     // SAFETY: forwarded from this function's contract.
@@ -104,7 +113,7 @@ pub unsafe extern "C" fn rotlang_check(
 pub unsafe extern "C" fn rotlang_format(
     text: *const u8,
     text_len: usize,
-    req: *const u8,
+    req: *const f64,
     req_len: usize,
 ) -> i32 {
     // SAFETY: forwarded from this function's contract.
@@ -119,7 +128,7 @@ pub unsafe extern "C" fn rotlang_format(
 pub unsafe extern "C" fn rotlang_expand(
     text: *const u8,
     text_len: usize,
-    req: *const u8,
+    req: *const f64,
     req_len: usize,
     heights: *const f64,
     count: usize,
@@ -136,6 +145,111 @@ pub unsafe extern "C" fn rotlang_expand(
     finish(result)
 }
 
+/// The template in words on a model.
+///
+/// # Safety
+/// As [`rotlang_expand`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_explain(
+    text: *const u8,
+    text_len: usize,
+    req: *const f64,
+    req_len: usize,
+    heights: *const f64,
+    count: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        // SAFETY: as above.
+        let heights = unsafe { f64s(heights, count) };
+        api::explain(t, &r, heights)
+    });
+    finish(result)
+}
+
+/// A diagnostic code explained: the code is the text; the request is ignored.
+///
+/// # Safety
+/// As [`rotlang_check`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_explain_code(
+    text: *const u8,
+    text_len: usize,
+    req: *const f64,
+    req_len: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    finish(unsafe { inputs(text, text_len, req, req_len) }.map(|(t, _)| api::explain_code(t)))
+}
+
+/// As [`rotlang_expand`], for the compat lint.
+///
+/// # Safety
+/// As [`rotlang_expand`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_compat(
+    text: *const u8,
+    text_len: usize,
+    req: *const f64,
+    req_len: usize,
+    heights: *const f64,
+    count: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        // SAFETY: as above.
+        let heights = unsafe { f64s(heights, count) };
+        api::compat(t, &r, heights)
+    });
+    finish(result)
+}
+
+#[cfg(feature = "full")]
+/// A profile file: its name (UTF-8) and its bytes (any: a file that is not UTF-8 text is
+/// reported as such).
+///
+/// # Safety
+/// Each (pointer, length) pair must be readable memory, or a length of 0.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_profile(
+    name: *const u8,
+    name_len: usize,
+    bytes: *const u8,
+    bytes_len: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let name = unsafe { utf8(name, name_len) }.unwrap_or("profile");
+    let bytes = if bytes.is_null() || bytes_len == 0 {
+        &[][..]
+    } else {
+        // SAFETY: forwarded from this function's contract.
+        unsafe { std::slice::from_raw_parts(bytes, bytes_len) }
+    };
+    finish(api::profile(name, bytes))
+}
+
+/// As [`rotlang_expand`], for `compare` (no arrays out).
+///
+/// # Safety
+/// As [`rotlang_expand`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_compare(
+    text: *const u8,
+    text_len: usize,
+    req: *const f64,
+    req_len: usize,
+    heights: *const f64,
+    count: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        // SAFETY: as above.
+        let heights = unsafe { f64s(heights, count) };
+        api::compare(t, &r, heights)
+    });
+    finish(result)
+}
+
 /// Reads a call's inputs.
 ///
 /// # Safety
@@ -143,16 +257,19 @@ pub unsafe extern "C" fn rotlang_expand(
 unsafe fn inputs<'a>(
     text: *const u8,
     text_len: usize,
-    req: *const u8,
+    req: *const f64,
     req_len: usize,
 ) -> Result<(&'a str, Request), Failure> {
     // SAFETY: forwarded.
     let text = unsafe { utf8(text, text_len) }
         .ok_or_else(|| Failure::options("the template is not valid UTF-8"))?;
-    // SAFETY: forwarded.
-    let req = unsafe { utf8(req, req_len) }
-        .ok_or_else(|| Failure::options("the options are not valid UTF-8"))?;
-    Ok((text, Request::parse(req)?))
+    let slots = if req.is_null() || req_len == 0 {
+        &[][..]
+    } else {
+        // SAFETY: forwarded: `req` holds `req_len` f64s.
+        unsafe { std::slice::from_raw_parts(req, req_len) }
+    };
+    Ok((text, Request::new(slots)))
 }
 
 /// # Safety
@@ -183,8 +300,9 @@ fn finish(result: Result<Value, Failure>) -> i32 {
     };
     OUT.with_borrow_mut(|o| {
         o.clear();
-        // Serializing a Value into a Vec cannot fail.
-        let _ = serde_json::to_writer(&mut *o, &value);
+        let mut text = String::new();
+        value.write(&mut text);
+        *o = text.into_bytes();
     });
     code
 }

@@ -12,10 +12,11 @@
 pub mod api;
 pub mod diagnostics;
 pub mod ffi;
+pub mod json;
 pub mod options;
 pub mod utf16;
 
-use serde_json::{Value, json};
+use crate::json::Value;
 
 /// Why a call failed: the JS wrapper throws a `RotlangError` with these fields.
 #[derive(Debug)]
@@ -69,7 +70,7 @@ impl Failure {
     }
 
     pub fn to_json(&self) -> Value {
-        json!({
+        obj!({
             "kind": self.kind,
             "message": self.message,
             "diagnostics": self.diagnostics,

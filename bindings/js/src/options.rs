@@ -1,103 +1,141 @@
-//! The options object that every call takes (JSON from the JS wrapper): target, dialect,
-//! model, base, seed and a layer range.
+//! The request that every call takes: target, dialect, model, base, seed and a layer
+//! range, as a flat array of numbers (the JS wrapper checks names and types and fills the
+//! slots; NaN marks an absent value). Ranges and meanings are checked here.
 
 use rotlang::Target;
+use rotlang::dialect::Dialect;
 use rotlang::eval::{Model, Options};
-use serde::Deserialize;
 
 use crate::Failure;
 
-#[derive(Deserialize, Default)]
-#[serde(rename_all = "camelCase", deny_unknown_fields)]
-pub struct Request {
-    #[serde(default)]
-    pub target: Option<String>,
-    #[serde(default)]
-    pub dialect: Option<String>,
-    #[serde(default)]
-    pub model: Option<ModelSpec>,
-    #[serde(default)]
-    pub base: Option<f64>,
-    #[serde(default)]
-    pub seed: Option<u64>,
-    /// First layer to return (expand).
-    #[serde(default)]
-    pub from: Option<usize>,
-    /// One past the last layer to return (expand).
-    #[serde(default)]
-    pub to: Option<usize>,
-    /// Extra parameters of a call (plot and preview sizes, the preview's layer…).
-    #[serde(default, flatten)]
-    pub extra: serde_json::Map<String, serde_json::Value>,
+/// Slots of the request array (kept in step with `SLOTS` in rotlang.js).
+pub mod slot {
+    pub const TARGET: usize = 0;
+    pub const DIALECT: usize = 1;
+    pub const LAYERS: usize = 2;
+    pub const HEIGHT: usize = 3;
+    pub const LAYER_HEIGHT: usize = 4;
+    pub const FIRST_LAYER_HEIGHT: usize = 5;
+    pub const BOTTOM_SHELLS: usize = 6;
+    pub const TOP_SHELLS: usize = 7;
+    pub const BASE: usize = 8;
+    pub const SEED: usize = 9;
+    pub const FROM: usize = 10;
+    pub const TO: usize = 11;
+    pub const COUNT: usize = 12;
 }
 
-/// A model as the JS API takes it. The heights of a list model arrive as a separate
-/// `Float64Array` buffer, not in the JSON.
-#[derive(Deserialize, Default)]
-#[serde(rename_all = "camelCase", deny_unknown_fields)]
-pub struct ModelSpec {
-    pub layers: Option<f64>,
-    pub height: Option<f64>,
-    pub layer_height: Option<f64>,
-    pub first_layer_height: Option<f64>,
-    pub bottom_shells: Option<f64>,
-    pub top_shells: Option<f64>,
+#[derive(Clone, Debug)]
+pub struct Request {
+    slots: [f64; slot::COUNT],
 }
+
+impl Default for Request {
+    fn default() -> Self {
+        Request {
+            slots: [f64::NAN; slot::COUNT],
+        }
+    }
+}
+
+/// Names for messages.
+const NAMES: [&str; slot::COUNT] = [
+    "target",
+    "dialect",
+    "layers",
+    "height",
+    "layerHeight",
+    "firstLayerHeight",
+    "bottomShells",
+    "topShells",
+    "base",
+    "seed",
+    "from",
+    "to",
+];
 
 impl Request {
-    pub fn parse(json: &str) -> Result<Request, Failure> {
-        if json.trim().is_empty() {
-            return Ok(Request::default());
+    /// From the slots (missing trailing slots are absent).
+    pub fn new(values: &[f64]) -> Request {
+        let mut r = Request::default();
+        for (slot, v) in r.slots.iter_mut().zip(values) {
+            *slot = *v;
         }
-        serde_json::from_str(json).map_err(|e| Failure::options(format!("bad options: {e}")))
+        r
     }
 
-    pub fn target(&self) -> Result<Target, Failure> {
-        match self.target.as_deref() {
-            None | Some("sparse") => Ok(Target::Sparse),
-            Some("solid") => Ok(Target::Solid),
-            Some(other) => Err(Failure::options(format!(
-                "unknown target `{other}`: use \"sparse\" or \"solid\""
+    /// Sets a slot (for Rust callers and tests).
+    pub fn with(mut self, slot: usize, value: f64) -> Request {
+        self.slots[slot] = value;
+        self
+    }
+
+    fn get(&self, slot: usize) -> Option<f64> {
+        Some(self.slots[slot]).filter(|v| !v.is_nan())
+    }
+
+    /// A whole, non-negative number from a slot (`max` inclusive).
+    fn whole(&self, slot: usize, max: f64) -> Result<Option<u64>, Failure> {
+        match self.get(slot) {
+            None => Ok(None),
+            Some(v) if v.is_finite() && v >= 0.0 && v.fract() == 0.0 && v <= max => {
+                Ok(Some(v as u64))
+            }
+            Some(v) => Err(Failure::options(format!(
+                "`{}` must be a whole number from 0 to {max}, not {v}",
+                NAMES[slot]
             ))),
         }
     }
 
+    pub fn target(&self) -> Result<Target, Failure> {
+        Ok(match self.whole(slot::TARGET, 1.0)? {
+            Some(1) => Target::Solid,
+            _ => Target::Sparse,
+        })
+    }
+
+    pub fn dialect(&self) -> Result<Dialect, Failure> {
+        Ok(match self.whole(slot::DIALECT, 1.0)? {
+            Some(1) => Dialect::OrcaSlicer,
+            _ => Dialect::Rotlang,
+        })
+    }
+
     pub fn eval_options(&self) -> Result<Options, Failure> {
-        let base = self.base.unwrap_or(0.0);
+        let base = self.get(slot::BASE).unwrap_or(0.0);
         if !base.is_finite() {
             return Err(Failure::options("the base angle must be a finite number"));
         }
-        Ok(Options {
-            base,
-            seed: self.seed.unwrap_or(0),
-        })
+        // Seeds above 2^53 cannot come exactly through a JS number.
+        let seed = self
+            .whole(slot::SEED, 9_007_199_254_740_991.0)?
+            .unwrap_or(0);
+        Ok(Options { base, seed })
+    }
+
+    /// The first layer and one past the last layer asked for (absent: None).
+    pub fn range(&self) -> Result<(Option<usize>, Option<usize>), Failure> {
+        let max = rotlang::eval::MAX_LAYERS as f64;
+        let from = self.whole(slot::FROM, max)?.map(|v| v as usize);
+        let to = self.whole(slot::TO, max)?.map(|v| v as usize);
+        Ok((from, to))
     }
 
     /// The model: list heights when given, else the uniform model described, else the
     /// documentation's 20 mm cube.
     pub fn model(&self, heights: Option<Vec<f64>>) -> Result<Model, Failure> {
-        let spec = self.model.as_ref();
-        let get = |f: fn(&ModelSpec) -> Option<f64>| spec.and_then(f);
-        let layer_height = get(|m| m.layer_height);
+        let layer_height = self.get(slot::LAYER_HEIGHT);
+        let first = self.get(slot::FIRST_LAYER_HEIGHT);
         let model = if let Some(heights) = heights {
             let h = layer_height.or(heights.first().copied()).unwrap_or(0.2);
             Model::from_heights(heights, h)
-        } else if let Some(n) = get(|m| m.layers) {
-            let n = count(n, "layers")?;
-            Model::uniform(
-                n,
-                layer_height.unwrap_or(0.2),
-                get(|m| m.first_layer_height),
-            )
-        } else if let Some(height) = get(|m| m.height) {
-            Model::from_total_height(
-                height,
-                layer_height.unwrap_or(0.2),
-                get(|m| m.first_layer_height),
-            )
-        } else if spec.is_some()
-            && (layer_height.is_some() || get(|m| m.first_layer_height).is_some())
-        {
+        } else if let Some(n) = self.get(slot::LAYERS) {
+            let n = count(n)?;
+            Model::uniform(n, layer_height.unwrap_or(0.2), first)
+        } else if let Some(height) = self.get(slot::HEIGHT) {
+            Model::from_total_height(height, layer_height.unwrap_or(0.2), first)
+        } else if layer_height.is_some() || first.is_some() {
             return Err(Failure::model(
                 "the model needs `layers`, `height` or a list of layer heights",
             ));
@@ -105,28 +143,27 @@ impl Request {
             Ok(Model::cube20())
         };
         let mut model = model.map_err(|e| Failure::model(e.to_string()))?;
-        let bottom = get(|m| m.bottom_shells);
-        let top = get(|m| m.top_shells);
+        let shells = |slot: usize| {
+            self.whole(slot, f64::from(u32::MAX))
+                .map(|v| v.map(|v| v as u32))
+                .map_err(|e| Failure::model(e.message))
+        };
+        let bottom = shells(slot::BOTTOM_SHELLS)?;
+        let top = shells(slot::TOP_SHELLS)?;
         if bottom.is_some() || top.is_some() {
-            let b = match bottom {
-                Some(b) => shells(b, "bottomShells")?,
-                None => model.bottom_shells(),
-            };
-            let t = match top {
-                Some(t) => shells(t, "topShells")?,
-                None => model.top_shells(),
-            };
+            let b = bottom.unwrap_or(model.bottom_shells());
+            let t = top.unwrap_or(model.top_shells());
             model = model.with_shells(b, t);
         }
         Ok(model)
     }
 }
 
-/// A whole, non-negative count from a JSON number.
-fn count(v: f64, what: &str) -> Result<usize, Failure> {
+/// A whole, non-negative count of layers.
+fn count(v: f64) -> Result<usize, Failure> {
     if !(v.is_finite() && v >= 0.0 && v.fract() == 0.0) {
         return Err(Failure::model(format!(
-            "`{what}` must be a whole number of layers, not {v}"
+            "`layers` must be a whole number of layers, not {v}"
         )));
     }
     if v > rotlang::eval::MAX_LAYERS as f64 {
@@ -138,11 +175,41 @@ fn count(v: f64, what: &str) -> Result<usize, Failure> {
     Ok(v as usize)
 }
 
-fn shells(v: f64, what: &str) -> Result<u32, Failure> {
-    if !(v.is_finite() && v >= 0.0 && v.fract() == 0.0 && v <= u32::MAX as f64) {
-        return Err(Failure::model(format!(
-            "`{what}` must be a whole number of layers, not {v}"
-        )));
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn absent_slots_give_the_cube_and_defaults() {
+        let r = Request::new(&[]);
+        assert_eq!(r.target().unwrap(), Target::Sparse);
+        assert_eq!(r.model(None).unwrap().len(), 100);
+        assert_eq!(r.range().unwrap(), (None, None));
     }
-    Ok(v as u32)
+
+    #[test]
+    fn bad_values_are_refused_with_their_name() {
+        let e = Request::default()
+            .with(slot::SEED, -1.0)
+            .eval_options()
+            .unwrap_err();
+        assert!(e.message.contains("`seed`"), "{}", e.message);
+        let e = Request::default()
+            .with(slot::LAYERS, 2.5)
+            .model(None)
+            .unwrap_err();
+        assert_eq!(e.kind, "model");
+        let e = Request::default()
+            .with(slot::LAYER_HEIGHT, 0.2)
+            .model(None)
+            .unwrap_err();
+        assert!(e.message.contains("needs `layers`"));
+        let e = Request::default()
+            .with(slot::LAYERS, 10.0)
+            .with(slot::TOP_SHELLS, -2.0)
+            .model(None)
+            .unwrap_err();
+        assert!(e.message.contains("`topShells`"), "{}", e.message);
+        assert!(Request::default().with(slot::FROM, 1.5).range().is_err());
+    }
 }

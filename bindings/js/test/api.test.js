@@ -71,3 +71,16 @@ test('expand: list heights as array or Float64Array, base and seed', () => {
   assert.deepEqual(b.angles, a.angles);
   assert.equal(a.model.layers, 3);
 });
+
+test('explain: the template in words with layer ranges; codes explained', async () => {
+  const { explain, explainCode } = await import('../rotlang.js');
+  const text = explain('+10L25%, -10l25%', { model: { layers: 100 } });
+  assert.match(text, /layers 0–24/);
+  const doc = explainCode('rotlang::unknown-sign');
+  assert.equal(doc.code, 'rotlang::unknown-sign');
+  assert.ok(doc.fix.length > 0 && doc.example.length > 0);
+  assert.equal(explainCode('rotlang::no-such-code'), null);
+  const r = expand('0, +30/50%');
+  assert.equal(r.words.length, 2);
+  assert.match(r.words[1], /30/);
+});

@@ -1,0 +1,131 @@
+//! Peak memory of the CLI on large templates: `cargo bench --bench memory`.
+//!
+//! Runs the `rotlang` binary (built in the bench profile) on generated templates of 1, 4
+//! and 16 MiB (16 MiB is the most the CLI reads) with `check`, `expand` and `fmt`, and
+//! reads each child's peak resident set size from `wait4`'s rusage. Target: at most 16×
+//! the text. Prints one line per run and exits 1 when a run is over the target.
+//!
+//! `ROTLANG_MEMORY_SIZES=1,4` picks sizes (MiB); `ROTLANG_MEMORY_KINDS=templates,minimal`
+//! picks inputs.
+
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+
+const MIB: usize = 1 << 20;
+/// Peak RSS over text size, at most.
+const TARGET_RATIO: f64 = 16.0;
+
+/// The inputs: a repeated unit, cut to the size.
+const KINDS: [(&str, &str); 5] = [
+    // What a pasted profile or template looks like, at scale.
+    ("templates", "+10L25%, -10l25%, 0, 90, #5, +22.5/50%, "),
+    // Legal, a warning each (capped): the IR without the diagnostics.
+    ("warnings", "0/5, 400, "),
+    // An error each (capped).
+    ("errors", "X, +30/5/5, "),
+    // The shortest instructions there are: the most instructions per byte.
+    ("minimal", "0 "),
+    // Some of everything, as a pasted log file would be.
+    (
+        "log",
+        "2024-01-01 12:00:00 INFO slicing layer 12 of 300 (+30/5mm), ",
+    ),
+];
+
+#[cfg(unix)]
+fn peak_rss_bytes(cmd: &mut Command) -> Option<u64> {
+    let child = cmd
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .ok()?;
+    let pid = child.id() as libc::pid_t;
+    let mut status = 0;
+    // SAFETY: an all-zero rusage is valid; wait4 fills it for the child it reaps.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: `pid` is our child, not yet waited for; the pointers are to live locals.
+    let reaped = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
+    (reaped == pid).then_some(usage.ru_maxrss as u64 * 1024)
+}
+
+#[cfg(not(unix))]
+fn peak_rss_bytes(_: &mut Command) -> Option<u64> {
+    None
+}
+
+/// Writes `unit` repeated to exactly `len` bytes, a block at a time: the bench itself must
+/// stay small, since a spawned child's peak RSS counts the memory it shares with its
+/// parent before `exec`.
+fn write_input(path: &std::path::Path, unit: &str, len: usize) {
+    use std::io::Write;
+    let block = unit.repeat(65_536 / unit.len() + 1);
+    let mut file = std::io::BufWriter::new(std::fs::File::create(path).expect("create the input"));
+    let mut left = len;
+    while left > 0 {
+        let n = left.min(block.len());
+        file.write_all(&block.as_bytes()[..n])
+            .expect("write the input");
+        left -= n;
+    }
+    file.flush().expect("write the input");
+}
+
+fn list(var: &str) -> Option<Vec<String>> {
+    let v = std::env::var(var).ok()?;
+    Some(v.split(',').map(|s| s.trim().to_owned()).collect())
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; a filter argument is ignored.
+    let sizes: Vec<usize> = list("ROTLANG_MEMORY_SIZES")
+        .map(|l| l.iter().filter_map(|s| s.parse().ok()).collect())
+        .unwrap_or_else(|| vec![1, 4, 16]);
+    let kinds: Vec<(&str, &str)> = match list("ROTLANG_MEMORY_KINDS") {
+        Some(names) => KINDS
+            .into_iter()
+            .filter(|(n, _)| names.iter().any(|m| m == n))
+            .collect(),
+        None => KINDS.to_vec(),
+    };
+    let dir = std::env::temp_dir().join(format!("rotlang-memory-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temp dir");
+    let binary = env!("CARGO_BIN_EXE_rotlang");
+    let mut over = 0;
+    println!(
+        "{:<10} {:>5} {:<7} {:>10} {:>7}",
+        "input", "MiB", "command", "peak RSS", "ratio"
+    );
+    for (name, unit) in &kinds {
+        for &mib in &sizes {
+            let len = mib * MIB;
+            let path: PathBuf = dir.join(format!("{name}-{mib}.rot"));
+            write_input(&path, unit, len);
+            for command in ["check", "expand", "fmt"] {
+                let mut cmd = Command::new(binary);
+                cmd.arg(command).arg("--file").arg(&path);
+                let Some(peak) = peak_rss_bytes(&mut cmd) else {
+                    println!("{name:<10} {mib:>5} {command:<7} (not measured on this platform)");
+                    continue;
+                };
+                let ratio = peak as f64 / len as f64;
+                let flag = if ratio > TARGET_RATIO {
+                    over += 1;
+                    "  OVER"
+                } else {
+                    ""
+                };
+                println!(
+                    "{name:<10} {mib:>5} {command:<7} {:>7.1} MB {ratio:>6.1}x{flag}",
+                    peak as f64 / 1e6
+                );
+            }
+            let _ = std::fs::remove_file(&path);
+        }
+    }
+    let _ = std::fs::remove_dir(&dir);
+    if over > 0 {
+        eprintln!("{over} runs above {TARGET_RATIO}x the text");
+        std::process::exit(1);
+    }
+}

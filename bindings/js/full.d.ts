@@ -1,0 +1,30 @@
+// Types of `rotlang/full` (full.js): everything of `rotlang`, plus profile reading.
+export * from './rotlang.js';
+
+export interface ProfileTemplate {
+  /** `sparse_infill_rotate_template` or `solid_infill_rotate_template`; null for a `.rot` file. */
+  key: string | null;
+  object: string | null;
+  target: 'sparse' | 'solid';
+  text: string;
+}
+
+export interface Profile {
+  kind: 'template' | 'json' | 'ini' | '3mf' | string;
+  templates: ProfileTemplate[];
+  /** The model the profile's settings give (a 20 mm tall object). */
+  model: { layers: number; layerHeight: number; firstLayerHeight: number | null; bottomShells: number; topShells: number };
+  /** The profile's infill direction. */
+  base: number;
+  notes: { message: string; error: boolean }[];
+  /** Some note is an error (e.g. the JSON is broken after the templates). */
+  hasErrors: boolean;
+}
+
+/**
+ * The templates and model of a profile file, read by rotlang's profile reader: the name's
+ * extension picks the kind (`.json`, `.jsonc`, `.ini`, `.rot`). Throws RotlangError (kind
+ * 'profile') for a file that cannot be read at all.
+ */
+export function readProfile(name: string, content: string | Uint8Array | ArrayBuffer): Profile;
+

@@ -1,0 +1,295 @@
+// The JS side of rotlang's wasm modules (rotlang.wasm, and rotlang-infill.wasm when
+// built): rotlang.js binds this to its module and exports the functions.
+//
+// The wasm exports plain C functions (see bindings/js/src/ffi.rs): `bind` copies the
+// template (UTF-8) and the options (a Float64Array of slots) into wasm memory, calls, and
+// reads the JSON answer (and for expand, typed arrays) back.
+
+/** Fill names, indexed by the bytes of `expand(...).fills`. */
+export const FILLS = Object.freeze(['sparse', 'dense', 'solid', 'concentric', 'monotonic', 'rectilinear']);
+
+/** Thrown by every function on bad input: never a crash, always a reason. */
+export class RotlangError extends Error {
+  constructor(kind, message, diagnostics = null) {
+    super(message);
+    this.name = 'RotlangError';
+    /** 'template' | 'model' | 'options' | 'limit' | 'unavailable' | 'internal' */
+    this.kind = kind;
+    /** For kind 'template': the template's diagnostics (as `check` returns them). */
+    this.diagnostics = diagnostics;
+  }
+}
+
+/** Compiles the wasm module at `url` (a file: URL in Node, fetched elsewhere). */
+export async function compile(url) {
+  if (url.protocol === 'file:') {
+    // Node (and Deno, Bun): read the file; fetch() does not take file: URLs there.
+    // The module name is in a variable so that bundlers leave it alone.
+    const fsName = 'node:fs/promises';
+    const { readFile } = await import(/* @vite-ignore */ fsName);
+    return WebAssembly.compile(await readFile(url));
+  }
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`rotlang: cannot load ${url}: HTTP ${response.status}`);
+  return WebAssembly.compile(await response.arrayBuffer());
+}
+
+const encoder = new TextEncoder();
+const decoder = new TextDecoder();
+
+// Copies bytes into wasm memory; returns [ptr, len].
+function put(ex, bytes) {
+  const len = bytes.length;
+  const ptr = ex.rotlang_alloc(len);
+  if (ptr === 0) throw new RotlangError('limit', `cannot allocate ${len} bytes for the input`);
+  new Uint8Array(ex.memory.buffer, ptr, len).set(bytes);
+  return [ptr, len];
+}
+
+function readJson(ex) {
+  const ptr = ex.rotlang_out_ptr();
+  const len = ex.rotlang_out_len();
+  return JSON.parse(decoder.decode(new Uint8Array(ex.memory.buffer, ptr, len)));
+}
+
+function textArg(text) {
+  if (typeof text !== 'string') {
+    throw new RotlangError('options', `the template must be a string, not ${text === null ? 'null' : typeof text}`);
+  }
+  return text;
+}
+
+// The request crosses into wasm as a Float64Array of slots (src/options.rs `slot`); NaN
+// marks an absent value. Names and types are checked here, ranges and meanings there.
+const SLOTS = {
+  target: 0, dialect: 1, layers: 2, height: 3, layerHeight: 4, firstLayerHeight: 5,
+  bottomShells: 6, topShells: 7, base: 8, seed: 9, from: 10, to: 11,
+};
+const SLOT_COUNT = 12;
+const TARGETS = ['sparse', 'solid'];
+const DIALECTS = ['rotlang', 'orcaslicer'];
+
+// A model may use this API's camelCase names or the conformance models.json names.
+const MODEL_KEYS = {
+  layers: 'layers',
+  height: 'height',
+  layerHeight: 'layerHeight',
+  layer_height: 'layerHeight',
+  firstLayerHeight: 'firstLayerHeight',
+  first_layer_height: 'firstLayerHeight',
+  bottomShells: 'bottomShells',
+  bottom_shell_layers: 'bottomShells',
+  topShells: 'topShells',
+  top_shell_layers: 'topShells',
+};
+
+function finite(kind, name, v) {
+  if (typeof v !== 'number' || !Number.isFinite(v)) {
+    throw new RotlangError(kind, `\`${name}\` must be a finite number, not ${typeof v === 'number' ? v : JSON.stringify(v) ?? String(v)}`);
+  }
+  return v;
+}
+
+// The request slots and the list heights (a Float64Array or null) of an options object.
+function request(options) {
+  if (options === undefined || options === null) options = {};
+  if (typeof options !== 'object') throw new RotlangError('options', 'the options must be an object');
+  const slots = new Float64Array(SLOT_COUNT).fill(NaN);
+  let heights = null;
+  for (const [key, value] of Object.entries(options)) {
+    if (value === undefined || value === null) continue;
+    if (key === 'target' || key === 'dialect') {
+      const names = key === 'target' ? TARGETS : DIALECTS;
+      const i = names.indexOf(typeof value === 'string' ? value.trim().toLowerCase() : value);
+      if (i < 0) {
+        throw new RotlangError('options', `unknown ${key} \`${value}\`; expected ${names.map((n) => `\`${n}\``).join(' or ')}`);
+      }
+      slots[SLOTS[key]] = i;
+    } else if (key === 'base' || key === 'seed' || key === 'from' || key === 'to') {
+      slots[SLOTS[key]] = finite('options', key, value);
+    } else if (key === 'model') {
+      if (typeof value !== 'object') throw new RotlangError('model', 'the model must be an object');
+      for (const [k, v] of Object.entries(value)) {
+        if (v === undefined || v === null || k === 'description') continue;
+        if (k === 'layerHeights' || k === 'layer_heights') {
+          if (!(Array.isArray(v) || ArrayBuffer.isView(v))) {
+            throw new RotlangError('model', '`layerHeights` must be an array of numbers');
+          }
+          heights = v instanceof Float64Array ? v : Float64Array.from(v, Number);
+          if (heights.length === 0) throw new RotlangError('model', 'the model has no layers');
+          continue;
+        }
+        const name = MODEL_KEYS[k];
+        if (!name) throw new RotlangError('model', `unknown model field \`${k}\``);
+        slots[SLOTS[name]] = finite('model', k, v);
+      }
+    } else {
+      throw new RotlangError('options', `unknown option \`${key}\``);
+    }
+  }
+  return [slots, heights];
+}
+
+/** The API on one compiled module (each call of `bind` has its own instance). */
+export async function bind(wasmModule) {
+  let instance = await WebAssembly.instantiate(wasmModule, {});
+
+  // After a trap (an internal bug; never expected) the instance's state is unknown: start a
+  // fresh one. Synchronously where allowed (Node, workers), else in the background.
+  function restart() {
+    instance = null;
+    try {
+      instance = new WebAssembly.Instance(wasmModule, {});
+    } catch {
+      WebAssembly.instantiate(wasmModule, {}).then((i) => {
+        instance = i;
+      });
+    }
+  }
+
+  function exportsOrThrow() {
+    if (!instance) {
+      throw new RotlangError('internal', 'rotlang is restarting after an internal error; try again');
+    }
+    return instance.exports;
+  }
+
+  // One call: copies inputs in, calls `name`, frees inputs, returns the JSON answer or
+  // throws the failure.
+  function call(name, text, options, withHeights = false) {
+    const [slots, heights] = request(options);
+    const ex = exportsOrThrow();
+    const textBytes = encoder.encode(textArg(text));
+    const reqBytes = new Uint8Array(slots.buffer);
+    let t = null;
+    let r = null;
+    let h = null;
+    try {
+      t = put(ex, textBytes);
+      r = put(ex, reqBytes);
+      let code;
+      if (withHeights) {
+        const count = heights ? heights.length : 0;
+        h = [ex.rotlang_alloc(count * 8), count * 8];
+        if (h[0] === 0) throw new RotlangError('limit', `cannot allocate ${count} layer heights`);
+        if (count) new Float64Array(ex.memory.buffer, h[0], count).set(heights);
+        code = ex[name](t[0], t[1], r[0], SLOT_COUNT, h[0], count);
+      } else {
+        code = ex[name](t[0], t[1], r[0], SLOT_COUNT);
+      }
+      const answer = readJson(ex);
+      if (code !== 0) throw new RotlangError(answer.kind, answer.message, answer.diagnostics ?? null);
+      return answer;
+    } catch (e) {
+      if (e instanceof WebAssembly.RuntimeError || e instanceof RangeError) {
+        // A trap (or memory that cannot grow): the instance is not usable any more.
+        t = r = h = null;
+        restart();
+        throw new RotlangError('internal', `rotlang failed internally (${e.message}); the input was refused`);
+      }
+      throw e;
+    } finally {
+      for (const block of [t, r, h]) if (block) ex.rotlang_dealloc(block[0], block[1]);
+    }
+  }
+
+  /** The version of the rotlang library in the wasm module. */
+  function version() {
+    const ex = exportsOrThrow();
+    ex.rotlang_version();
+    return readJson(ex).version;
+  }
+
+  /** The signs that may follow an angle: `{ sign, kind, meaning }` (for completion). */
+  function signs() {
+    const ex = exportsOrThrow();
+    ex.rotlang_signs();
+    return readJson(ex);
+  }
+
+  /** Every diagnostic of a template (errors and warnings); never throws for a bad template. */
+  function check(text, options = {}) {
+    return call('rotlang_check', text, options);
+  }
+
+  /** The canonical form of a template; throws a RotlangError (kind 'template') when it has errors. */
+  function format(text, options = {}) {
+    return call('rotlang_format', text, options).text;
+  }
+
+  /** The template in plain words on the model: each instruction with the layers it governs. */
+  function explain(text, options = {}) {
+    return call('rotlang_explain', text, options, true).text;
+  }
+
+  /** A diagnostic code (`rotlang::unknown-sign`) explained, with an example and the fix; null if unknown. */
+  function explainCode(code) {
+    return call('rotlang_explain_code', code, {});
+  }
+
+  /**
+   * How OrcaSlicer's own reading of the text differs from rotlang's on the model: the first
+   * layer whose direction differs, the solid layers it loses, and where it hangs, crashes or
+   * computes NaN (`findings`).
+   */
+  function compare(text, options = {}) {
+    return call('rotlang_compare', text, options, true);
+  }
+
+  /** The angle and fill of every layer (or of layers `from`..`to`) of a model. */
+  function expand(text, options = {}) {
+    const answer = call('rotlang_expand', text, options, true);
+    const ex = instance.exports;
+    const n = ex.rotlang_layers_len();
+    const buf = ex.memory.buffer;
+    // Copies: the wasm memory is reused (and may move) on the next call.
+    const angles = new Float64Array(buf, ex.rotlang_angles_ptr(), n).slice();
+    const fills = new Uint8Array(buf, ex.rotlang_fills_ptr(), n).slice();
+    const instructionIndex = new Int32Array(buf, ex.rotlang_instructions_ptr(), n).slice();
+    ex.rotlang_release();
+    return { ...answer, angles, fills, instructionIndex };
+  }
+
+  /** OrcaSlicer compat diagnostics (codes `orcaslicer::…`), with spans and fixes like check's. */
+  function compat(text, options = {}) {
+    return call('rotlang_compat', text, options, true).diagnostics;
+  }
+
+  /**
+   * The templates and model of a profile file: `name` picks the kind by its extension
+   * (`.json`, `.jsonc`, `.ini`, `.rot`); `content` is its text or bytes.
+   */
+  function readProfile(name, content) {
+    if (typeof name !== 'string') throw new RotlangError('options', 'the profile name must be a string');
+    const bytes = typeof content === 'string' ? encoder.encode(content)
+      : content instanceof Uint8Array ? content
+        : ArrayBuffer.isView(content) || content instanceof ArrayBuffer ? new Uint8Array(content.buffer ?? content)
+          : null;
+    if (!bytes) throw new RotlangError('options', 'the profile content must be a string or bytes');
+    const ex = exportsOrThrow();
+    let n = null;
+    let b = null;
+    try {
+      n = put(ex, encoder.encode(name));
+      b = put(ex, bytes);
+      const code = ex.rotlang_profile(n[0], n[1], b[0], b[1]);
+      const answer = readJson(ex);
+      if (code !== 0) throw new RotlangError(answer.kind, answer.message, null);
+      return answer;
+    } catch (e) {
+      if (e instanceof WebAssembly.RuntimeError) {
+        n = b = null;
+        restart();
+        throw new RotlangError('internal', `rotlang failed internally (${e.message}); the input was refused`);
+      }
+      throw e;
+    } finally {
+      for (const block of [n, b]) if (block) ex.rotlang_dealloc(block[0], block[1]);
+    }
+  }
+
+  const api = { version, signs, check, format, explain, explainCode, compare, compat, expand };
+  // In rotlang-full.wasm only.
+  if (instance.exports.rotlang_profile) api.readProfile = readProfile;
+  return api;
+}

@@ -1,0 +1,150 @@
+//! `rotlang explain`: a diagnostic code, or a template in plain words.
+
+use std::io::Write;
+
+use super::model::ModelArgs;
+use super::{Input, TargetArg, UsageError, gather, render_human};
+
+#[derive(clap::Args, Debug)]
+#[command(after_long_help = "\
+Examples:
+  rotlang explain rotlang::unknown-sign      a diagnostic code: what, why, example, fix
+  rotlang explain space-splits-instruction   the `rotlang::` prefix may be left out
+  rotlang explain --list                     every code with its summary
+  rotlang explain '+10L25%, -10l25%'         a template in words, with its layer ranges
+  rotlang explain 'B!, +30' --layers 50      ... on a model of 50 layers of 0.2 mm
+  rotlang explain -- -30/50%                 a template that begins with '-'
+  rotlang explain - < profile.rot            `-` is stdin
+
+Exit status: 0 when explained, 1 when a template has errors (what parses is still
+explained), 2 on a usage error (such as an unknown code).")]
+pub struct ExplainArgs {
+    /// A diagnostic code (`rotlang::unknown-sign`, or `unknown-sign`) or a template.
+    /// Without it, the template is read from stdin; `-` is stdin.
+    #[arg(value_name = "CODE|TEMPLATE", allow_negative_numbers = true)]
+    pub what: Option<String>,
+    /// List every diagnostic code with its summary.
+    #[arg(long, conflicts_with = "what")]
+    pub list: bool,
+    /// Which setting the template is for.
+    #[arg(long, value_enum, default_value_t)]
+    pub target: TargetArg,
+    #[command(flatten)]
+    pub model: ModelArgs,
+}
+
+pub fn run(args: &ExplainArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
+    let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    if args.list {
+        let width = crate::explain::codes()
+            .iter()
+            .map(|d| d.code.len())
+            .max()
+            .unwrap_or(0);
+        for d in crate::explain::codes() {
+            writeln!(out, "{:<width$}  {:<7}  {}", d.code, d.severity, d.summary).map_err(io)?;
+        }
+        return Ok(0);
+    }
+    if let Some(what) = &args.what {
+        if let Some(doc) = crate::explain::code(what) {
+            out.write_all(code_text(doc).as_bytes()).map_err(io)?;
+            return Ok(0);
+        }
+        let w = what.trim();
+        let code_like = w.contains("::")
+            || (w.len() > 3
+                && w.contains('-')
+                && w.bytes().all(|b| b.is_ascii_lowercase() || b == b'-'));
+        if code_like {
+            return Err(UsageError(format!(
+                "no diagnostic code `{w}`; `rotlang explain --list` lists them"
+            )));
+        }
+    }
+    let model = args.model.resolve()?.model;
+    let templates: Vec<String> = args.what.iter().cloned().collect();
+    let input = gather(&templates, &[])?
+        .into_iter()
+        .next()
+        .ok_or_else(|| UsageError("no template given".into()))?;
+    let target = args.target.into();
+    let text = crate::explain::template(&input.text, target, &model);
+    out.write_all(text.as_bytes()).map_err(io)?;
+    let errors = crate::parse(&input.text, target).has_errors();
+    if errors {
+        writeln!(
+            out,
+            "\n`rotlang check` shows the errors, with the characters at fault."
+        )
+        .map_err(io)?;
+    }
+    Ok(i32::from(errors))
+}
+
+/// A code's page: summary, explanation, the example as `rotlang check` reports it, fix.
+fn code_text(doc: &crate::explain::CodeDoc) -> String {
+    let mut s = format!(
+        "{} ({}): {}\n\n{}\n\nExample: {}\n",
+        doc.code,
+        doc.severity,
+        doc.summary,
+        wrap(doc.explanation, 88),
+        // Examples that are descriptions, not templates.
+        if doc.code == "rotlang::too-many-diagnostics" || doc.example.starts_with('(') {
+            doc.example.to_owned()
+        } else {
+            format!("`{}`", doc.example.replace('\u{feff}', "<U+FEFF>"))
+        }
+    );
+    let target = if doc.code == "rotlang::solid-sign-in-solid-template" {
+        crate::Target::Solid
+    } else {
+        crate::Target::Sparse
+    };
+    if doc.code.starts_with("orcaslicer::") {
+        s.push_str(&format!(
+            "    (as `rotlang expand --dialect orcaslicer '{}'` reports it)\n",
+            doc.example
+        ));
+    } else if doc.code != "rotlang::too-many-diagnostics" {
+        let input = Input {
+            name: "<template>".into(),
+            text: doc.example.to_owned(),
+            path: None,
+        };
+        let parse = crate::parse(doc.example, target);
+        let shown: Vec<_> = parse
+            .diagnostics
+            .iter()
+            .filter(|d| d.code == doc.code)
+            .take(1)
+            .cloned()
+            .collect();
+        let report = render_human(&[(&input, &shown)], false);
+        for line in report.lines() {
+            s.push_str(&format!("    {line}\n").replace("    \n", "\n"));
+        }
+    }
+    s.push_str(&format!("Fix: {}\n", wrap(doc.fix, 88)));
+    s
+}
+
+/// Words wrapped at `width` columns.
+fn wrap(text: &str, width: usize) -> String {
+    let mut out = String::new();
+    let mut line = 0;
+    for word in text.split_whitespace() {
+        let n = word.chars().count();
+        if line > 0 && line + 1 + n > width {
+            out.push('\n');
+            line = 0;
+        } else if line > 0 {
+            out.push(' ');
+            line += 1;
+        }
+        out.push_str(word);
+        line += n;
+    }
+    out
+}

@@ -1,0 +1,491 @@
+//! `rotlang preview`: the infill of some layers, drawn (SVG) or listed (JSON).
+
+use std::io::Write;
+use std::ops::Range;
+use std::path::PathBuf;
+
+use geo::{Coord, LineString, MultiPolygon, Polygon};
+
+use super::plot::{ModelArgs, emit, template};
+use super::{ColorArg, TargetArg, UsageError, read_file};
+use crate::infill::preview::{self, PreviewOptions};
+use crate::infill::{Centring, Pattern, Settings, shapes};
+
+#[derive(clap::Args, Debug)]
+#[command(after_long_help = "\
+Examples:
+  rotlang preview '+45' --pattern grid --density 20 --out grid.svg
+  rotlang preview '0, 90, B!M' --pattern gyroid --shape circle --layers 0..8 > gyroid.svg
+  rotlang preview '+30/50%' --pattern hexagons --shape ring --layers 10..=13 --format json
+  rotlang preview '+15' --pattern lines --shape part.svg --size 40 --centring global
+  rotlang preview '+15' --shape outline.json --pattern triangles --density 15%
+
+Each panel shows one layer: the region's outline and holes, the infill lines at the
+nozzle's width coloured by print order (blue first, red last), travel moves dashed, and
+the layer's index, height, angle, fill and governing instruction. Solid layers use their
+fill kind at 100%: D the pattern, S --solid-pattern, O concentric, M monotonic lines,
+R lines.
+
+--shape FILE: an .svg file (every <path> and <polygon>; user units read as mm, y up,
+transforms not applied; nested outlines become holes) or a .json multi-polygon
+(GeoJSON MultiPolygon or Polygon, or its coordinates: [[[[x, y], ...], [hole...]], ...]).
+
+Exit status: 0 on success, 1 when the template has errors, 2 on a usage error.")]
+pub struct PreviewArgs {
+    /// The template, e.g. '+30/50%'. Put `--` before one that begins with `-`.
+    /// Without it, the template is read from --file or stdin.
+    #[arg(
+        value_name = "TEMPLATE",
+        allow_negative_numbers = true,
+        conflicts_with = "file"
+    )]
+    pub template: Option<String>,
+    /// Read the template from a file (newlines separate instructions).
+    #[arg(long, short = 'f', value_name = "PATH")]
+    pub file: Option<PathBuf>,
+    /// Which setting the template is for (solid signs are errors in a solid template).
+    #[arg(long, value_enum, default_value_t)]
+    pub target: TargetArg,
+    /// The infill pattern.
+    #[arg(
+        long,
+        short = 'p',
+        value_enum,
+        default_value_t,
+        help_heading = "Infill"
+    )]
+    pub pattern: PatternArg,
+    /// The infill density in percent, e.g. 20 or 20%.
+    #[arg(long, short = 'd', value_name = "PERCENT", default_value = "20", value_parser = parse_density, help_heading = "Infill")]
+    pub density: f64,
+    /// The nozzle diameter (line width) in mm.
+    #[arg(
+        long,
+        value_name = "MM",
+        default_value_t = 0.4,
+        help_heading = "Infill"
+    )]
+    pub nozzle: f64,
+    /// Where the pattern is anchored: the object's centre, or the origin for every object.
+    #[arg(long, value_enum, default_value_t, help_heading = "Infill")]
+    pub centring: CentringArg,
+    /// The pattern of `S` layers (the profile's solid infill pattern).
+    #[arg(long, value_enum, default_value_t, help_heading = "Infill")]
+    pub solid_pattern: PatternArg,
+    /// The region: square, circle, ring, star, l, or a FILE (.svg or .json).
+    #[arg(
+        long,
+        short = 's',
+        value_name = "SHAPE",
+        default_value = "square",
+        help_heading = "Region"
+    )]
+    pub shape: String,
+    /// The width of a built-in shape in mm.
+    #[arg(
+        long,
+        value_name = "MM",
+        default_value_t = 20.0,
+        help_heading = "Region"
+    )]
+    pub size: f64,
+    /// The layers to show: A..B (B excluded), A..=B, or one index [default: 0..8].
+    #[arg(long, value_name = "A..B", value_parser = parse_layers)]
+    pub layers: Option<Range<usize>>,
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// `svg`: the picture; `json`: {"layers": [{"index", "angle", "fill", "pattern",
+    /// "density", "length", "travel", "polylines": [[[x, y], ...], ...]}, ...]}.
+    #[arg(long, value_enum, default_value_t)]
+    pub format: Format,
+    /// Panels per row.
+    #[arg(long, value_name = "N", default_value_t = 4)]
+    pub columns: usize,
+    /// Write to this file instead of stdout.
+    #[arg(long, short = 'o', value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Colour the diagnostics printed to stderr.
+    #[arg(long, value_enum, default_value_t)]
+    pub color: ColorArg,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum PatternArg {
+    #[default]
+    Lines,
+    Grid,
+    Triangles,
+    Hexagons,
+    Concentric,
+    Gyroid,
+    Spiral,
+    Lightning,
+}
+
+impl From<PatternArg> for Pattern {
+    fn from(p: PatternArg) -> Pattern {
+        match p {
+            PatternArg::Lines => Pattern::Lines,
+            PatternArg::Grid => Pattern::Grid,
+            PatternArg::Triangles => Pattern::Triangles,
+            PatternArg::Hexagons => Pattern::Hexagons,
+            PatternArg::Concentric => Pattern::Concentric,
+            PatternArg::Gyroid => Pattern::Gyroid,
+            PatternArg::Spiral => Pattern::Spiral,
+            PatternArg::Lightning => Pattern::Lightning,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum CentringArg {
+    /// At the centre of the region's bounding box
+    #[default]
+    Object,
+    /// At the origin (0, 0), shared by every object
+    Global,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    #[default]
+    Svg,
+    Json,
+}
+
+/// The most panels one preview draws.
+const MAX_PANELS: usize = 256;
+
+fn parse_density(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .trim_end_matches('%')
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a percentage like 20 or 20%, found {s:?}"))?;
+    if v > 0.0 && v <= 100.0 {
+        Ok(v / 100.0)
+    } else {
+        Err(format!(
+            "the density must be above 0% and at most 100%, found {s:?}"
+        ))
+    }
+}
+
+fn parse_layers(s: &str) -> Result<Range<usize>, String> {
+    let bad = || format!("expected A..B, A..=B or one layer index, found {s:?}");
+    let n = |v: &str| v.trim().parse::<usize>().map_err(|_| bad());
+    let range = if let Some((a, b)) = s.split_once("..=") {
+        n(a)?..n(b)?.checked_add(1).ok_or_else(bad)?
+    } else if let Some((a, b)) = s.split_once("..") {
+        n(a)?..n(b)?
+    } else {
+        let a = n(s)?;
+        a..a + 1
+    };
+    if range.is_empty() {
+        return Err(format!("the range {s:?} holds no layer"));
+    }
+    if range.len() > MAX_PANELS {
+        return Err(format!(
+            "{s:?} is {} layers; a preview shows at most {MAX_PANELS}",
+            range.len()
+        ));
+    }
+    Ok(range)
+}
+
+/// The region `--shape` names.
+pub fn shape(name: &str, size: f64) -> Result<MultiPolygon<f64>, UsageError> {
+    if !(size.is_finite() && size > 0.0 && size <= 10_000.0) {
+        return Err(UsageError(format!(
+            "--size must be between 0 and 10000 mm, found {size}"
+        )));
+    }
+    let r = size / 2.0;
+    Ok(match name.to_ascii_lowercase().as_str() {
+        "square" => shapes::square(size),
+        "circle" => shapes::circle(r),
+        "ring" => shapes::ring_shape(r, r / 2.0),
+        "star" => shapes::star(r, r * 0.45),
+        "l" => shapes::l_shape(size),
+        _ => {
+            let path = PathBuf::from(name);
+            if !path.exists() {
+                return Err(UsageError(format!(
+                    "--shape {name:?} is not square, circle, ring, star or l, nor a file"
+                )));
+            }
+            let text = read_file(&path)?;
+            let lower = name.to_ascii_lowercase();
+            let region = if lower.ends_with(".json") || text.trim_start().starts_with(['[', '{']) {
+                shapes::from_json(&text)
+            } else {
+                from_svg(&text)
+            };
+            region.map_err(|e| UsageError(format!("cannot read a region from {name}: {e}")))?
+        }
+    })
+}
+
+/// The outlines of every `<path>` and `<polygon>` in an SVG document: curves flattened,
+/// y flipped (SVG's y points down), rings nested in an odd number of others are holes.
+pub fn from_svg(text: &str) -> Result<MultiPolygon<f64>, String> {
+    let doc = roxmltree::Document::parse(text).map_err(|e| format!("invalid SVG: {e}"))?;
+    let mut rings: Vec<Vec<Coord>> = Vec::new();
+    for node in doc.descendants().filter(|n| n.is_element()) {
+        match node.tag_name().name() {
+            "path" => {
+                if let Some(d) = node.attribute("d") {
+                    path_rings(d, &mut rings)?;
+                }
+            }
+            "polygon" => {
+                if let Some(points) = node.attribute("points") {
+                    let ring: Vec<Coord> = svgtypes::PointsParser::from(points)
+                        .map(|(x, y)| Coord { x, y: -y })
+                        .collect();
+                    rings.push(ring);
+                }
+            }
+            _ => {}
+        }
+    }
+    rings.retain(|r| r.len() >= 3);
+    if rings.is_empty() {
+        return Err("no <path> or <polygon> with an area".into());
+    }
+    Ok(nest(rings))
+}
+
+fn path_rings(d: &str, rings: &mut Vec<Vec<Coord>>) -> Result<(), String> {
+    use svgtypes::SimplePathSegment as S;
+    let mut ring: Vec<Coord> = Vec::new();
+    let mut at = Coord::zero();
+    for segment in svgtypes::SimplifyingPathParser::from(d) {
+        let segment = segment.map_err(|e| format!("invalid path data: {e}"))?;
+        let curve = |points: &dyn Fn(f64) -> Coord, ring: &mut Vec<Coord>| {
+            for k in 1..=16 {
+                ring.push(points(k as f64 / 16.0));
+            }
+        };
+        match segment {
+            S::MoveTo { x, y } => {
+                if ring.len() >= 3 {
+                    rings.push(std::mem::take(&mut ring));
+                }
+                ring.clear();
+                at = Coord { x, y: -y };
+                ring.push(at);
+            }
+            S::LineTo { x, y } => {
+                at = Coord { x, y: -y };
+                ring.push(at);
+            }
+            S::Quadratic { x1, y1, x, y } => {
+                let (p0, p1, p2) = (at, Coord { x: x1, y: -y1 }, Coord { x, y: -y });
+                curve(
+                    &|t| p0 * ((1.0 - t) * (1.0 - t)) + p1 * (2.0 * t * (1.0 - t)) + p2 * (t * t),
+                    &mut ring,
+                );
+                at = p2;
+            }
+            S::CurveTo {
+                x1,
+                y1,
+                x2,
+                y2,
+                x,
+                y,
+            } => {
+                let (p0, p1, p2, p3) = (
+                    at,
+                    Coord { x: x1, y: -y1 },
+                    Coord { x: x2, y: -y2 },
+                    Coord { x, y: -y },
+                );
+                curve(
+                    &|t| {
+                        let u = 1.0 - t;
+                        p0 * (u * u * u)
+                            + p1 * (3.0 * u * u * t)
+                            + p2 * (3.0 * u * t * t)
+                            + p3 * (t * t * t)
+                    },
+                    &mut ring,
+                );
+                at = p3;
+            }
+            S::ClosePath => {
+                if let Some(&first) = ring.first() {
+                    at = first;
+                }
+                if ring.len() >= 3 {
+                    rings.push(std::mem::take(&mut ring));
+                }
+                ring.clear();
+            }
+        }
+    }
+    if ring.len() >= 3 {
+        rings.push(ring);
+    }
+    Ok(())
+}
+
+/// Rings to polygons by nesting: a ring inside an even number of others is an outline,
+/// inside an odd number a hole of the smallest outline around it.
+fn nest(rings: Vec<Vec<Coord>>) -> MultiPolygon<f64> {
+    let contains = |outer: &[Coord], p: Coord| {
+        let mut inside = false;
+        for i in 0..outer.len() {
+            let (a, b) = (outer[i], outer[(i + 1) % outer.len()]);
+            if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
+                inside = !inside;
+            }
+        }
+        inside
+    };
+    let area = |r: &[Coord]| {
+        (0..r.len())
+            .map(|i| {
+                let (a, b) = (r[i], r[(i + 1) % r.len()]);
+                a.x * b.y - a.y * b.x
+            })
+            .sum::<f64>()
+            .abs()
+            / 2.0
+    };
+    let parents: Vec<Vec<usize>> = rings
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            (0..rings.len())
+                .filter(|&j| j != i && area(&rings[j]) > area(r) && contains(&rings[j], r[0]))
+                .collect()
+        })
+        .collect();
+    let close = |r: &Vec<Coord>| {
+        let mut c = r.clone();
+        c.push(r[0]);
+        LineString::new(c)
+    };
+    let mut polygons: Vec<(usize, Polygon<f64>)> = Vec::new();
+    for (i, r) in rings.iter().enumerate() {
+        if parents[i].len() % 2 == 0 {
+            polygons.push((i, Polygon::new(close(r), vec![])));
+        }
+    }
+    for (i, r) in rings.iter().enumerate() {
+        if parents[i].len() % 2 == 1 {
+            // The smallest outline around it is its parent of the largest depth.
+            if let Some(&parent) = parents[i].iter().max_by_key(|&&j| parents[j].len())
+                && let Some((_, p)) = polygons.iter_mut().find(|(k, _)| *k == parent)
+            {
+                p.interiors_push(close(r));
+            }
+        }
+    }
+    MultiPolygon::new(polygons.into_iter().map(|(_, p)| p).collect())
+}
+
+/// Runs `rotlang preview`; returns the exit code.
+pub fn run(
+    args: &PreviewArgs,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> Result<i32, UsageError> {
+    let model = args.model.build(None)?;
+    let region = shape(&args.shape, args.size)?;
+    if !(0.01..=10.0).contains(&args.nozzle) {
+        return Err(UsageError(format!(
+            "--nozzle must be between 0.01 and 10 mm, found {}",
+            args.nozzle
+        )));
+    }
+    let (input, parse) = match template(&args.template, &args.file, args.target, args.color, err)? {
+        Ok(t) => t,
+        Err(code) => return Ok(code),
+    };
+    let settings = Settings {
+        pattern: args.pattern.into(),
+        density: args.density,
+        nozzle: args.nozzle,
+        centring: match args.centring {
+            CentringArg::Object => Centring::Object,
+            CentringArg::Global => Centring::Global,
+        },
+        solid_pattern: args.solid_pattern.into(),
+    };
+    let range = args.layers.clone().unwrap_or(0..8);
+    if range.start >= model.len() {
+        return Err(UsageError(format!(
+            "--layers starts at layer {} but the model has {} layers (0..{})",
+            range.start,
+            model.len(),
+            model.len()
+        )));
+    }
+    let options = args.model.options();
+    let fail = |e: crate::infill::Error| UsageError(e.to_string());
+    let text = match args.format {
+        Format::Svg => {
+            let preview = PreviewOptions {
+                columns: args.columns.clamp(1, 64),
+                ..PreviewOptions::default()
+            };
+            preview::render(
+                &parse.template,
+                &model,
+                options,
+                &input.text,
+                &region,
+                &settings,
+                range,
+                &preview,
+            )
+            .map_err(fail)?
+        }
+        Format::Json => {
+            json(&parse.template, &model, options, &region, &settings, range).map_err(fail)?
+        }
+    };
+    emit(&text, args.out.as_deref(), out)?;
+    Ok(0)
+}
+
+fn json(
+    template: &crate::Template,
+    model: &crate::eval::Model,
+    options: crate::eval::Options,
+    region: &MultiPolygon<f64>,
+    settings: &Settings,
+    range: Range<usize>,
+) -> Result<String, crate::infill::Error> {
+    let prepared = crate::infill::Region::new(region, settings.nozzle)?;
+    let mut schedule = crate::infill::Schedule::new(template, model, options, *settings);
+    let mut layers = Vec::new();
+    for index in range {
+        let Some(fill) = schedule.layer(index, &prepared)? else {
+            break;
+        };
+        let l = &fill.layer;
+        layers.push(serde_json::json!({
+            "index": l.index,
+            "bottom": l.bottom,
+            "top": l.top,
+            "angle": l.angle,
+            "fill": l.fill.name(),
+            "instruction": l.instruction.map(|s| serde_json::json!({"start": s.start, "end": s.end})),
+            "pattern": fill.params.pattern.name(),
+            "density": fill.params.density,
+            "length": fill.paths.length,
+            "travel": fill.paths.travel,
+            "polylines": fill.paths.polylines.iter().map(|p| p.0.iter().map(|c| [c.x, c.y]).collect::<Vec<_>>()).collect::<Vec<_>>(),
+        }));
+    }
+    let mut text =
+        serde_json::to_string(&serde_json::json!({ "layers": layers })).unwrap_or_default();
+    text.push('\n');
+    Ok(text)
+}

@@ -1,0 +1,202 @@
+//! Curved patterns: gyroid, spiral, concentric.
+
+use std::f64::consts::{PI, TAU};
+
+use geo::algorithm::buffer::{BufferStyle, LineJoin};
+use geo::{Buffer, Coord, MultiPolygon};
+
+use super::Region;
+use super::clip::{Edges, Frame};
+
+/// The gyroid `sin x cos y + sin y cos z + sin z cos x = 0` cut at height `z`, one unit
+/// of the surface being `scale` mm, turned by θ about `centre`.
+///
+/// For a fixed x the equation is `a cos y + b sin y = −c`, with two solutions per period
+/// in y: `y = atan2(b, a) ± acos(−c/R)`. Where |sin z| > |cos z| the curves run along y
+/// instead and are solved for x the same way; either way `|c| ≤ R`, so every curve is
+/// defined along its whole length (this is how the section turns from waves along x to
+/// waves along y and back as z rises).
+pub(crate) fn gyroid(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    scale: f64,
+    z: f64,
+    out: &mut Vec<Vec<Coord>>,
+) {
+    let frame = Frame::new(centre, theta);
+    let mut edges = Edges::new(region.rings(), &frame);
+    let (sz, cz) = (z / scale).sin_cos();
+    let along_y = sz.abs() > cz.abs();
+    // In the frame where the waves run along "u" and repeat along "v".
+    let (u0, u1, v0, v1) = if along_y {
+        (edges.min.y, edges.max.y, edges.min.x, edges.max.x)
+    } else {
+        (edges.min.x, edges.max.x, edges.min.y, edges.max.y)
+    };
+    // A vertex every 1/16 of a period (the chord strays less than a twentieth of a
+    // nozzle from the curve at 20%), but not closer than a quarter nozzle.
+    let period = TAU * scale;
+    let per_period = (period / (region.nozzle() / 4.0)).clamp(8.0, 16.0);
+    let step = TAU / per_period;
+    let (s0, s1) = (
+        (u0 / scale / step).floor() as i64,
+        (u1 / scale / step).ceil() as i64,
+    );
+    // Both branches' offsets at every sample: the trigonometry is done once per sample
+    // and shared by every wave (they differ by whole periods).
+    let samples: Vec<(f64, f64, f64)> = (s0..=s1)
+        .map(|i| {
+            let u = i as f64 * step;
+            let (su, cu) = u.sin_cos();
+            let (a, b, c) = if along_y {
+                (sz, cu, su * cz)
+            } else {
+                (su, cz, sz * cu)
+            };
+            let r = a.hypot(b);
+            let phi = b.atan2(a);
+            let delta = (-c / r).clamp(-1.0, 1.0).acos();
+            (u, phi + delta, phi - delta)
+        })
+        .collect();
+    // The whole periods to shift each branch by to cover [v0, v1].
+    let (lo, hi) = samples
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &(_, p, m)| {
+            (l.min(p.min(m)), h.max(p.max(m)))
+        });
+    let (m0, m1) = (
+        ((v0 / scale - hi) / TAU).floor() as i64,
+        ((v1 / scale - lo) / TAU).ceil() as i64,
+    );
+    let mut curve = Vec::with_capacity(samples.len());
+    let mut local = Vec::new();
+    for branch in 0..2 {
+        for m in m0..=m1 {
+            let shift = m as f64 * TAU;
+            curve.clear();
+            curve.extend(samples.iter().map(|&(u, plus, minus)| {
+                let v = (if branch == 0 { plus } else { minus } + shift) * scale;
+                let u = u * scale;
+                if along_y {
+                    Coord { x: v, y: u }
+                } else {
+                    Coord { x: u, y: v }
+                }
+            }));
+            let (lo, hi) = curve
+                .iter()
+                .map(|p| if along_y { p.x } else { p.y })
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(v), h.max(v))
+                });
+            if hi < v0 || lo > v1 {
+                continue;
+            }
+            local.clear();
+            edges.clip(&curve, &mut local);
+            out.extend(
+                local
+                    .drain(..)
+                    .map(|piece| piece.into_iter().map(|q| frame.to_world(q)).collect()),
+            );
+        }
+    }
+}
+
+/// The Archimedean spiral `r = spacing·φ/2π` about `centre`, starting in direction θ,
+/// from the region's nearest point out to its farthest.
+pub(crate) fn spiral(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    spacing: f64,
+    out: &mut Vec<Vec<Coord>>,
+) {
+    let frame = Frame::new(centre, theta);
+    let mut edges = Edges::new(region.rings(), &frame);
+    let (min, max) = (edges.min, edges.max);
+    let far = [min.x.abs().max(max.x.abs()), min.y.abs().max(max.y.abs())];
+    let r_max = far[0].hypot(far[1]);
+    let near = Coord {
+        x: 0f64.clamp(min.x, max.x),
+        y: 0f64.clamp(min.y, max.y),
+    };
+    let r_min = near.x.hypot(near.y);
+    let k = spacing / TAU;
+    // Start a whole turn inside the region's nearest point (the spiral starts at angle 0).
+    let mut phi = ((r_min / k / TAU).floor() - 1.0).max(0.0) * TAU;
+    let phi_end = r_max / k + TAU;
+    // Chords that stray at most 0.02 mm from the curve (sagitta c²/8r), at most 2 mm
+    // long and 20° apart.
+    let mut curve = Vec::new();
+    while phi <= phi_end {
+        let r = k * phi;
+        let (s, c) = phi.sin_cos();
+        curve.push(Coord { x: r * c, y: r * s });
+        let chord = (8.0 * r * 0.02).sqrt().min(2.0);
+        // Never a zero step (at the centre the chord is zero).
+        phi += (chord / r.max(1e-9)).clamp(1e-3, PI / 9.0);
+    }
+    let mut local = Vec::new();
+    edges.clip(&curve, &mut local);
+    out.extend(
+        local
+            .into_iter()
+            .map(|piece| piece.into_iter().map(|q| frame.to_world(q)).collect()),
+    );
+}
+
+/// Loops at `(k + ½)·spacing` inside the inset outline (and around its holes), each
+/// starting at its farthest vertex in direction θ and closed.
+pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Vec<Vec<Coord>>) {
+    let direction = Coord {
+        x: theta.cos(),
+        y: theta.sin(),
+    };
+    // Each loop offset from the inset itself, not from the previous loop: offsets of
+    // offsets pile up the arcs at reflex corners.
+    for k in 0.. {
+        let mut d = (k as f64 + 0.5) * spacing;
+        let mut current = shrink(region.inset(), d);
+        // A region thinner than a spacing still gets one loop, as far in as it can be.
+        while k == 0 && current.0.is_empty() && d > region.nozzle() / 4.0 {
+            d /= 2.0;
+            current = shrink(region.inset(), d);
+        }
+        if current.0.is_empty() {
+            break;
+        }
+        for polygon in &current.0 {
+            for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
+                let mut pts = ring.0.clone();
+                if pts.len() > 1 && pts.first() == pts.last() {
+                    pts.pop();
+                }
+                if pts.len() < 3 {
+                    continue;
+                }
+                let start = pts
+                    .iter()
+                    .enumerate()
+                    .max_by(|(_, a), (_, b)| {
+                        (a.x * direction.x + a.y * direction.y)
+                            .total_cmp(&(b.x * direction.x + b.y * direction.y))
+                    })
+                    .map_or(0, |(i, _)| i);
+                pts.rotate_left(start);
+                pts.push(pts[0]);
+                out.push(pts);
+            }
+        }
+    }
+}
+
+/// The loops' offsets: arcs in steps of 0.5 rad (not geo's 0.2): the loops are far from
+/// the outline, and a third of the vertices makes the offset three times quicker.
+fn shrink(area: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
+    super::region::convex_inset(area, d).unwrap_or_else(|| {
+        area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
+    })
+}

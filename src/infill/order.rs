@@ -1,0 +1,258 @@
+//! Cleaning and ordering the paths of a layer.
+
+use geo::{Coord, LineString};
+
+use super::Toolpaths;
+use super::clip::Frame;
+
+fn dist(a: Coord, b: Coord) -> f64 {
+    (b.x - a.x).hypot(b.y - a.y)
+}
+
+/// Drops vertices closer than `min` to the previous one, keeping both ends; `false` when
+/// the whole path is shorter than `min` (a sliver at a corner: nothing to print).
+/// A dropped vertex moves the path by less than `min`.
+pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
+    let Some(&end) = path.last() else {
+        return false;
+    };
+    let mut kept = 1;
+    for i in 1..path.len() - 1 {
+        if dist(path[kept - 1], path[i]) >= min {
+            path[kept] = path[i];
+            kept += 1;
+        }
+    }
+    path.truncate(kept);
+    while path.len() > 1 && dist(path[path.len() - 1], end) < min {
+        path.pop();
+    }
+    if dist(path[path.len() - 1], end) >= min {
+        path.push(end);
+    }
+    path.len() >= 2
+}
+
+/// Puts the paths in print order and measures them.
+pub(crate) fn order(paths: Vec<Vec<Coord>>, monotonic: bool, frame: Frame) -> Toolpaths {
+    let ordered = if monotonic {
+        monotonic_order(paths, &frame)
+    } else {
+        nearest(paths)
+    };
+    let mut toolpaths = Toolpaths::default();
+    let mut last: Option<Coord> = None;
+    for path in ordered {
+        if let (Some(l), Some(&first)) = (last, path.first()) {
+            toolpaths.travel += dist(l, first);
+        }
+        toolpaths.length += path.windows(2).map(|w| dist(w[0], w[1])).sum::<f64>();
+        last = path.last().copied();
+        toolpaths.polylines.push(LineString::new(path));
+    }
+    toolpaths
+}
+
+/// Every path running in +x of the pattern frame, in order of their y then x: the
+/// monotonic fill of `M` layers (no line is printed beside a neighbour that is not yet
+/// there).
+fn monotonic_order(mut paths: Vec<Vec<Coord>>, frame: &Frame) -> Vec<Vec<Coord>> {
+    for p in &mut paths {
+        if let (Some(&a), Some(&b)) = (p.first(), p.last())
+            && frame.to_local(a).x > frame.to_local(b).x
+        {
+            p.reverse();
+        }
+    }
+    let key = |p: &Vec<Coord>| {
+        p.first().map_or((0.0, 0.0), |&a| {
+            let q = frame.to_local(a);
+            (q.y, q.x)
+        })
+    };
+    paths.sort_by(|a, b| {
+        let (ka, kb) = (key(a), key(b));
+        ka.0.total_cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+    });
+    paths
+}
+
+/// Greedy nearest neighbour with reversal, starting with the first path as generated.
+/// Path ends are kept in a grid of about one end per cell, rebuilt coarser as paths are
+/// used up, so that a layer of many thousand short walls orders in O(n) rather than O(n²).
+fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
+    let n = paths.len();
+    if n <= 2 {
+        return paths;
+    }
+    let ends: Vec<[Coord; 2]> = paths.iter().map(|p| [p[0], p[p.len() - 1]]).collect();
+    let mut used = vec![false; n];
+    let mut order: Vec<(usize, bool)> = Vec::with_capacity(n);
+    used[0] = true;
+    order.push((0, false));
+    let mut at = ends[0][1];
+    if n <= 64 {
+        // Few paths: a plain scan is quicker than building the grid.
+        for _ in 1..n {
+            let mut best = (f64::INFINITY, 0, false);
+            for (i, e) in ends.iter().enumerate() {
+                if used[i] {
+                    continue;
+                }
+                for (side, &p) in e.iter().enumerate() {
+                    let d = dist(at, p);
+                    if d < best.0 {
+                        best = (d, i, side == 1);
+                    }
+                }
+            }
+            let (_, i, reversed) = best;
+            used[i] = true;
+            order.push((i, reversed));
+            at = ends[i][if reversed { 0 } else { 1 }];
+        }
+        return take_in_order(paths, order);
+    }
+    let mut grid = Grid::new(&ends, &used, n - 1);
+    let mut left = n - 1;
+    while left > 0 {
+        if left * 4 < grid.population {
+            grid = Grid::new(&ends, &used, left);
+        }
+        let Some((i, reversed)) = grid.nearest(at, &ends, &used) else {
+            break;
+        };
+        used[i] = true;
+        left -= 1;
+        order.push((i, reversed));
+        at = ends[i][if reversed { 0 } else { 1 }];
+    }
+    take_in_order(paths, order)
+}
+
+fn take_in_order(paths: Vec<Vec<Coord>>, order: Vec<(usize, bool)>) -> Vec<Vec<Coord>> {
+    let mut taken: Vec<Option<Vec<Coord>>> = paths.into_iter().map(Some).collect();
+    order
+        .into_iter()
+        .filter_map(|(i, reversed)| {
+            let mut p = taken[i].take()?;
+            if reversed {
+                p.reverse();
+            }
+            Some(p)
+        })
+        .collect()
+}
+
+struct Grid {
+    min: Coord,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    /// Per cell: path index × 2 + which end (1 = the last point: entering there reverses).
+    cells: Vec<Vec<u32>>,
+    population: usize,
+}
+
+impl Grid {
+    fn new(ends: &[[Coord; 2]], used: &[bool], live: usize) -> Grid {
+        let mut min = Coord {
+            x: f64::INFINITY,
+            y: f64::INFINITY,
+        };
+        let mut max = Coord {
+            x: f64::NEG_INFINITY,
+            y: f64::NEG_INFINITY,
+        };
+        for (e, _) in ends.iter().zip(used).filter(|(_, u)| !**u) {
+            for p in e {
+                min = Coord {
+                    x: min.x.min(p.x),
+                    y: min.y.min(p.y),
+                };
+                max = Coord {
+                    x: max.x.max(p.x),
+                    y: max.y.max(p.y),
+                };
+            }
+        }
+        let size = max - min;
+        let cells_wanted = (2 * live).max(1) as f64;
+        let cell = ((size.x.max(1e-9) * size.y.max(1e-9)) / cells_wanted)
+            .sqrt()
+            .max(size.x.max(size.y) / 2048.0)
+            .max(1e-9);
+        let nx = ((size.x / cell) as usize + 1).min(4096);
+        let ny = ((size.y / cell) as usize + 1).min(4096);
+        let mut grid = Grid {
+            min,
+            cell,
+            nx,
+            ny,
+            cells: vec![Vec::new(); nx * ny],
+            population: 0,
+        };
+        for (i, e) in ends.iter().enumerate() {
+            if used[i] {
+                continue;
+            }
+            for (side, &p) in e.iter().enumerate() {
+                let (cx, cy) = grid.cell_of(p);
+                grid.cells[cy * nx + cx].push((i * 2 + side) as u32);
+                grid.population += 1;
+            }
+        }
+        grid
+    }
+
+    fn cell_of(&self, p: Coord) -> (usize, usize) {
+        let cx = ((p.x - self.min.x) / self.cell)
+            .floor()
+            .clamp(0.0, (self.nx - 1) as f64) as usize;
+        let cy = ((p.y - self.min.y) / self.cell)
+            .floor()
+            .clamp(0.0, (self.ny - 1) as f64) as usize;
+        (cx, cy)
+    }
+
+    /// The live path end nearest `at` (ties: the lowest index, then its first end).
+    fn nearest(&mut self, at: Coord, ends: &[[Coord; 2]], used: &[bool]) -> Option<(usize, bool)> {
+        let (cx, cy) = self.cell_of(at);
+        let mut best: Option<(f64, u32)> = None;
+        let max_ring = self.nx.max(self.ny);
+        for ring in 0..=max_ring {
+            let (x0, x1) = (cx.saturating_sub(ring), (cx + ring).min(self.nx - 1));
+            let (y0, y1) = (cy.saturating_sub(ring), (cy + ring).min(self.ny - 1));
+            for y in y0..=y1 {
+                // Only the ring's border (Chebyshev distance `ring`): the inside was
+                // searched already. Full rows at its top and bottom, two cells between.
+                let edge_row = y.abs_diff(cy) == ring;
+                let step = if edge_row || x1 == x0 { 1 } else { x1 - x0 };
+                let mut x = x0;
+                while x <= x1 {
+                    if x.abs_diff(cx).max(y.abs_diff(cy)) == ring {
+                        let cell = &mut self.cells[y * self.nx + x];
+                        let before = cell.len();
+                        cell.retain(|&id| !used[id as usize / 2]);
+                        self.population -= before - cell.len();
+                        for &id in cell.iter() {
+                            let p = ends[id as usize / 2][id as usize % 2];
+                            let d = dist(at, p);
+                            if best.is_none_or(|(bd, bid)| d < bd || (d == bd && id < bid)) {
+                                best = Some((d, id));
+                            }
+                        }
+                    }
+                    x += step;
+                }
+            }
+            // Cells beyond this ring are at least `ring × cell` away from `at`.
+            if let Some((d, _)) = best
+                && d <= ring as f64 * self.cell
+            {
+                break;
+            }
+        }
+        best.map(|(_, id)| (id as usize / 2, id % 2 == 1))
+    }
+}

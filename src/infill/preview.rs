@@ -1,0 +1,281 @@
+//! The preview picture: one panel per layer, the region and its infill as printed.
+//!
+//! Lines are drawn at the nozzle's width, coloured by the order they are printed (blue
+//! first, through green and yellow, to red last); travel moves are thin dashed grey lines;
+//! the region's outline and holes are drawn in dark grey over a light fill. Each panel is
+//! labelled with the layer, its height, its angle and fill, and the instruction that
+//! governs it. A pure function of its inputs (the playground calls it in the browser).
+
+use std::fmt::Write;
+use std::ops::Range;
+
+use geo::{Coord, MultiPolygon};
+
+use super::{Error, Region, Schedule, Settings, Toolpaths};
+use crate::eval::{self, Model};
+use crate::ir::{Fill, Template};
+use crate::plot::{escape, num, shorten};
+
+/// The size and layout of the panels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreviewOptions {
+    /// The side of a panel's drawing area, in pixels.
+    pub panel: f64,
+    /// Panels per row.
+    pub columns: usize,
+    /// Draw the travel moves between paths.
+    pub travel: bool,
+}
+
+impl Default for PreviewOptions {
+    fn default() -> Self {
+        PreviewOptions {
+            panel: 280.0,
+            columns: 4,
+            travel: true,
+        }
+    }
+}
+
+/// One panel: a region, its toolpaths and two lines of labels.
+#[derive(Clone, Debug)]
+pub struct Panel<'a> {
+    pub region: &'a MultiPolygon<f64>,
+    pub paths: &'a Toolpaths,
+    pub title: String,
+    pub subtitle: String,
+}
+
+/// The height of a panel's label area above its drawing (pixels).
+pub const LABEL_HEIGHT: f64 = 40.0;
+const MARGIN: f64 = 12.0;
+const GAP: f64 = 16.0;
+
+/// The mapping from region coordinates (mm, y up) to the pixels of panel number `index`
+/// (y down): `(scale, offset)` with `pixel = (x·scale + offset.x, −y·scale + offset.y)`.
+pub fn transform(
+    region: &MultiPolygon<f64>,
+    index: usize,
+    options: &PreviewOptions,
+) -> (f64, Coord) {
+    let (min, max) = bounds(region);
+    let size = max - min;
+    let inner = options.panel - 2.0 * MARGIN;
+    let scale = inner / size.x.max(size.y).max(1e-9);
+    let columns = options.columns.max(1);
+    let (col, row) = ((index % columns) as f64, (index / columns) as f64);
+    let left = GAP + col * (options.panel + GAP);
+    let top = GAP + row * (options.panel + LABEL_HEIGHT + GAP) + LABEL_HEIGHT;
+    // Centred in the panel.
+    let cx = left + options.panel / 2.0 - (min.x + size.x / 2.0) * scale;
+    let cy = top + options.panel / 2.0 + (min.y + size.y / 2.0) * scale;
+    (scale, Coord { x: cx, y: cy })
+}
+
+fn bounds(region: &MultiPolygon<f64>) -> (Coord, Coord) {
+    let mut min = Coord {
+        x: f64::INFINITY,
+        y: f64::INFINITY,
+    };
+    let mut max = Coord {
+        x: f64::NEG_INFINITY,
+        y: f64::NEG_INFINITY,
+    };
+    for p in &region.0 {
+        for c in p.exterior().coords() {
+            min = Coord {
+                x: min.x.min(c.x),
+                y: min.y.min(c.y),
+            };
+            max = Coord {
+                x: max.x.max(c.x),
+                y: max.y.max(c.y),
+            };
+        }
+    }
+    if min.x.is_finite() {
+        (min, max)
+    } else {
+        (Coord::zero(), Coord { x: 1.0, y: 1.0 })
+    }
+}
+
+/// The colour of the `i`-th of `n` paths: a hue from blue (first) to red (last).
+pub fn colour(i: usize, n: usize) -> String {
+    let t = if n <= 1 {
+        0.0
+    } else {
+        i as f64 / (n - 1) as f64
+    };
+    format!("hsl({:.0},85%,42%)", 240.0 * (1.0 - t))
+}
+
+/// The picture of `panels`, `options.columns` to a row.
+pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> String {
+    let columns = options.columns.max(1);
+    let rows = panels.len().div_ceil(columns).max(1);
+    let width = GAP + columns.min(panels.len().max(1)) as f64 * (options.panel + GAP);
+    let height = GAP + rows as f64 * (options.panel + LABEL_HEIGHT + GAP);
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif" font-size="12">"#,
+        w = num(width, 1),
+        h = num(height, 1)
+    );
+    s.push_str(r##"<rect width="100%" height="100%" fill="#ffffff"/>"##);
+    for (index, panel) in panels.iter().enumerate() {
+        let (scale, offset) = transform(panel.region, index, options);
+        let px = |c: Coord| (c.x * scale + offset.x, -c.y * scale + offset.y);
+        let columns = options.columns.max(1);
+        let left = GAP + (index % columns) as f64 * (options.panel + GAP);
+        let top = GAP + (index / columns) as f64 * (options.panel + LABEL_HEIGHT + GAP);
+        let _ = write!(
+            s,
+            r##"<text x="{}" y="{}" font-weight="bold">{}</text><text x="{}" y="{}" fill="#444">{}</text>"##,
+            num(left, 2),
+            num(top + 14.0, 2),
+            escape(&panel.title),
+            num(left, 2),
+            num(top + 30.0, 2),
+            escape(&panel.subtitle)
+        );
+        // The region: light fill, holes cut out (even-odd), outline on top.
+        let mut outline = String::new();
+        for p in &panel.region.0 {
+            for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
+                for (k, &c) in ring.0.iter().enumerate() {
+                    let (x, y) = px(c);
+                    let _ = write!(
+                        outline,
+                        "{}{} {}",
+                        if k == 0 { 'M' } else { 'L' },
+                        num(x, 2),
+                        num(y, 2)
+                    );
+                }
+                outline.push('Z');
+            }
+        }
+        let _ = write!(
+            s,
+            r##"<path d="{outline}" fill="#eeeeee" fill-rule="evenodd" stroke="none"/>"##
+        );
+        let n = panel.paths.polylines.len();
+        let stroke = (nozzle * scale).max(1.0);
+        if options.travel {
+            let mut travel = String::new();
+            for w in panel.paths.polylines.windows(2) {
+                if let (Some(&a), Some(&b)) = (w[0].0.last(), w[1].0.first()) {
+                    let ((x0, y0), (x1, y1)) = (px(a), px(b));
+                    let _ = write!(
+                        travel,
+                        "M{} {}L{} {}",
+                        num(x0, 2),
+                        num(y0, 2),
+                        num(x1, 2),
+                        num(y1, 2)
+                    );
+                }
+            }
+            let _ = write!(
+                s,
+                r##"<path d="{travel}" fill="none" stroke="#9a9a9a" stroke-width="0.6" stroke-dasharray="2 2"/>"##
+            );
+        }
+        for (i, line) in panel.paths.polylines.iter().enumerate() {
+            let mut d = String::new();
+            for (k, &c) in line.0.iter().enumerate() {
+                let (x, y) = px(c);
+                let _ = write!(
+                    d,
+                    "{}{} {}",
+                    if k == 0 { 'M' } else { 'L' },
+                    num(x, 2),
+                    num(y, 2)
+                );
+            }
+            let _ = write!(
+                s,
+                r#"<path d="{d}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round"/>"#,
+                colour(i, n),
+                num(stroke, 2)
+            );
+        }
+        let _ = write!(
+            s,
+            r##"<path d="{outline}" fill="none" stroke="#222222" stroke-width="1.2"/>"##
+        );
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+/// The filled layers `layers` of `model` under `template` (text `source`), as given to
+/// [`svg`]: every layer's panel is labelled with its index, height, angle, fill and
+/// instruction.
+pub fn layers(
+    template: &Template,
+    model: &Model,
+    options: eval::Options,
+    source: &str,
+    region: &MultiPolygon<f64>,
+    settings: &Settings,
+    layers: Range<usize>,
+) -> Result<Vec<(Toolpaths, String, String)>, Error> {
+    let prepared = Region::new(region, settings.nozzle)?;
+    let mut schedule = Schedule::new(template, model, options, *settings);
+    let mut out = Vec::new();
+    for index in layers {
+        let Some(fill) = schedule.layer(index, &prepared)? else {
+            break;
+        };
+        let l = &fill.layer;
+        let instruction = l
+            .instruction
+            .and_then(|s| source.get(s.range()))
+            .map_or_else(|| "(holds)".to_owned(), |t| shorten(t, 28));
+        let kind = match l.fill {
+            Fill::Sparse => format!(
+                "{} {}%",
+                fill.params.pattern,
+                num(fill.params.density * 100.0, 1)
+            ),
+            solid => format!("{} ({})", solid.name(), fill.params.pattern),
+        };
+        let title = format!(
+            "layer {} · z {} mm · {}°",
+            l.index,
+            num(l.top, 3),
+            num(l.angle, 2)
+        );
+        let subtitle = format!("{instruction} · {kind}");
+        out.push((fill.paths, title, subtitle));
+    }
+    Ok(out)
+}
+
+/// [`layers`] drawn by [`svg`]: the whole preview in one call.
+#[allow(clippy::too_many_arguments)]
+pub fn render(
+    template: &Template,
+    model: &Model,
+    options: eval::Options,
+    source: &str,
+    region: &MultiPolygon<f64>,
+    settings: &Settings,
+    range: Range<usize>,
+    preview: &PreviewOptions,
+) -> Result<String, Error> {
+    let filled = layers(template, model, options, source, region, settings, range)?;
+    let panels: Vec<Panel<'_>> = filled
+        .iter()
+        .map(|(paths, title, subtitle)| Panel {
+            region,
+            paths,
+            title: title.clone(),
+            subtitle: subtitle.clone(),
+        })
+        .collect();
+    Ok(svg(&panels, settings.nozzle, preview))
+}

@@ -40,7 +40,9 @@ pub fn diagnostics(
     let profile =
         name.and_then(|n| rotlang::profile::parse(Path::new(n), doc.text.as_bytes()).ok());
     let mut out = Vec::new();
-    for region in &doc.regions {
+    // A template with errors gets those first: OrcaSlicer's view of text rotlang rejects
+    // would only add noise until it is fixed.
+    for region in doc.regions.iter().filter(|r| !r.parse.has_errors()) {
         let (model, options) = match &profile {
             Some(p) => {
                 let m = p.model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);

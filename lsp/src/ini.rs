@@ -1,40 +1,8 @@
 //! `.ini` slicer configs (OrcaSlicer's "export config"): `key = value` lines. The value of a
 //! template key is the template, verbatim to the end of its line.
 
-use rotlang::Span;
-
-use crate::json::{JsonTemplate, OffsetMap, TEMPLATE_KEYS};
-
-/// Every template line of an `.ini` document. Lines end at `\n`, `\r\n` or `\r`; comments
-/// (`#`, `;`) and section headers are lines without a template key, so they are skipped.
-pub fn find_templates(doc: &str) -> Vec<JsonTemplate> {
-    let mut found = Vec::new();
-    let mut start = 0;
-    for line in doc.split_inclusive(['\n', '\r']) {
-        let line_start = start;
-        start += line.len();
-        let line = line.trim_end_matches(['\n', '\r']);
-        let Some(eq) = line.find('=') else { continue };
-        let key = line[..eq].trim();
-        let Some(&(_, target)) = TEMPLATE_KEYS.iter().find(|(k, _)| *k == key) else {
-            continue;
-        };
-        let key_start = line_start + line.find(key).unwrap_or(0);
-        let value = &line[eq + 1..];
-        let lead = value.len() - value.trim_start_matches([' ', '\t']).len();
-        let text = value[lead..].trim_end_matches([' ', '\t']);
-        let contents_start = line_start + eq + 1 + lead;
-        found.push(JsonTemplate {
-            key: key.to_string(),
-            key_span: Span::new(key_start, key_start + key.len()),
-            target,
-            text: text.to_string(),
-            contents: Span::new(contents_start, contents_start + text.len()),
-            map: OffsetMap::verbatim(contents_start, text.len()),
-        });
-    }
-    found
-}
+/// The library's reader (`rotlang::profile::ini`), shared with the CLI.
+pub use rotlang::profile::ini::find_templates;
 
 #[cfg(test)]
 mod tests {

@@ -63,8 +63,7 @@ fn profiles_get_compat_findings_by_default() {
     let published = lsp.drain(Duration::from_millis(300));
     let json_now = published
         .iter()
-        .filter(|m| m["params"]["uri"] == "file:///tmp/p.json")
-        .last()
+        .rfind(|m| m["params"]["uri"] == "file:///tmp/p.json")
         .expect("p.json republished");
     assert_eq!(json_now["params"]["diagnostics"], json!([]));
 }

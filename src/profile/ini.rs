@@ -1,7 +1,10 @@
-//! `key = value` configs, as OrcaSlicer and PrusaSlicer export them: one setting per line,
-//! `#` or `;` comment lines, values taken as written (no escapes), CRLF tolerated.
+//! `key = value` configs, as OrcaSlicer and PrusaSlicer export them: one setting per line
+//! (lines end at `\n`, `\r\n` or `\r`), `#`/`;` comments and `[section]` headers skipped
+//! (they hold no key we look for), values taken as written to the end of the line (no
+//! escapes). Shared by the CLI and the language server.
 
-use super::{Found, MODEL_KEYS, OffsetMap, Profile, Settings, TEMPLATE_KEYS};
+use super::json::{JsonTemplate, OffsetMap};
+use super::{Found, MODEL_KEYS, Profile, Settings, TEMPLATE_KEYS};
 use crate::Span;
 
 /// Whether most non-comment lines look like `key = value` (for files without extension).
@@ -12,70 +15,87 @@ pub(super) fn looks_like_ini(bytes: &[u8]) -> bool {
     let mut lines = text
         .lines()
         .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with(['#', ';']));
+        .filter(|l| !l.is_empty() && !l.starts_with(['#', ';', '[']));
     let Some(first) = lines.next() else {
         return false;
     };
-    std::iter::once(first)
-        .chain(lines)
-        .take(20)
-        .all(|l| setting(l).is_some())
+    std::iter::once(first).chain(lines).take(20).all(|l| {
+        l.split_once('=').is_some_and(|(k, _)| {
+            let k = k.trim();
+            !k.is_empty() && k.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_')
+        })
+    })
 }
 
-/// `key = value`: the key and the value's byte range within the line.
-fn setting(line: &str) -> Option<(&str, usize, usize)> {
-    let eq = line.find('=')?;
-    let key = line[..eq].trim();
-    if key.is_empty() || !key.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') {
-        return None;
-    }
-    let rest = &line[eq + 1..];
-    let lead = rest.len() - rest.trim_start().len();
-    let value = rest.trim();
-    let start = eq + 1 + lead;
-    Some((key, start, start + value.len()))
+/// One `key = value` line: the key and the value (trimmed of spaces and tabs), with spans.
+struct Line<'a> {
+    key: &'a str,
+    key_span: Span,
+    value: &'a str,
+    value_span: Span,
+}
+
+fn settings(doc: &str) -> impl Iterator<Item = Line<'_>> {
+    let mut start = 0;
+    doc.split_inclusive(['\n', '\r']).filter_map(move |raw| {
+        let mut line_start = start;
+        start += raw.len();
+        let mut line = raw.trim_end_matches(['\n', '\r']);
+        if line_start == 0
+            && let Some(rest) = line.strip_prefix('\u{feff}')
+        {
+            line = rest;
+            line_start += 3;
+        }
+        let eq = line.find('=')?;
+        let key = line[..eq].trim();
+        let key_start = line_start + line.find(key).unwrap_or(0);
+        let value = &line[eq + 1..];
+        let lead = value.len() - value.trim_start_matches([' ', '\t']).len();
+        let text = value[lead..].trim_end_matches([' ', '\t']);
+        let value_start = line_start + eq + 1 + lead;
+        Some(Line {
+            key,
+            key_span: Span::new(key_start, key_start + key.len()),
+            value: text,
+            value_span: Span::new(value_start, value_start + text.len()),
+        })
+    })
+}
+
+/// Every template line of an `.ini` document, with the key's span and the value's map.
+pub fn find_templates(doc: &str) -> Vec<JsonTemplate> {
+    settings(doc)
+        .filter_map(|l| {
+            let &(_, target) = TEMPLATE_KEYS.iter().find(|(k, _)| *k == l.key)?;
+            Some(JsonTemplate {
+                key: l.key.to_owned(),
+                key_span: l.key_span,
+                target,
+                text: l.value.to_owned(),
+                contents: l.value_span,
+                map: OffsetMap::verbatim(l.value_span.start, l.value.len()),
+            })
+        })
+        .collect()
 }
 
 pub(super) fn read(profile: &mut Profile) {
     let text = profile.sources[0].text.clone();
-    let mut settings = Settings::default();
-    let mut offset = 0;
-    for raw in text.split_inclusive('\n') {
-        let line_start = offset;
-        offset += raw.len();
-        let mut line = raw.strip_suffix('\n').unwrap_or(raw);
-        line = line.strip_suffix('\r').unwrap_or(line);
-        // A byte-order mark before the first key.
-        let skip = if line_start == 0 && line.starts_with('\u{feff}') {
-            3
-        } else {
-            0
-        };
-        let line = &line[skip..];
-        let base = line_start + skip;
-        let Some((key, start, end)) = setting(line) else {
-            continue;
-        };
-        let value = &line[start..end];
-        if let Some(&(_, target)) = TEMPLATE_KEYS.iter().find(|(k, _)| *k == key) {
-            let mut map = OffsetMap::starting_at(base + start);
-            map.push_verbatim(0, base + start, value.len());
+    let mut settings_found = Settings::default();
+    for l in settings(&text) {
+        if let Some(&(_, target)) = TEMPLATE_KEYS.iter().find(|(k, _)| *k == l.key) {
             profile.templates.push(Found {
-                key: Some(key.to_owned()),
+                key: Some(l.key.to_owned()),
                 object: None,
                 target,
-                text: value.to_owned(),
+                text: l.value.to_owned(),
                 source: 0,
-                map,
+                map: OffsetMap::verbatim(l.value_span.start, l.value.len()),
             });
-        } else if MODEL_KEYS.contains(&key) || key == "inherits" {
-            settings.set(
-                key,
-                value.to_owned(),
-                0,
-                Span::new(base + start, base + end),
-            );
+        } else if MODEL_KEYS.contains(&l.key) || l.key == "inherits" {
+            settings_found.set(l.key, l.value.to_owned(), 0, l.value_span);
         }
     }
-    profile.settings.merge_missing(settings);
+    profile.settings.merge_missing(settings_found);
 }

@@ -20,7 +20,7 @@
 //! assert_eq!(m.model.layer_height(), 0.12);
 //! ```
 
-mod ini;
+pub mod ini;
 pub mod json;
 mod settings;
 #[cfg(feature = "3mf")]

@@ -91,8 +91,7 @@ pub fn session(data: &[u8]) -> Vec<u8> {
         turns: 0,
     };
     runtime.block_on(rotlang_lsp::server::serve(input, output.clone()));
-    let written = output.0.lock().expect("not poisoned").clone();
-    written
+    output.0.lock().expect("not poisoned").clone()
 }
 
 /// Every frame the server wrote is `Content-Length: n\r\n\r\n` and n bytes of JSON.

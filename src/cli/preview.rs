@@ -372,7 +372,7 @@ fn nest(rings: Vec<Vec<Coord>>) -> MultiPolygon<f64> {
     };
     let mut polygons: Vec<(usize, Polygon<f64>)> = Vec::new();
     for (i, r) in rings.iter().enumerate() {
-        if parents[i].len() % 2 == 0 {
+        if parents[i].len().is_multiple_of(2) {
             polygons.push((i, Polygon::new(close(r), vec![])));
         }
     }
@@ -488,4 +488,104 @@ fn json(
         serde_json::to_string(&serde_json::json!({ "layers": layers })).unwrap_or_default();
     text.push('\n');
     Ok(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        args: PreviewArgs,
+    }
+
+    fn preview(argv: &[&str]) -> (Result<i32, String>, String, String) {
+        let cli = Cli::try_parse_from(std::iter::once("preview").chain(argv.iter().copied()))
+            .unwrap_or_else(|e| panic!("{argv:?}: {e}"));
+        let (mut out, mut err) = (Vec::new(), Vec::new());
+        let code = run(&cli.args, &mut out, &mut err).map_err(|e| e.0);
+        (
+            code,
+            String::from_utf8(out).unwrap(),
+            String::from_utf8(err).unwrap(),
+        )
+    }
+
+    #[test]
+    fn json_lists_the_paths_of_each_layer() {
+        let (code, out, _) = preview(&[
+            "+45",
+            "--pattern",
+            "grid",
+            "--layers",
+            "1..=2",
+            "--format",
+            "json",
+        ]);
+        assert_eq!(code, Ok(0));
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let layers = v["layers"].as_array().unwrap();
+        assert_eq!(layers.len(), 2);
+        assert_eq!(
+            (layers[0]["index"].clone(), layers[0]["angle"].clone()),
+            (1.into(), 90.0.into())
+        );
+        assert_eq!(layers[1]["pattern"], "grid");
+        assert!(!layers[1]["polylines"].as_array().unwrap().is_empty());
+    }
+
+    #[test]
+    fn svg_has_one_panel_per_layer() {
+        let (code, out, _) = preview(&["0, 90", "--shape", "star", "--layers", "3"]);
+        assert_eq!(code, Ok(0));
+        assert!(
+            out.starts_with("<svg") && out.contains("layer 3 · z 0.8 mm · 90°"),
+            "{out}"
+        );
+    }
+
+    #[test]
+    fn shapes_from_files() {
+        let dir = std::env::temp_dir().join(format!("rotlang-preview-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let svg = dir.join("part.svg");
+        std::fs::write(
+            &svg,
+            r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0 H20 V20 H0 Z M5 5 V15 H15 V5 Z"/></svg>"#,
+        )
+        .unwrap();
+        let region = shape(svg.to_str().unwrap(), 20.0).unwrap();
+        assert_eq!((region.0.len(), region.0[0].interiors().len()), (1, 1));
+        let json = dir.join("part.json");
+        std::fs::write(&json, "[[[0,0],[10,0],[10,10],[0,10]]]").unwrap();
+        assert_eq!(shape(json.to_str().unwrap(), 20.0).unwrap().0.len(), 1);
+        std::fs::write(&json, "[1, 2]").unwrap();
+        assert!(shape(json.to_str().unwrap(), 20.0).is_err());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn usage_errors() {
+        for argv in [
+            &["0", "--shape", "/nonexistent.svg"][..],
+            &["0", "--layers", "200..210"],
+            &["0", "--nozzle", "0"],
+            &["0", "--size=-1"],
+        ] {
+            assert!(preview(argv).0.is_err(), "{argv:?}");
+        }
+        for argv in [
+            &["0", "--density", "0"][..],
+            &["0", "--density", "150%"],
+            &["0", "--layers", "5..2"],
+        ] {
+            assert!(
+                Cli::try_parse_from(std::iter::once("preview").chain(argv.iter().copied()))
+                    .is_err()
+            );
+        }
+        assert_eq!(preview(&["+30X5"]).0, Ok(1));
+    }
 }

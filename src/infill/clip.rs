@@ -22,7 +22,7 @@ impl Frame {
         Frame { centre, cos, sin }
     }
 
-    pub fn to_local(&self, p: Coord) -> Coord {
+    pub fn to_local(self, p: Coord) -> Coord {
         let d = p - self.centre;
         Coord {
             x: d.x * self.cos + d.y * self.sin,
@@ -30,7 +30,7 @@ impl Frame {
         }
     }
 
-    pub fn to_world(&self, q: Coord) -> Coord {
+    pub fn to_world(self, q: Coord) -> Coord {
         Coord {
             x: self.centre.x + q.x * self.cos - q.y * self.sin,
             y: self.centre.y + q.x * self.sin + q.y * self.cos,
@@ -71,9 +71,17 @@ impl Edges {
             y: f64::NEG_INFINITY,
         };
         for ring in rings {
-            let local: Vec<Coord> = ring.iter().map(|&p| frame.to_local(p)).collect();
-            for (i, &a) in local.iter().enumerate() {
-                let b = local[(i + 1) % local.len()];
+            let Some(&first) = ring.first() else {
+                continue;
+            };
+            let first = frame.to_local(first);
+            let mut a = first;
+            for k in 0..ring.len() {
+                // The edge from vertex k to the next (the last one closes the ring).
+                let b = match ring.get(k + 1) {
+                    Some(&p) => frame.to_local(p),
+                    None => first,
+                };
                 min = Coord {
                     x: min.x.min(a.x),
                     y: min.y.min(a.y),
@@ -85,6 +93,7 @@ impl Edges {
                 if a != b {
                     edges.push(Edge { a, b });
                 }
+                a = b;
             }
         }
         let n = (edges.len() / 4).clamp(1, 512);
@@ -98,7 +107,8 @@ impl Edges {
             }
         }
         Edges {
-            stamp: vec![u32::MAX; edges.len()],
+            // Allocated by the first `clip`: straight lines never need it.
+            stamp: Vec::new(),
             edges,
             strips,
             min,
@@ -150,6 +160,9 @@ impl Edges {
     pub fn clip(&mut self, pts: &[Coord], out: &mut Vec<Vec<Coord>>) {
         if pts.len() < 2 {
             return;
+        }
+        if self.stamp.len() != self.edges.len() {
+            self.stamp = vec![u32::MAX; self.edges.len()];
         }
         // Where the polyline crosses an edge, as `segment index + t`.
         let mut cuts: Vec<f64> = vec![0.0];

@@ -159,11 +159,12 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     // offsets pile up the arcs at reflex corners.
     for k in 0.. {
         let mut d = (k as f64 + 0.5) * spacing;
-        let mut current = shrink(region.inset(), d);
+        // From the region itself: the inset's offset by d is its offset by w/2 + d.
+        let mut current = shrink(region.outline(), region.nozzle() / 2.0 + d);
         // A region thinner than a spacing still gets one loop, as far in as it can be.
         while k == 0 && current.0.is_empty() && d > region.nozzle() / 4.0 {
             d /= 2.0;
-            current = shrink(region.inset(), d);
+            current = shrink(region.outline(), region.nozzle() / 2.0 + d);
         }
         if current.0.is_empty() {
             break;

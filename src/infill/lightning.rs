@@ -50,7 +50,7 @@ pub(crate) fn lightning(
             let to_centre = centre - p;
             let dist = length(to_centre);
             if dist > 1e-9 {
-                let turn = if k % 2 == 0 { 10f64 } else { -10.0 }.to_radians();
+                let turn = if k.is_multiple_of(2) { 10f64 } else { -10.0 }.to_radians();
                 let main = rotate(to_centre / dist, turn);
                 let reach = 0.8 * dist;
                 let fork = p + main * (0.4 * reach);

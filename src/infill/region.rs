@@ -11,6 +11,9 @@ use super::{check, curves, lightning, order, straight};
 pub struct Region {
     /// The inset area.
     inset: MultiPolygon<f64>,
+    /// The region as given, without degenerate rings: concentric loops are offset from
+    /// it (it has fewer vertices than the inset, whose holes have grown arcs).
+    outline: MultiPolygon<f64>,
     /// Its rings (outlines and holes) without the repeated closing point.
     rings: Vec<Vec<Coord>>,
     /// How many of `rings` are outlines (they come first).
@@ -82,6 +85,7 @@ impl Region {
         }
         Ok(Region {
             inset,
+            outline: cleaned,
             rings,
             outlines,
             min,
@@ -92,6 +96,11 @@ impl Region {
     }
 
     /// The inset area the infill covers.
+    /// The region as given, degenerate rings dropped.
+    pub fn outline(&self) -> &MultiPolygon<f64> {
+        &self.outline
+    }
+
     pub fn inset(&self) -> &MultiPolygon<f64> {
         &self.inset
     }
@@ -185,9 +194,7 @@ fn clean(region: &MultiPolygon<f64>) -> MultiPolygon<f64> {
     let keep = |ring: &LineString<f64>| {
         let mut c: Vec<Coord> = ring.0.clone();
         c.dedup();
-        let ring = LineString::new(c);
-        (ring.0.len() >= 3 && Polygon::new(ring.clone(), vec![]).unsigned_area() > 0.0)
-            .then_some(ring)
+        (c.len() >= 3 && signed_area(&c) != 0.0).then(|| LineString::new(c))
     };
     MultiPolygon::new(
         region

@@ -1,4 +1,6 @@
-// Types of `rotlang/full` (full.js): everything of `rotlang`, plus profile reading.
+// Types of `rotlang/full` (full.js): everything of `rotlang`, plus profile reading and
+// the infill preview.
+import type { Options } from './rotlang.js';
 export * from './rotlang.js';
 
 export interface ProfileTemplate {
@@ -28,3 +30,24 @@ export interface Profile {
  */
 export function readProfile(name: string, content: string | Uint8Array | ArrayBuffer): Profile;
 
+
+export interface PreviewOptions extends Options {
+  /** The layer (default 0). */
+  layer?: number;
+  pattern?: 'lines' | 'grid' | 'triangles' | 'hexagons' | 'concentric' | 'gyroid' | 'spiral' | 'lightning';
+  /** Sparse density, 0 to 1 (default 0.2). */
+  density?: number;
+  shape?: 'square' | 'circle' | 'ring' | 'star' | 'l';
+  /** The panel's side in pixels (default 320). */
+  width?: number;
+}
+/** One layer's infill as printed, seen from above, as SVG (what `rotlang preview` draws). */
+export function preview(text: string, options?: PreviewOptions): string;
+
+export interface PlotOptions extends Options {
+  /** Picture size in pixels (16 to 4096; default 960 × 560). */
+  width?: number;
+  height?: number;
+}
+/** The angle chart as SVG (what `rotlang plot` draws); throws for a template with errors. */
+export function plot(text: string, options?: PlotOptions): string;

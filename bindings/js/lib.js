@@ -64,8 +64,14 @@ function textArg(text) {
 const SLOTS = {
   target: 0, dialect: 1, layers: 2, height: 3, layerHeight: 4, firstLayerHeight: 5,
   bottomShells: 6, topShells: 7, base: 8, seed: 9, from: 10, to: 11,
+  layer: 12, density: 13, pattern: 14, shape: 15, width: 16,
 };
-const SLOT_COUNT = 12;
+// Top-level `height` is the picture's; the model's `height` (slot 3) is inside `model`.
+const PICTURE_HEIGHT = 17;
+const SLOT_COUNT = 18;
+/** The preview's patterns and outlines (indices cross into wasm; src/api.rs `SHAPES`). */
+export const PATTERNS = Object.freeze(['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning']);
+export const SHAPES = Object.freeze(['square', 'circle', 'ring', 'star', 'l']);
 const TARGETS = ['sparse', 'solid'];
 const DIALECTS = ['rotlang', 'orcaslicer'];
 
@@ -98,14 +104,16 @@ function request(options) {
   let heights = null;
   for (const [key, value] of Object.entries(options)) {
     if (value === undefined || value === null) continue;
-    if (key === 'target' || key === 'dialect') {
-      const names = key === 'target' ? TARGETS : DIALECTS;
+    if (key === 'target' || key === 'dialect' || key === 'pattern' || key === 'shape') {
+      const names = { target: TARGETS, dialect: DIALECTS, pattern: PATTERNS, shape: SHAPES }[key];
       const i = names.indexOf(typeof value === 'string' ? value.trim().toLowerCase() : value);
       if (i < 0) {
         throw new RotlangError('options', `unknown ${key} \`${value}\`; expected ${names.map((n) => `\`${n}\``).join(' or ')}`);
       }
       slots[SLOTS[key]] = i;
-    } else if (key === 'base' || key === 'seed' || key === 'from' || key === 'to') {
+    } else if (key === 'height') {
+      slots[PICTURE_HEIGHT] = finite('options', key, value);
+    } else if (['base', 'seed', 'from', 'to', 'layer', 'density', 'width'].includes(key)) {
       slots[SLOTS[key]] = finite('options', key, value);
     } else if (key === 'model') {
       if (typeof value !== 'object') throw new RotlangError('model', 'the model must be an object');
@@ -288,8 +296,23 @@ export async function bind(wasmModule) {
     }
   }
 
+  /** The angle chart as SVG (`rotlang plot`): options as expand's, plus `width`, `height` (px). */
+  function plot(text, options = {}) {
+    return call('rotlang_plot', text, options, true).svg;
+  }
+
+  /**
+   * One layer's infill as printed, seen from above, as SVG (`rotlang preview`): options as
+   * expand's, plus `layer`, `pattern` (PATTERNS), `density` (0 to 1), `shape` (SHAPES) and
+   * `width` (the panel's side, px).
+   */
+  function preview(text, options = {}) {
+    return call('rotlang_preview', text, options, true).svg;
+  }
+
   const api = { version, signs, check, format, explain, explainCode, compare, compat, expand };
   // In rotlang-full.wasm only.
   if (instance.exports.rotlang_profile) api.readProfile = readProfile;
+  if (instance.exports.rotlang_preview) Object.assign(api, { plot, preview });
   return api;
 }

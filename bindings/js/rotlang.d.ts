@@ -4,6 +4,10 @@
 /** Fill names, indexed by the bytes of `ExpandResult.fills`. */
 export const FILLS: readonly ['sparse', 'dense', 'solid', 'concentric', 'monotonic', 'rectilinear'];
 export type Fill = (typeof FILLS)[number];
+/** The infill preview's patterns (rotlang/full). */
+export const PATTERNS: readonly ['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning'];
+/** The infill preview's outlines, 20 mm across (rotlang/full). */
+export const SHAPES: readonly ['square', 'circle', 'ring', 'star', 'l'];
 
 export type ErrorKind = 'template' | 'model' | 'options' | 'limit' | 'profile' | 'unavailable' | 'internal';
 
@@ -153,6 +157,7 @@ export function check(text: string, options?: Options): CheckResult;
 export function format(text: string, options?: Options): string;
 export function expand(text: string, options?: ExpandOptions): ExpandResult;
 export function signs(): Sign[];
+
 export function compare(text: string, options?: Options): Comparison;
 /** The template in plain words on the model (what `rotlang explain TEMPLATE` prints). */
 export function explain(text: string, options?: Options): string;

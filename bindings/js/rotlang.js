@@ -3,7 +3,7 @@
 // it loads rotlang.wasm (beside this file) once, with top-level await.
 import { bind, compile } from './lib.js';
 
-export { FILLS, RotlangError } from './lib.js';
+export { FILLS, PATTERNS, SHAPES, RotlangError } from './lib.js';
 
 const api = await bind(await compile(new URL('./rotlang.wasm', import.meta.url)));
 

@@ -5,11 +5,11 @@ import { Engine } from './engine.js';
 import { EXAMPLES } from './examples.js';
 import { MAX_LAYERS } from './limits.js';
 import { cursorX, layerAt, plotSvg } from './plot.js';
-import { previewSvg } from './preview.js';
 import { decodeState, encodeState } from './share.js';
 
 const $ = (id) => document.getElementById(id);
 const FILLS = ['sparse', 'dense', 'solid', 'concentric', 'monotonic', 'rectilinear'];
+const PATTERN_NAMES = ['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning'];
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => `&#${c.charCodeAt(0)};`);
 const deg = (a) => `${Number(a.toFixed(4))}°`;
 
@@ -91,6 +91,7 @@ function schedule(delay = 120) {
 }
 
 let pendingLayer = null;
+let analysedRequest = null; // what the last analysis was asked, for the preview and chart
 
 async function analyse() {
   const text = view.state.doc.toString();
@@ -100,10 +101,9 @@ async function analyse() {
   if (model.firstLayerHeight === undefined) delete model.firstLayerHeight;
   status('checking…');
   let r;
+  const req = { text, target: s.target, dialect: s.dialect, model, base: s.base, seed: s.seed };
   try {
-    r = await engine.request('analyse', {
-      text, target: s.target, dialect: s.dialect, model, base: s.base, seed: s.seed,
-    });
+    r = await engine.request('analyse', req);
   } catch (e) {
     if (id !== seq) return;
     status(e.message, true);
@@ -112,6 +112,7 @@ async function analyse() {
   if (id !== seq || text !== view.state.doc.toString()) return; // stale
   analysis = r;
   analysedText = text;
+  analysedRequest = req;
   showDiagnostics(view, [...r.check.diagnostics, ...(r.compat ?? []).map((d) => ({ ...d, severity: 'info' }))]);
   renderProblems(r.check);
   renderCompat(r);
@@ -195,7 +196,9 @@ function renderPlot() {
     $('layer-info').textContent = '';
     return;
   }
-  plot.innerHTML = typeof analysis.plot === 'string' ? analysis.plot : plotSvg(l.angles, l.fills);
+  plot.innerHTML = plotSvg(l.angles, l.fills);
+  $('chart-svg').innerHTML = '';
+  if ($('chart').open) renderChart();
   const slider = $('layer-slider');
   slider.max = String(Math.max(0, l.angles.length - 1));
   if (pendingLayer !== null) {
@@ -220,16 +223,41 @@ function renderLayer() {
     cursor.setAttribute('x1', x);
     cursor.setAttribute('x2', x);
   }
-  $('preview').innerHTML = previewSvg(angle, {
-    pattern: $('pattern').value,
-    density: num('density') ?? 15,
-    shape: $('shape').value,
-    solid: fill !== 'sparse',
-  });
+  schedulePreview(i);
   highlight(view, ins && view.state.doc.toString() === analysedText
     ? { from: ins.startUtf16, to: ins.endUtf16, title: `governs layer ${i}` }
     : null);
 }
+
+// The preview is drawn by rotlang in the worker; while the slider moves only the last
+// layer asked for is drawn.
+let previewSeq = 0;
+let previewTimer = null;
+function schedulePreview(layer) {
+  clearTimeout(previewTimer);
+  previewTimer = setTimeout(async () => {
+    const id = ++previewSeq;
+    const density = Math.min(100, Math.max(1, num('density') ?? 20)) / 100;
+    try {
+      const svg = await engine.request('preview', {
+        ...analysedRequest, layer, pattern: $('pattern').value, density, shape: $('shape').value,
+      });
+      if (id === previewSeq) $('preview').innerHTML = svg;
+    } catch (e) {
+      if (id === previewSeq) $('preview').textContent = `no preview: ${e.message}`;
+    }
+  }, 30);
+}
+
+async function renderChart() {
+  if (!analysedRequest || !analysis?.layers) return;
+  try {
+    $('chart-svg').innerHTML = await engine.request('plot', analysedRequest);
+  } catch (e) {
+    $('chart-svg').textContent = `no chart: ${e.message}`;
+  }
+}
+$('chart').addEventListener('toggle', () => { if ($('chart').open) renderChart(); });
 
 function setLayer(i) {
   const slider = $('layer-slider');
@@ -336,7 +364,7 @@ async function loadProfile(file) {
     applyState({
       layers: m.layers, layerHeight: m.layerHeight, firstLayerHeight: m.firstLayerHeight ?? '',
       bottomShells: m.bottomShells, topShells: m.topShells, base: p.base,
-      pattern: ['grid', 'triangles'].includes(p.pattern) ? p.pattern : undefined,
+      pattern: PATTERN_NAMES.includes(p.pattern) ? p.pattern : undefined,
       density: Number.isFinite(p.density) ? p.density : undefined,
       target: p.templates[0].target, text: p.templates[0].text,
     });

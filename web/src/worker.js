@@ -68,13 +68,6 @@ const ops = {
         out.explain = null;
       }
     }
-    if (typeof r.plot === 'function' && out.layers) {
-      try {
-        out.plot = r.plot(state.text, { ...options(state), ...state.plot });
-      } catch {
-        out.plot = null;
-      }
-    }
     return out;
   },
   async format({ text, target }) {
@@ -82,10 +75,18 @@ const ops = {
     if (text.length > MAX_TEMPLATE) throw refuse('limit', 'the template is too long to format here');
     return r.format(text, { target });
   },
-  async preview(args) {
+  // One layer's infill as printed (rotlang::infill), seen from above.
+  async preview(state) {
     const r = await rotlang;
-    if (typeof r.preview !== 'function') return null;
-    return r.preview(args.text, args.options);
+    return r.preview(state.text, {
+      ...options(state), dialect: undefined, layer: state.layer, pattern: state.pattern,
+      density: state.density, shape: state.shape, width: 320,
+    });
+  },
+  // The angle chart against height (rotlang::plot).
+  async plot(state) {
+    const r = await rotlang;
+    return r.plot(state.text, { ...options(state), dialect: undefined, width: 720, height: 420 });
   },
   // rotlang's own profile reader (JSON, jsonc, .ini, .rot); a file of another name is read
   // as JSON, and refused when it holds no template.

@@ -125,13 +125,17 @@ test('the plot for 0, 90 alternates', async () => {
   await page.close();
 });
 
-// Directions of the preview's lines (degrees modulo 180), read from the rendered SVG.
-async function lineDirections(page) {
-  return page.locator('#preview svg .infill line').evaluateAll((ls) => ls.map((l) => {
-    const [x1, y1, x2, y2] = ['x1', 'y1', 'x2', 'y2'].map((a) => Number(l.getAttribute(a)));
+// Directions (degrees modulo 180) of the infill paths in the rendered preview SVG (drawn
+// by rotlang::infill::preview): each stroked path from its first to its last point.
+async function lineDirections(page, layer) {
+  await page.waitForFunction((l) => document.querySelector('#preview svg')?.textContent.includes(`layer ${l} `), layer);
+  return page.locator('#preview svg path[stroke^="hsl"]').evaluateAll((paths) => paths.flatMap((p) => {
+    const pts = [...p.getAttribute('d').matchAll(/[ML](-?[\d.]+) (-?[\d.]+)/g)].map((m) => [Number(m[1]), Number(m[2])]);
+    const [[x1, y1], [x2, y2]] = [pts[0], pts[pts.length - 1]];
+    if (pts.length < 2 || Math.hypot(x2 - x1, y2 - y1) < 5) return [];
     // SVG's y axis points down.
     const a = (Math.atan2(-(y2 - y1), x2 - x1) * 180) / Math.PI;
-    return ((a % 180) + 180) % 180;
+    return [((a % 180) + 180) % 180];
   }));
 }
 
@@ -144,14 +148,14 @@ test('the slider at layer 49 of +30/50% on the cube shows lines at 30°, by keyb
   for (let i = 0; i < 49; i++) await page.keyboard.press('ArrowRight');
   assert.equal(await page.inputValue('#layer-slider'), '49');
   assert.match(await page.textContent('#layer-info'), /^layer 49: 30°/);
-  const dirs = await lineDirections(page);
+  const dirs = await lineDirections(page, 49);
   assert.ok(dirs.length > 5, `${dirs.length} lines`);
-  for (const d of dirs) assert.ok(Math.abs(d - 30) < 1e-3, `a line at ${d}°`);
+  for (const d of dirs) assert.ok(Math.abs(d - 30) < 0.5, `a line at ${d}°`);
   // The instruction that governs layer 49 is highlighted in the editor.
   assert.equal(await page.locator('.cm-governing').textContent(), '+30/50%');
   // Layer 0 is at 0.6° (the first of 50 steps), not 30°.
   await page.keyboard.press('Home');
-  const first = await lineDirections(page);
+  const first = await lineDirections(page, 0);
   assert.ok(first.every((d) => Math.abs(d - 30) > 1), 'layer 0 differs');
   await page.keyboard.press('End');
   await shot(page, 'slider-49');
@@ -213,7 +217,7 @@ test('a share link restores the state', async () => {
   assert.equal(await again.inputValue('#shape'), 'circle');
   assert.equal(await again.inputValue('#layer-slider'), '7');
   assert.equal(await again.locator('#plot svg circle').count(), 40);
-  assert.ok(await again.locator('#preview svg circle').count() > 0, 'circle outline');
+  await again.waitForFunction(() => document.querySelector('#preview svg')?.textContent.includes('layer 7 '));
   await again.close();
 });
 
@@ -275,6 +279,20 @@ test('hostile input: a 1 MB paste is refused, a million layers plot, ten million
   await page.fill('#layers', '-3');
   await page.waitForFunction(() => /^model: /.test(document.querySelector('#status').textContent));
   assert.deepEqual(page.errors, []);
+  await page.close();
+});
+
+test('every pattern and shape previews; the chart by rotlang plot opens', async () => {
+  const page = await open();
+  await type(page, '+10L25%, -10l25%');
+  for (const pattern of ['grid', 'gyroid', 'concentric', 'lightning']) {
+    await page.selectOption('#pattern', pattern);
+    await page.selectOption('#shape', pattern === 'grid' ? 'star' : 'ring');
+    await page.waitForFunction((p) => document.querySelector('#preview svg')?.textContent.includes(p), pattern);
+  }
+  await page.click('#chart summary');
+  await page.waitForFunction(() => /height \(mm\)/.test(document.querySelector('#chart-svg svg')?.textContent ?? ''));
+  await shot(page, 'patterns');
   await page.close();
 });
 
@@ -377,6 +395,7 @@ test('screenshot for the README', async () => {
   await page.focus('#layer-slider');
   await page.keyboard.press('Home');
   for (let i = 0; i < 30; i++) await page.keyboard.press('ArrowRight');
+  await page.waitForFunction(() => document.querySelector('#preview svg')?.textContent.includes('layer 30 '));
   await page.screenshot({ path: join(artifacts, 'playground.png') });
   await page.close();
 });

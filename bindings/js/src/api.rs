@@ -12,7 +12,7 @@ use rotlang::{Fill, Parse, Span, Target};
 
 use crate::Failure;
 use crate::diagnostics;
-use crate::options::Request;
+use crate::options::{Request, slot};
 use crate::utf16::Utf16Map;
 
 /// Most layers one `expand` call returns (13 bytes each: 130 MB). A larger model is read
@@ -265,6 +265,75 @@ pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
         "notes": notes,
         "hasErrors": p.has_errors(),
     }))
+}
+
+/// The angle chart of the template on the model (`rotlang::plot::svg`, as `rotlang plot`
+/// draws it). In the full module: 20 KB the core's budget has no room for.
+#[cfg(feature = "full")]
+pub fn plot(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
+    let target = req.target()?;
+    let options = req.eval_options()?;
+    let model = req.model(heights)?;
+    let plot = rotlang::plot::PlotOptions {
+        width: req.pixels(slot::WIDTH, 960.0)?,
+        height: req.pixels(slot::PICTURE_HEIGHT, 560.0)?,
+        title: None,
+    };
+    let parse = parse_clean(text, target)?;
+    Ok(obj!({ "svg": rotlang::plot::svg(&parse.template, &model, options, text, &plot) }))
+}
+
+/// The preview's outlines, by the index the JS wrapper sends (`SHAPES` in lib.js): the
+/// documentation's 20 mm cube and others of its size.
+#[cfg(feature = "full")]
+pub const SHAPES: [&str; 5] = ["square", "circle", "ring", "star", "l"];
+
+/// One layer's infill as printed, seen from above (`rotlang::infill::preview`, as
+/// `rotlang preview` draws it).
+#[cfg(feature = "full")]
+pub fn preview(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
+    use rotlang::infill::{Pattern, Settings, preview, shapes};
+    let target = req.target()?;
+    let options = req.eval_options()?;
+    let model = req.model(heights)?;
+    let layer = req
+        .index(slot::LAYER, model.len().saturating_sub(1))?
+        .unwrap_or(0);
+    let pattern = match req.index(slot::PATTERN, Pattern::ALL.len() - 1)? {
+        Some(i) => Pattern::ALL[i],
+        None => Pattern::Lines,
+    };
+    let density = req.number(slot::DENSITY).unwrap_or(0.2);
+    let region = match req.index(slot::SHAPE, SHAPES.len() - 1)?.unwrap_or(0) {
+        0 => shapes::square(20.0),
+        1 => shapes::circle(10.0),
+        2 => shapes::ring_shape(10.0, 5.0),
+        3 => shapes::star(10.0, 5.0),
+        _ => shapes::l_shape(20.0),
+    };
+    let settings = Settings {
+        pattern,
+        density,
+        ..Settings::default()
+    };
+    let panel = preview::PreviewOptions {
+        panel: req.pixels(slot::WIDTH, 320.0)?,
+        columns: 1,
+        travel: false,
+    };
+    let parse = parse_clean(text, target)?;
+    let svg = preview::render(
+        &parse.template,
+        &model,
+        options,
+        text,
+        &region,
+        &settings,
+        layer..layer + 1,
+        &panel,
+    )
+    .map_err(|e| Failure::options(e.to_string()))?;
+    Ok(obj!({ "svg": svg, "layer": layer, "pattern": pattern.name() }))
 }
 
 /// How OrcaSlicer's reading differs from rotlang's on this model: the first layer whose

@@ -228,6 +228,52 @@ pub unsafe extern "C" fn rotlang_profile(
     finish(api::profile(name, bytes))
 }
 
+#[cfg(feature = "full")]
+/// As [`rotlang_expand`], for `plot` (a JSON answer only).
+///
+/// # Safety
+/// As [`rotlang_expand`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_plot(
+    text: *const u8,
+    text_len: usize,
+    req: *const f64,
+    req_len: usize,
+    heights: *const f64,
+    count: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        // SAFETY: as above.
+        let heights = unsafe { f64s(heights, count) };
+        api::plot(t, &r, heights)
+    });
+    finish(result)
+}
+
+#[cfg(feature = "full")]
+/// As [`rotlang_expand`], for `preview` (a JSON answer only).
+///
+/// # Safety
+/// As [`rotlang_expand`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_preview(
+    text: *const u8,
+    text_len: usize,
+    req: *const f64,
+    req_len: usize,
+    heights: *const f64,
+    count: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        // SAFETY: as above.
+        let heights = unsafe { f64s(heights, count) };
+        api::preview(t, &r, heights)
+    });
+    finish(result)
+}
+
 /// As [`rotlang_expand`], for `compare` (no arrays out).
 ///
 /// # Safety

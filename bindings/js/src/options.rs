@@ -22,7 +22,18 @@ pub mod slot {
     pub const SEED: usize = 9;
     pub const FROM: usize = 10;
     pub const TO: usize = 11;
-    pub const COUNT: usize = 12;
+    /// The preview's layer.
+    pub const LAYER: usize = 12;
+    /// The preview's sparse density, in (0, 1].
+    pub const DENSITY: usize = 13;
+    /// The preview's pattern: an index into `PATTERNS`.
+    pub const PATTERN: usize = 14;
+    /// The preview's outline: an index into `SHAPES`.
+    pub const SHAPE: usize = 15;
+    /// Picture size in pixels (the plot's width and height; the preview panel's side).
+    pub const WIDTH: usize = 16;
+    pub const PICTURE_HEIGHT: usize = 17;
+    pub const COUNT: usize = 18;
 }
 
 #[derive(Clone, Debug)]
@@ -52,6 +63,12 @@ const NAMES: [&str; slot::COUNT] = [
     "seed",
     "from",
     "to",
+    "layer",
+    "density",
+    "pattern",
+    "shape",
+    "width",
+    "height",
 ];
 
 impl Request {
@@ -112,6 +129,28 @@ impl Request {
             .whole(slot::SEED, 9_007_199_254_740_991.0)?
             .unwrap_or(0);
         Ok(Options { base, seed })
+    }
+
+    /// A number from a slot (absent: None).
+    pub fn number(&self, slot: usize) -> Option<f64> {
+        self.get(slot)
+    }
+
+    /// A whole number from a slot, at most `max`.
+    pub fn index(&self, slot: usize, max: usize) -> Result<Option<usize>, Failure> {
+        Ok(self.whole(slot, max as f64)?.map(|v| v as usize))
+    }
+
+    /// A picture size in pixels from a slot: 16 to 4096, or `default`.
+    pub fn pixels(&self, slot: usize, default: f64) -> Result<f64, Failure> {
+        match self.get(slot) {
+            None => Ok(default),
+            Some(v) if (16.0..=4096.0).contains(&v) => Ok(v),
+            Some(v) => Err(Failure::options(format!(
+                "`{}` must be from 16 to 4096 pixels, not {v}",
+                NAMES[slot]
+            ))),
+        }
     }
 
     /// The first layer and one past the last layer asked for (absent: None).

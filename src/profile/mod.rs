@@ -313,6 +313,9 @@ pub(crate) fn json_file(profile: &mut Profile, source: usize, object: Option<&st
         })
     };
     if let Some((offset, message)) = error {
+        // The offset may come from the jsonc-stripped text, where a byte-order mark is
+        // blanked: it must be a boundary of the file's own text.
+        let offset = crate::diagnostic::floor_char_boundary(&doc, offset);
         profile.notes.push(Note {
             source,
             span: Span::new(offset, offset),

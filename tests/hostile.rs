@@ -250,7 +250,6 @@ fn megabyte_report_of_noise_stays_small() {
 }
 
 #[test]
-#[ignore = "known: the excerpt keeps the whole primary span, so a 1 MB number prints a 2 MB report (src/cli/mod.rs `excerpt`)"]
 fn megabyte_report_of_one_long_span_stays_small() {
     report_stays_small("1 MB number", &"9".repeat(MB));
 }

@@ -60,8 +60,10 @@ export function createEditor(host, text, hooks) {
         return dom ? { pos, above: true, create: () => ({ dom }) } : null;
       }, { hoverTime: 250 }),
       // Refuse an edit that would make the template larger than the playground takes.
+      // An edit that does not lengthen it always passes (Backspace on a text already over
+      // the cap must work: the cap is about growth).
       EditorState.transactionFilter.of((tr) => {
-        if (tr.docChanged && tr.newDoc.length > MAX_TEMPLATE) {
+        if (tr.docChanged && tr.newDoc.length > MAX_TEMPLATE && tr.newDoc.length > tr.startState.doc.length) {
           hooks.onRefused(`refused: that would make the template ${tr.newDoc.length.toLocaleString('en')} characters long; the playground edits up to ${MAX_TEMPLATE.toLocaleString('en')} (real templates are a few dozen; the rotlang CLI checks any size)`);
           return [];
         }

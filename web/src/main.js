@@ -3,8 +3,8 @@
 import { createEditor, highlight, replaceAll, showDiagnostics } from './editor.js';
 import { Engine } from './engine.js';
 import { EXAMPLES } from './examples.js';
-import { MAX_LAYERS } from './limits.js';
-import { cursorX, layerAt, plotSvg } from './plot.js';
+import { MAX_LAYERS, MAX_TEMPLATE } from './limits.js';
+import { cursorX, layerAt, plotSvg, plotWidth } from './plot.js';
 import { decodeState, encodeState } from './share.js';
 
 const $ = (id) => document.getElementById(id);
@@ -25,6 +25,29 @@ function status(message, refused = false) {
   const s = $('status');
   s.textContent = message;
   s.classList.toggle('refused', refused);
+}
+
+// A refusal the next analysis must not overwrite (a shared link or a profile that was not
+// taken whole): it stays until dismissed or replaced. `null` hides it.
+function notice(message) {
+  $('notice-text').textContent = message ?? '';
+  $('notice').hidden = !message;
+  if (message) status(message, true);
+}
+$('notice-close').addEventListener('click', () => notice(null));
+
+const chars = (n) => `${n.toLocaleString('en')} characters`;
+const CAP = chars(MAX_TEMPLATE);
+
+// The state of a share link, without a template longer than the editor takes (the
+// initial document and a replacement would otherwise skip the editor's own check).
+function sharedState(s) {
+  if (s && typeof s.text === 'string' && s.text.length > MAX_TEMPLATE) {
+    notice(`Refused the shared link's template: it has ${chars(s.text.length)}; the playground takes up to ${CAP}. The editor keeps ${view ? 'its template' : 'the default template'}; the link's model and view were applied.`);
+    const { text, ...rest } = s;
+    return rest;
+  }
+  return s;
 }
 
 // ---- model and view state -------------------------------------------------------
@@ -196,7 +219,7 @@ function renderPlot() {
     $('layer-info').textContent = '';
     return;
   }
-  plot.innerHTML = plotSvg(l.angles, l.fills);
+  plot.innerHTML = plotSvg(l.angles, l.fills, { width: plot.clientWidth });
   $('chart-svg').innerHTML = '';
   if ($('chart').open) renderChart();
   const slider = $('layer-slider');
@@ -219,7 +242,7 @@ function renderLayer() {
   $('layer-info').textContent = `layer ${i}: ${deg(angle)}${fill !== 'sparse' ? ` (${fill})` : ''}${ins ? ` · ${ins.text}` : ' · holds'}`;
   const cursor = $('plot').querySelector('.cursor');
   if (cursor) {
-    const x = cursorX(i, l.angles.length);
+    const x = cursorX(i, l.angles.length, cursor.ownerSVGElement.viewBox.baseVal.width);
     cursor.setAttribute('x1', x);
     cursor.setAttribute('x2', x);
   }
@@ -252,7 +275,11 @@ function schedulePreview(layer) {
 async function renderChart() {
   if (!analysedRequest || !analysis?.layers) return;
   try {
-    $('chart-svg').innerHTML = await engine.request('plot', analysedRequest);
+    // At the width it is shown at: rotlang draws its text at 12 px.
+    const width = Math.max(300, Math.round($('chart-svg').clientWidth || 720));
+    $('chart-svg').innerHTML = await engine.request('plot', {
+      ...analysedRequest, width, height: Math.round(Math.min(420, Math.max(340, width * 0.6))),
+    });
   } catch (e) {
     $('chart-svg').textContent = `no chart: ${e.message}`;
   }
@@ -274,8 +301,19 @@ $('plot').addEventListener('mousemove', (e) => {
   if (!svg || !l) return;
   const box = svg.getBoundingClientRect();
   const vb = svg.viewBox.baseVal;
-  setLayer(layerAt(((e.clientX - box.left) / box.width) * vb.width, l.angles.length));
+  setLayer(layerAt(((e.clientX - box.left) / box.width) * vb.width, l.angles.length, vb.width));
 });
+// Both pictures are drawn at the width they are shown at: redrawn when it changes.
+let shownWidth = 0;
+new ResizeObserver(() => {
+  const w = plotWidth($('plot').clientWidth);
+  if (w === shownWidth) return;
+  shownWidth = w;
+  if (!analysis?.layers) return;
+  $('plot').innerHTML = plotSvg(analysis.layers.angles, analysis.layers.fills, { width: w });
+  renderLayer();
+  if ($('chart').open) renderChart();
+}).observe($('plot'));
 $('plot').addEventListener('keydown', (e) => {
   const step = { ArrowLeft: -1, ArrowRight: 1, PageDown: -10, PageUp: 10 }[e.key];
   if (step === undefined) return;
@@ -351,13 +389,25 @@ $('share').addEventListener('click', async () => {
 });
 window.addEventListener('hashchange', () => {
   const s = decodeState(location.hash);
-  if (s) applyState(s);
+  if (s) applyState(sharedState(s));
 });
 
 async function loadProfile(file) {
   try {
     const bytes = await file.arrayBuffer();
     const p = await engine.request('profile', { name: file.name, bytes });
+    const title = p.presetName ?? p.name;
+    const named = (t) => `${t.key ?? 'template'}${t.object ? ` (${t.object})` : ''}`;
+    // A template over the editor's cap is not loaded; the profile is applied only with a
+    // template that fits, and the notice says what was left out.
+    const fits = (t) => t.text.length <= MAX_TEMPLATE;
+    const first = p.templates.find(fits);
+    const tooLong = p.templates.filter((t) => !fits(t))
+      .map((t) => `${named(t)} (${chars(t.text.length)})`).join(', ');
+    if (!first) {
+      notice(`Refused ${title}: ${tooLong} ${p.templates.length === 1 ? 'is' : 'are'} longer than the ${CAP} the playground takes. Nothing from the profile was applied.`);
+      return;
+    }
     const holder = $('profile-templates');
     holder.replaceChildren();
     const m = p.model;
@@ -366,18 +416,24 @@ async function loadProfile(file) {
       bottomShells: m.bottomShells, topShells: m.topShells, base: p.base,
       pattern: PATTERN_NAMES.includes(p.pattern) ? p.pattern : undefined,
       density: Number.isFinite(p.density) ? p.density : undefined,
-      target: p.templates[0].target, text: p.templates[0].text,
+      target: first.target, text: first.text,
     });
+    notice(tooLong
+      ? `From ${title}: not loaded ${tooLong}, longer than the ${CAP} the playground takes. Applied: the model and ${named(first)}.`
+      : null);
     const label = document.createElement('p');
-    const title = p.presetName ?? p.name;
     label.textContent = `Profile ${title}: ${p.templates.length} template${p.templates.length === 1 ? '' : 's'}`;
     holder.append(label);
     for (const t of p.templates) {
       const b = document.createElement('button');
       b.type = 'button';
-      const key = t.key ?? 'template';
-      b.textContent = `${key}${t.object ? ` (${t.object})` : ''}: ${t.text.length > 40 ? `${t.text.slice(0, 40)}…` : t.text || '(empty)'}`;
-      b.addEventListener('click', () => applyState({ target: t.target, text: t.text }));
+      b.textContent = `${named(t)}: ${t.text.length > 40 ? `${t.text.slice(0, 40)}…` : t.text || '(empty)'}`;
+      if (fits(t)) {
+        b.addEventListener('click', () => applyState({ target: t.target, text: t.text }));
+      } else {
+        b.disabled = true;
+        b.textContent += ` (not loaded: ${chars(t.text.length)})`;
+      }
       holder.append(b, ' ');
     }
     const notes = p.notes.filter((n) => n.error || /not set/.test(n.message) === false);
@@ -391,7 +447,7 @@ async function loadProfile(file) {
       holder.append(ul);
     }
   } catch (e) {
-    status(`refused: ${e.message}`, true);
+    notice(`refused: ${e.message}`);
   }
 }
 $('profile').addEventListener('change', async (e) => {
@@ -415,8 +471,9 @@ $('layers').max = String(MAX_LAYERS * 50);
 
 // ---- start ------------------------------------------------------------------------
 
-const initial = decodeState(location.hash);
-const view = createEditor($('editor'), initial?.text ?? '+10L25%, -10l25%, -10L25%, +10l25%', {
+let view = null;
+const initial = sharedState(decodeState(location.hash));
+view = createEditor($('editor'), initial?.text ?? '+10L25%, -10l25%, -10L25%, +10l25%', {
   onChange: () => schedule(),
   onRefused: (m) => status(m, true),
   format,

@@ -1,15 +1,36 @@
 // The angle plot: every layer's angle against its index, as SVG.
 // Up to a few thousand layers each layer is a dot (its own element, data-layer and
 // data-angle attributes); above, each pixel column shows the range of its layers.
+// The picture is drawn at the width it is shown at (one SVG unit per CSS pixel), so its
+// text has the same size on a phone as on a desktop.
 const FILL_CLASS = ['sparse', 'dense', 'solid', 'concentric', 'monotonic', 'rectilinear'];
-const W = 640;
-const H = 260;
-const PAD = { left: 40, right: 10, top: 10, bottom: 28 };
+const PAD = { left: 44, right: 10, top: 10, bottom: 28 };
+/** Width of the picture (SVG units = CSS pixels) for a container `px` wide. */
+export const plotWidth = (px) => Math.max(240, Math.round(px || 640));
+const height = (w) => Math.round(Math.min(260, Math.max(200, w * 0.45)));
+// Axis steps (degrees), smallest first: the axis fits the data with at most 6 intervals.
+const STEPS = [0.5, 1, 2, 5, 10, 15, 30, 45, 90, 180, 360];
+
+/** The angle axis's range and tick step for angles in [min, max]. */
+export function angleAxis(min, max) {
+  if (!(max - min > 1e-9)) {
+    // One angle: an axis a step each side of it.
+    const step = 15;
+    const c = Math.round(min / step) * step;
+    return { lo: c - step * 2, hi: c + step * 2, step };
+  }
+  const step = STEPS.find((s) => Math.ceil(max / s - 1e-9) - Math.floor(min / s + 1e-9) <= 6) ?? 360;
+  const lo = Math.floor(min / step + 1e-9) * step;
+  const hi = Math.ceil(max / step - 1e-9) * step;
+  return { lo, hi: hi > lo ? hi : lo + step, step };
+}
 
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => `&#${c.charCodeAt(0)};`);
 const wrap = (a) => ((a % 360) + 360) % 360;
 
-export function plotSvg(angles, fills, { from = 0 } = {}) {
+export function plotSvg(angles, fills, { from = 0, width = 640 } = {}) {
+  const W = plotWidth(width);
+  const H = height(W);
   const n = angles.length;
   const iw = W - PAD.left - PAD.right;
   const ih = H - PAD.top - PAD.bottom;
@@ -23,15 +44,14 @@ export function plotSvg(angles, fills, { from = 0 } = {}) {
     if (angles[i] > max) max = angles[i];
   }
   const raw = max - min <= 360;
-  const lo = raw ? Math.floor(min / 90) * 90 : 0;
-  const hi = raw ? Math.max(lo + 90, Math.ceil(max / 90) * 90) : 360;
+  const { lo, hi, step } = raw ? angleAxis(min, max) : { lo: 0, hi: 360, step: 90 };
   const at = raw ? (a) => a : wrap;
   const y = (a) => PAD.top + ih - ((Math.min(at(a), hi - 1e-9) - lo) / (hi - lo)) * ih;
   const parts = [];
-  parts.push(`<svg xmlns="http://www.w3.org/2000/svg" class="plot" viewBox="0 0 ${W} ${H}" role="img" aria-label="Infill angle of each of ${n} layers">`);
+  parts.push(`<svg xmlns="http://www.w3.org/2000/svg" class="plot" width="${W}" height="${H}" viewBox="0 0 ${W} ${H}" role="img" aria-label="Infill angle of each of ${n} layers">`);
   parts.push(`<g class="axes">`);
-  const step = hi - lo <= 180 ? 30 : hi - lo <= 360 ? 90 : 180;
-  for (let a = lo; a <= hi; a += step) {
+  for (let k = 0; lo + k * step <= hi + 1e-9; k++) {
+    const a = Number((lo + k * step).toFixed(6));
     const gy = (PAD.top + ih - ((a - lo) / (hi - lo)) * ih).toFixed(1);
     parts.push(`<line x1="${PAD.left}" x2="${W - PAD.right}" y1="${gy}" y2="${gy}" class="grid"/>`);
     parts.push(`<text x="${PAD.left - 4}" y="${Number(gy) + 4}" text-anchor="end">${a}°</text>`);
@@ -72,16 +92,16 @@ export function plotSvg(angles, fills, { from = 0 } = {}) {
   return parts.join('');
 }
 
-/** The layer under a horizontal position (in the SVG's own units). */
-export function layerAt(svgX, n) {
-  const iw = W - PAD.left - PAD.right;
+/** The layer under a horizontal position (in the SVG's own units) of a `w`-wide plot. */
+export function layerAt(svgX, n, w) {
+  const iw = plotWidth(w) - PAD.left - PAD.right;
   if (n <= 1) return 0;
   const i = Math.round(((svgX - PAD.left) / iw) * (n - 1));
   return Math.max(0, Math.min(n - 1, i));
 }
 
-/** Where the cursor line of layer `i` goes (SVG units). */
-export function cursorX(i, n) {
-  const iw = W - PAD.left - PAD.right;
+/** Where the cursor line of layer `i` goes (SVG units) in a `w`-wide plot. */
+export function cursorX(i, n, w) {
+  const iw = plotWidth(w) - PAD.left - PAD.right;
   return PAD.left + (n <= 1 ? iw / 2 : (i / (n - 1)) * iw);
 }

@@ -86,7 +86,7 @@ const ops = {
   // The angle chart against height (rotlang::plot).
   async plot(state) {
     const r = await rotlang;
-    return r.plot(state.text, { ...options(state), dialect: undefined, width: 720, height: 420 });
+    return r.plot(state.text, { ...options(state), dialect: undefined, width: state.width ?? 720, height: state.height ?? 420 });
   },
   // rotlang's own profile reader (JSON, jsonc, .ini, .rot); a file of another name is read
   // as JSON, and refused when it holds no template.

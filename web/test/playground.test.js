@@ -109,19 +109,57 @@ test('the quick fix works from the keyboard alone (lint panel)', async () => {
   await page.close();
 });
 
-test('the plot for 0, 90 alternates', async () => {
+// The angle plot as drawn: each dot's layer and angle read back from its position on the
+// screen against the axes' own labels (the gridline of each angle label, the x of each
+// layer label), not from attributes written from the angle array.
+async function drawnPlot(page) {
+  return page.locator('#plot svg').evaluate((svg) => {
+    const box = (el) => el.getBoundingClientRect();
+    const mid = (el) => { const b = box(el); return { x: (b.left + b.right) / 2, y: (b.top + b.bottom) / 2 }; };
+    const grid = [...svg.querySelectorAll('.axes line.grid')].map((l) => mid(l).y);
+    const labels = [...svg.querySelectorAll('.axes text')];
+    const angleLabels = labels.filter((t) => t.textContent.endsWith('°')).map((t) => Number.parseFloat(t.textContent));
+    const layerLabels = labels.filter((t) => !t.textContent.endsWith('°')).map((t) => ({ layer: Number(t.textContent), x: mid(t).x }));
+    // Gridline i carries angle label i (drawn in pairs).
+    const [y0, y1, a0, a1] = [grid[0], grid[grid.length - 1], angleLabels[0], angleLabels[angleLabels.length - 1]];
+    const [l0, l1] = [layerLabels[0], layerLabels[layerLabels.length - 1]];
+    const dots = [...svg.querySelectorAll('circle')].map((c) => {
+      const p = mid(c);
+      return {
+        layer: Math.round(l0.layer + ((p.x - l0.x) / (l1.x - l0.x)) * (l1.layer - l0.layer)),
+        angle: a0 + ((p.y - y0) / (y1 - y0)) * (a1 - a0),
+        y: p.y,
+      };
+    });
+    return { dots, axis: [Math.min(a0, a1), Math.max(a0, a1)], top: Math.min(y0, y1), bottom: Math.max(y0, y1) };
+  });
+}
+
+test('the plot for 0, 90 alternates (read from the drawn geometry)', async () => {
   const page = await open();
   await type(page, '0, 90');
-  const dots = await page.locator('#plot svg circle').evaluateAll((cs) => cs.map((c) => ({
-    layer: Number(c.dataset.layer), angle: Number(c.dataset.angle), cy: Number(c.getAttribute('cy')),
-  })));
+  const { dots } = await drawnPlot(page);
   assert.equal(dots.length, 100);
+  assert.deepEqual(dots.map((d) => d.layer), [...Array(100).keys()], 'one dot per layer, left to right');
   for (const d of dots) {
-    assert.equal(d.angle, d.layer % 2 === 0 ? 0 : 90, `layer ${d.layer}`);
-    assert.equal(d.cy, dots[d.layer % 2].cy, 'drawn at one of two heights');
+    assert.ok(Math.abs(d.angle - (d.layer % 2 === 0 ? 0 : 90)) < 1, `layer ${d.layer} drawn at ${d.angle}°`);
   }
-  assert.ok(dots[1].cy < dots[0].cy, '90° is drawn above 0°');
+  assert.ok(dots[1].y < dots[0].y, '90° is drawn above 0°');
   await shot(page, 'plot-0-90');
+  await page.close();
+});
+
+test('the angle axis fits the data: a ±10° template fills the plot', async () => {
+  const page = await open();
+  await type(page, '+10L25%, -10l25%, -10L25%, +10l25%');
+  const { dots, axis, top, bottom } = await drawnPlot(page);
+  const angles = await page.evaluate(() => [...window.rotlangPlayground.analysis().layers.angles]);
+  assert.equal(dots.length, angles.length);
+  for (const d of dots) assert.ok(Math.abs(d.angle - angles[d.layer]) < 0.5, `layer ${d.layer}: ${d.angle}° drawn, ${angles[d.layer]}° computed`);
+  assert.ok(axis[0] >= -15 && axis[1] <= 15, `axis ${axis[0]}°…${axis[1]}° for angles within ±10°`);
+  const ys = dots.map((d) => d.y);
+  const spread = (Math.max(...ys) - Math.min(...ys)) / (bottom - top);
+  assert.ok(spread > 0.7, `the curve spans ${Math.round(spread * 100)}% of the plot's height`);
   await page.close();
 });
 
@@ -257,6 +295,36 @@ test('a dropped profile fills the editor and the model; a non-JSON one is refuse
   await page.close();
 });
 
+test('a profile whose template is too long: a lasting message naming it, nothing half-applied', async () => {
+  const page = await open();
+  await type(page, '+45');
+  const long = '+1, '.repeat(17_500);
+  // Only a template over the cap: nothing of the profile is applied.
+  await drop(page, 'big.json', JSON.stringify({ name: 'Big', layer_height: '0.1', sparse_infill_rotate_template: long }));
+  const notice = page.locator('#notice');
+  await notice.waitFor();
+  assert.match(await notice.textContent(), /Refused Big: sparse_infill_rotate_template \(70,000 characters\) is longer than the 65,536 characters the playground takes\. Nothing from the profile was applied\./);
+  assert.equal(await page.inputValue('#layer-height'), '0.2', 'the model is kept');
+  assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString()), '+45');
+  await page.fill('#layers', '60');
+  await settled(page, '+45');
+  assert.match(await notice.textContent(), /Refused Big/, 'the message outlives the next analysis');
+  // A profile with one template that fits: that one and the model are applied; the
+  // other is named and its button is disabled.
+  await drop(page, 'mixed.json', JSON.stringify({ name: 'Mixed', layer_height: '0.1', sparse_infill_rotate_template: long, solid_infill_rotate_template: '0, 90' }));
+  await settled(page, '0, 90');
+  assert.equal(await page.inputValue('#target'), 'solid');
+  assert.equal(await page.inputValue('#layer-height'), '0.1');
+  assert.match(await notice.textContent(), /From Mixed: not loaded sparse_infill_rotate_template \(70,000 characters\).*Applied: the model and solid_infill_rotate_template\./);
+  assert.ok(await page.locator('#profile-templates button:has-text("sparse_infill_rotate_template")').isDisabled());
+  await shot(page, 'profile-too-long');
+  // A clean profile clears it.
+  await drop(page, 'ok.json', JSON.stringify({ name: 'OK', sparse_infill_rotate_template: '+30' }));
+  await settled(page, '+30');
+  assert.ok(await notice.isHidden());
+  await page.close();
+});
+
 test('hostile input: a 1 MB paste is refused, a million layers plot, ten million are refused', async () => {
   const page = await open();
   await type(page, '0, 90');
@@ -310,9 +378,9 @@ test('OrcaSlicer compat findings, and the OrcaSlicer reading in the plot', async
   // Read as OrcaSlicer does: `0 90` is 0 on every layer.
   await page.selectOption('#dialect', 'orcaslicer');
   await page.waitForFunction(() => window.rotlangPlayground.analysis()?.layers?.dialect === 'orcaslicer');
-  const angles = await page.locator('#plot svg circle').evaluateAll((cs) => cs.map((c) => Number(c.dataset.angle)));
-  assert.equal(angles.length, 100);
-  assert.ok(angles.every((a) => a === 0));
+  const { dots } = await drawnPlot(page);
+  assert.equal(dots.length, 100);
+  assert.ok(dots.every((d) => Math.abs(d.angle) < 0.5), 'every layer drawn at 0°');
   await shot(page, 'compat');
   await page.close();
 });
@@ -380,12 +448,69 @@ test('the npm package works in the browser with no bundler', async () => {
   await page.close();
 });
 
-test('readable at phone width: no sideways scrolling', async () => {
+// The smallest on-screen font size (CSS px) of the text in an SVG: its computed size times
+// the picture's scale.
+const smallestText = (page, selector) => page.locator(selector).evaluate((svg) => Math.min(
+  ...[...svg.querySelectorAll('text')].map((t) => Number.parseFloat(getComputedStyle(t).fontSize) * svg.getScreenCTM().a),
+));
+
+test('readable at phone width: no sideways scrolling, panels as wide as the screen, plot text readable', async () => {
   const page = await open('', { width: 390, height: 844 });
   await type(page, '+10L25%, -10l25%, -10L25%, +10l25%');
   const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
   assert.ok(overflow <= 0, `${overflow}px wider than the screen`);
+  const widths = await page.locator('main section').evaluateAll((ss) => ss.map((s) => `${s.id} ${Math.round(s.getBoundingClientRect().width)}`));
+  assert.equal(new Set(widths.map((w) => w.split(' ')[1])).size, 1, `panel widths: ${widths.join(', ')}`);
+  const plotText = await smallestText(page, '#plot svg');
+  assert.ok(plotText >= 11, `the angle plot's text is ${plotText.toFixed(1)} px`);
+  await page.click('#chart summary');
+  await page.waitForFunction(() => document.querySelector('#chart-svg svg'));
+  const chartText = await smallestText(page, '#chart-svg svg');
+  assert.ok(chartText >= 10, `rotlang's chart's text is ${chartText.toFixed(1)} px`);
   await shot(page, 'phone');
+  await page.close();
+});
+
+test('a share link with a template over the cap: refused at load with a lasting message, the rest applied', async () => {
+  const long = '+1, '.repeat(17_500); // 70,000 characters
+  const started = Date.now();
+  const page = await open(`#t=${encodeURIComponent(long)}&layers=40`);
+  const doc = await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString());
+  assert.equal(doc, '+10L25%, -10l25%, -10L25%, +10l25%', 'the default template, not the link\'s');
+  await settled(page, doc);
+  assert.equal(await page.inputValue('#layers'), '40', 'the link\'s model is applied');
+  const notice = page.locator('#notice');
+  assert.ok(await notice.isVisible());
+  assert.match(await notice.textContent(), /shared link's template: it has 70,000 characters; the playground takes up to 65,536/);
+  // It outlives the next analysis.
+  await type(page, '0, 90');
+  assert.match(await notice.textContent(), /70,000 characters/);
+  await page.close();
+  // A 1 MB fragment: refused as fast.
+  const huge = await open(`#t=${encodeURIComponent('+10L25%, '.repeat(120_000))}`);
+  assert.match(await huge.textContent('#notice'), /it has 1,080,000 characters/);
+  assert.ok(Date.now() - started < 15_000, `${Date.now() - started} ms to load both`);
+  await huge.close();
+});
+
+test('a text over the cap can still shrink: Backspace works, growing is refused', async () => {
+  const page = await open();
+  // Put a text over the cap in, past the editor's filter (as the initial document of an
+  // older share link could).
+  const length = await page.evaluate(() => {
+    const v = window.rotlangPlayground.view;
+    v.dispatch({ changes: { from: 0, to: v.state.doc.length, insert: '+1, '.repeat(17_000) }, filter: false });
+    return v.state.doc.length;
+  });
+  assert.equal(length, 68_000);
+  await page.click('.cm-content');
+  await page.keyboard.press('Control+End');
+  await page.keyboard.press('Backspace');
+  await page.keyboard.press('Backspace');
+  assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.length), 67_998);
+  await page.keyboard.type('5');
+  assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.length), 67_998, 'growing stays refused');
+  await page.waitForFunction(() => /refused: that would make the template 67,999 characters/.test(document.querySelector('#status').textContent));
   await page.close();
 });
 

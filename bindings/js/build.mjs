@@ -3,9 +3,14 @@
 // out with a warning when missing), then copies the module beside rotlang.js. Honours
 // CARGO_TARGET_DIR (tests share the workspace's target/). The optimised module is cached
 // by the hash of cargo's output, so a second build with nothing changed costs nothing.
-import { execFileSync } from 'node:child_process';
+// `--deny-warnings` (the Node test passes it): fail when cargo warns (cargo replays a
+// fresh crate's warnings, so a cached build still reports them). The sizes in README.md
+// and ../../web/README.md (between `<!-- sizes -->` markers) are rewritten from the
+// modules built, so the documentation cannot go stale.
+import { execFileSync, spawnSync } from 'node:child_process';
 import { createHash } from 'node:crypto';
-import { copyFileSync, existsSync, readFileSync, renameSync, statSync } from 'node:fs';
+import { copyFileSync, existsSync, readFileSync, renameSync, statSync, writeFileSync } from 'node:fs';
+import { gzipSync } from 'node:zlib';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -36,15 +41,22 @@ if (!wasmOpt) {
   console.error('build.mjs: binaryen is not installed (npm ci in bindings/js or web): the modules are not run through wasm-opt');
 }
 
+const denyWarnings = process.argv.includes('--deny-warnings');
+const warnings = [];
+
 function build(features, name) {
-  execFileSync('cargo', [
+  const cargo = spawnSync('cargo', [
     'build', '--profile', 'wasm', '--target', 'wasm32-unknown-unknown', '-p', 'rotlang-wasm',
     ...(features ? ['--features', features] : []),
   ], {
     cwd: root,
-    stdio: ['ignore', 'inherit', 'inherit'],
+    stdio: ['ignore', 'inherit', 'pipe'],
+    encoding: 'utf8',
     env: { ...process.env, CARGO_TARGET_DIR: targetDir },
   });
+  process.stderr.write(cargo.stderr ?? '');
+  if (cargo.status !== 0) throw new Error(`cargo build (${name}) failed: ${cargo.error?.message ?? `exit ${cargo.status}`}`);
+  for (const m of (cargo.stderr ?? '').matchAll(/^warning: (?!`).*$/gm)) warnings.push(`${name}: ${m[0]}`);
   const built = join(outDir, 'rotlang_wasm.wasm');
   const hash = createHash('sha256').update(readFileSync(built)).digest('hex').slice(0, 16);
   const optimised = join(outDir, `rotlang_wasm.opt-${hash}.wasm`);
@@ -68,8 +80,35 @@ function build(features, name) {
   const tmp = `${out}.${process.pid}.tmp`;
   copyFileSync(source, tmp);
   renameSync(tmp, out);
-  console.error(`${name}: ${statSync(out).size} bytes (cargo: ${statSync(built).size})`);
+  const size = statSync(out).size;
+  console.error(`${name}: ${size} bytes (cargo: ${statSync(built).size})`);
+  return { size, cargo: statSync(built).size, gzip: gzipSync(readFileSync(out), { level: 9 }).length, optimised: source !== built };
 }
 
-build(null, 'rotlang.wasm');
-build('full', 'rotlang-full.wasm');
+const core = build(null, 'rotlang.wasm');
+const full = build('full', 'rotlang-full.wasm');
+if (warnings.length) {
+  console.error(`build.mjs: cargo warned:\n${warnings.join('\n')}`);
+  if (denyWarnings) process.exit(1);
+}
+
+// The documented sizes, from this build (only when wasm-opt ran: those are the shipped sizes).
+const kb = (n) => `${Math.round(n / 1024)} KB`;
+const bytes = (n) => n.toLocaleString('en');
+const SIZES = {
+  [join(here, 'README.md')]: `\`rotlang.wasm\` is ${kb(core.size)} (${bytes(core.size)} bytes, ${kb(core.gzip)} gzipped)
+with everything above, under the 300 KB budget: the \`wasm\` cargo profile (opt-level "z",
+LTO, one codegen unit, strip, panic=abort) gives ${kb(core.cargo)}, and \`wasm-opt -Oz\` from the
+\`binaryen\` npm package takes off another ${Math.round((1 - core.size / core.cargo) * 100)}%. \`rotlang-full.wasm\` is
+${kb(full.size)} (${bytes(full.size)} bytes, ${kb(full.gzip)} gzipped): profile reading, the infill
+preview and the chart are what does not fit in the budget.`,
+  [join(root, 'web', 'README.md')]: `${kb(full.size)}, ${kb(full.gzip)} gzipped`,
+};
+if (core.optimised && full.optimised) {
+  for (const [file, text] of Object.entries(SIZES)) {
+    if (!existsSync(file)) continue;
+    const old = readFileSync(file, 'utf8');
+    const updated = old.replace(/(<!-- sizes -->)[^]*?(<!-- \/sizes -->)/, (_, a, b) => `${a}${text}${b}`);
+    if (updated !== old) writeFileSync(file, updated);
+  }
+}

@@ -12,7 +12,10 @@ use rotlang::{Fill, Parse, Span, Target};
 
 use crate::Failure;
 use crate::diagnostics;
-use crate::options::{Request, slot};
+use crate::options::Request;
+// The option slots only the `full` build's preview and chart read.
+#[cfg(feature = "full")]
+use crate::options::slot;
 use crate::utf16::Utf16Map;
 
 /// Most layers one `expand` call returns (13 bytes each: 130 MB). A larger model is read

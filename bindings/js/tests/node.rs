@@ -11,7 +11,8 @@ fn node_test_suite_passes() {
         return;
     }
     let dir = package();
-    node(&dir, &["build.mjs"], &[]);
+    // A cargo warning in the wasm builds (core or full) fails the build here.
+    node(&dir, &["build.mjs", "--deny-warnings"], &[]);
     // The budget is the core module's; rotlang-full.wasm (the playground's) is larger.
     let size = std::fs::metadata(dir.join("rotlang.wasm")).map_or(0, |m| m.len());
     assert!(
@@ -19,10 +20,33 @@ fn node_test_suite_passes() {
         "rotlang.wasm is {size} bytes; the budget is 300 KB"
     );
     assert!(dir.join("rotlang-full.wasm").is_file());
+    // The README's sizes are the modules just built (build.mjs writes them).
+    let readme = std::fs::read_to_string(dir.join("README.md")).expect("README.md");
+    for name in ["rotlang.wasm", "rotlang-full.wasm"] {
+        let bytes = std::fs::metadata(dir.join(name)).map_or(0, |m| m.len());
+        let shown = format!("{} bytes", thousands(bytes));
+        assert!(
+            readme.contains(&format!("`{name}` is")) && readme.contains(&shown),
+            "README.md does not give {name}'s size ({shown})"
+        );
+    }
     let files = test_files(&dir.join("test"));
     assert!(files.len() >= 3, "{files:?}");
     let mut args = vec!["--test"];
     args.extend(files.iter().map(String::as_str));
     let stdout = node(&dir, &args, &[]);
     assert!(stdout.contains("# fail 0"), "no test failed");
+}
+
+/// `1234567` as `1,234,567`.
+fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }

@@ -277,13 +277,29 @@ pub fn plot(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Valu
     let target = req.target()?;
     let options = req.eval_options()?;
     let model = req.model(heights)?;
+    let width = req.pixels(slot::WIDTH, 960.0)?;
+    // The title is cut to the picture's width (the chart's own cut is for 960 px; on a
+    // phone-wide picture the rest would be clipped mid-letter): about 9 px a character of
+    // its 15 px bold, right of a 72 px margin.
+    let room = (((width - 96.0) / 9.0) as usize).saturating_sub(10).max(4);
     let plot = rotlang::plot::PlotOptions {
-        width: req.pixels(slot::WIDTH, 960.0)?,
+        width,
         height: req.pixels(slot::PICTURE_HEIGHT, 560.0)?,
-        title: None,
+        title: Some(format!("template: {}", shorten(text.trim(), room))),
     };
     let parse = parse_clean(text, target)?;
     Ok(obj!({ "svg": rotlang::plot::svg(&parse.template, &model, options, text, &plot) }))
+}
+
+/// At most `max` characters of `text`, with an ellipsis when cut.
+#[cfg(feature = "full")]
+fn shorten(text: &str, max: usize) -> String {
+    if text.chars().count() <= max {
+        return text.to_owned();
+    }
+    let mut s: String = text.chars().take(max.saturating_sub(1)).collect();
+    s.push('…');
+    s
 }
 
 /// The preview's outlines, by the index the JS wrapper sends (`SHAPES` in lib.js): the

@@ -47,3 +47,13 @@ test('preview: every pattern and shape draws; bad values are refused', () => {
   assert.throws(() => preview('0', { layer: 100 }), (e) => e.kind === 'options');
   assert.throws(() => preview('0', { density: 2 }), (e) => e instanceof RotlangError && e.kind === 'options');
 });
+
+test('plot: the title fits a narrow picture (cut with an ellipsis), whole in a wide one', () => {
+  const text = '+10L25%, -10l25%, -10L25%, +10l25%';
+  const title = (svg) => svg.match(/<text[^>]*font-weight="bold">([^<]*)<\/text>/)[1];
+  const narrow = title(plot(text, { width: 320, height: 360 }));
+  assert.ok(narrow.endsWith('…'), narrow);
+  // 15 px bold, about 9 px a character, from x = 72 to 24 px before the edge.
+  assert.ok(narrow.length * 9 <= 320 - 96, `${narrow.length} characters in 320 px: ${narrow}`);
+  assert.equal(title(plot(text, { width: 960 })), `template: ${text}`);
+});

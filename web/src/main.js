@@ -43,8 +43,11 @@ const CAP = chars(MAX_TEMPLATE);
 // initial document and a replacement would otherwise skip the editor's own check).
 function sharedState(s) {
   if (s && typeof s.text === 'string' && s.text.length > MAX_TEMPLATE) {
-    notice(`Refused the shared link's template: it has ${chars(s.text.length)}; the playground takes up to ${CAP}. The editor keeps ${view ? 'its template' : 'the default template'}; the link's model and view were applied.`);
+    notice(`Refused the shared link's template: it has ${chars(s.text.length)}; the playground takes up to ${CAP}. The editor keeps ${view ? 'its template' : 'the default template'}; the link's model and view were applied (the template is left out of the address).`);
     const { text, ...rest } = s;
+    // The browser copies the address into every later request it makes (the worker, the
+    // wasm): a megabyte-long one costs seconds each time.
+    history.replaceState(null, '', location.pathname + location.search + encodeState(rest));
     return rest;
   }
   return s;

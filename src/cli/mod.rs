@@ -335,6 +335,15 @@ pub fn diagnostic_json(index: &LineIndex<'_>, d: &Diagnostic) -> serde_json::Val
 /// its spaces (`check 0, 90`, `check +30/50 %`): an argument ending in `,`, a lone unit, or
 /// one that begins with a joint.
 pub fn pieces_note(command: &str, templates: &[String]) -> Option<String> {
+    pieces_note_saying(command, templates, "each is read as a template of its own")
+}
+
+/// [`pieces_note`] with what the command did with the pieces.
+pub(crate) fn pieces_note_saying(
+    command: &str,
+    templates: &[String],
+    consequence: &str,
+) -> Option<String> {
     // An argument with a space or a newline in it was quoted: the user splits on purpose.
     if templates.len() < 2 || templates.iter().any(|t| t.contains(char::is_whitespace)) {
         return None;
@@ -352,7 +361,7 @@ pub fn pieces_note(command: &str, templates: &[String]) -> Option<String> {
     let quoted = format!("'{}'", joined.replace('\'', r"'\''"));
     Some(format!(
         "note: the {} arguments look like the pieces of one template, split by the shell at \
-         its spaces; each is read as a template of its own.\n      \
+         its spaces; {consequence}.\n      \
          To pass one template, quote it: rotlang {command} {quoted}\n",
         templates.len()
     ))

@@ -437,8 +437,13 @@ fn chunk_error(
         ErrorVariant::ParsingError { positives, .. } => positives,
         ErrorVariant::CustomError { .. } => Vec::new(),
     };
+    // `45 deg`: the instruction a unit of angle follows, with the space between.
+    let with_previous = previous
+        .filter(|p| text[p.span.end..chunk.span.start].trim().is_empty())
+        .map(|p| &text[p.span.start..chunk.span.end]);
     errors::Failure {
         text: chunk.text,
+        with_previous,
         offset: chunk.span.start,
         pos,
         expected,

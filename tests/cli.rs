@@ -915,3 +915,97 @@ fn invisible_characters_get_a_caret_and_keep_columns() {
     );
     assert!(golden.contains("0, ???90, +30X5"), "{golden}");
 }
+
+#[test]
+fn pieces_of_one_template_in_single_template_commands() {
+    // The second piece is not a template that begins with `-`: the quoting note.
+    golden!("pieces_expand", 2, ["expand", "0,", "90"]);
+    golden!("pieces_explain", 2, ["explain", "0,", "90"]);
+    golden!("pieces_expand_unit", 2, ["expand", "+30/50", "%"]);
+}
+
+#[test]
+fn option_values_beginning_with_a_dash_say_what_is_allowed() {
+    golden!("negative_range", 2, ["expand", "0", "--range", "-5..3"]);
+    golden!("negative_wrap", 2, ["expand", "0", "--wrap", "-1"]);
+    golden!("negative_format", 2, ["check", "--format", "-1", "0"]);
+    golden!("negative_columns", 2, ["preview", "0", "--columns", "-1"]);
+    golden!("negative_plot_seed", 2, ["plot", "0", "--seed", "-1"]);
+    golden!("negative_plot_layers", 2, ["plot", "0", "--layers", "-5"]);
+    golden!(
+        "negative_preview_layers",
+        2,
+        ["preview", "0", "--layers", "-1..3"]
+    );
+    // A flag before a negative template still takes the template.
+    golden!(
+        "flag_then_negative_template",
+        0,
+        ["check", "--deny-warnings", "-30"]
+    );
+}
+
+#[test]
+fn degree_help_names_the_angle() {
+    for (template, says) in [
+        ("45 deg", "write `45`, not `45 deg`"),
+        ("45deg", "write `45`, not `45deg`"),
+        ("45°", "write `45`, not `45°`"),
+        ("+45 degrees", "write `+45`, not `+45 degrees`"),
+        ("0, deg", "remove `deg`"),
+    ] {
+        let (golden, code) = run(&["check", template], None);
+        assert_eq!(code, 1, "{golden}");
+        assert!(golden.contains(says), "{template}: {golden}");
+        assert!(!golden.contains("write ``"), "{golden}");
+    }
+}
+
+#[test]
+fn byte_order_mark_and_lone_cr_keep_editor_positions() {
+    let dir = TempDir::new("bom-cr");
+    let bom = dir.file("f.rot", "\u{feff}0, +30X5");
+    let (golden, code) = run_in(&dir, &["check", "--file", bom.to_str().unwrap()]);
+    insta::assert_snapshot!("bom_error_column", golden);
+    assert_eq!(code, 1);
+    assert!(
+        golden.contains("f.rot:1:7\n") && !golden.contains('?'),
+        "{golden}"
+    );
+    let (golden, _) = run_in(
+        &dir,
+        &["check", "--format", "json", "--file", bom.to_str().unwrap()],
+    );
+    let value: serde_json::Value = serde_json::from_str(stdout_of(&golden)).unwrap();
+    let d = &value["diagnostics"][0];
+    // Columns as editors count them; offsets stay the file's bytes.
+    assert_eq!(
+        (d["line"].as_u64(), d["column"].as_u64()),
+        (Some(1), Some(7))
+    );
+    assert_eq!(d["start"], 9);
+    let cr = dir.file("cr.rot", "0, 90\r+30X5");
+    let (golden, code) = run_in(&dir, &["check", "--file", cr.to_str().unwrap()]);
+    insta::assert_snapshot!("lone_cr_is_a_line_end", golden);
+    assert_eq!(code, 1);
+    assert!(
+        golden.contains("cr.rot:2:4\n") && !golden.contains('\r'),
+        "{golden}"
+    );
+    // Profiles too: a byte-order mark and CR-only line ends.
+    let ini = dir.file(
+        "p.ini",
+        "\u{feff}layer_height = 0.2\rsparse_infill_rotate_template = 0, +30X5\r",
+    );
+    let (golden, code) = run_in(&dir, &["check", ini.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(golden.contains("p.ini:2:39\n"), "{golden}");
+    let json = dir.file(
+        "p.json",
+        "\u{feff}{\"sparse_infill_rotate_template\": \"0, +30X5\"}",
+    );
+    let (golden, _) = run_in(&dir, &["check", "--format", "json", json.to_str().unwrap()]);
+    let value: serde_json::Value =
+        serde_json::from_str(stdout_of(&golden).lines().next().unwrap()).unwrap();
+    assert_eq!(value["diagnostics"][0]["column"], 42, "{golden}");
+}

@@ -23,7 +23,9 @@ use codespan_reporting::diagnostic as cs;
 use codespan_reporting::term::{self, termcolor};
 
 use crate::Target;
-use crate::diagnostic::{Diagnostic, LineIndex, Severity, ceil_char_boundary, floor_char_boundary};
+use crate::diagnostic::{
+    BYTE_ORDER_MARK, Diagnostic, LineIndex, Severity, ceil_char_boundary, floor_char_boundary,
+};
 
 /// The largest input read (a template file or stdin). Templates are a few bytes; this
 /// bounds memory on a mistaken `--file /dev/zero`.
@@ -185,6 +187,24 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
     };
     let config = term::Config::default();
     for (input, diagnostics) in reports {
+        // A byte-order mark is hidden by editors: shown, it would be `???` before the
+        // first line. The report is of the text after it, with the spans moved.
+        let unmarked;
+        let moved: Vec<Diagnostic>;
+        let (input, diagnostics) = match input.text.strip_prefix(BYTE_ORDER_MARK) {
+            Some(rest) => {
+                unmarked = Input {
+                    text: rest.to_owned(),
+                    ..(*input).clone()
+                };
+                moved = diagnostics
+                    .iter()
+                    .map(|d| unshifted(d, BYTE_ORDER_MARK.len()))
+                    .collect();
+                (&unmarked, moved.as_slice())
+            }
+            None => (*input, *diagnostics),
+        };
         let long = input.text.lines().any(|l| l.len() > LONG_LINE);
         let index = LineIndex::new(&input.text);
         let id = if long {
@@ -213,6 +233,21 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
         }
     }
     String::from_utf8_lossy(buffer.as_slice()).into_owned()
+}
+
+/// Every span of `d` moved left by `by` bytes (spans inside the first `by` bytes become
+/// empty spans at 0).
+fn unshifted(d: &Diagnostic, by: usize) -> Diagnostic {
+    let back =
+        |s: crate::Span| crate::Span::new(s.start.saturating_sub(by), s.end.saturating_sub(by));
+    let mut d = d.clone();
+    for l in &mut d.labels {
+        l.span = back(l.span);
+    }
+    if let Some(f) = &mut d.fix {
+        f.span = back(f.span);
+    }
+    d
 }
 
 /// Lines longer than this are shown as a window around each diagnostic.

@@ -1009,3 +1009,65 @@ fn byte_order_mark_and_lone_cr_keep_editor_positions() {
         serde_json::from_str(stdout_of(&golden).lines().next().unwrap()).unwrap();
     assert_eq!(value["diagnostics"][0]["column"], 42, "{golden}");
 }
+
+#[test]
+fn heights_are_micrometres() {
+    golden!(
+        "heights_micrometres",
+        0,
+        [
+            "expand", "+1", "--layers", "1000000", "--range", "999999..", "--format", "csv"
+        ]
+    );
+}
+
+#[test]
+fn expand_json_errors_are_checks_object() {
+    for template in ["+30X5", "+30X5, 10,,20"] {
+        let (expand, code) = run(&["expand", "--format", "json", template], None);
+        assert_eq!(code, 1);
+        let (check, _) = run(&["check", "--format", "json", template], None);
+        assert_eq!(stdout_of(&expand), stdout_of(&check), "{expand}");
+    }
+}
+
+#[test]
+fn expand_orcaslicer_json_has_the_findings() {
+    let (golden, code) = run(
+        &[
+            "expand",
+            "--dialect",
+            "orcaslicer",
+            "+10$50%%",
+            "--layers",
+            "3",
+            "--format",
+            "json",
+        ],
+        None,
+    );
+    assert_eq!(code, 0);
+    let value: serde_json::Value =
+        serde_json::from_str(stdout_of(&golden)).expect("one JSON object");
+    let d = &value["diagnostics"][0];
+    assert_eq!(d["code"], "orcaslicer::nan", "{golden}");
+    assert_eq!(d["first_layer"], 2);
+    assert_eq!(value["layers"].as_array().map(Vec::len), Some(3));
+    // Without findings the list is there, empty.
+    let (golden, _) = run(
+        &[
+            "expand",
+            "--dialect",
+            "orcaslicer",
+            "0, 90",
+            "--layers",
+            "2",
+            "--format",
+            "json",
+        ],
+        None,
+    );
+    let value: serde_json::Value =
+        serde_json::from_str(stdout_of(&golden)).expect("one JSON object");
+    assert_eq!(value["diagnostics"], serde_json::json!([]));
+}

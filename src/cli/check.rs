@@ -3,10 +3,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use super::{
-    ColorArg, Input, TargetArg, UsageError, diagnostic_json, gather, pieces_note, render_human,
-};
-use crate::diagnostic::LineIndex;
+use super::{ColorArg, Input, TargetArg, UsageError, gather, pieces_note, render_human};
 
 #[derive(clap::Args, Debug)]
 #[command(after_long_help = "\
@@ -101,17 +98,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
     match args.format {
         Format::Json => {
             for (input, parse) in inputs.iter().zip(&parses) {
-                let index = LineIndex::new(&input.text);
-                let diagnostics: Vec<_> = parse
-                    .diagnostics
-                    .iter()
-                    .map(|d| diagnostic_json(&index, d))
-                    .collect();
-                let obj = serde_json::json!({
-                    "input": input.text, "name": input.name, "diagnostics": diagnostics,
-                    "errors": parse.errors, "warnings": parse.warnings, "omitted": parse.omitted,
-                });
-                writeln!(out, "{obj}").map_err(io)?;
+                writeln!(out, "{}", super::report_json(input, parse)).map_err(io)?;
             }
         }
         Format::Human => {

@@ -245,15 +245,26 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         end,
     };
     if args.dialect == eval::Dialect::OrcaSlicer {
-        // No grammar, so no diagnostics: JSON echoes none.
-        let empty = crate::Parse::default();
+        // No grammar, so no syntax diagnostics: the JSON's are the dialect's findings (a
+        // hang, undefined behaviour, NaN layers), known once the layers are written.
         return super::dialect::expand(&input.text, &resolved.model, options, err, |layers| {
             match args.format {
                 Format::Csv => writer.csv(layers, out),
                 Format::Table => writer.table(layers, out),
                 Format::Json => {
-                    let header = json_header(args, options, &input, &empty, &resolved, start, end);
-                    writer.json(layers, &header, out)
+                    let header = json_header(args, options, &input, None, &resolved, start, end);
+                    writer.json(&mut *layers, &header, out)?;
+                    let index = LineIndex::new(&input.text);
+                    let findings: Vec<_> = layers
+                        .findings()
+                        .iter()
+                        .map(|f| super::dialect::finding_json(&index, &input.text, f))
+                        .collect();
+                    writeln!(
+                        out,
+                        ",\"diagnostics\":{}}}",
+                        serde_json::Value::from(findings)
+                    )
                 }
             }
         });
@@ -265,14 +276,7 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     let json = args.format == Format::Json;
     if parse.has_errors() && json {
         // The same object `check --format json` prints.
-        let index = LineIndex::new(&input.text);
-        let diagnostics: Vec<_> = parse
-            .diagnostics
-            .iter()
-            .map(|d| diagnostic_json(&index, d))
-            .collect();
-        let obj = serde_json::json!({"input": input.text, "name": input.name, "diagnostics": diagnostics});
-        writeln!(out, "{obj}").map_err(write_error)?;
+        writeln!(out, "{}", super::report_json(&input, &parse)).map_err(write_error)?;
     }
     if !parse.diagnostics.is_empty() {
         err.write_all(report(&input, &parse.diagnostics, args.color).as_bytes())
@@ -285,8 +289,10 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         Format::Csv => writer.csv(layers, out),
         Format::Table => writer.table(layers, out),
         Format::Json => {
-            let header = json_header(args, options, &input, &parse, &resolved, start, end);
-            writer.json(layers, &header, out)
+            let header = json_header(args, options, &input, Some(&parse), &resolved, start, end);
+            writer
+                .json(layers, &header, out)
+                .and_then(|()| out.write_all(b"}\n"))
         }
     };
     match result {
@@ -307,7 +313,7 @@ fn json_header(
     args: &ExpandArgs,
     options: Options,
     input: &Input,
-    parse: &crate::Parse,
+    parse: Option<&crate::Parse>,
     resolved: &Resolved,
     start: usize,
     end: usize,
@@ -318,12 +324,7 @@ fn json_header(
     };
     let first = model.layer_bounds(0).map_or(0.0, |(b, t)| t - b);
     let index = LineIndex::new(&input.text);
-    let diagnostics: Vec<_> = parse
-        .diagnostics
-        .iter()
-        .map(|d| diagnostic_json(&index, d))
-        .collect();
-    let head = serde_json::json!({
+    let mut head = serde_json::json!({
         "template": input.text,
         "name": input.name,
         "target": match args.target { TargetArg::Sparse => "sparse", TargetArg::Solid => "solid" },
@@ -343,8 +344,14 @@ fn json_header(
             "wrap": args.wrap.name(),
             "range": {"start": start, "end": end},
         },
-        "diagnostics": diagnostics,
     });
+    if let Some(parse) = parse {
+        head["diagnostics"] = parse
+            .diagnostics
+            .iter()
+            .map(|d| diagnostic_json(&index, d))
+            .collect();
+    }
     // The object without its closing brace, for `"layers"` to follow.
     let mut s = head.to_string();
     s.pop();
@@ -481,7 +488,9 @@ impl Writer<'_> {
             }
             out.write_all(cached.text.as_bytes())?;
         }
-        out.write_all(b"\n]}\n")?;
+        // The caller closes the object (after what only the layers tell: the findings
+        // of the OrcaSlicer dialect).
+        out.write_all(b"\n]")?;
         out.flush()
     }
 

@@ -366,6 +366,21 @@ pub fn diagnostic_json(index: &LineIndex<'_>, d: &Diagnostic) -> serde_json::Val
     })
 }
 
+/// The JSON object of one input's diagnostics, one line of `check --format json` (and what
+/// `expand --format json` prints for a template with errors).
+pub fn report_json(input: &Input, parse: &crate::Parse) -> serde_json::Value {
+    let index = LineIndex::new(&input.text);
+    let diagnostics: Vec<_> = parse
+        .diagnostics
+        .iter()
+        .map(|d| diagnostic_json(&index, d))
+        .collect();
+    serde_json::json!({
+        "input": input.text, "name": input.name, "diagnostics": diagnostics,
+        "errors": parse.errors, "warnings": parse.warnings, "omitted": parse.omitted,
+    })
+}
+
 /// A note when template arguments look like the pieces of one template the shell split at
 /// its spaces (`check 0, 90`, `check +30/50 %`): an argument ending in `,`, a lone unit, or
 /// one that begins with a joint.

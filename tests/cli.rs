@@ -788,7 +788,7 @@ fn check_fix_prints_writes_and_refuses() {
     golden!(
         "check_fix",
         0,
-        ["check", "--fix", "\"+30°, 10,,20\"", "+30 /50%"]
+        ["check", "--fix", "--force", "\"+30°, 10,,20\"", "+30 /50%"]
     );
     golden!(
         "check_fix_refuses_errors",
@@ -802,6 +802,7 @@ fn check_fix_prints_writes_and_refuses() {
         &[
             "check",
             "--fix",
+            "--force",
             "--write",
             "--file",
             file.to_str().unwrap(),
@@ -1070,4 +1071,102 @@ fn expand_orcaslicer_json_has_the_findings() {
     let value: serde_json::Value =
         serde_json::from_str(stdout_of(&golden)).expect("one JSON object");
     assert_eq!(value["diagnostics"], serde_json::json!([]));
+}
+
+#[test]
+fn fmt_leaves_a_space_after_a_joint_with_the_warning() {
+    golden!("fmt_space_after_joint", 1, ["fmt", "+30/ 50%"]);
+    golden!(
+        "fmt_space_after_joint_check",
+        1,
+        ["fmt", "--check", "+30/ 50%"]
+    );
+    golden!(
+        "fmt_space_after_joint_force",
+        0,
+        ["fmt", "--force", "+30/ 50%"]
+    );
+    let dir = TempDir::new("fmt-space");
+    let file = dir.file("a.rot", "+10L 25%, -10l 25%\n");
+    let (_, code) = run_in(&dir, &["fmt", "--write", "--file", file.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert_eq!(
+        std::fs::read_to_string(&file).unwrap(),
+        "+10L 25%, -10l 25%\n"
+    );
+    // `check --fix` applies the warning's own fix.
+    let (golden, code) = run(&["check", "--fix", "+30/ 50%"], None);
+    assert_eq!((stdout_of(&golden), code), ("+30/50%\n", 0));
+}
+
+#[test]
+fn trailing_comma_warns_with_a_fix() {
+    golden!("trailing_comma_fix", 0, ["check", "--fix", "0, 90,"]);
+    let (golden, _) = run(&["check", "--format", "json", "0, 90,"], None);
+    let value: serde_json::Value = serde_json::from_str(stdout_of(&golden)).unwrap();
+    assert_eq!(
+        value["diagnostics"][0]["code"],
+        "rotlang::empty-instruction"
+    );
+    assert_eq!(value["diagnostics"][0]["fix"]["replacement"], "");
+}
+
+#[test]
+fn second_repeat_count_help_matches_the_fix() {
+    let (golden, _) = run(&["check", "+30*3*2"], None);
+    assert!(
+        golden.contains("remove `*2` to run the instruction 3 times (the fix)"),
+        "{golden}"
+    );
+    assert!(golden.contains("the product `*6`"), "{golden}");
+    let (golden, code) = run(&["check", "--fix", "+30*3*2"], None);
+    assert_eq!((stdout_of(&golden), code), ("+30*3\n", 0));
+}
+
+#[test]
+fn check_fix_with_compat_and_the_orcaslicer_guard() {
+    golden!(
+        "fix_compat",
+        0,
+        ["check", "--compat", "orcaslicer", "--fix", "0 90"]
+    );
+    golden!("fix_orcaslicer_guard", 1, ["check", "--fix", "10,,20"]);
+    golden!(
+        "fix_orcaslicer_force",
+        0,
+        ["check", "--fix", "--force", "10,,20"]
+    );
+    // One line per input, in order; the refused ones named on stderr.
+    golden!(
+        "fix_several_attributable",
+        1,
+        ["check", "--fix", "+30X5", "10,,20", "+30°"]
+    );
+}
+
+#[test]
+fn a_file_named_as_the_template() {
+    golden!(
+        "expand_profile_named_as_template",
+        0,
+        [
+            "expand",
+            "tests/fixtures/profiles/export.ini",
+            "--layers",
+            "3"
+        ]
+    );
+    golden!(
+        "fmt_profile_named_as_template",
+        2,
+        ["fmt", "tests/fixtures/profiles/export.ini"]
+    );
+    let dir = TempDir::new("fmt-named");
+    let file = dir.file("a.rot", "0,  90\n");
+    let (golden, code) = run_in(&dir, &["fmt", file.to_str().unwrap()]);
+    insta::assert_snapshot!("fmt_file_named_as_template", golden);
+    assert_eq!(code, 0);
+    let (_, code) = run_in(&dir, &["fmt", "--write", file.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "0, 90\n");
 }

@@ -1,7 +1,7 @@
 //! `rotlang expand`: the angle and fill of every layer of a model, streamed.
 
 use std::io::{BufWriter, ErrorKind, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use super::model::{ModelArgs, Resolved};
 use super::{ColorArg, Input, TargetArg, UsageError, args, diagnostic_json, gather};
@@ -188,7 +188,34 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     // The model first: a usage error should not wait for stdin.
     let mut resolved = args.model.resolve()?;
     let mut base = args.base;
-    let input = match &args.profile {
+    // `expand profile.json`: a file named where the template goes is read as the option
+    // meant (as `check` reads it), and a note names the option.
+    let (mut profile, mut file, mut template) = (
+        args.profile.clone(),
+        args.file.clone(),
+        args.template.clone(),
+    );
+    if let Some(t) = &args.template
+        && Path::new(t).is_file()
+    {
+        let kind = crate::profile::Kind::from_extension(Path::new(t));
+        let note = match kind {
+            Some(crate::profile::Kind::Template) => {
+                file = template.take().map(PathBuf::from);
+                format!("note: `{t}` is a file: read as --file {t}")
+            }
+            Some(_) => {
+                profile = template.take().map(PathBuf::from);
+                format!("note: `{t}` is a file: read as --profile {t}")
+            }
+            None => format!(
+                "note: `{t}` is read as a template, but it is also a file: to read the file, \
+                 pass --file {t} (a template) or --profile {t} (a profile)"
+            ),
+        };
+        writeln!(err, "{note}").map_err(|e| UsageError(e.to_string()))?;
+    }
+    let input = match &profile {
         Some(path) => {
             let p = super::files::profile_template(path, args.target.into(), args.model.height)?;
             for note in &p.notes {
@@ -210,8 +237,8 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
             }
         }
         None => {
-            let templates: Vec<String> = args.template.iter().cloned().collect();
-            let files: Vec<PathBuf> = args.file.iter().cloned().collect();
+            let templates: Vec<String> = template.iter().cloned().collect();
+            let files: Vec<PathBuf> = file.iter().cloned().collect();
             gather(&templates, &files)?
                 .into_iter()
                 .next()

@@ -146,7 +146,9 @@ mod tests {
         assert_eq!(split("10,,20").empties, [Span::new(2, 4)]);
         assert_eq!(split(", +10").empties, [Span::new(0, 2)]);
         assert_eq!(split("10, , 20").empties, [Span::new(2, 6)]);
-        assert!(split("10, 20,").empties.is_empty());
+        // A trailing comma too, up to the comma (a file's final newline is not part of it).
+        assert_eq!(split("10, 20,").empties, [Span::new(6, 7)]);
+        assert_eq!(split("10, 20, \n").empties, [Span::new(6, 7)]);
         assert_eq!(split("10,,\n").empties, [Span::new(2, 4)]);
         assert_eq!(split(",").empties, [Span::new(0, 1)]);
         assert_eq!(split(" ,\n").empties, [Span::new(0, 2)]);

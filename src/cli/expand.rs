@@ -41,7 +41,8 @@ errors (nothing is expanded; with --format json the diagnostics are printed as J
 `rotlang check --format json` does), 2 on a usage error (bad model, conflicting options).")]
 pub struct ExpandArgs {
     /// The template to expand, e.g. '+30/50%'. Put `--` before one that begins with `-`.
-    /// Without it, the template is read from --file or stdin; `-` is stdin.
+    /// Without it, the template is read from --file or stdin; `-` is stdin. An existing
+    /// file named here is read as --profile (.json, .jsonc, .ini, .3mf) or --file (.rot).
     #[arg(
         value_name = "TEMPLATE",
         allow_negative_numbers = true,

@@ -24,6 +24,7 @@ Exit status: 0 when done (or, with --check, already canonical), 1 on a template
 with errors or, with --check, one that would change; 2 on a usage error.")]
 pub struct FmtArgs {
     /// Templates to format; `-` is stdin. Put `--` before a template that begins with `-`.
+    /// An existing file named here is formatted as with --file.
     #[arg(value_name = "TEMPLATE", allow_negative_numbers = true)]
     pub templates: Vec<String>,
     /// Format a template file (`-` is stdin). Repeatable.

@@ -212,6 +212,23 @@ impl miette::Diagnostic for Diagnostic {
     }
 }
 
+/// The byte offset of every line's start. Lines end at `\n`, `\r\n` or a lone `\r`, as
+/// in the LSP and in editors (a file saved with old Mac line ends is many lines).
+pub fn line_starts(text: &str) -> Vec<usize> {
+    let bytes = text.as_bytes();
+    let mut starts = vec![0];
+    for (i, &b) in bytes.iter().enumerate() {
+        if b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n')) {
+            starts.push(i + 1);
+        }
+    }
+    starts
+}
+
+/// The byte-order mark some editors write at the start of a file. Editors hide it, so
+/// columns do not count it.
+pub const BYTE_ORDER_MARK: &str = "\u{feff}";
+
 /// Byte offset → line/column conversions, for the edges (terminal, JSON, LSP).
 pub struct LineIndex<'a> {
     text: &'a str,
@@ -220,9 +237,10 @@ pub struct LineIndex<'a> {
 
 impl<'a> LineIndex<'a> {
     pub fn new(text: &'a str) -> Self {
-        let mut line_starts = vec![0];
-        line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
-        LineIndex { text, line_starts }
+        LineIndex {
+            text,
+            line_starts: line_starts(text),
+        }
     }
 
     /// Zero-based line of a byte offset (clamped to the text).
@@ -239,11 +257,15 @@ impl<'a> LineIndex<'a> {
     }
 
     /// One-based line and one-based column in characters (Unicode scalar values), as a
-    /// person counts them in a terminal.
+    /// person counts them in a terminal. A byte-order mark at the start of the text is not
+    /// counted: editors hide it and put the cursor after it at column 1.
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
         let offset = floor_char_boundary(self.text, offset);
         let line = self.line(offset);
-        let start = self.line_starts[line];
+        let mut start = self.line_starts[line];
+        if start == 0 && self.text.starts_with(BYTE_ORDER_MARK) {
+            start = BYTE_ORDER_MARK.len().min(offset);
+        }
         (line + 1, self.text[start..offset].chars().count() + 1)
     }
 
@@ -276,10 +298,20 @@ impl<'a> LineIndex<'a> {
         floor_char_boundary(self.text, (start + col).min(end))
     }
 
-    /// Byte offset of the end of a line, excluding its newline.
+    /// Byte offset of the end of a line, excluding its line end (`\n`, `\r\n` or `\r`).
     pub fn line_end(&self, line: usize) -> usize {
         match self.line_starts.get(line + 1) {
-            Some(&next) => next - 1,
+            Some(&next) => {
+                let end = next - 1;
+                if self.text.as_bytes()[end] == b'\n'
+                    && end > 0
+                    && self.text.as_bytes()[end - 1] == b'\r'
+                {
+                    end - 1
+                } else {
+                    end
+                }
+            }
             None => self.text.len(),
         }
     }
@@ -326,5 +358,28 @@ mod tests {
         assert_eq!(idx.offset_of_utf16(1, 1), text.find('𝕏').unwrap() + 4);
         assert_eq!(idx.offset_of_utf16(7, 99), text.len());
         assert_eq!(idx.offset_of_utf8(1, 2), text.find('𝕏').unwrap());
+    }
+
+    #[test]
+    fn lines_end_at_cr_lf_and_crlf() {
+        let text = "0\r90\r\n+30\nX";
+        let idx = LineIndex::new(text);
+        assert_eq!(idx.line_count(), 4);
+        assert_eq!(idx.line_col(text.find('9').unwrap()), (2, 1));
+        assert_eq!(idx.line_col(text.find('+').unwrap()), (3, 1));
+        assert_eq!(idx.line_col(text.find('X').unwrap()), (4, 1));
+        assert_eq!(idx.line_end(0), 1);
+        assert_eq!(idx.line_end(1), 4);
+        assert_eq!(idx.line_end(2), 9);
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_not_a_column() {
+        let text = "\u{feff}0, +30X5\n1";
+        let idx = LineIndex::new(text);
+        assert_eq!(idx.line_col(text.find('X').unwrap()), (1, 7));
+        assert_eq!(idx.line_col(0), (1, 1));
+        assert_eq!(idx.line_col(3), (1, 1));
+        assert_eq!(idx.line_col(text.find('1').unwrap()), (2, 1));
     }
 }

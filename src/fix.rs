@@ -24,19 +24,34 @@ pub struct Fixed {
 
 /// Applies every fix of every diagnostic, pass after pass, until none is left.
 pub fn apply_all(text: &str, target: Target) -> Fixed {
+    apply_all_with(text, target, |_| Vec::new())
+}
+
+/// [`apply_all`], with the fixes of more diagnostics of each pass's text: `more(text)`
+/// (the OrcaSlicer compat lint, `check --compat orcaslicer --fix`).
+pub fn apply_all_with(
+    text: &str,
+    target: Target,
+    more: impl Fn(&str) -> Vec<crate::Diagnostic>,
+) -> Fixed {
     let mut text = text.to_owned();
     let mut parse = crate::parse(&text, target);
     let mut applied = 0;
     for _ in 0..MAX_PASSES {
+        let extra = more(&text);
         let mut fixes: Vec<&crate::Fix> = parse
             .diagnostics
             .iter()
+            .chain(&extra)
             .filter_map(|d| d.fix.as_ref())
             .collect();
         if fixes.is_empty() {
             break;
         }
         fixes.sort_by_key(|f| (f.span.start, f.span.end));
+        // Two diagnostics may carry the same fix (a rotlang and a compat warning on one
+        // empty instruction): it is applied once.
+        fixes.dedup_by(|a, b| a.span == b.span && a.replacement == b.replacement);
         let mut out = String::with_capacity(text.len());
         let mut at = 0;
         let mut count = 0;
@@ -88,5 +103,22 @@ mod tests {
         assert!(fixed.parse.has_errors());
         let fixed = apply_all("0, 90", Target::Sparse);
         assert_eq!((fixed.text.as_str(), fixed.applied), ("0, 90", 0));
+    }
+
+    #[test]
+    fn more_diagnostics_fix_too_and_one_fix_applies_once() {
+        let insert = |text: &str| {
+            let missing = !text.contains(',');
+            text.find(" 90")
+                .filter(|_| missing)
+                .map_or(Vec::new(), |at| {
+                    let span = crate::Span::new(at, at);
+                    let d = crate::Diagnostic::warning("test::comma", "a comma")
+                        .with_fix("add", span, ",");
+                    vec![d.clone(), d]
+                })
+        };
+        let fixed = apply_all_with("0 90", Target::Sparse, insert);
+        assert_eq!(fixed.text, "0, 90");
     }
 }

@@ -60,12 +60,25 @@ fn main() -> ExitCode {
     let cli = match Cli::try_parse_from(&argv) {
         Ok(cli) => cli,
         Err(e) => {
-            // `check -50%Z1cm`: a template that begins with `-`, not an unknown option.
-            if let Some(message) = cli::args::template_after_dashdash(&e, &argv) {
-                let _ = write!(std::io::stderr(), "{message}");
-                return ExitCode::from(2);
+            // `expand 0 --range -5..3`: the value of an option, read by the option's parser.
+            if let Some(joined) = cli::args::join_option_value(&e, &Cli::command(), &argv) {
+                match Cli::try_parse_from(&joined) {
+                    Ok(cli) => cli,
+                    Err(e) => e.exit(),
+                }
+            } else {
+                // `check -50%Z1cm`: a template that begins with `-`, not an unknown option.
+                if let Some(message) = cli::args::template_after_dashdash(&e, &argv) {
+                    let _ = write!(std::io::stderr(), "{message}");
+                    return ExitCode::from(2);
+                }
+                // `expand 0, 90`: pieces of one template, split by the shell.
+                if let Some(note) = cli::args::pieces_of_one_template(&e, &Cli::command(), &argv) {
+                    let _ = write!(std::io::stderr(), "{}\n{note}", e.render());
+                    return ExitCode::from(2);
+                }
+                e.exit()
             }
-            e.exit()
         }
     };
     let stdout = std::io::stdout();

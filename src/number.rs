@@ -28,8 +28,8 @@ use std::fmt;
 
 /// Decimals kept of an angle in degrees.
 pub const ANGLE_DECIMALS: u32 = 9;
-/// Decimals kept of a height in millimetres (micrometres: slicers keep no finer).
-pub const HEIGHT_DECIMALS: u32 = 6;
+/// Decimals kept of a height in millimetres: 3, micrometres (slicers keep no finer).
+pub const HEIGHT_DECIMALS: u32 = 3;
 
 const POW10: [u64; 10] = [
     1,
@@ -165,8 +165,8 @@ pub fn height(mm: f64) -> Decimal {
 /// within a quarter of the integer it came from (so the integer is recovered exactly).
 fn fast_limit(decimals: u32) -> f64 {
     match decimals {
-        ANGLE_DECIMALS => 2_097_152.0,      // 2^21
-        HEIGHT_DECIMALS => 2_147_483_648.0, // 2^31
+        ANGLE_DECIMALS => 2_097_152.0,          // 2^21
+        HEIGHT_DECIMALS => 2_199_023_255_552.0, // 2^41
         _ => 0.0,
     }
 }
@@ -259,6 +259,11 @@ mod tests {
     #[test]
     fn noise_is_gone() {
         assert_eq!(height(0.6000000000000001).as_str(), "0.6");
+        // Micrometres: a running sum over a million layers keeps no nanometre noise.
+        assert_eq!(height(199999.800003).as_str(), "199999.8");
+        assert_eq!(height(0.0125).as_str(), "0.013");
+        assert_eq!(height(0.0004).as_str(), "0");
+        assert_eq!(height(1e12 + 0.25).as_str(), "1000000000000.25");
         assert_eq!(angle(3.3306690738754696e-15).as_str(), "0");
         assert_eq!(angle(-0.0).as_str(), "0");
         assert_eq!(angle(-0.00001).as_str(), "-0.00001");
@@ -290,12 +295,16 @@ mod tests {
         /// The fast fixed-point digits are exactly the shortest round-trip form of the
         /// rounded value (what `Display` prints).
         #[test]
-        fn fast_path_is_shortest_round_trip(x in -2e7f64..2e7, small in -10.0f64..10.0, edge in 2_000_000f64..2_200_000.0) {
+        fn fast_path_is_shortest_round_trip(x in -2e7f64..2e7, small in -10.0f64..10.0, edge in 2_000_000f64..2_200_000.0, huge in 2.1e12f64..2.3e12) {
             for v in [x, small, x / 1e3, small / 1e6, edge, -edge, edge * 1e3] {
                 prop_assert_eq!(angle(v).to_string(), format!("{}", round_angle(v)));
                 prop_assert_eq!(height(v).to_string(), format!("{}", round_height(v)));
                 let back: f64 = angle(v).as_str().parse().unwrap();
                 prop_assert_eq!(back, round_angle(v));
+            }
+            // Heights around the fast path's limit (2^41 mm).
+            for v in [huge, -huge, huge / 1e3 + small] {
+                prop_assert_eq!(height(v).to_string(), format!("{}", round_height(v)));
             }
         }
 

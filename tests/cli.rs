@@ -788,7 +788,7 @@ fn check_fix_prints_writes_and_refuses() {
     golden!(
         "check_fix",
         0,
-        ["check", "--fix", "\"+30°, 10,,20\"", "+30 /50%"]
+        ["check", "--fix", "--force", "\"+30°, 10,,20\"", "+30 /50%"]
     );
     golden!(
         "check_fix_refuses_errors",
@@ -802,6 +802,7 @@ fn check_fix_prints_writes_and_refuses() {
         &[
             "check",
             "--fix",
+            "--force",
             "--write",
             "--file",
             file.to_str().unwrap(),
@@ -914,4 +915,258 @@ fn invisible_characters_get_a_caret_and_keep_columns() {
         "the X is character 12: {golden}"
     );
     assert!(golden.contains("0, ???90, +30X5"), "{golden}");
+}
+
+#[test]
+fn pieces_of_one_template_in_single_template_commands() {
+    // The second piece is not a template that begins with `-`: the quoting note.
+    golden!("pieces_expand", 2, ["expand", "0,", "90"]);
+    golden!("pieces_explain", 2, ["explain", "0,", "90"]);
+    golden!("pieces_expand_unit", 2, ["expand", "+30/50", "%"]);
+}
+
+#[test]
+fn option_values_beginning_with_a_dash_say_what_is_allowed() {
+    golden!("negative_range", 2, ["expand", "0", "--range", "-5..3"]);
+    golden!("negative_wrap", 2, ["expand", "0", "--wrap", "-1"]);
+    golden!("negative_format", 2, ["check", "--format", "-1", "0"]);
+    golden!("negative_columns", 2, ["preview", "0", "--columns", "-1"]);
+    golden!("negative_plot_seed", 2, ["plot", "0", "--seed", "-1"]);
+    golden!("negative_plot_layers", 2, ["plot", "0", "--layers", "-5"]);
+    golden!(
+        "negative_preview_layers",
+        2,
+        ["preview", "0", "--layers", "-1..3"]
+    );
+    // A flag before a negative template still takes the template.
+    golden!(
+        "flag_then_negative_template",
+        0,
+        ["check", "--deny-warnings", "-30"]
+    );
+}
+
+#[test]
+fn degree_help_names_the_angle() {
+    for (template, says) in [
+        ("45 deg", "write `45`, not `45 deg`"),
+        ("45deg", "write `45`, not `45deg`"),
+        ("45°", "write `45`, not `45°`"),
+        ("+45 degrees", "write `+45`, not `+45 degrees`"),
+        ("0, deg", "remove `deg`"),
+    ] {
+        let (golden, code) = run(&["check", template], None);
+        assert_eq!(code, 1, "{golden}");
+        assert!(golden.contains(says), "{template}: {golden}");
+        assert!(!golden.contains("write ``"), "{golden}");
+    }
+}
+
+#[test]
+fn byte_order_mark_and_lone_cr_keep_editor_positions() {
+    let dir = TempDir::new("bom-cr");
+    let bom = dir.file("f.rot", "\u{feff}0, +30X5");
+    let (golden, code) = run_in(&dir, &["check", "--file", bom.to_str().unwrap()]);
+    insta::assert_snapshot!("bom_error_column", golden);
+    assert_eq!(code, 1);
+    assert!(
+        golden.contains("f.rot:1:7\n") && !golden.contains('?'),
+        "{golden}"
+    );
+    let (golden, _) = run_in(
+        &dir,
+        &["check", "--format", "json", "--file", bom.to_str().unwrap()],
+    );
+    let value: serde_json::Value = serde_json::from_str(stdout_of(&golden)).unwrap();
+    let d = &value["diagnostics"][0];
+    // Columns as editors count them; offsets stay the file's bytes.
+    assert_eq!(
+        (d["line"].as_u64(), d["column"].as_u64()),
+        (Some(1), Some(7))
+    );
+    assert_eq!(d["start"], 9);
+    let cr = dir.file("cr.rot", "0, 90\r+30X5");
+    let (golden, code) = run_in(&dir, &["check", "--file", cr.to_str().unwrap()]);
+    insta::assert_snapshot!("lone_cr_is_a_line_end", golden);
+    assert_eq!(code, 1);
+    assert!(
+        golden.contains("cr.rot:2:4\n") && !golden.contains('\r'),
+        "{golden}"
+    );
+    // Profiles too: a byte-order mark and CR-only line ends.
+    let ini = dir.file(
+        "p.ini",
+        "\u{feff}layer_height = 0.2\rsparse_infill_rotate_template = 0, +30X5\r",
+    );
+    let (golden, code) = run_in(&dir, &["check", ini.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert!(golden.contains("p.ini:2:39\n"), "{golden}");
+    let json = dir.file(
+        "p.json",
+        "\u{feff}{\"sparse_infill_rotate_template\": \"0, +30X5\"}",
+    );
+    let (golden, _) = run_in(&dir, &["check", "--format", "json", json.to_str().unwrap()]);
+    let value: serde_json::Value =
+        serde_json::from_str(stdout_of(&golden).lines().next().unwrap()).unwrap();
+    assert_eq!(value["diagnostics"][0]["column"], 42, "{golden}");
+}
+
+#[test]
+fn heights_are_micrometres() {
+    golden!(
+        "heights_micrometres",
+        0,
+        [
+            "expand", "+1", "--layers", "1000000", "--range", "999999..", "--format", "csv"
+        ]
+    );
+}
+
+#[test]
+fn expand_json_errors_are_checks_object() {
+    for template in ["+30X5", "+30X5, 10,,20"] {
+        let (expand, code) = run(&["expand", "--format", "json", template], None);
+        assert_eq!(code, 1);
+        let (check, _) = run(&["check", "--format", "json", template], None);
+        assert_eq!(stdout_of(&expand), stdout_of(&check), "{expand}");
+    }
+}
+
+#[test]
+fn expand_orcaslicer_json_has_the_findings() {
+    let (golden, code) = run(
+        &[
+            "expand",
+            "--dialect",
+            "orcaslicer",
+            "+10$50%%",
+            "--layers",
+            "3",
+            "--format",
+            "json",
+        ],
+        None,
+    );
+    assert_eq!(code, 0);
+    let value: serde_json::Value =
+        serde_json::from_str(stdout_of(&golden)).expect("one JSON object");
+    let d = &value["diagnostics"][0];
+    assert_eq!(d["code"], "orcaslicer::nan", "{golden}");
+    assert_eq!(d["first_layer"], 2);
+    assert_eq!(value["layers"].as_array().map(Vec::len), Some(3));
+    // Without findings the list is there, empty.
+    let (golden, _) = run(
+        &[
+            "expand",
+            "--dialect",
+            "orcaslicer",
+            "0, 90",
+            "--layers",
+            "2",
+            "--format",
+            "json",
+        ],
+        None,
+    );
+    let value: serde_json::Value =
+        serde_json::from_str(stdout_of(&golden)).expect("one JSON object");
+    assert_eq!(value["diagnostics"], serde_json::json!([]));
+}
+
+#[test]
+fn fmt_leaves_a_space_after_a_joint_with_the_warning() {
+    golden!("fmt_space_after_joint", 1, ["fmt", "+30/ 50%"]);
+    golden!(
+        "fmt_space_after_joint_check",
+        1,
+        ["fmt", "--check", "+30/ 50%"]
+    );
+    golden!(
+        "fmt_space_after_joint_force",
+        0,
+        ["fmt", "--force", "+30/ 50%"]
+    );
+    let dir = TempDir::new("fmt-space");
+    let file = dir.file("a.rot", "+10L 25%, -10l 25%\n");
+    let (_, code) = run_in(&dir, &["fmt", "--write", "--file", file.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert_eq!(
+        std::fs::read_to_string(&file).unwrap(),
+        "+10L 25%, -10l 25%\n"
+    );
+    // `check --fix` applies the warning's own fix.
+    let (golden, code) = run(&["check", "--fix", "+30/ 50%"], None);
+    assert_eq!((stdout_of(&golden), code), ("+30/50%\n", 0));
+}
+
+#[test]
+fn trailing_comma_warns_with_a_fix() {
+    golden!("trailing_comma_fix", 0, ["check", "--fix", "0, 90,"]);
+    let (golden, _) = run(&["check", "--format", "json", "0, 90,"], None);
+    let value: serde_json::Value = serde_json::from_str(stdout_of(&golden)).unwrap();
+    assert_eq!(
+        value["diagnostics"][0]["code"],
+        "rotlang::empty-instruction"
+    );
+    assert_eq!(value["diagnostics"][0]["fix"]["replacement"], "");
+}
+
+#[test]
+fn second_repeat_count_help_matches_the_fix() {
+    let (golden, _) = run(&["check", "+30*3*2"], None);
+    assert!(
+        golden.contains("remove `*2` to run the instruction 3 times (the fix)"),
+        "{golden}"
+    );
+    assert!(golden.contains("the product `*6`"), "{golden}");
+    let (golden, code) = run(&["check", "--fix", "+30*3*2"], None);
+    assert_eq!((stdout_of(&golden), code), ("+30*3\n", 0));
+}
+
+#[test]
+fn check_fix_with_compat_and_the_orcaslicer_guard() {
+    golden!(
+        "fix_compat",
+        0,
+        ["check", "--compat", "orcaslicer", "--fix", "0 90"]
+    );
+    golden!("fix_orcaslicer_guard", 1, ["check", "--fix", "10,,20"]);
+    golden!(
+        "fix_orcaslicer_force",
+        0,
+        ["check", "--fix", "--force", "10,,20"]
+    );
+    // One line per input, in order; the refused ones named on stderr.
+    golden!(
+        "fix_several_attributable",
+        1,
+        ["check", "--fix", "+30X5", "10,,20", "+30°"]
+    );
+}
+
+#[test]
+fn a_file_named_as_the_template() {
+    golden!(
+        "expand_profile_named_as_template",
+        0,
+        [
+            "expand",
+            "tests/fixtures/profiles/export.ini",
+            "--layers",
+            "3"
+        ]
+    );
+    golden!(
+        "fmt_profile_named_as_template",
+        2,
+        ["fmt", "tests/fixtures/profiles/export.ini"]
+    );
+    let dir = TempDir::new("fmt-named");
+    let file = dir.file("a.rot", "0,  90\n");
+    let (golden, code) = run_in(&dir, &["fmt", file.to_str().unwrap()]);
+    insta::assert_snapshot!("fmt_file_named_as_template", golden);
+    assert_eq!(code, 0);
+    let (_, code) = run_in(&dir, &["fmt", "--write", file.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "0, 90\n");
 }

@@ -33,6 +33,11 @@ pub fn shells(text: &str) -> Result<u32, String> {
     whole(text, 0, u64::from(u32::MAX)).map(|n| n as u32)
 }
 
+/// `preview --columns N`: panels per row.
+pub fn columns(text: &str) -> Result<usize, String> {
+    whole(text, 1, 64).map(|n| n as usize)
+}
+
 /// A finite number of millimetres or degrees (ranges are checked by the model).
 pub fn finite(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
@@ -57,9 +62,13 @@ pub fn template_after_dashdash(error: &clap::Error, argv: &[String]) -> Option<S
     let arg = argv[..dashdash]
         .iter()
         .find(|a| a.starts_with(unknown.as_str()) && !a.starts_with("--"))?;
-    let looks_like_template = arg[1..].starts_with(|c: char| {
-        c.is_ascii_digit() || c == '.' || crate::Joint::from_symbol(c).is_some() || c == 'B'
-    }) || arg == "-";
+    // Only an argument that begins with `-` was taken for an option: `expand 0, 90`
+    // fails on `90`, a second template, which is not this case.
+    let looks_like_template = arg.starts_with('-')
+        && arg[1..].starts_with(|c: char| {
+            c.is_ascii_digit() || c == '.' || crate::Joint::from_symbol(c).is_some() || c == 'B'
+        })
+        || arg == "-";
     if !looks_like_template {
         return None;
     }
@@ -78,6 +87,93 @@ pub fn template_after_dashdash(error: &clap::Error, argv: &[String]) -> Option<S
          tip: put templates that begin with `-` after `--`, after every option: \
          rotlang {command} [OPTIONS] -- {shown}\n"
     ))
+}
+
+/// `--range -5..3`: clap takes `-5..3` for an option, not for the value of `--range`.
+/// When the argument clap refused follows an option that takes a value, returns the
+/// command line with the two joined (`--range=-5..3`), so that parsing it again reaches
+/// the option's own parser and its message says what the option allows.
+pub fn join_option_value(
+    error: &clap::Error,
+    command: &clap::Command,
+    argv: &[String],
+) -> Option<Vec<String>> {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if error.kind() != ErrorKind::UnknownArgument {
+        return None;
+    }
+    let Some(ContextValue::String(unknown)) = error.get(ContextKind::InvalidArg) else {
+        return None;
+    };
+    let dashdash = argv.iter().position(|a| a == "--").unwrap_or(argv.len());
+    let at = (2..dashdash)
+        .find(|&i| argv[i].starts_with('-') && argv[i].starts_with(unknown.as_str()))?;
+    let sub = command.find_subcommand(argv.get(1)?)?;
+    let option = &argv[at - 1];
+    let takes_value = |a: &clap::Arg| a.get_action().takes_values() && !a.is_positional();
+    let known = if let Some(long) = option.strip_prefix("--") {
+        !long.contains('=')
+            && sub
+                .get_arguments()
+                .any(|a| takes_value(a) && a.get_long() == Some(long))
+    } else if let Some(short) = option.strip_prefix('-') {
+        let mut chars = short.chars();
+        matches!((chars.next(), chars.next()), (Some(c), None)
+            if sub.get_arguments().any(|a| takes_value(a) && a.get_short() == Some(c)))
+    } else {
+        false
+    };
+    if !known {
+        return None;
+    }
+    let mut joined = argv.to_vec();
+    let value = joined.remove(at);
+    joined[at - 1] = format!("{option}={value}");
+    Some(joined)
+}
+
+/// `expand 0, 90` and `expand +30/50 %`: commands of one template get clap's "unexpected
+/// argument" for the second piece. Returns the quoting note `check` and `fmt` print, when
+/// the arguments look like the pieces of one template.
+pub fn pieces_of_one_template(
+    error: &clap::Error,
+    command: &clap::Command,
+    argv: &[String],
+) -> Option<String> {
+    use clap::error::ErrorKind;
+    if error.kind() != ErrorKind::UnknownArgument {
+        return None;
+    }
+    let name = argv.get(1)?;
+    let sub = command.find_subcommand(name)?;
+    // The positional arguments: neither options nor their values.
+    let mut pieces = Vec::new();
+    let mut i = 2;
+    while i < argv.len() {
+        let a = &argv[i];
+        if a == "--" {
+            pieces.extend(argv[i + 1..].iter().cloned());
+            break;
+        }
+        if let Some(long) = a.strip_prefix("--") {
+            let takes_value = sub
+                .get_arguments()
+                .any(|x| x.get_long() == Some(long) && x.get_action().takes_values());
+            i += if takes_value { 2 } else { 1 };
+            continue;
+        }
+        if a.len() == 2 && a.starts_with('-') && !a[1..].starts_with(|c: char| c.is_ascii_digit()) {
+            let c = a[1..].chars().next();
+            let takes_value = sub
+                .get_arguments()
+                .any(|x| x.get_short() == c && x.get_action().takes_values());
+            i += if takes_value { 2 } else { 1 };
+            continue;
+        }
+        pieces.push(a.clone());
+        i += 1;
+    }
+    super::pieces_note_saying(name, &pieces, "this command takes one template")
 }
 
 #[cfg(test)]

@@ -3,10 +3,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use super::{
-    ColorArg, Input, TargetArg, UsageError, diagnostic_json, gather, pieces_note, render_human,
-};
-use crate::diagnostic::LineIndex;
+use super::{ColorArg, Input, TargetArg, UsageError, gather, pieces_note, render_human};
 
 #[derive(clap::Args, Debug)]
 #[command(after_long_help = "\
@@ -24,8 +21,12 @@ Examples:
   rotlang check -f - < a.rot              `-` is stdin, as a template or a file
 
 `--fix` applies the fix of every diagnostic that has one (the `fix:` lines of the
-report), again and again until none is left. A template that still has errors after
-that is not printed or written: its remaining errors are reported instead (exit 1).
+report), again and again until none is left, and prints one line (or file text) per
+input, in order. An input is left as it is (printed unchanged, not written, exit 1,
+its name and the reason on stderr) when errors remain that have no fix, or, without
+--force, when OrcaSlicer would read the fixed template differently (`10,,20`).
+With --compat orcaslicer the compat findings' fixes are applied too: they make
+OrcaSlicer read what rotlang reads, so that guard is not applied.
 It works on templates and --file (not on profiles or folders).
 
 Exit status: 0 when every input is clean or has only warnings, 1 when any has an
@@ -52,12 +53,18 @@ pub struct CheckArgs {
     /// Treat warnings as errors (exit 1).
     #[arg(long)]
     pub deny_warnings: bool,
-    /// Apply every fix and print the fixed templates (diagnostics go to stderr).
-    #[arg(long, conflicts_with_all = ["format", "compat"])]
+    /// Apply every fix and print the fixed templates, one per input in order (diagnostics
+    /// go to stderr). With --compat orcaslicer, the compat findings' fixes too.
+    #[arg(long, conflicts_with = "format")]
     pub fix: bool,
     /// With --fix: rewrite files in place instead of printing them.
     #[arg(long, requires = "fix")]
     pub write: bool,
+    /// With --fix: fix even where OrcaSlicer would read the result differently (`10,,20`
+    /// is 10, 0, 20 for OrcaSlicer, `10, 20` is 10, 20); without it such a template is
+    /// left as it is (printed unchanged) and the exit status is 1.
+    #[arg(long, requires = "fix")]
+    pub force: bool,
     /// Also compare with a slicer's own reading (`orcaslicer`): where its angles part from
     /// rotlang's on the model (the profile's own, or the 20 mm cube), where it hangs or
     /// computes NaN angles, and constructs it reads differently.
@@ -75,12 +82,12 @@ pub enum Format {
 /// Runs the check; returns the exit code.
 pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     // Files, folders (an argument naming an existing path is one) and the compat lint.
-    if super::files::wanted(args) {
-        if args.fix {
-            return Err(UsageError(
-                "--fix works on templates and --file PATH, not on profiles or folders".into(),
-            ));
-        }
+    if args.fix && super::files::has_paths(args) {
+        return Err(UsageError(
+            "--fix works on templates and --file PATH, not on profiles or folders".into(),
+        ));
+    }
+    if !args.fix && super::files::wanted(args) {
         return super::files::check(args, out);
     }
     let inputs = gather(&args.templates, &args.files)?;
@@ -101,17 +108,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
     match args.format {
         Format::Json => {
             for (input, parse) in inputs.iter().zip(&parses) {
-                let index = LineIndex::new(&input.text);
-                let diagnostics: Vec<_> = parse
-                    .diagnostics
-                    .iter()
-                    .map(|d| diagnostic_json(&index, d))
-                    .collect();
-                let obj = serde_json::json!({
-                    "input": input.text, "name": input.name, "diagnostics": diagnostics,
-                    "errors": parse.errors, "warnings": parse.warnings, "omitted": parse.omitted,
-                });
-                writeln!(out, "{obj}").map_err(io)?;
+                writeln!(out, "{}", super::report_json(input, parse)).map_err(io)?;
             }
         }
         Format::Human => {
@@ -137,8 +134,9 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
     Ok(code)
 }
 
-/// `check --fix`: every fix applied; the fixed text printed or written, unless errors
-/// remain (then their report, exit 1).
+/// `check --fix`: every fix applied; the fixed text printed or written, one per input in
+/// order. An input left as it is (errors remain, or OrcaSlicer would read the fix
+/// differently) is printed unchanged, and named on stderr with the reason (exit 1).
 fn fix(
     args: &CheckArgs,
     inputs: &[Input],
@@ -146,34 +144,73 @@ fn fix(
     err: &mut dyn Write,
 ) -> Result<i32, UsageError> {
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    let target = args.target.into();
+    // The compat lint on the model `check --compat` uses for templates.
+    let compat = |text: &str| match args.compat {
+        Some(_) => crate::dialect::compat::compat(
+            text,
+            target,
+            &crate::eval::Model::cube20(),
+            crate::eval::Options::default(),
+        ),
+        None => Vec::new(),
+    };
     let mut code = 0;
     let (mut applied, mut written) = (0, 0);
     for input in inputs {
-        let fixed = crate::fix::apply_all(&input.text, args.target.into());
-        applied += fixed.applied;
+        let fixed = crate::fix::apply_all_with(&input.text, target, compat);
         let left = Input {
             text: fixed.text.clone(),
             ..input.clone()
         };
-        let shown = |p: &crate::Diagnostic| p.code != "rotlang::too-many-diagnostics";
-        let warnings = fixed.parse.diagnostics.iter().filter(|d| shown(d)).count();
-        if !fixed.parse.diagnostics.is_empty() {
-            let report = render_human(
-                &[(&left, &fixed.parse.diagnostics)],
-                args.color.enabled(false),
-            );
+        // Why the input is left as it is, if it is.
+        let refused = if fixed.parse.has_errors() {
+            Some("errors remain that have no automatic fix".to_owned())
+        } else if args.compat.is_none()
+            && !args.force
+            && fixed.text != input.text
+            && !rotlang_change(&input.text, &fixed.text, target)
+        {
+            // Fixes that keep rotlang's reading may change OrcaSlicer's: `10,,20` becomes
+            // `10, 20`, which OrcaSlicer reads as 10, 20 instead of 10, 0, 20. The same
+            // guard as `fmt`'s. (A fix that repairs what rotlang reads, `+30/ 50%` into
+            // `+30/50%`, is the change the warning asked for, in both readings.)
+            let trim = |t: &str| t.strip_suffix('\n').unwrap_or(t).to_owned();
+            crate::dialect::compat::orcaslicer_change(&trim(&input.text), &trim(&fixed.text)).map(
+                |why| {
+                    format!(
+                        "`{}` would change what OrcaSlicer does ({why}); pass --force to fix \
+                         anyway, or --compat orcaslicer to see where the two readings part",
+                        trim(&fixed.text)
+                    )
+                },
+            )
+        } else {
+            None
+        };
+        // The report is of the text printed: the input when it is left as it is, else
+        // what is left of the fixed text.
+        let (shown, mut diagnostics) = match refused {
+            Some(_) => (input, crate::parse(&input.text, target).diagnostics),
+            None => (&left, fixed.parse.diagnostics.clone()),
+        };
+        diagnostics.extend(compat(&shown.text));
+        if !diagnostics.is_empty() {
+            let report = render_human(&[(shown, &diagnostics)], args.color.enabled(false));
             err.write_all(report.as_bytes()).map_err(io)?;
         }
-        if fixed.parse.has_errors() {
-            writeln!(
-                err,
-                "{}: not fixed: errors remain that have no automatic fix",
-                input.name
-            )
-            .map_err(io)?;
+        let counted = |d: &&crate::Diagnostic| d.code != "rotlang::too-many-diagnostics";
+        let warnings = diagnostics.iter().filter(counted).count();
+        if let Some(why) = refused {
+            writeln!(err, "{}: not fixed: {why}", input.name).map_err(io)?;
             code = 1;
+            if !(args.write && input.path.is_some()) {
+                let text = input.text.strip_suffix('\n').unwrap_or(&input.text);
+                writeln!(out, "{text}").map_err(io)?;
+            }
             continue;
         }
+        applied += fixed.applied;
         if args.deny_warnings && warnings > 0 {
             code = 1;
         }
@@ -209,6 +246,24 @@ fn fix(
     }
     writeln!(err, "{line}").map_err(io)?;
     Ok(code)
+}
+
+/// Whether rotlang reads `fixed` differently from `text`, which has no errors (on the 20 mm
+/// cube and a model of other shell counts and heights). A text with errors has no reading
+/// to keep: `false`, so that the OrcaSlicer guard applies to its fixes.
+fn rotlang_change(text: &str, fixed: &str, target: crate::Target) -> bool {
+    let options = crate::eval::Options::default();
+    let mut models = vec![crate::eval::Model::cube20()];
+    models.extend(crate::eval::Model::uniform(75, 0.2, Some(0.3)).map(|m| m.with_shells(4, 5)));
+    models.iter().any(|model| {
+        let (parse, a) = crate::eval::parse_layers(text, target, model, options);
+        if parse.has_errors() {
+            return false;
+        }
+        let (_, b) = crate::eval::parse_layers(fixed, target, model, options);
+        a.zip(b)
+            .any(|(x, y)| x.fill != y.fill || crate::number::round_angle(x.angle - y.angle) != 0.0)
+    })
 }
 
 fn summary(inputs: usize, errors: usize, warnings: usize, deny_warnings: bool) -> String {

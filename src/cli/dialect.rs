@@ -35,3 +35,20 @@ pub(crate) fn expand(
     }
     Ok(0)
 }
+
+/// A finding as a diagnostic of `--format json` (the object `check` prints for each
+/// diagnostic), with the layers it concerns. A hang has no one token at fault: its span is
+/// the whole template.
+pub(crate) fn finding_json(
+    index: &crate::LineIndex<'_>,
+    text: &str,
+    finding: &crate::dialect::Finding,
+) -> serde_json::Value {
+    let span = finding.span.unwrap_or(crate::Span::new(0, text.len()));
+    let d =
+        crate::Diagnostic::warning(finding.code, finding.message.clone()).with_primary(span, "");
+    let mut value = super::diagnostic_json(index, &d);
+    value["first_layer"] = finding.first_layer.into();
+    value["layers"] = finding.layers.into();
+    value
+}

@@ -1,7 +1,7 @@
 //! `rotlang expand`: the angle and fill of every layer of a model, streamed.
 
 use std::io::{BufWriter, ErrorKind, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use super::model::{ModelArgs, Resolved};
 use super::{ColorArg, Input, TargetArg, UsageError, args, diagnostic_json, gather};
@@ -41,7 +41,8 @@ errors (nothing is expanded; with --format json the diagnostics are printed as J
 `rotlang check --format json` does), 2 on a usage error (bad model, conflicting options).")]
 pub struct ExpandArgs {
     /// The template to expand, e.g. '+30/50%'. Put `--` before one that begins with `-`.
-    /// Without it, the template is read from --file or stdin; `-` is stdin.
+    /// Without it, the template is read from --file or stdin; `-` is stdin. An existing
+    /// file named here is read as --profile (.json, .jsonc, .ini, .3mf) or --file (.rot).
     #[arg(
         value_name = "TEMPLATE",
         allow_negative_numbers = true,
@@ -188,7 +189,34 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     // The model first: a usage error should not wait for stdin.
     let mut resolved = args.model.resolve()?;
     let mut base = args.base;
-    let input = match &args.profile {
+    // `expand profile.json`: a file named where the template goes is read as the option
+    // meant (as `check` reads it), and a note names the option.
+    let (mut profile, mut file, mut template) = (
+        args.profile.clone(),
+        args.file.clone(),
+        args.template.clone(),
+    );
+    if let Some(t) = &args.template
+        && Path::new(t).is_file()
+    {
+        let kind = crate::profile::Kind::from_extension(Path::new(t));
+        let note = match kind {
+            Some(crate::profile::Kind::Template) => {
+                file = template.take().map(PathBuf::from);
+                format!("note: `{t}` is a file: read as --file {t}")
+            }
+            Some(_) => {
+                profile = template.take().map(PathBuf::from);
+                format!("note: `{t}` is a file: read as --profile {t}")
+            }
+            None => format!(
+                "note: `{t}` is read as a template, but it is also a file: to read the file, \
+                 pass --file {t} (a template) or --profile {t} (a profile)"
+            ),
+        };
+        writeln!(err, "{note}").map_err(|e| UsageError(e.to_string()))?;
+    }
+    let input = match &profile {
         Some(path) => {
             let p = super::files::profile_template(path, args.target.into(), args.model.height)?;
             for note in &p.notes {
@@ -210,8 +238,8 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
             }
         }
         None => {
-            let templates: Vec<String> = args.template.iter().cloned().collect();
-            let files: Vec<PathBuf> = args.file.iter().cloned().collect();
+            let templates: Vec<String> = template.iter().cloned().collect();
+            let files: Vec<PathBuf> = file.iter().cloned().collect();
             gather(&templates, &files)?
                 .into_iter()
                 .next()
@@ -245,15 +273,26 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         end,
     };
     if args.dialect == eval::Dialect::OrcaSlicer {
-        // No grammar, so no diagnostics: JSON echoes none.
-        let empty = crate::Parse::default();
+        // No grammar, so no syntax diagnostics: the JSON's are the dialect's findings (a
+        // hang, undefined behaviour, NaN layers), known once the layers are written.
         return super::dialect::expand(&input.text, &resolved.model, options, err, |layers| {
             match args.format {
                 Format::Csv => writer.csv(layers, out),
                 Format::Table => writer.table(layers, out),
                 Format::Json => {
-                    let header = json_header(args, options, &input, &empty, &resolved, start, end);
-                    writer.json(layers, &header, out)
+                    let header = json_header(args, options, &input, None, &resolved, start, end);
+                    writer.json(&mut *layers, &header, out)?;
+                    let index = LineIndex::new(&input.text);
+                    let findings: Vec<_> = layers
+                        .findings()
+                        .iter()
+                        .map(|f| super::dialect::finding_json(&index, &input.text, f))
+                        .collect();
+                    writeln!(
+                        out,
+                        ",\"diagnostics\":{}}}",
+                        serde_json::Value::from(findings)
+                    )
                 }
             }
         });
@@ -265,14 +304,7 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     let json = args.format == Format::Json;
     if parse.has_errors() && json {
         // The same object `check --format json` prints.
-        let index = LineIndex::new(&input.text);
-        let diagnostics: Vec<_> = parse
-            .diagnostics
-            .iter()
-            .map(|d| diagnostic_json(&index, d))
-            .collect();
-        let obj = serde_json::json!({"input": input.text, "name": input.name, "diagnostics": diagnostics});
-        writeln!(out, "{obj}").map_err(write_error)?;
+        writeln!(out, "{}", super::report_json(&input, &parse)).map_err(write_error)?;
     }
     if !parse.diagnostics.is_empty() {
         err.write_all(report(&input, &parse.diagnostics, args.color).as_bytes())
@@ -285,8 +317,10 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         Format::Csv => writer.csv(layers, out),
         Format::Table => writer.table(layers, out),
         Format::Json => {
-            let header = json_header(args, options, &input, &parse, &resolved, start, end);
-            writer.json(layers, &header, out)
+            let header = json_header(args, options, &input, Some(&parse), &resolved, start, end);
+            writer
+                .json(layers, &header, out)
+                .and_then(|()| out.write_all(b"}\n"))
         }
     };
     match result {
@@ -307,7 +341,7 @@ fn json_header(
     args: &ExpandArgs,
     options: Options,
     input: &Input,
-    parse: &crate::Parse,
+    parse: Option<&crate::Parse>,
     resolved: &Resolved,
     start: usize,
     end: usize,
@@ -318,12 +352,7 @@ fn json_header(
     };
     let first = model.layer_bounds(0).map_or(0.0, |(b, t)| t - b);
     let index = LineIndex::new(&input.text);
-    let diagnostics: Vec<_> = parse
-        .diagnostics
-        .iter()
-        .map(|d| diagnostic_json(&index, d))
-        .collect();
-    let head = serde_json::json!({
+    let mut head = serde_json::json!({
         "template": input.text,
         "name": input.name,
         "target": match args.target { TargetArg::Sparse => "sparse", TargetArg::Solid => "solid" },
@@ -343,8 +372,14 @@ fn json_header(
             "wrap": args.wrap.name(),
             "range": {"start": start, "end": end},
         },
-        "diagnostics": diagnostics,
     });
+    if let Some(parse) = parse {
+        head["diagnostics"] = parse
+            .diagnostics
+            .iter()
+            .map(|d| diagnostic_json(&index, d))
+            .collect();
+    }
     // The object without its closing brace, for `"layers"` to follow.
     let mut s = head.to_string();
     s.pop();
@@ -481,7 +516,9 @@ impl Writer<'_> {
             }
             out.write_all(cached.text.as_bytes())?;
         }
-        out.write_all(b"\n]}\n")?;
+        // The caller closes the object (after what only the layers tell: the findings
+        // of the OrcaSlicer dialect).
+        out.write_all(b"\n]")?;
         out.flush()
     }
 

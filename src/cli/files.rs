@@ -26,11 +26,15 @@ pub enum CompatArg {
 
 /// Whether `check` has files or the compat lint to run (else the plain template path).
 pub(crate) fn wanted(args: &CheckArgs) -> bool {
-    args.compat.is_some()
-        || args
-            .templates
-            .iter()
-            .any(|t| Path::new(t).exists() || looks_like_a_file(t))
+    args.compat.is_some() || has_paths(args)
+}
+
+/// Whether `check` names profiles or folders (an existing path, a file name of a profile,
+/// a --file that is not a template): what `--fix` does not work on.
+pub(crate) fn has_paths(args: &CheckArgs) -> bool {
+    args.templates
+        .iter()
+        .any(|t| Path::new(t).exists() || looks_like_a_file(t))
         || args
             .files
             .iter()

@@ -9,7 +9,10 @@ use super::{ColorArg, TargetArg, UsageError, gather, pieces_note, render_human};
 #[command(after_long_help = "\
 The canonical form puts `, ` between instructions and keeps each instruction's
 text as written, so formatting never changes what a template means. Templates
-with errors are not formatted: their diagnostics are shown instead.
+with errors are not formatted: their diagnostics are shown instead. Nor are,
+without --force, templates that OrcaSlicer would read differently once formatted,
+or where a space likely splits an instruction by mistake (`+30/ 50%`): formatting
+would make the split permanent; `rotlang check --fix` applies the fix instead.
 
 Examples:
   rotlang fmt '0 90  +30/50%'            prints `0, 90, +30/50%`
@@ -21,6 +24,7 @@ Exit status: 0 when done (or, with --check, already canonical), 1 on a template
 with errors or, with --check, one that would change; 2 on a usage error.")]
 pub struct FmtArgs {
     /// Templates to format; `-` is stdin. Put `--` before a template that begins with `-`.
+    /// An existing file named here is formatted as with --file.
     #[arg(value_name = "TEMPLATE", allow_negative_numbers = true)]
     pub templates: Vec<String>,
     /// Format a template file (`-` is stdin). Repeatable.
@@ -34,8 +38,9 @@ pub struct FmtArgs {
     #[arg(long)]
     pub write: bool,
     /// Format even where OrcaSlicer would read the result differently (`0,,90` is
-    /// 0, 0, 90 for OrcaSlicer, `0, 90` is 0, 90); without it such a template is left as
-    /// it is (printed unchanged) and the exit status is 1.
+    /// 0, 0, 90 for OrcaSlicer, `0, 90` is 0, 90), or where a space likely splits an
+    /// instruction by mistake (`+30/ 50%`, warned about by `check`); without it such a
+    /// template is left as it is (printed unchanged) and the exit status is 1.
     #[arg(long)]
     pub force: bool,
     /// Which setting the templates are for.
@@ -46,9 +51,38 @@ pub struct FmtArgs {
     pub color: ColorArg,
 }
 
+/// The warning on a space that splits what reads as one instruction (`+30/ 50%`).
+const SPLIT_BY_SPACE: &str = "rotlang::space-splits-instruction";
+
 pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
-    let inputs = gather(&args.templates, &args.files)?;
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
+    // `fmt a.rot`: a file named where a template goes is formatted as `--file a.rot` would
+    // be (so `--write` rewrites it), as `check` reads such a name as its file; a note says
+    // so. A profile holds templates among other settings: not fmt's to rewrite.
+    let mut templates = Vec::new();
+    let mut files = Vec::new();
+    for t in &args.templates {
+        let path = std::path::Path::new(t);
+        if t == "-" || !path.is_file() {
+            templates.push(t.clone());
+            continue;
+        }
+        match crate::profile::Kind::from_extension(path) {
+            Some(crate::profile::Kind::Template) | None => {
+                writeln!(err, "note: `{t}` is a file: formatted as --file {t}").map_err(io)?;
+                files.push(PathBuf::from(t));
+            }
+            Some(kind) => {
+                return Err(UsageError(format!(
+                    "`{t}` is a profile ({}): fmt formats templates and template files; \
+                     `rotlang check {t}` checks the templates in it",
+                    kind.name()
+                )));
+            }
+        }
+    }
+    files.extend(args.files.iter().cloned());
+    let inputs = gather(&templates, &files)?;
     if let Some(note) = pieces_note("fmt", &args.templates) {
         err.write_all(note.as_bytes()).map_err(io)?;
     }
@@ -69,6 +103,32 @@ pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i
             .text
             .strip_suffix('\n')
             .map_or(input.text.as_str(), |t| t.strip_suffix('\r').unwrap_or(t));
+        // `+30/ 50%`: a space that likely splits one instruction by mistake. Formatting
+        // would write the split as `+30/, 50%` and silence the warning: leave the text
+        // as it is, with the warning and its fix (`check --fix` applies it).
+        let splits: Vec<crate::Diagnostic> = parse
+            .diagnostics
+            .iter()
+            .filter(|d| d.code == SPLIT_BY_SPACE)
+            .cloned()
+            .collect();
+        if !args.force && !splits.is_empty() && current != formatted {
+            let report = render_human(&[(input, &splits)], args.color.enabled(false));
+            err.write_all(report.as_bytes()).map_err(io)?;
+            writeln!(
+                err,
+                "{}: not formatted: a space likely splits an instruction by mistake (the \
+                 warning above), and formatting would make it a separator (`{formatted}`); \
+                 remove the space (`rotlang check --fix` does) or pass --force to format anyway",
+                input.name
+            )
+            .map_err(io)?;
+            if !args.check && (!args.write || input.path.is_none()) {
+                writeln!(out, "{current}").map_err(io)?;
+            }
+            code = 1;
+            continue;
+        }
         // Canonical for rotlang, but OrcaSlicer may read the new text differently.
         if !args.check
             && !args.force

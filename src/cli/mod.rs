@@ -23,7 +23,9 @@ use codespan_reporting::diagnostic as cs;
 use codespan_reporting::term::{self, termcolor};
 
 use crate::Target;
-use crate::diagnostic::{Diagnostic, LineIndex, Severity, ceil_char_boundary, floor_char_boundary};
+use crate::diagnostic::{
+    BYTE_ORDER_MARK, Diagnostic, LineIndex, Severity, ceil_char_boundary, floor_char_boundary,
+};
 
 /// The largest input read (a template file or stdin). Templates are a few bytes; this
 /// bounds memory on a mistaken `--file /dev/zero`.
@@ -185,6 +187,24 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
     };
     let config = term::Config::default();
     for (input, diagnostics) in reports {
+        // A byte-order mark is hidden by editors: shown, it would be `???` before the
+        // first line. The report is of the text after it, with the spans moved.
+        let unmarked;
+        let moved: Vec<Diagnostic>;
+        let (input, diagnostics) = match input.text.strip_prefix(BYTE_ORDER_MARK) {
+            Some(rest) => {
+                unmarked = Input {
+                    text: rest.to_owned(),
+                    ..(*input).clone()
+                };
+                moved = diagnostics
+                    .iter()
+                    .map(|d| unshifted(d, BYTE_ORDER_MARK.len()))
+                    .collect();
+                (&unmarked, moved.as_slice())
+            }
+            None => (*input, *diagnostics),
+        };
         let long = input.text.lines().any(|l| l.len() > LONG_LINE);
         let index = LineIndex::new(&input.text);
         let id = if long {
@@ -213,6 +233,21 @@ pub fn render_human(reports: &[(&Input, &[Diagnostic])], color: bool) -> String 
         }
     }
     String::from_utf8_lossy(buffer.as_slice()).into_owned()
+}
+
+/// Every span of `d` moved left by `by` bytes (spans inside the first `by` bytes become
+/// empty spans at 0).
+fn unshifted(d: &Diagnostic, by: usize) -> Diagnostic {
+    let back =
+        |s: crate::Span| crate::Span::new(s.start.saturating_sub(by), s.end.saturating_sub(by));
+    let mut d = d.clone();
+    for l in &mut d.labels {
+        l.span = back(l.span);
+    }
+    if let Some(f) = &mut d.fix {
+        f.span = back(f.span);
+    }
+    d
 }
 
 /// Lines longer than this are shown as a window around each diagnostic.
@@ -331,10 +366,34 @@ pub fn diagnostic_json(index: &LineIndex<'_>, d: &Diagnostic) -> serde_json::Val
     })
 }
 
+/// The JSON object of one input's diagnostics, one line of `check --format json` (and what
+/// `expand --format json` prints for a template with errors).
+pub fn report_json(input: &Input, parse: &crate::Parse) -> serde_json::Value {
+    let index = LineIndex::new(&input.text);
+    let diagnostics: Vec<_> = parse
+        .diagnostics
+        .iter()
+        .map(|d| diagnostic_json(&index, d))
+        .collect();
+    serde_json::json!({
+        "input": input.text, "name": input.name, "diagnostics": diagnostics,
+        "errors": parse.errors, "warnings": parse.warnings, "omitted": parse.omitted,
+    })
+}
+
 /// A note when template arguments look like the pieces of one template the shell split at
 /// its spaces (`check 0, 90`, `check +30/50 %`): an argument ending in `,`, a lone unit, or
 /// one that begins with a joint.
 pub fn pieces_note(command: &str, templates: &[String]) -> Option<String> {
+    pieces_note_saying(command, templates, "each is read as a template of its own")
+}
+
+/// [`pieces_note`] with what the command did with the pieces.
+pub(crate) fn pieces_note_saying(
+    command: &str,
+    templates: &[String],
+    consequence: &str,
+) -> Option<String> {
     // An argument with a space or a newline in it was quoted: the user splits on purpose.
     if templates.len() < 2 || templates.iter().any(|t| t.contains(char::is_whitespace)) {
         return None;
@@ -352,7 +411,7 @@ pub fn pieces_note(command: &str, templates: &[String]) -> Option<String> {
     let quoted = format!("'{}'", joined.replace('\'', r"'\''"));
     Some(format!(
         "note: the {} arguments look like the pieces of one template, split by the shell at \
-         its spaces; each is read as a template of its own.\n      \
+         its spaces; {consequence}.\n      \
          To pass one template, quote it: rotlang {command} {quoted}\n",
         templates.len()
     ))

@@ -39,7 +39,8 @@ pub struct PlotArgs {
     #[arg(long, value_enum, default_value_t)]
     pub target: TargetArg,
     /// A uniform model of N layers. Without --layers, --height or --model: the 20 mm cube.
-    #[arg(long, value_name = "N", help_heading = "Model", conflicts_with_all = ["height", "model"])]
+    #[arg(long, value_name = "N", help_heading = "Model", conflicts_with_all = ["height", "model"],
+          value_parser = super::args::layers, allow_negative_numbers = true)]
     pub layers: Option<usize>,
     #[command(flatten)]
     pub model: ModelArgs,
@@ -91,10 +92,12 @@ pub struct ModelArgs {
     #[arg(long, value_name = "PATH", help_heading = "Model")]
     pub model: Option<PathBuf>,
     /// The bottom shell layer count, what `B` counts [default: 3, or the --model file's].
-    #[arg(long, value_name = "N", help_heading = "Model")]
+    #[arg(long, value_name = "N", help_heading = "Model", value_parser = super::args::shells,
+          allow_negative_numbers = true)]
     pub bottom_shell_layers: Option<u32>,
     /// The top shell layer count, what `T` counts [default: 4, or the --model file's].
-    #[arg(long, value_name = "N", help_heading = "Model")]
+    #[arg(long, value_name = "N", help_heading = "Model", value_parser = super::args::shells,
+          allow_negative_numbers = true)]
     pub top_shell_layers: Option<u32>,
     /// The base infill direction in degrees, added to every angle (e.g. --base 45).
     #[arg(
@@ -106,7 +109,8 @@ pub struct ModelArgs {
     )]
     pub base: f64,
     /// The seed of the random joints `~` and `^`.
-    #[arg(long, value_name = "N", default_value_t = 0, help_heading = "Model")]
+    #[arg(long, value_name = "N", default_value_t = 0, help_heading = "Model",
+          value_parser = super::args::seed, allow_negative_numbers = true)]
     pub seed: u64,
 }
 

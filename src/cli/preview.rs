@@ -98,8 +98,9 @@ pub struct PreviewArgs {
     /// "density", "length", "travel", "polylines": [[[x, y], ...], ...]}, ...]}.
     #[arg(long, value_enum, default_value_t)]
     pub format: Format,
-    /// Panels per row.
-    #[arg(long, value_name = "N", default_value_t = 4)]
+    /// Panels per row (1 to 64).
+    #[arg(long, value_name = "N", default_value_t = 4, value_parser = super::args::columns,
+          allow_negative_numbers = true)]
     pub columns: usize,
     /// Write to this file instead of stdout.
     #[arg(long, short = 'o', value_name = "FILE")]
@@ -431,7 +432,7 @@ pub fn run(
     let text = match args.format {
         Format::Svg => {
             let preview = PreviewOptions {
-                columns: args.columns.clamp(1, 64),
+                columns: args.columns,
                 ..PreviewOptions::default()
             };
             preview::render(

@@ -26,7 +26,20 @@ pub(super) struct Sources {
 impl Sources {
     /// Adds a text starting `at` = (lines, characters) into its input; returns its id.
     pub fn add(&mut self, name: String, original: &str, at: (usize, usize)) -> usize {
-        let text = super::visible(original);
+        let mut text = super::visible(original);
+        // A lone `\r` ends a line (as in editors): shown as `\n`, byte for byte, so the
+        // report draws two lines instead of sending the terminal's cursor back.
+        if text.contains('\r') {
+            let bytes = text.as_bytes();
+            let ends: Vec<usize> = (0..bytes.len())
+                .filter(|&i| bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n'))
+                .collect();
+            let mut owned = text.into_bytes();
+            for i in ends {
+                owned[i] = b'\n';
+            }
+            text = String::from_utf8(owned).expect("one ASCII byte replaced by another");
+        }
         let original = (text != original).then(|| original.to_owned());
         let mut line_starts = vec![0];
         line_starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));

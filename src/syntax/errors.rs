@@ -13,6 +13,8 @@ use crate::ir::{Joint, Solid, Unit};
 pub(crate) struct Failure<'a> {
     /// The instruction's text.
     pub text: &'a str,
+    /// The previous instruction through this one, when only spaces part them (`45 deg`).
+    pub with_previous: Option<&'a str>,
     /// Its byte offset in the template.
     pub offset: usize,
     /// Where the grammar stopped, relative to `text`.
@@ -560,10 +562,21 @@ impl Failure<'_> {
     /// "write `45`, not `45deg`": this instruction without its unit of angle.
     fn degrees_help(&self, pos: usize, len: usize) -> String {
         let without = format!("{}{}", &self.text[..pos], &self.text[pos + len..]);
-        format!(
-            "every angle is in degrees already: write `{without}`, not `{}`",
-            self.text
-        )
+        // `45 deg`: the unit is an instruction of its own; name the angle it follows.
+        let (without, written) = match self.with_previous {
+            Some(both) if without.trim().is_empty() => (
+                both[..both.len() - self.text.len()].trim_end().to_owned(),
+                both.to_owned(),
+            ),
+            _ if without.trim().is_empty() => {
+                return format!(
+                    "every angle is in degrees already: remove `{}`",
+                    self.text.trim()
+                );
+            }
+            _ => (without, self.text.to_owned()),
+        };
+        format!("every angle is in degrees already: write `{without}`, not `{written}`")
     }
 
     /// Whether the instruction parses with `len` bytes at `pos` replaced.

@@ -211,6 +211,24 @@ impl Lowerer<'_> {
                     Some(n) if trailing && ins.repeat.is_some() => {
                         // `+30*3*2`: `*3` already repeats it; moving `*2` would not help.
                         let first = ins.repeat.map_or(span, |r| r.span);
+                        // The help names both ways out: what the fix does (keep the first
+                        // count) and the product, for whoever meant the counts to multiply.
+                        let kept = ins.repeat.map_or(1, |r| r.value);
+                        let second = n.as_str();
+                        let help = match second
+                            .parse::<u64>()
+                            .ok()
+                            .and_then(|m| kept.checked_mul(m))
+                        {
+                            Some(product) => format!(
+                                "keep one repeat count: remove `*{second}` to run the instruction {kept} times \
+                                 (the fix), or write the product `*{product}` in place of both to run it \
+                                 {product} times"
+                            ),
+                            None => format!(
+                                "keep one repeat count: remove `*{second}` to run the instruction {kept} times"
+                            ),
+                        };
                         self.diagnostics.push(
                             Diagnostic::error(
                                 "rotlang::repeat-after-joint",
@@ -219,7 +237,7 @@ impl Lowerer<'_> {
                             .with_primary(span, format!("a second repeat count `{}`", n.as_str()))
                             .with_secondary(first, "the instruction is already repeated here")
                             .with_fix("remove the second repeat count", span, "")
-                            .with_help("keep one repeat count, right after the angle: `+30*6` runs the instruction 6 times"),
+                            .with_help(help),
                         );
                         false
                     }

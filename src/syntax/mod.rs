@@ -334,18 +334,31 @@ fn empty_instruction(text: &str, span: Span, after_instruction: bool) -> Diagnos
         .get(span.end..)
         .and_then(|rest| rest.chars().next())
         .is_none_or(split::is_separator);
+    // `0, 90,`: one comma after the last instruction, which OrcaSlicer drops too when it
+    // ends the text (a space or newline after it is a piece OrcaSlicer reads as 0).
+    let one_trailing_comma = trailing && after_instruction && text.get(span.range()) == Some(",");
     let after_instruction = after_instruction && !trailing;
-    Diagnostic::warning(
+    let warning = Diagnostic::warning(
         "rotlang::empty-instruction",
         "an empty instruction is ignored",
-    )
-    .with_primary(span, "nothing between these separators")
-    .with_fix(
-        "remove the extra separator",
-        span,
-        if after_instruction { ", " } else { "" },
-    )
-    .with_help("OrcaSlicer reads an empty instruction as `0`; rotlang ignores it")
+    );
+    if one_trailing_comma {
+        return warning
+            .with_primary(span, "nothing follows this comma")
+            .with_fix("remove the trailing comma", span, "")
+            .with_help(
+                "a comma separates instructions, and no instruction follows the last one; \
+                 rotlang ignores it, as OrcaSlicer does when the comma ends the text",
+            );
+    }
+    warning
+        .with_primary(span, "nothing between these separators")
+        .with_fix(
+            "remove the extra separator",
+            span,
+            if after_instruction { ", " } else { "" },
+        )
+        .with_help("OrcaSlicer reads an empty instruction as `0`; rotlang ignores it")
 }
 
 /// Whether `text` is one instruction the grammar accepts.
@@ -437,8 +450,13 @@ fn chunk_error(
         ErrorVariant::ParsingError { positives, .. } => positives,
         ErrorVariant::CustomError { .. } => Vec::new(),
     };
+    // `45 deg`: the instruction a unit of angle follows, with the space between.
+    let with_previous = previous
+        .filter(|p| text[p.span.end..chunk.span.start].trim().is_empty())
+        .map(|p| &text[p.span.start..chunk.span.end]);
     errors::Failure {
         text: chunk.text,
+        with_previous,
         offset: chunk.span.start,
         pos,
         expected,

@@ -92,12 +92,13 @@ impl<'a> Iterator for Pieces<'a> {
             i += 1;
         }
         // A leading comma (`,` alone too) or two commas in one run (`10,,` too) enclose
-        // an instruction with nothing in it. One trailing comma only ends the last
-        // instruction: common style, which OrcaSlicer drops as well (SEMANTICS 10.2).
+        // an instruction with nothing in it. A trailing comma (`0, 90,`) begins one that
+        // never comes: the same warning, with a fix that removes it (OrcaSlicer drops a
+        // comma that ends the text as well, SEMANTICS 10.2).
         let empty = if self.first { commas >= 1 } else { commas >= 2 };
         if i == bytes.len() {
             self.i = i;
-            if empty {
+            if empty || commas >= 1 {
                 // Up to the last comma: a file's final newline is not part of it.
                 let end = sep_start + self.text[sep_start..i].rfind(',').map_or(0, |c| c + 1);
                 return Some(Piece::Empty(Span::new(sep_start, end).shift(self.offset)));
@@ -145,7 +146,9 @@ mod tests {
         assert_eq!(split("10,,20").empties, [Span::new(2, 4)]);
         assert_eq!(split(", +10").empties, [Span::new(0, 2)]);
         assert_eq!(split("10, , 20").empties, [Span::new(2, 6)]);
-        assert!(split("10, 20,").empties.is_empty());
+        // A trailing comma too, up to the comma (a file's final newline is not part of it).
+        assert_eq!(split("10, 20,").empties, [Span::new(6, 7)]);
+        assert_eq!(split("10, 20, \n").empties, [Span::new(6, 7)]);
         assert_eq!(split("10,,\n").empties, [Span::new(2, 4)]);
         assert_eq!(split(",").empties, [Span::new(0, 1)]);
         assert_eq!(split(" ,\n").empties, [Span::new(0, 2)]);

@@ -330,7 +330,8 @@ enum RotlangStatus rotlang_evaluator_layer(struct RotlangEvaluator *evaluator,
                                            struct RotlangLayer *out);
 
 /*
- The OrcaSlicer dialect's findings on the layers this evaluator has gone through.
+ The OrcaSlicer dialect's findings on the layers this evaluator has gone through (also
+ after it went back to a lower layer, which restarts its stream from the bottom).
 
  # Safety
  `findings` points to a valid `RotlangFindings`.

@@ -211,7 +211,8 @@ pub unsafe extern "C" fn rotlang_evaluator_layer(
     })
 }
 
-/// The OrcaSlicer dialect's findings on the layers this evaluator has gone through.
+/// The OrcaSlicer dialect's findings on the layers this evaluator has gone through (also
+/// after it went back to a lower layer, which restarts its stream from the bottom).
 ///
 /// # Safety
 /// `findings` points to a valid `RotlangFindings`.

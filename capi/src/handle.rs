@@ -97,7 +97,9 @@ pub(crate) fn template(handle: *const RotlangTemplate) -> Result<Arc<TemplateDat
     }
 }
 
-pub(crate) fn evaluator(handle: *const RotlangEvaluator) -> Result<Arc<Mutex<EvaluatorState>>, Failure> {
+pub(crate) fn evaluator(
+    handle: *const RotlangEvaluator,
+) -> Result<Arc<Mutex<EvaluatorState>>, Failure> {
     let id = null_or(handle.addr())?;
     match registry().live.get(&id) {
         Some(Entry::Evaluator(state)) => Ok(Arc::clone(state)),

@@ -217,7 +217,10 @@ mod tests {
             let text = text.to_str().unwrap();
             assert_eq!(text == "unknown status", status == 9, "{status}: {text}");
         }
-        let failure = Failure::with(RotlangStatus::InvalidArgument, "the output pointer is not aligned for its type");
+        let failure = Failure::with(
+            RotlangStatus::InvalidArgument,
+            "the output pointer is not aligned for its type",
+        );
         assert_eq!(guard(|| Err(failure)), RotlangStatus::InvalidArgument);
         assert_eq!(
             last_error(),

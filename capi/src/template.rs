@@ -99,7 +99,11 @@ impl TemplateData {
     /// `origin`: where each byte offset of `text` came from in the caller's bytes (for
     /// text made by `lossy`), so that spans are offsets in what the caller gave.
     fn with_origin(text: String, target: Target, origin: Option<&[usize]>) -> TemplateData {
-        let to_caller = |offset: usize| origin.and_then(|o| o.get(offset).copied()).unwrap_or(offset);
+        let to_caller = |offset: usize| {
+            origin
+                .and_then(|o| o.get(offset).copied())
+                .unwrap_or(offset)
+        };
         let parse = rotlang::parse(&text, target);
         let diagnostics = parse
             .diagnostics

@@ -54,7 +54,11 @@ pub(crate) unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> Result<&'a [u8], F
 ///
 /// # Safety
 /// `ptr` points to `len` readable `T`s.
-pub(crate) unsafe fn slice<'a, T>(ptr: *const T, len: usize, what: &str) -> Result<&'a [T], Failure> {
+pub(crate) unsafe fn slice<'a, T>(
+    ptr: *const T,
+    len: usize,
+    what: &str,
+) -> Result<&'a [T], Failure> {
     check(ptr, what)?;
     fits::<T>(len, what)?;
     // SAFETY: the caller's contract.

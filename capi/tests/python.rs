@@ -22,7 +22,12 @@ fn python_package_builds_installs_and_passes_pytest() {
     let target = target_dir();
     let venv = target.join("python-venv");
     let python = venv.join("bin/python");
-    if !ensure(&["venv", venv.to_str().expect("UTF-8 path"), "maturin", "pytest"]) {
+    if !ensure(&[
+        "venv",
+        venv.to_str().expect("UTF-8 path"),
+        "maturin",
+        "pytest",
+    ]) {
         return;
     }
     // Nothing of the system Python is visible: maturin and pytest are the venv's own.

@@ -175,7 +175,7 @@ pub unsafe extern "C" fn rotlang_evaluator_new(
         *out = std::ptr::null_mut();
         let template = handle::template(template)?;
         // SAFETY: the caller's contract.
-        let model = unsafe { input(model, "the model")?.to_model() }?;
+        let model = unsafe { input(model, "the model")?.checked_model() }?;
         let options = (!options.is_null())
             // SAFETY: the caller's contract.
             .then(|| unsafe { input(options, "the options") })

@@ -27,7 +27,7 @@ pub unsafe extern "C" fn rotlang_model_layer_count(
         // SAFETY: the caller's contract.
         let model = unsafe { input(model, "the model") }?;
         // SAFETY: the caller's contract on `heights`.
-        *out = unsafe { model.to_model() }?.len();
+        *out = unsafe { model.checked_model() }?.len();
         Ok(())
     })
 }
@@ -96,7 +96,7 @@ unsafe fn expand_into(
 ) -> Result<(), Failure> {
     let data = handle::template(template)?;
     // SAFETY: the caller's contract on each pointer.
-    let model = unsafe { input(model, "the model")?.to_model() }?;
+    let model = unsafe { input(model, "the model")?.checked_model() }?;
     let options = (!options.is_null())
         // SAFETY: the caller's contract.
         .then(|| unsafe { input(options, "the options") })

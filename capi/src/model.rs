@@ -132,7 +132,7 @@ impl RotlangModel {
     ///
     /// # Safety
     /// `heights` is NULL or points to `heights_len` readable doubles.
-    pub(crate) unsafe fn to_model(&self) -> Result<Model, Failure> {
+    pub(crate) unsafe fn checked_model(&self) -> Result<Model, Failure> {
         // Checked here, as an integer: the library's own message shows the count as a
         // float (18446744073709552000 for SIZE_MAX), and a list this long is refused
         // before it is copied.

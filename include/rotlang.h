@@ -13,6 +13,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* `count` value of `rotlang_expand`: every layer from `first` to the top. */
+#define ROTLANG_TO_TOP SIZE_MAX
+
 /*
  The version of this ABI. It changes only when an existing function, struct or value
  changes incompatibly; additions keep it. Compare `rotlang_abi_version()` with the
@@ -20,11 +23,7 @@
  */
 #define ROTLANG_ABI_VERSION 1
 
-/*
- `count` value of `rotlang_expand`: every layer from `first` to the top. (`SIZE_MAX`;
- written `!0` so that cbindgen can spell it in C as `~0`, which converts to it.)
- */
-#define ROTLANG_TO_TOP ~0
+
 
 /*
  How a template is read (the `dialect` field of `RotlangOptions`).
@@ -100,7 +99,10 @@ typedef enum RotlangStatus {
    */
   ROTLANG_STATUS_INVALID_HANDLE = 3,
   /*
-   An enumerated argument (target, dialect) has a value the library does not know.
+   An argument has a value the library cannot accept: an unknown enumerated value
+   (target, dialect), a pointer not aligned for its type, a base direction that is
+   not finite or beyond ±1e9 degrees, a length larger than any buffer can be.
+   `rotlang_last_error` says which.
    */
   ROTLANG_STATUS_INVALID_ARGUMENT = 4,
   /*
@@ -121,10 +123,6 @@ typedef enum RotlangStatus {
    An output buffer is shorter than the layer range asked for.
    */
   ROTLANG_STATUS_BUFFER_TOO_SMALL = 8,
-  /*
-   The dialect is not available in this build of the library.
-   */
-  ROTLANG_STATUS_DIALECT_UNAVAILABLE = 9,
   /*
    An internal error (a bug in rotlang): the call had no effect. Please report it
    with `rotlang_last_error`'s message.
@@ -291,6 +289,14 @@ extern "C" {
 uint32_t rotlang_abi_version(void);
 
 /*
+ The number of handles (templates and evaluators) created and not yet freed, in the
+ whole process. Handles live in a registry the library keeps, so a forgotten `_free` is
+ memory a leak checker (valgrind, LeakSanitizer) reports as "still reachable", which it
+ does not count as a leak: assert that this is 0 at the end of a test run instead.
+ */
+size_t rotlang_live_handles(void);
+
+/*
  The version of rotlang, e.g. `"0.1.0"`: a static NUL-terminated string.
  */
 const char *rotlang_version(void);
@@ -324,7 +330,8 @@ enum RotlangStatus rotlang_evaluator_layer(struct RotlangEvaluator *evaluator,
                                            struct RotlangLayer *out);
 
 /*
- The OrcaSlicer dialect's findings on the layers this evaluator has gone through.
+ The OrcaSlicer dialect's findings on the layers this evaluator has gone through (also
+ after it went back to a lower layer, which restarts its stream from the bottom).
 
  # Safety
  `findings` points to a valid `RotlangFindings`.
@@ -362,7 +369,8 @@ enum RotlangStatus rotlang_model_layer_count(const struct RotlangModel *model, s
  Errors: `NULL_POINTER`, `INVALID_HANDLE`, `INVALID_MODEL`, `INVALID_ARGUMENT` (unknown
  dialect, base not finite), `TEMPLATE_HAS_ERRORS` (rotlang dialect), `OUT_OF_RANGE`
  (`first` at or past the top, or the range past it), `BUFFER_TOO_SMALL` (`capacity`
- below the range's length), `DIALECT_UNAVAILABLE`. On error nothing is written.
+ below the range's length). Every argument is checked before anything is evaluated:
+ on error nothing is written (not the angles, the fills or the findings).
 
  # Safety
  `model` points to a valid `RotlangModel`; `options` is NULL or valid; `angles` (and
@@ -450,6 +458,27 @@ enum RotlangStatus rotlang_parse(const char *text,
                                  size_t length,
                                  uint32_t target,
                                  struct RotlangTemplate **out);
+
+/*
+ As `rotlang_parse`, but any bytes are accepted, as OrcaSlicer reads its template:
+ byte by byte, whatever the encoding. Text that is valid UTF-8 gives the same template
+ as `rotlang_parse`. Otherwise each byte that is not part of valid UTF-8 is kept as one
+ unknown character (U+FFFD, which the diagnostics report as an error with the span of
+ that byte), and the template then evaluates in the OrcaSlicer dialect only, with the
+ angles OrcaSlicer computes on those bytes: `"+30\xb0"` gives what `"+30\xc2\xb0"`
+ gives. The rotlang dialect refuses it with `INVALID_UTF8`. Spans are byte offsets in
+ the bytes given.
+
+ Errors: `NULL_POINTER` (`out`, or `text` with `length > 0`), `INVALID_ARGUMENT`
+ (unknown target). On error `*out` is set to NULL.
+
+ # Safety
+ `text` points to `length` readable bytes; `out` to one writable pointer.
+ */
+enum RotlangStatus rotlang_parse_bytes(const char *text,
+                                       size_t length,
+                                       uint32_t target,
+                                       struct RotlangTemplate **out);
 
 /*
  Frees a template. Freeing NULL is `NULL_POINTER`; freeing a handle twice (or a pointer

@@ -128,6 +128,11 @@ public:
     /// The number of layers as given, unchecked (0 for a model that cannot have any);
     /// the evaluation checks the model. Saves the copy `size()` makes to check it.
     std::size_t layers_given() const noexcept { return list_ ? heights_.size() : model_.layers; }
+    /// The number of layers, safe to size an output by: a list's own length (its memory
+    /// exists already; the library checks its values), or a uniform model's count once
+    /// the library accepted it (throws Error(INVALID_MODEL) for SIZE_MAX layers instead
+    /// of allocating them).
+    std::size_t bounded_size() const { return list_ ? heights_.size() : size(); }
     /// The C struct, pointing into this object's heights (valid while it lives unchanged).
     RotlangModel c() const {
         RotlangModel m = model_;
@@ -185,41 +190,43 @@ class Template {
 public:
     /// Parses `text`. Throws Error only for text that is not UTF-8; template errors are
     /// listed in diagnostics().
-    explicit Template(std::string_view text, Target target = Target::Sparse) {
-        RotlangTemplate* raw = nullptr;
-        detail::check(rotlang_parse(text.data(), text.size(), static_cast<std::uint32_t>(target), &raw));
-        handle_.reset(raw);
-        std::size_t count = 0;
-        detail::check(rotlang_template_diagnostic_count(raw, &count));
-        for (std::size_t i = 0; i < count; i++) {
-            RotlangDiagnostic d;
-            detail::check(rotlang_template_diagnostic(raw, i, &d));
-            diagnostics_.push_back(Diagnostic{d.code, static_cast<Severity>(d.severity), d.message,
-                                              d.help ? d.help : "", d.start, d.end});
-            has_errors_ = has_errors_ || d.severity == ROTLANG_SEVERITY_ERROR;
-        }
+    explicit Template(std::string_view text, Target target = Target::Sparse)
+        : Template(rotlang_parse, text, target) {}
+
+    /// Parses any bytes, as OrcaSlicer reads its template (rotlang_parse_bytes): never
+    /// throws for the text. Text that is not UTF-8 evaluates in the OrcaSlicer dialect
+    /// only (each invalid byte is one unknown character, as OrcaSlicer sees it); the
+    /// rotlang dialect throws Error(ROTLANG_STATUS_INVALID_UTF8) for it.
+    static Template from_bytes(std::string_view text, Target target = Target::Sparse) {
+        return Template(rotlang_parse_bytes, text, target);
     }
 
     const std::vector<Diagnostic>& diagnostics() const noexcept { return diagnostics_; }
     bool has_errors() const noexcept { return has_errors_; }
 
-    /// Layers `first .. first + count` (count = ROTLANG_TO_TOP: to the top).
+    /// Layers `first .. first + count` (count = ROTLANG_TO_TOP: to the top). The output
+    /// is sized from the model, never from `count` alone: a range past the top throws
+    /// Error(OUT_OF_RANGE), an unusable model Error(INVALID_MODEL).
     Expansion expand(const Model& model, const Options& options = {}, std::size_t first = 0,
                      std::size_t count = ROTLANG_TO_TOP) const {
         RotlangModel m = model.c();
-        std::size_t total = model.layers_given();
-        std::size_t n = count == static_cast<std::size_t>(ROTLANG_TO_TOP)
-                            ? (first < total ? total - first : 0)
-                            : count;
+        std::size_t total = model.bounded_size();
+        std::size_t left = first < total ? total - first : 0;
+        std::size_t n = count < left ? count : left;
         Expansion out;
         out.angles.resize(n);
         out.fills.resize(n);
         std::vector<RotlangFinding> items(4);
         RotlangFindings findings{items.data(), items.size(), 0};
         RotlangOptions o = options.c();
+        // An empty vector's data() may be NULL, which the library would report before
+        // the range (NULL_POINTER instead of OUT_OF_RANGE): give it a real address.
+        double no_angle = 0;
+        std::uint8_t no_fill = 0;
+        double* angles = n ? out.angles.data() : &no_angle;
+        std::uint8_t* fills = n ? reinterpret_cast<std::uint8_t*>(out.fills.data()) : &no_fill;
         auto run = [&] {
-            return rotlang_expand(handle_.get(), &m, &o, first, count, out.angles.data(),
-                                  reinterpret_cast<std::uint8_t*>(out.fills.data()), n, &findings);
+            return rotlang_expand(handle_.get(), &m, &o, first, count, angles, fills, n, &findings);
         };
         detail::check(run(), diagnostics_);
         if (findings.count > items.size()) {  // more findings than room: once more, with room
@@ -234,10 +241,11 @@ public:
     /// Every layer's angle in degrees.
     std::vector<double> angles(const Model& model, const Options& options = {}) const {
         RotlangModel m = model.c();
-        std::vector<double> out(model.layers_given());
+        std::vector<double> out(model.bounded_size());
         RotlangOptions o = options.c();
-        detail::check(rotlang_expand(handle_.get(), &m, &o, 0, ROTLANG_TO_TOP, out.data(), nullptr,
-                                     out.size(), nullptr),
+        double none = 0;  // an empty vector's data() may be NULL: the model's error first
+        detail::check(rotlang_expand(handle_.get(), &m, &o, 0, ROTLANG_TO_TOP, out.empty() ? &none : out.data(),
+                                     nullptr, out.size(), nullptr),
                       diagnostics_);
         return out;
     }
@@ -247,6 +255,22 @@ public:
     const RotlangTemplate* get() const noexcept { return handle_.get(); }
 
 private:
+    using Parser = RotlangStatus (*)(const char*, std::size_t, std::uint32_t, RotlangTemplate**);
+    Template(Parser parse, std::string_view text, Target target) {
+        RotlangTemplate* raw = nullptr;
+        detail::check(parse(text.data(), text.size(), static_cast<std::uint32_t>(target), &raw));
+        handle_.reset(raw);
+        std::size_t count = 0;
+        detail::check(rotlang_template_diagnostic_count(raw, &count));
+        for (std::size_t i = 0; i < count; i++) {
+            RotlangDiagnostic d;
+            detail::check(rotlang_template_diagnostic(raw, i, &d));
+            diagnostics_.push_back(Diagnostic{d.code, static_cast<Severity>(d.severity), d.message,
+                                              d.help ? d.help : "", d.start, d.end});
+            has_errors_ = has_errors_ || d.severity == ROTLANG_SEVERITY_ERROR;
+        }
+    }
+
     std::unique_ptr<RotlangTemplate, detail::FreeTemplate> handle_;
     std::vector<Diagnostic> diagnostics_;
     bool has_errors_ = false;

@@ -38,14 +38,14 @@ impl From<Layer> for RotlangLayer {
 }
 
 /// What the cursor borrows: the template (shared with its handle) and the model copy.
-pub struct Owner {
+pub(crate) struct Owner {
     template: Arc<TemplateData>,
     model: Model,
     settings: Settings,
 }
 
 /// The cursor of one dialect.
-pub enum Cursor<'a> {
+pub(crate) enum Cursor<'a> {
     /// rotlang's own random access (checkpoints; going back is cheap).
     Rotlang(eval::Evaluator<'a>),
     /// A stream for the other dialects: forward is O(1) per layer, going back restarts
@@ -53,6 +53,12 @@ pub enum Cursor<'a> {
     Stream {
         stream: Stream<'a>,
         last: Option<Layer>,
+        /// The findings of the furthest-reaching stream this cursor dropped when it went
+        /// back, and how far it had gone: a stream is deterministic, so those cover
+        /// everything below `kept_to`, and the findings of the layers gone through are
+        /// the ones of whichever stream went further.
+        kept: Vec<RotlangFinding>,
+        kept_to: usize,
     },
 }
 
@@ -65,7 +71,7 @@ self_cell!(
 );
 
 /// What an evaluator handle holds (behind a mutex: the cursor moves).
-pub struct EvaluatorState {
+pub(crate) struct EvaluatorState {
     cell: Cell,
 }
 
@@ -87,12 +93,22 @@ impl EvaluatorState {
             Cursor::Rotlang(evaluator) => evaluator
                 .layer(index)
                 .ok_or_else(|| Failure::with(RotlangStatus::Internal, "layer missing")),
-            Cursor::Stream { stream, last } => {
+            Cursor::Stream {
+                stream,
+                last,
+                kept,
+                kept_to,
+            } => {
                 if let Some(l) = last.filter(|l| l.index == index) {
                     return Ok(l);
                 }
                 if index < stream.layer_position() {
-                    *stream = Stream::open(&owner.template, &owner.model, owner.settings)?;
+                    let fresh = Stream::open(&owner.template, &owner.model, owner.settings)?;
+                    let old = std::mem::replace(stream, fresh);
+                    if old.layer_position() > *kept_to {
+                        *kept_to = old.layer_position();
+                        *kept = old.findings();
+                    }
                 }
                 stream.seek(index);
                 *last = stream.next();
@@ -104,7 +120,15 @@ impl EvaluatorState {
     fn findings(&self) -> Vec<RotlangFinding> {
         match self.cell.borrow_dependent() {
             Cursor::Rotlang(_) => Vec::new(),
-            Cursor::Stream { stream, .. } => stream.findings(),
+            Cursor::Stream {
+                stream,
+                kept,
+                kept_to,
+                ..
+            } => match stream.layer_position() >= *kept_to {
+                true => stream.findings(),
+                false => kept.clone(),
+            },
         }
     }
 }
@@ -118,7 +142,12 @@ fn open(owner: &Owner) -> Result<Cursor<'_>, Failure> {
             &owner.model,
             owner.settings.options,
         )),
-        _ => Cursor::Stream { stream, last: None },
+        _ => Cursor::Stream {
+            stream,
+            last: None,
+            kept: Vec::new(),
+            kept_to: 0,
+        },
     })
 }
 
@@ -146,7 +175,7 @@ pub unsafe extern "C" fn rotlang_evaluator_new(
         *out = std::ptr::null_mut();
         let template = handle::template(template)?;
         // SAFETY: the caller's contract.
-        let model = unsafe { input(model, "the model")?.to_model() }?;
+        let model = unsafe { input(model, "the model")?.checked_model() }?;
         let options = (!options.is_null())
             // SAFETY: the caller's contract.
             .then(|| unsafe { input(options, "the options") })
@@ -182,7 +211,8 @@ pub unsafe extern "C" fn rotlang_evaluator_layer(
     })
 }
 
-/// The OrcaSlicer dialect's findings on the layers this evaluator has gone through.
+/// The OrcaSlicer dialect's findings on the layers this evaluator has gone through (also
+/// after it went back to a lower layer, which restarts its stream from the bottom).
 ///
 /// # Safety
 /// `findings` points to a valid `RotlangFindings`.

@@ -3,13 +3,12 @@
 use crate::handle::{self, RotlangTemplate};
 use crate::model::{RotlangFill, RotlangModel, RotlangOptions, Settings};
 use crate::status::{Failure, RotlangStatus, guard};
-use crate::stream::{RotlangFinding, RotlangFindings, Stream, report};
+use crate::stream::{FindingsOut, RotlangFindings, Stream, findings_out};
 use crate::util::{input, out, slice_mut};
 use rotlang::eval::Layer;
 
-/// `count` value of `rotlang_expand`: every layer from `first` to the top. (`SIZE_MAX`;
-/// written `!0` so that cbindgen can spell it in C as `~0`, which converts to it.)
-pub const ROTLANG_TO_TOP: usize = !0;
+/// `count` value of `rotlang_expand`: every layer from `first` to the top (`SIZE_MAX`).
+pub const ROTLANG_TO_TOP: usize = usize::MAX;
 
 /// The number of layers of a model, after checking it (`INVALID_MODEL` with the reason
 /// in `rotlang_last_error` when it is unusable). Use it to size the output arrays.
@@ -28,7 +27,7 @@ pub unsafe extern "C" fn rotlang_model_layer_count(
         // SAFETY: the caller's contract.
         let model = unsafe { input(model, "the model") }?;
         // SAFETY: the caller's contract on `heights`.
-        *out = unsafe { model.to_model() }?.len();
+        *out = unsafe { model.checked_model() }?.len();
         Ok(())
     })
 }
@@ -47,7 +46,8 @@ pub unsafe extern "C" fn rotlang_model_layer_count(
 /// Errors: `NULL_POINTER`, `INVALID_HANDLE`, `INVALID_MODEL`, `INVALID_ARGUMENT` (unknown
 /// dialect, base not finite), `TEMPLATE_HAS_ERRORS` (rotlang dialect), `OUT_OF_RANGE`
 /// (`first` at or past the top, or the range past it), `BUFFER_TOO_SMALL` (`capacity`
-/// below the range's length), `DIALECT_UNAVAILABLE`. On error nothing is written.
+/// below the range's length). Every argument is checked before anything is evaluated:
+/// on error nothing is written (not the angles, the fills or the findings).
 ///
 /// # Safety
 /// `model` points to a valid `RotlangModel`; `options` is NULL or valid; `angles` (and
@@ -66,18 +66,19 @@ pub unsafe extern "C" fn rotlang_expand(
     findings: *mut RotlangFindings,
 ) -> RotlangStatus {
     guard(|| {
-        // SAFETY: the caller's contract.
-        let found = unsafe {
-            expand_into(
-                template, model, options, first, count, angles, fills, capacity,
-            )
-        }?;
         // SAFETY: the caller's contract on `findings`.
-        unsafe { report(findings, &found) }
+        let findings = unsafe { findings_out(findings) }?;
+        // SAFETY: the caller's contract.
+        unsafe {
+            expand_into(
+                template, model, options, first, count, angles, fills, capacity, findings,
+            )
+        }
     })
 }
 
-/// The body of `rotlang_expand`, returning the findings.
+/// The body of `rotlang_expand`, with the findings output already checked. Every check
+/// comes before the first write.
 ///
 /// # Safety
 /// As `rotlang_expand`.
@@ -91,10 +92,11 @@ unsafe fn expand_into(
     angles: *mut f64,
     fills: *mut u8,
     capacity: usize,
-) -> Result<Vec<RotlangFinding>, Failure> {
+    findings: Option<FindingsOut<'_>>,
+) -> Result<(), Failure> {
     let data = handle::template(template)?;
     // SAFETY: the caller's contract on each pointer.
-    let model = unsafe { input(model, "the model")?.to_model() }?;
+    let model = unsafe { input(model, "the model")?.checked_model() }?;
     let options = (!options.is_null())
         // SAFETY: the caller's contract.
         .then(|| unsafe { input(options, "the options") })
@@ -147,16 +149,19 @@ unsafe fn expand_into(
         }
         i + 1
     };
-    if first + count == len {
-        let (_, found) = stream.fold_to_top(0, &mut store);
-        Ok(found)
+    let found = if first + count == len {
+        stream.fold_to_top(0, &mut store).1
     } else {
         let mut i = 0;
         for layer in stream.by_ref().take(count) {
             i = store(i, layer);
         }
-        Ok(stream.findings())
+        stream.findings()
+    };
+    if let Some(out) = findings {
+        out.write(&found);
     }
+    Ok(())
 }
 
 /// Evaluates layer `index` alone into `*angle` (and `*fill` unless NULL): a convenience
@@ -176,15 +181,20 @@ pub unsafe extern "C" fn rotlang_angle_at(
     fill: *mut u8,
 ) -> RotlangStatus {
     guard(|| {
+        // Both outputs are checked before either is written.
         // SAFETY: the caller's contract.
         let angle = unsafe { out(angle) }?;
+        let fill = match fill.is_null() {
+            true => None,
+            // SAFETY: the caller's contract.
+            false => Some(unsafe { out(fill) }?),
+        };
         let (mut a, mut f) = (0.0, 0u8);
         // SAFETY: the caller's contract; the outputs are locals.
-        unsafe { expand_into(template, model, options, index, 1, &mut a, &mut f, 1) }?;
+        unsafe { expand_into(template, model, options, index, 1, &mut a, &mut f, 1, None) }?;
         *angle = a;
-        if !fill.is_null() {
-            // SAFETY: the caller's contract.
-            *unsafe { out(fill) }? = f;
+        if let Some(fill) = fill {
+            *fill = f;
         }
         Ok(())
     })

@@ -61,11 +61,16 @@ fn insert(entry: Entry) -> usize {
     id
 }
 
-pub fn new_template(data: TemplateData) -> *mut RotlangTemplate {
+/// The number of live handles (templates and evaluators).
+pub(crate) fn live() -> usize {
+    registry().live.len()
+}
+
+pub(crate) fn new_template(data: TemplateData) -> *mut RotlangTemplate {
     std::ptr::without_provenance_mut(insert(Entry::Template(Arc::new(data))))
 }
 
-pub fn new_evaluator(state: EvaluatorState) -> *mut RotlangEvaluator {
+pub(crate) fn new_evaluator(state: EvaluatorState) -> *mut RotlangEvaluator {
     std::ptr::without_provenance_mut(insert(Entry::Evaluator(Arc::new(Mutex::new(state)))))
 }
 
@@ -84,7 +89,7 @@ fn invalid(what: &str) -> Failure {
     )
 }
 
-pub fn template(handle: *const RotlangTemplate) -> Result<Arc<TemplateData>, Failure> {
+pub(crate) fn template(handle: *const RotlangTemplate) -> Result<Arc<TemplateData>, Failure> {
     let id = null_or(handle.addr())?;
     match registry().live.get(&id) {
         Some(Entry::Template(data)) => Ok(Arc::clone(data)),
@@ -92,7 +97,9 @@ pub fn template(handle: *const RotlangTemplate) -> Result<Arc<TemplateData>, Fai
     }
 }
 
-pub fn evaluator(handle: *const RotlangEvaluator) -> Result<Arc<Mutex<EvaluatorState>>, Failure> {
+pub(crate) fn evaluator(
+    handle: *const RotlangEvaluator,
+) -> Result<Arc<Mutex<EvaluatorState>>, Failure> {
     let id = null_or(handle.addr())?;
     match registry().live.get(&id) {
         Some(Entry::Evaluator(state)) => Ok(Arc::clone(state)),
@@ -102,7 +109,7 @@ pub fn evaluator(handle: *const RotlangEvaluator) -> Result<Arc<Mutex<EvaluatorS
 
 /// Removes a template handle. The data is dropped outside the lock (and later, if another
 /// thread is still using it).
-pub fn free_template(handle: *const RotlangTemplate) -> Result<(), Failure> {
+pub(crate) fn free_template(handle: *const RotlangTemplate) -> Result<(), Failure> {
     let id = null_or(handle.addr())?;
     let removed = {
         let mut registry = registry();
@@ -114,7 +121,7 @@ pub fn free_template(handle: *const RotlangTemplate) -> Result<(), Failure> {
     removed.map(drop).ok_or_else(|| invalid("template"))
 }
 
-pub fn free_evaluator(handle: *const RotlangEvaluator) -> Result<(), Failure> {
+pub(crate) fn free_evaluator(handle: *const RotlangEvaluator) -> Result<(), Failure> {
     let id = null_or(handle.addr())?;
     let removed = {
         let mut registry = registry();

@@ -29,7 +29,7 @@ pub use evaluator::*;
 pub use expand::*;
 pub use handle::{RotlangEvaluator, RotlangTemplate};
 pub use model::*;
-pub use status::*;
+pub use status::{RotlangStatus, rotlang_last_error, rotlang_status_message};
 pub use stream::{RotlangFinding, RotlangFindingKind, RotlangFindings, rotlang_finding_code};
 pub use template::*;
 
@@ -42,6 +42,15 @@ pub const ROTLANG_ABI_VERSION: u32 = 1;
 #[unsafe(no_mangle)]
 pub extern "C" fn rotlang_abi_version() -> u32 {
     ROTLANG_ABI_VERSION
+}
+
+/// The number of handles (templates and evaluators) created and not yet freed, in the
+/// whole process. Handles live in a registry the library keeps, so a forgotten `_free` is
+/// memory a leak checker (valgrind, LeakSanitizer) reports as "still reachable", which it
+/// does not count as a leak: assert that this is 0 at the end of a test run instead.
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_live_handles() -> usize {
+    handle::live()
 }
 
 /// The version of rotlang, e.g. `"0.1.0"`: a static NUL-terminated string.

@@ -1,6 +1,6 @@
 //! The model and the evaluation options as C structs, and their checked conversion.
 
-use rotlang::eval::{Model, Options};
+use rotlang::eval::{MAX_LAYERS, Model, Options};
 
 use crate::status::{Failure, RotlangStatus};
 use crate::util::slice;
@@ -132,7 +132,20 @@ impl RotlangModel {
     ///
     /// # Safety
     /// `heights` is NULL or points to `heights_len` readable doubles.
-    pub unsafe fn to_model(&self) -> Result<Model, Failure> {
+    pub(crate) unsafe fn checked_model(&self) -> Result<Model, Failure> {
+        // Checked here, as an integer: the library's own message shows the count as a
+        // float (18446744073709552000 for SIZE_MAX), and a list this long is refused
+        // before it is copied.
+        let given = match self.heights.is_null() {
+            true => self.layers,
+            false => self.heights_len,
+        };
+        if given > MAX_LAYERS {
+            return Err(Failure::with(
+                RotlangStatus::InvalidModel,
+                format!("the model has {given} layers; at most {MAX_LAYERS} are supported"),
+            ));
+        }
         let model = if self.heights.is_null() {
             let first = (self.first_layer_height != 0.0).then_some(self.first_layer_height);
             Model::uniform(self.layers, self.layer_height, first).map_err(invalid_model)?
@@ -155,13 +168,13 @@ const MAX_BASE: f64 = 1e9;
 
 /// Options read from C, with the dialect decoded.
 #[derive(Clone, Copy, Debug)]
-pub struct Settings {
+pub(crate) struct Settings {
     pub options: Options,
     pub dialect: RotlangDialect,
 }
 
 impl Settings {
-    pub fn from_c(options: Option<&RotlangOptions>) -> Result<Settings, Failure> {
+    pub(crate) fn from_c(options: Option<&RotlangOptions>) -> Result<Settings, Failure> {
         let o = options.copied().unwrap_or_default();
         let dialect = match o.dialect {
             0 => RotlangDialect::Rotlang,

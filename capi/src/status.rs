@@ -19,7 +19,10 @@ pub enum RotlangStatus {
     /// The handle is not a live handle of the expected kind: already freed, never
     /// created, or a handle of the other kind.
     InvalidHandle = 3,
-    /// An enumerated argument (target, dialect) has a value the library does not know.
+    /// An argument has a value the library cannot accept: an unknown enumerated value
+    /// (target, dialect), a pointer not aligned for its type, a base direction that is
+    /// not finite or beyond ±1e9 degrees, a length larger than any buffer can be.
+    /// `rotlang_last_error` says which.
     InvalidArgument = 4,
     /// The model is unusable: no layers, a height that is NaN, zero, negative or out of
     /// range, too many layers. `rotlang_last_error` says which.
@@ -31,8 +34,9 @@ pub enum RotlangStatus {
     OutOfRange = 7,
     /// An output buffer is shorter than the layer range asked for.
     BufferTooSmall = 8,
-    /// The dialect is not available in this build of the library.
-    DialectUnavailable = 9,
+    // Value 9 is unused: it was DIALECT_UNAVAILABLE, which no build ever returned (both
+    // dialects are always compiled in); removed before the first release, and the values
+    // around it keep their numbers.
     /// An internal error (a bug in rotlang): the call had no effect. Please report it
     /// with `rotlang_last_error`'s message.
     Internal = 10,
@@ -47,16 +51,13 @@ impl RotlangStatus {
             RotlangStatus::InvalidHandle => {
                 "not a live handle of this kind (freed twice, never created, or the other kind)\0"
             }
-            RotlangStatus::InvalidArgument => "an enumerated argument has an unknown value\0",
+            RotlangStatus::InvalidArgument => "an argument has a value the library cannot accept\0",
             RotlangStatus::InvalidModel => "the model is invalid\0",
             RotlangStatus::TemplateHasErrors => {
                 "the template has errors; read its diagnostics (or use the OrcaSlicer dialect)\0"
             }
             RotlangStatus::OutOfRange => "the layer index or range reaches past the model's top\0",
             RotlangStatus::BufferTooSmall => "an output buffer is too small for the layer range\0",
-            RotlangStatus::DialectUnavailable => {
-                "that dialect is not available in this build of rotlang\0"
-            }
             RotlangStatus::Internal => "internal error in rotlang (please report it)\0",
         }
     }
@@ -65,7 +66,7 @@ impl RotlangStatus {
 /// A failure: the status and, when there is more to say than the status's own text,
 /// the detail (e.g. which layer height is wrong).
 #[derive(Debug)]
-pub struct Failure {
+pub(crate) struct Failure {
     pub status: RotlangStatus,
     pub detail: Option<String>,
 }
@@ -80,7 +81,7 @@ impl From<RotlangStatus> for Failure {
 }
 
 impl Failure {
-    pub fn with(status: RotlangStatus, detail: impl Into<String>) -> Self {
+    pub(crate) fn with(status: RotlangStatus, detail: impl Into<String>) -> Self {
         Failure {
             status,
             detail: Some(detail.into()),
@@ -100,7 +101,7 @@ fn remember(message: String) {
 
 /// Runs the body of an exported function: a panic becomes `ROTLANG_STATUS_INTERNAL`
 /// (never unwinding into C), and a failure's message is kept for `rotlang_last_error`.
-pub fn guard(body: impl FnOnce() -> Result<(), Failure>) -> RotlangStatus {
+pub(crate) fn guard(body: impl FnOnce() -> Result<(), Failure>) -> RotlangStatus {
     let outcome = catch_unwind(AssertUnwindSafe(body));
     let failure = match outcome {
         Ok(Ok(())) => return RotlangStatus::Ok,
@@ -137,7 +138,6 @@ pub extern "C" fn rotlang_status_message(status: u32) -> *const c_char {
         TemplateHasErrors,
         OutOfRange,
         BufferTooSmall,
-        DialectUnavailable,
         Internal,
     ];
     match known.iter().find(|s| **s as u32 == status) {
@@ -171,4 +171,60 @@ pub unsafe extern "C" fn rotlang_last_error(buffer: *mut c_char, capacity: usize
     LAST_ERROR
         .try_with(|slot| copy(&slot.borrow()))
         .unwrap_or(0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn last_error() -> String {
+        // SAFETY: a NULL buffer with capacity 0 only asks for the length; then 256 bytes.
+        let mut buffer = [0 as c_char; 256];
+        unsafe { rotlang_last_error(buffer.as_mut_ptr(), buffer.len()) };
+        // SAFETY: rotlang_last_error NUL-terminates within the buffer.
+        unsafe { std::ffi::CStr::from_ptr(buffer.as_ptr()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    #[test]
+    fn a_panic_becomes_internal_with_its_message() {
+        let status = guard(|| panic!("index 7 out of bounds"));
+        assert_eq!(status, RotlangStatus::Internal);
+        let message = last_error();
+        assert!(
+            message.starts_with("internal error in rotlang")
+                && message.contains("index 7 out of bounds"),
+            "{message}"
+        );
+        // A formatted (String) payload too.
+        let n = 3;
+        assert_eq!(
+            guard(|| panic!("layer {n} missing")),
+            RotlangStatus::Internal
+        );
+        assert!(last_error().contains("layer 3 missing"));
+        // And the next successful call leaves the message of the failure in place.
+        assert_eq!(guard(|| Ok(())), RotlangStatus::Ok);
+        assert!(last_error().contains("layer 3 missing"));
+    }
+
+    #[test]
+    fn every_status_has_its_own_text() {
+        for status in 0..=10u32 {
+            // SAFETY: a static NUL-terminated string.
+            let text = unsafe { std::ffi::CStr::from_ptr(rotlang_status_message(status)) };
+            let text = text.to_str().unwrap();
+            assert_eq!(text == "unknown status", status == 9, "{status}: {text}");
+        }
+        let failure = Failure::with(
+            RotlangStatus::InvalidArgument,
+            "the output pointer is not aligned for its type",
+        );
+        assert_eq!(guard(|| Err(failure)), RotlangStatus::InvalidArgument);
+        assert_eq!(
+            last_error(),
+            "an argument has a value the library cannot accept: the output pointer is not aligned for its type"
+        );
+    }
 }

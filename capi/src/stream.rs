@@ -58,7 +58,7 @@ pub extern "C" fn rotlang_finding_code(kind: u32) -> *const c_char {
 }
 
 /// The layers of a model under a template in one dialect.
-pub enum Stream<'a> {
+pub(crate) enum Stream<'a> {
     Rotlang(eval::Layers<'a>),
     OrcaSlicer(orcaslicer::Layers<'a>),
 }
@@ -77,13 +77,21 @@ fn to_c(finding: &dialect::Finding) -> RotlangFinding {
 }
 
 impl<'a> Stream<'a> {
-    pub fn open(
+    pub(crate) fn open(
         data: &'a TemplateData,
         model: &'a Model,
         settings: Settings,
     ) -> Result<Stream<'a>, Failure> {
         match settings.dialect {
             RotlangDialect::Rotlang => {
+                if let Some(at) = data.invalid_utf8 {
+                    return Err(Failure::with(
+                        RotlangStatus::InvalidUtf8,
+                        format!(
+                            "invalid byte at offset {at}; only the OrcaSlicer dialect reads such a template"
+                        ),
+                    ));
+                }
                 if data.parse.has_errors() {
                     return Err(RotlangStatus::TemplateHasErrors.into());
                 }
@@ -103,7 +111,7 @@ impl<'a> Stream<'a> {
     }
 
     /// The index of the layer `next` yields.
-    pub fn layer_position(&self) -> usize {
+    pub(crate) fn layer_position(&self) -> usize {
         match self {
             Stream::Rotlang(layers) => layers.position(),
             Stream::OrcaSlicer(layers) => layers.position(),
@@ -111,7 +119,7 @@ impl<'a> Stream<'a> {
     }
 
     /// The findings so far, in C form.
-    pub fn findings(&self) -> Vec<RotlangFinding> {
+    pub(crate) fn findings(&self) -> Vec<RotlangFinding> {
         match self {
             Stream::Rotlang(_) => Vec::new(),
             Stream::OrcaSlicer(layers) => layers.findings().iter().map(to_c).collect(),
@@ -120,7 +128,7 @@ impl<'a> Stream<'a> {
 
     /// Folds over every layer left and returns the result with the findings.
     #[inline]
-    pub fn fold_to_top<B, F: FnMut(B, Layer) -> B>(
+    pub(crate) fn fold_to_top<B, F: FnMut(B, Layer) -> B>(
         self,
         init: B,
         f: F,
@@ -138,7 +146,7 @@ impl<'a> Stream<'a> {
     }
 
     /// Skips to layer `index` (at or after the current position).
-    pub fn seek(&mut self, index: usize) {
+    pub(crate) fn seek(&mut self, index: usize) {
         while self.layer_position() < index {
             if self.next().is_none() {
                 break;
@@ -159,25 +167,54 @@ impl Iterator for Stream<'_> {
     }
 }
 
+/// The caller's findings output, checked (pointer, alignment, `items` for `capacity`
+/// entries) before anything is evaluated, so that a bad one fails the call with nothing
+/// written.
+pub(crate) struct FindingsOut<'a> {
+    out: &'a mut RotlangFindings,
+    items: &'a mut [RotlangFinding],
+}
+
+/// Checks `out` (NULL: not wanted, `None`).
+///
+/// # Safety
+/// `out` is NULL or points to a `RotlangFindings` whose `items` hold `capacity` entries.
+pub(crate) unsafe fn findings_out<'a>(
+    out: *mut RotlangFindings,
+) -> Result<Option<FindingsOut<'a>>, Failure> {
+    if out.is_null() {
+        return Ok(None);
+    }
+    // SAFETY: the caller's contract.
+    let out = unsafe { crate::util::out(out) }?;
+    let items = match out.capacity {
+        0 => &mut [][..],
+        // SAFETY: the caller's contract on `items` and `capacity`.
+        n => unsafe { crate::util::slice_mut(out.items, n, "findings.items") }?,
+    };
+    Ok(Some(FindingsOut { out, items }))
+}
+
+impl FindingsOut<'_> {
+    /// Writes the count and as many findings as there is room for.
+    pub(crate) fn write(self, findings: &[RotlangFinding]) {
+        let n = findings.len().min(self.items.len());
+        self.items[..n].copy_from_slice(&findings[..n]);
+        self.out.count = findings.len();
+    }
+}
+
 /// Writes `findings` into the caller's `RotlangFindings`, if given.
 ///
 /// # Safety
 /// `out` is NULL or points to a `RotlangFindings` whose `items` hold `capacity` entries.
-pub unsafe fn report(
+pub(crate) unsafe fn report(
     out: *mut RotlangFindings,
     findings: &[RotlangFinding],
 ) -> Result<(), Failure> {
-    if out.is_null() {
-        return Ok(());
-    }
     // SAFETY: the caller's contract.
-    let out = unsafe { crate::util::out(out) }?;
-    out.count = findings.len();
-    let n = findings.len().min(out.capacity);
-    if n > 0 {
-        // SAFETY: the caller's contract on `items` and `capacity`.
-        let items = unsafe { crate::util::slice_mut(out.items, n, "findings.items") }?;
-        items.copy_from_slice(&findings[..n]);
+    if let Some(out) = unsafe { findings_out(out) }? {
+        out.write(findings);
     }
     Ok(())
 }

@@ -54,10 +54,36 @@ struct Stored {
 }
 
 /// What a template handle holds; immutable once built, shared by every thread.
-pub struct TemplateData {
+pub(crate) struct TemplateData {
     pub text: String,
     pub parse: Parse,
     diagnostics: Vec<Stored>,
+    /// Parsed by `rotlang_parse_bytes` from text that is not UTF-8: the offset of the
+    /// first invalid byte. Only the OrcaSlicer dialect evaluates such a template.
+    pub invalid_utf8: Option<usize>,
+}
+
+/// `bytes` as text for a reader of bytes (OrcaSlicer's): valid UTF-8 stays as it is, each
+/// byte that is not part of it becomes one U+FFFD. OrcaSlicer treats every byte above
+/// 0x7F alike (none is a digit, sign, separator or letter it knows), and so does its
+/// dialect with the bytes of U+FFFD, so the angles are the same as on the raw bytes.
+/// Also returns, for every byte offset of the text (and its end), the offset in `bytes`.
+fn lossy(bytes: &[u8]) -> (String, Vec<usize>) {
+    let mut text = String::with_capacity(bytes.len());
+    let mut origin = Vec::with_capacity(bytes.len() + 1);
+    let mut at = 0;
+    for chunk in bytes.utf8_chunks() {
+        text.push_str(chunk.valid());
+        origin.extend(at..at + chunk.valid().len());
+        at += chunk.valid().len();
+        for _ in chunk.invalid() {
+            text.push(char::REPLACEMENT_CHARACTER);
+            origin.extend([at; 3]);
+            at += 1;
+        }
+    }
+    origin.push(at);
+    (text, origin)
 }
 
 /// A string without interior NULs (rotlang's messages have none; replace any as a guard).
@@ -66,7 +92,18 @@ fn c_string(s: &str) -> CString {
 }
 
 impl TemplateData {
-    pub fn new(text: String, target: Target) -> TemplateData {
+    pub(crate) fn new(text: String, target: Target) -> TemplateData {
+        Self::with_origin(text, target, None)
+    }
+
+    /// `origin`: where each byte offset of `text` came from in the caller's bytes (for
+    /// text made by `lossy`), so that spans are offsets in what the caller gave.
+    fn with_origin(text: String, target: Target, origin: Option<&[usize]>) -> TemplateData {
+        let to_caller = |offset: usize| {
+            origin
+                .and_then(|o| o.get(offset).copied())
+                .unwrap_or(offset)
+        };
         let parse = rotlang::parse(&text, target);
         let diagnostics = parse
             .diagnostics
@@ -81,8 +118,8 @@ impl TemplateData {
                         rotlang::Severity::Warning => RotlangSeverity::Warning,
                         rotlang::Severity::Error => RotlangSeverity::Error,
                     },
-                    start: span.start,
-                    end: span.end,
+                    start: to_caller(span.start),
+                    end: to_caller(span.end),
                 }
             })
             .collect();
@@ -90,6 +127,7 @@ impl TemplateData {
             text,
             parse,
             diagnostics,
+            invalid_utf8: None,
         }
     }
 }
@@ -115,16 +153,7 @@ pub unsafe extern "C" fn rotlang_parse(
         // SAFETY: the caller's contract on `out`.
         let out = unsafe { util::out::<*mut RotlangTemplate>(out) }?;
         *out = std::ptr::null_mut();
-        let target = match target {
-            0 => Target::Sparse,
-            1 => Target::Solid,
-            other => {
-                return Err(Failure::with(
-                    RotlangStatus::InvalidArgument,
-                    format!("target {other} (0 = sparse, 1 = solid)"),
-                ));
-            }
-        };
+        let target = decode_target(target)?;
         // SAFETY: the caller's contract on `text`.
         let bytes = unsafe { bytes(text.cast(), length) }?;
         let text = std::str::from_utf8(bytes).map_err(|e| {
@@ -134,6 +163,59 @@ pub unsafe extern "C" fn rotlang_parse(
             )
         })?;
         *out = handle::new_template(TemplateData::new(text.to_owned(), target));
+        Ok(())
+    })
+}
+
+fn decode_target(target: u32) -> Result<Target, Failure> {
+    match target {
+        0 => Ok(Target::Sparse),
+        1 => Ok(Target::Solid),
+        other => Err(Failure::with(
+            RotlangStatus::InvalidArgument,
+            format!("target {other} (0 = sparse, 1 = solid)"),
+        )),
+    }
+}
+
+/// As `rotlang_parse`, but any bytes are accepted, as OrcaSlicer reads its template:
+/// byte by byte, whatever the encoding. Text that is valid UTF-8 gives the same template
+/// as `rotlang_parse`. Otherwise each byte that is not part of valid UTF-8 is kept as one
+/// unknown character (U+FFFD, which the diagnostics report as an error with the span of
+/// that byte), and the template then evaluates in the OrcaSlicer dialect only, with the
+/// angles OrcaSlicer computes on those bytes: `"+30\xb0"` gives what `"+30\xc2\xb0"`
+/// gives. The rotlang dialect refuses it with `INVALID_UTF8`. Spans are byte offsets in
+/// the bytes given.
+///
+/// Errors: `NULL_POINTER` (`out`, or `text` with `length > 0`), `INVALID_ARGUMENT`
+/// (unknown target). On error `*out` is set to NULL.
+///
+/// # Safety
+/// `text` points to `length` readable bytes; `out` to one writable pointer.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_parse_bytes(
+    text: *const c_char,
+    length: usize,
+    target: u32,
+    out: *mut *mut RotlangTemplate,
+) -> RotlangStatus {
+    guard(|| {
+        // SAFETY: the caller's contract on `out`.
+        let out = unsafe { util::out::<*mut RotlangTemplate>(out) }?;
+        *out = std::ptr::null_mut();
+        let target = decode_target(target)?;
+        // SAFETY: the caller's contract on `text`.
+        let bytes = unsafe { bytes(text.cast(), length) }?;
+        let data = match std::str::from_utf8(bytes) {
+            Ok(text) => TemplateData::new(text.to_owned(), target),
+            Err(e) => {
+                let (text, origin) = lossy(bytes);
+                let mut data = TemplateData::with_origin(text, target, Some(&origin));
+                data.invalid_utf8 = Some(e.valid_up_to());
+                data
+            }
+        };
+        *out = handle::new_template(data);
         Ok(())
     })
 }
@@ -215,4 +297,21 @@ pub unsafe extern "C" fn rotlang_template_diagnostic(
         };
         Ok(())
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lossy_keeps_each_invalid_byte_as_one_character_and_maps_offsets_back() {
+        let (text, origin) = lossy(b"+30\xb0, \xe2\x82X\xff");
+        assert_eq!(text, "+30\u{FFFD}, \u{FFFD}\u{FFFD}X\u{FFFD}");
+        assert_eq!(origin.len(), text.len() + 1);
+        // `X` is byte 8 of the input (after `+30`, 0xb0, `, `, 0xe2, 0x82).
+        assert_eq!(origin[text.find('X').unwrap()], 8);
+        assert_eq!(*origin.last().unwrap(), 10);
+        let (same, origin) = lossy("+30°".as_bytes());
+        assert_eq!((same.as_str(), origin), ("+30°", vec![0, 1, 2, 3, 4, 5]));
+    }
 }

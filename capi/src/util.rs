@@ -19,7 +19,7 @@ fn check<T>(ptr: *const T, what: &str) -> Result<(), Failure> {
 ///
 /// # Safety
 /// `ptr` is NULL or points to a writable `T`.
-pub unsafe fn out<'a, T>(ptr: *mut T) -> Result<&'a mut T, Failure> {
+pub(crate) unsafe fn out<'a, T>(ptr: *mut T) -> Result<&'a mut T, Failure> {
     check(ptr, "the output pointer")?;
     // SAFETY: not NULL, aligned; writable by the caller's contract. Only plain-old-data
     // types are written through it (no drop of the old value matters).
@@ -30,7 +30,7 @@ pub unsafe fn out<'a, T>(ptr: *mut T) -> Result<&'a mut T, Failure> {
 ///
 /// # Safety
 /// `ptr` is NULL or points to a readable `T`.
-pub unsafe fn input<'a, T>(ptr: *const T, what: &str) -> Result<&'a T, Failure> {
+pub(crate) unsafe fn input<'a, T>(ptr: *const T, what: &str) -> Result<&'a T, Failure> {
     check(ptr, what)?;
     // SAFETY: not NULL, aligned; readable by the caller's contract.
     Ok(unsafe { &*ptr })
@@ -40,7 +40,7 @@ pub unsafe fn input<'a, T>(ptr: *const T, what: &str) -> Result<&'a T, Failure> 
 ///
 /// # Safety
 /// `ptr` points to `len` readable bytes (or is NULL with `len == 0`).
-pub unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> Result<&'a [u8], Failure> {
+pub(crate) unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> Result<&'a [u8], Failure> {
     if len == 0 {
         return Ok(&[]);
     }
@@ -54,7 +54,11 @@ pub unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> Result<&'a [u8], Failure>
 ///
 /// # Safety
 /// `ptr` points to `len` readable `T`s.
-pub unsafe fn slice<'a, T>(ptr: *const T, len: usize, what: &str) -> Result<&'a [T], Failure> {
+pub(crate) unsafe fn slice<'a, T>(
+    ptr: *const T,
+    len: usize,
+    what: &str,
+) -> Result<&'a [T], Failure> {
     check(ptr, what)?;
     fits::<T>(len, what)?;
     // SAFETY: the caller's contract.
@@ -65,7 +69,7 @@ pub unsafe fn slice<'a, T>(ptr: *const T, len: usize, what: &str) -> Result<&'a 
 ///
 /// # Safety
 /// `ptr` points to `len` writable `T`s.
-pub unsafe fn slice_mut<'a, T>(
+pub(crate) unsafe fn slice_mut<'a, T>(
     ptr: *mut T,
     len: usize,
     what: &str,

@@ -1,7 +1,9 @@
-//! The Python package (`bindings/python`): `scripts/ensure pip maturin pytest`, then
-//! `pip install ./bindings/python` into a virtual environment under `target/` (the system
-//! site-packages stay clean), then its pytest suite (conformance cases, bad input,
-//! threads). Cargo shares the workspace's target directory with the outer build.
+//! The Python package (`bindings/python`): `scripts/ensure venv target/python-venv
+//! maturin pytest` makes a virtual environment under `target/` with maturin and pytest in
+//! it (the system Python is left alone; it may be "externally managed", as on Debian 12),
+//! then `pip install ./bindings/python` runs inside it, then its pytest suite (conformance
+//! cases, bad input, threads). Cargo shares the workspace's target directory with the
+//! outer build.
 
 mod common;
 
@@ -17,22 +19,25 @@ fn target_dir() -> PathBuf {
 
 #[test]
 fn python_package_builds_installs_and_passes_pytest() {
-    if !ensure(&["pip", "maturin", "pytest"]) {
-        return;
-    }
     let target = target_dir();
     let venv = target.join("python-venv");
     let python = venv.join("bin/python");
-    if !python.exists() {
-        // System site-packages visible: maturin and pytest come from `scripts/ensure`.
-        check(
-            Command::new("python3")
-                .args(["-m", "venv", "--system-site-packages"])
-                .arg(&venv),
-        );
+    if !ensure(&[
+        "venv",
+        venv.to_str().expect("UTF-8 path"),
+        "maturin",
+        "pytest",
+    ]) {
+        return;
     }
-    // The documented install, without build isolation so that it uses the maturin
-    // `scripts/ensure` installed instead of downloading one per run.
+    // Nothing of the system Python is visible: maturin and pytest are the venv's own.
+    let isolated = check(Command::new(&python).args([
+        "-c",
+        "import sys, maturin, pytest; print(sys.prefix != sys.base_prefix and maturin.__file__.startswith(sys.prefix) and pytest.__file__.startswith(sys.prefix))",
+    ]));
+    assert_eq!(String::from_utf8_lossy(&isolated.stdout).trim(), "True");
+    // The documented install, without build isolation so that it uses the venv's maturin
+    // instead of downloading one per run.
     check(
         Command::new(&python)
             .args([

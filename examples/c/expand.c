@@ -30,5 +30,9 @@ int main(int argc, char **argv) {
     else
         fprintf(stderr, "rotlang: %s\n", rotlang_status_message(status));
     rotlang_template_free(tpl);
+    if (rotlang_live_handles() != 0) { /* a forgotten free: valgrind cannot see it */
+        fprintf(stderr, "rotlang: %zu handles not freed\n", rotlang_live_handles());
+        return 3;
+    }
     return status == ROTLANG_STATUS_OK ? 0 : 1;
 }

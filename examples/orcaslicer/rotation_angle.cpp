@@ -5,8 +5,9 @@
 // makes OrcaSlicer hang, crash or compute NaN gets finite angles here instead.
 //
 // The template is parsed and the object's whole angle table computed once per
-// (object, template); every later call is a lookup. A re-sliced object (other layers,
-// layer height or shell counts) gets a new table. Thread-safe: OrcaSlicer calls this from
+// (object, template); every later call checks that the object's layers (each print_z),
+// layer height and shell counts are unchanged, then looks the angle up. A re-sliced
+// object gets a new table. Thread-safe: OrcaSlicer calls this from
 // its layer threads, in any order.
 #include <algorithm>
 #include <cmath>
@@ -30,32 +31,48 @@ namespace Slic3r {
 
 namespace {
 
-// What a table was computed from. Comparing it on each call notices a re-sliced object.
+// What a table was computed from. Checked on each call to notice a re-sliced object:
+// every layer's print_z, not only the count and the top, since a re-slice can restack
+// the same number of layers to the same top with other heights (and other angles).
 struct Fingerprint {
-    std::size_t layers = 0;
-    double top = 0, layer_height = 0, z_min = 0;
+    std::vector<double> print_z;
+    double layer_height = 0, z_min = 0;
     int bottom_shells = 0, top_shells = 0;
-    bool operator==(const Fingerprint& o) const {
-        return layers == o.layers && top == o.top && layer_height == o.layer_height && z_min == o.z_min &&
-               bottom_shells == o.bottom_shells && top_shells == o.top_shells;
+
+    explicit Fingerprint(const PrintObject* object) {
+        const auto& layers = object->layers();
+        print_z.reserve(layers.size());
+        for (const auto* layer : layers) print_z.push_back(layer->print_z);
+        read_settings(object, layer_height, z_min, bottom_shells, top_shells);
+    }
+
+    // Whether the object is still what this was taken from. No allocation: a loop over
+    // the layers (what OrcaSlicer's own function does on every call, and more).
+    bool matches(const PrintObject* object) const {
+        double h, z;
+        int b, t;
+        read_settings(object, h, z, b, t);
+        const auto& layers = object->layers();
+        if (h != layer_height || z != z_min || b != bottom_shells || t != top_shells ||
+            layers.size() != print_z.size())
+            return false;
+        for (std::size_t i = 0; i < layers.size(); i++)
+            if (layers[i]->print_z != print_z[i]) return false;
+        return true;
+    }
+
+private:
+    static void read_settings(const PrintObject* object, double& h, double& z, int& b, int& t) {
+        h = object->config().layer_height.value;
+        z = object->slicing_parameters().object_print_z_min;
+        const auto& region = object->print()->default_region_config();
+        b = region.bottom_shell_layers.value;
+        t = region.top_shell_layers.value;
     }
 };
 
-Fingerprint fingerprint(const PrintObject* object) {
-    Fingerprint f;
-    const auto& layers = object->layers();
-    f.layers = layers.size();
-    f.top = layers.empty() ? 0.0 : layers.back()->print_z;
-    f.layer_height = object->config().layer_height.value;
-    f.z_min = object->slicing_parameters().object_print_z_min;
-    const auto& region = object->print()->default_region_config();
-    f.bottom_shells = region.bottom_shell_layers.value;
-    f.top_shells = region.top_shell_layers.value;
-    return f;
-}
-
 struct AngleTable {
-    AngleTable(std::string text, Fingerprint f) : text(std::move(text)), fingerprint(f) {}
+    AngleTable(std::string text, const PrintObject* object) : text(std::move(text)), fingerprint(object) {}
     const std::string text;
     const Fingerprint fingerprint;
     std::once_flag computed;
@@ -66,16 +83,28 @@ std::mutex cache_mutex;
 std::unordered_map<const PrintObject*, std::vector<std::shared_ptr<AngleTable>>> cache;
 
 std::shared_ptr<AngleTable> table_for(const PrintObject* object, const std::string& text) {
-    Fingerprint f = fingerprint(object);
+    std::shared_ptr<AngleTable> found;
+    {
+        std::lock_guard<std::mutex> lock(cache_mutex);
+        for (auto& table : cache[object])
+            if (table->text == text) found = table;
+    }
+    // The check reads every layer: done outside the lock, so threads check in parallel
+    // (a table's fingerprint never changes; the object's layers do not change while
+    // OrcaSlicer runs its layer threads).
+    if (found && found->fingerprint.matches(object)) return found;
+    auto fresh = std::make_shared<AngleTable>(text, object);
     std::lock_guard<std::mutex> lock(cache_mutex);
     auto& tables = cache[object];
     for (auto& table : tables) {
         if (table->text != text) continue;
-        if (!(table->fingerprint == f)) table = std::make_shared<AngleTable>(text, f);
-        return table;
+        // Another thread may have replaced the stale table first: use its table then.
+        if (table != found && table->fingerprint.matches(object)) return table;
+        table = fresh;
+        return fresh;
     }
-    tables.push_back(std::make_shared<AngleTable>(text, f));
-    return tables.back();
+    tables.push_back(fresh);
+    return fresh;
 }
 
 void compute(AngleTable& table, const PrintObject* object) {
@@ -94,7 +123,9 @@ void compute(AngleTable& table, const PrintObject* object) {
         auto model = rotlang::Model::from_heights(std::move(heights), object->config().layer_height.value)
                          .shells(static_cast<std::uint32_t>(std::max(0, region.bottom_shell_layers.value)),
                                  static_cast<std::uint32_t>(std::max(0, region.top_shell_layers.value)));
-        rotlang::Template tpl(table.text);
+        // OrcaSlicer reads the template's bytes as they are, UTF-8 or not: so does
+        // from_bytes (the OrcaSlicer dialect gives "+30\xb0" the angles of "+30°").
+        auto tpl = rotlang::Template::from_bytes(table.text);
         rotlang::Options options;
         options.dialect = ROTLANG_DROPIN_DIALECT;
         std::vector<double> degrees = tpl.angles(model, options);
@@ -102,7 +133,7 @@ void compute(AngleTable& table, const PrintObject* object) {
         for (double a : degrees) table.radians.push_back(M_PI * a / 180.0);  // as OrcaSlicer rounds
     } catch (const rotlang::Error&) {
         // A model rotlang refuses (no layers, a layer of zero height) or, in the rotlang
-        // dialect, a template with errors: the table stays empty and every layer gets
+        // dialect, a template with errors or not UTF-8: the table stays empty and every layer gets
         // the fixed angle, as with an empty template.
         table.radians.clear();
     }

@@ -66,7 +66,9 @@ def test_every_exact_case_in_the_orcaslicer_dialect():
         codes = {f.code for f in e.findings}
         if orca["status"] in ("hangs", "nan") and f"orcaslicer::{orca['status']}" not in codes:
             failures.append((case, "finding"))
-        if not all(close(g, x) for g, x in zip(e.angles, expected)):
+        if len(e.angles) != len(expected):
+            failures.append((case, f"{len(e.angles)} angles for {len(expected)} layers"))
+        elif not all(close(g, x) for g, x in zip(e.angles, expected)):
             failures.append((case, "angles"))
     assert not failures, f"{len(failures)} cases differ, first: {failures[0]}"
 
@@ -76,6 +78,7 @@ def test_random_cases_stay_in_bounds_and_follow_the_seed():
         model = MODELS[case["model"]]
         a = rotlang.expand(case["template"], model, seed=7)
         assert a == rotlang.expand(case["template"], model, seed=7)
+        assert len(a) == len(case["min_degrees"]) == len(case["max_degrees"]), case["template"]
         for got, lo, hi in zip(a, case["min_degrees"], case["max_degrees"]):
             assert lo - 1e-4 <= got <= hi + 1e-4, case["template"]
 

@@ -28,12 +28,18 @@ static RotlangTemplate *parse(const char *text) {
     return t;
 }
 
+/* ROTLANG_TO_TOP is SIZE_MAX: a size_t, not the signed int `~0` (which is -1). */
+_Static_assert(ROTLANG_TO_TOP > 0 && sizeof(ROTLANG_TO_TOP) == sizeof(size_t) && ROTLANG_TO_TOP == SIZE_MAX,
+               "ROTLANG_TO_TOP is SIZE_MAX");
+
 static void versions(void) {
     CHECK(rotlang_abi_version() == ROTLANG_ABI_VERSION);
     CHECK(strlen(rotlang_version()) >= 5);
     CHECK(strcmp(rotlang_status_message(ROTLANG_STATUS_BUFFER_TOO_SMALL),
                  "an output buffer is too small for the layer range") == 0);
     CHECK(strcmp(rotlang_status_message(9999), "unknown status") == 0);
+    CHECK(strcmp(rotlang_status_message(9), "unknown status") == 0); /* no status 9 */
+    CHECK(strcmp(rotlang_status_message(ROTLANG_STATUS_INTERNAL), "internal error in rotlang (please report it)") == 0);
     CHECK(strcmp(rotlang_finding_code(ROTLANG_FINDING_KIND_NAN), "orcaslicer::nan") == 0);
 }
 
@@ -137,8 +143,56 @@ static void orcaslicer(void) {
     CHECK(layer.angle == 10);
     STATUS(rotlang_evaluator_findings(e, &findings), ROTLANG_STATUS_OK);
     CHECK(findings.count == 1 && items[0].kind == ROTLANG_FINDING_KIND_HANGS);
+    /* Going back reopens the stream: the findings of the layers gone through stay. */
+    STATUS(rotlang_evaluator_layer(e, 0, &layer), ROTLANG_STATUS_OK);
+    findings.count = 99;
+    STATUS(rotlang_evaluator_findings(e, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 1 && items[0].kind == ROTLANG_FINDING_KIND_HANGS && items[0].first_layer == 1);
+    STATUS(rotlang_evaluator_layer(e, 70, &layer), ROTLANG_STATUS_OK);
+    STATUS(rotlang_evaluator_findings(e, &findings), ROTLANG_STATUS_OK);
+    CHECK(findings.count == 1 && items[0].layers == 99);
     STATUS(rotlang_evaluator_free(e), ROTLANG_STATUS_OK);
+
+    /* A bad findings output fails the call before anything is written. */
+    RotlangFindings no_items = {NULL, 4, 77};
+    angles[0] = -1;
+    STATUS(rotlang_expand(hang, &cube, &orca, 0, ROTLANG_TO_TOP, angles, NULL, 100, &no_items),
+           ROTLANG_STATUS_NULL_POINTER);
+    CHECK(angles[0] == -1 && no_items.count == 77);
+    uint8_t fill = 99;
+    double one = -1;
+    STATUS(rotlang_angle_at(hang, &cube, &orca, 100, &one, &fill), ROTLANG_STATUS_OUT_OF_RANGE);
+    CHECK(one == -1 && fill == 99);
     STATUS(rotlang_template_free(hang), ROTLANG_STATUS_OK);
+
+    /* NaN in OrcaSlicer (`$` of a first layer thinner... see SEMANTICS 10): reported, and
+     * rotlang's angles stay finite. */
+    RotlangTemplate *nan = parse("+22.5$50%");
+    RotlangModel thick_first = rotlang_model_uniform(100, 0.2, 0.3);
+    STATUS(rotlang_expand(nan, &thick_first, &orca, 0, ROTLANG_TO_TOP, angles, NULL, 100, &findings),
+           ROTLANG_STATUS_OK);
+    CHECK(findings.count >= 1 && items[0].kind == ROTLANG_FINDING_KIND_NAN && items[0].layers >= 1);
+    CHECK(strcmp(rotlang_finding_code(items[0].kind), "orcaslicer::nan") == 0);
+    for (size_t i = 0; i < 100; i++) CHECK(isfinite(angles[i]));
+    STATUS(rotlang_template_free(nan), ROTLANG_STATUS_OK);
+
+    /* Bytes that are not UTF-8: OrcaSlicer reads them as they are, and so does the
+     * dialect through rotlang_parse_bytes (a lone 0xb0 reads like the UTF-8 degree
+     * sign); the rotlang dialect refuses them. */
+    RotlangTemplate *latin1 = NULL, *utf8 = NULL;
+    STATUS(rotlang_parse_bytes("+30\xb0", 4, ROTLANG_TARGET_SPARSE, &latin1), ROTLANG_STATUS_OK);
+    STATUS(rotlang_parse_bytes("+30\xc2\xb0", 5, ROTLANG_TARGET_SPARSE, &utf8), ROTLANG_STATUS_OK);
+    double raw[3], degree[3];
+    STATUS(rotlang_expand(latin1, &cube, &orca, 0, 3, raw, NULL, 3, NULL), ROTLANG_STATUS_OK);
+    STATUS(rotlang_expand(utf8, &cube, &orca, 0, 3, degree, NULL, 3, NULL), ROTLANG_STATUS_OK);
+    CHECK(raw[0] == 30 && raw[1] == 60 && raw[2] == 90);
+    CHECK(degree[0] == 30 && degree[1] == 60 && degree[2] == 90);
+    STATUS(rotlang_expand(latin1, &cube, NULL, 0, 3, raw, NULL, 3, NULL), ROTLANG_STATUS_INVALID_UTF8);
+    RotlangDiagnostic d;
+    STATUS(rotlang_template_diagnostic(latin1, 0, &d), ROTLANG_STATUS_OK);
+    CHECK(d.severity == ROTLANG_SEVERITY_ERROR && d.start == 3 && d.end == 4); /* the 0xb0 byte */
+    STATUS(rotlang_template_free(latin1), ROTLANG_STATUS_OK);
+    STATUS(rotlang_template_free(utf8), ROTLANG_STATUS_OK);
 
     /* Text rotlang rejects still has OrcaSlicer angles; random access equals the batch. */
     RotlangTemplate *bad = parse("+30°, X, 0x10*2, nan");
@@ -162,6 +216,32 @@ static void orcaslicer(void) {
     STATUS(rotlang_expand(flip, &cube, &orca, 0, 5, angles, NULL, 5, &findings), ROTLANG_STATUS_OK);
     CHECK(findings.count == 0 && mine[4] == 90 && angles[4] == 1);
     STATUS(rotlang_template_free(flip), ROTLANG_STATUS_OK);
+}
+
+/* The seed of the random joints: the same seed gives the same angles, another seed other
+ * angles, and layer-by-layer access agrees with the batch for a non-zero seed. */
+static void seeded(void) {
+    RotlangTemplate *t = parse("+30~5, -15~10, 45");
+    RotlangModel cube = rotlang_model_uniform(100, 0.2, 0);
+    RotlangOptions seven = {0, 7, ROTLANG_DIALECT_ROTLANG}, eight = {0, 8, ROTLANG_DIALECT_ROTLANG};
+    double first[100], again[100], other[100];
+    STATUS(rotlang_expand(t, &cube, &seven, 0, ROTLANG_TO_TOP, first, NULL, 100, NULL), ROTLANG_STATUS_OK);
+    STATUS(rotlang_expand(t, &cube, &seven, 0, ROTLANG_TO_TOP, again, NULL, 100, NULL), ROTLANG_STATUS_OK);
+    STATUS(rotlang_expand(t, &cube, &eight, 0, ROTLANG_TO_TOP, other, NULL, 100, NULL), ROTLANG_STATUS_OK);
+    CHECK(memcmp(first, again, sizeof first) == 0);
+    size_t differ = 0;
+    for (size_t i = 0; i < 100; i++) differ += first[i] != other[i];
+    CHECK(differ > 10);
+    RotlangEvaluator *e = NULL;
+    STATUS(rotlang_evaluator_new(t, &cube, &seven, &e), ROTLANG_STATUS_OK);
+    for (size_t k = 0; k < 100; k++) {
+        size_t i = (k * 37) % 100;
+        RotlangLayer layer;
+        STATUS(rotlang_evaluator_layer(e, i, &layer), ROTLANG_STATUS_OK);
+        CHECK(layer.angle == first[i]);
+    }
+    STATUS(rotlang_evaluator_free(e), ROTLANG_STATUS_OK);
+    STATUS(rotlang_template_free(t), ROTLANG_STATUS_OK);
 }
 
 static void hostile(void) {
@@ -200,6 +280,13 @@ static void hostile(void) {
     STATUS(rotlang_expand(t, &cube, &bad_dialect, 0, 1, angles, NULL, 1, NULL), ROTLANG_STATUS_INVALID_ARGUMENT);
     RotlangOptions bad_base = {NAN, 0, 0};
     STATUS(rotlang_expand(t, &cube, &bad_base, 0, 1, angles, NULL, 1, NULL), ROTLANG_STATUS_INVALID_ARGUMENT);
+    char message[256];
+    rotlang_last_error(message, sizeof message);
+    CHECK(strstr(message, "an argument has a value the library cannot accept: the base direction is NaN") == message);
+    RotlangModel huge = rotlang_model_uniform(SIZE_MAX, 0.2, 0);
+    STATUS(rotlang_model_layer_count(&huge, &n), ROTLANG_STATUS_INVALID_MODEL);
+    rotlang_last_error(message, sizeof message);
+    CHECK(strstr(message, "18446744073709551615 layers") != NULL || SIZE_MAX != 18446744073709551615u);
 
     /* Bad models: empty, NaN, negative, zero heights; NaN layer height; zero layers. */
     double heights[3] = {0.2, 0.2, 0.2};
@@ -252,8 +339,10 @@ static void hostile(void) {
 #define MAX_THREADS 16
 #define MAX_LAYERS 5000
 static size_t THREADS = 8, LAYERS = 5000; /* smaller under valgrind (argv) */
-static RotlangTemplate *shared;
-static double reference[MAX_LAYERS];
+static RotlangTemplate *shared, *shared_orca;
+static double reference[MAX_LAYERS], reference_orca[MAX_LAYERS];
+/* Text rotlang rejects, read by the OrcaSlicer dialect with a seed. */
+static const RotlangOptions ORCA = {0, 5, ROTLANG_DIALECT_ORCASLICER};
 
 static void *worker(void *arg) {
     size_t id = (size_t)arg;
@@ -273,6 +362,18 @@ static void *worker(void *arg) {
         if (rotlang_evaluator_layer(e, i, &layer) || layer.angle != reference[i]) bad++;
     }
     if (rotlang_evaluator_free(e)) bad++;
+    /* The OrcaSlicer-dialect template, shared the same way. */
+    for (int round = 0; round < 2; round++) {
+        if (rotlang_expand(shared_orca, &model, &ORCA, 0, ROTLANG_TO_TOP, angles, NULL, LAYERS, NULL)) bad++;
+        for (size_t i = 0; i < LAYERS; i++) bad += angles[i] != reference_orca[i];
+    }
+    if (rotlang_evaluator_new(shared_orca, &model, &ORCA, &e)) bad++;
+    for (size_t k = 0; k < LAYERS; k += 1 + LAYERS / 200) { /* forward and back: reopens */
+        size_t i = (k * 7919 + id * 131) % LAYERS;
+        RotlangLayer layer;
+        if (rotlang_evaluator_layer(e, i, &layer) || layer.angle != reference_orca[i]) bad++;
+    }
+    if (rotlang_evaluator_free(e)) bad++;
     free(angles);
     return (void *)bad;
 }
@@ -282,6 +383,9 @@ static void threads(void) {
     RotlangModel model = rotlang_model_uniform(LAYERS, 0.2, 0.3);
     STATUS(rotlang_expand(shared, &model, NULL, 0, ROTLANG_TO_TOP, reference, NULL, LAYERS, NULL),
            ROTLANG_STATUS_OK);
+    shared_orca = parse("+30\xc2\xb0, X, -15/10%, 0x10*2, +5~3");
+    STATUS(rotlang_expand(shared_orca, &model, &ORCA, 0, ROTLANG_TO_TOP, reference_orca, NULL, LAYERS, NULL),
+           ROTLANG_STATUS_OK);
     pthread_t tid[MAX_THREADS];
     for (size_t i = 0; i < THREADS; i++) CHECK(pthread_create(&tid[i], NULL, worker, (void *)i) == 0);
     for (size_t i = 0; i < THREADS; i++) {
@@ -290,6 +394,7 @@ static void threads(void) {
         CHECK(bad == NULL);
     }
     STATUS(rotlang_template_free(shared), ROTLANG_STATUS_OK);
+    STATUS(rotlang_template_free(shared_orca), ROTLANG_STATUS_OK);
 }
 
 /* Freeing a template while other threads evaluate it: each call either finishes on the
@@ -334,9 +439,12 @@ int main(int argc, char **argv) {
     evaluates();
     diagnostics();
     orcaslicer();
+    seeded();
     hostile();
     threads();
     free_while_evaluating();
+    /* Every handle made was freed (valgrind counts the registry as still reachable). */
+    CHECK(rotlang_live_handles() == 0);
     if (failures) {
         fprintf(stderr, "%d of %d checks failed\n", failures, checks);
         return 1;

@@ -174,11 +174,44 @@ int main(int argc, char** argv) {
     double after = calculate_infill_rotation_angle(&object, 5, fixed, "+10/5mm");
     PrintObject fresh(prints.begin()->second.get(), thicker, spec.layer_height, 0.0);
     bool reslice_ok = after != before && after == calculate_infill_rotation_angle(&fresh, 5, fixed, "+10/5mm");
+
+    // A re-slice with the same layer count and the same top, only two heights swapped:
+    // layer 0 of `+90/2mm` is at 0.15 mm now, so 6.75 degrees (the old table: 11.25).
+    std::vector<double> swapped(40, 0.2);
+    swapped[0] = 0.25;
+    swapped[1] = 0.15;
+    PrintObject restacked(prints.begin()->second.get(), swapped, 0.2, 0.0);
+    double old_angle = calculate_infill_rotation_angle(&restacked, 0, fixed, "+90/2mm") * 180.0 / M_PI;
+    std::swap(swapped[0], swapped[1]);
+    restacked.restack(swapped);
+    double new_angle = calculate_infill_rotation_angle(&restacked, 0, fixed, "+90/2mm") * 180.0 / M_PI;
+    bool same_top_ok = std::fabs(old_angle - 11.25) < 1e-9 && std::fabs(new_angle - 6.75) < 1e-9;
+    if (!same_top_ok)
+        std::fprintf(stderr, "re-slice to the same top: layer 0 was %.9g, is %.9g (expected 11.25, 6.75)\n",
+                     old_angle, new_angle);
+
+    // Bytes that are not UTF-8, as OrcaSlicer reads them: "+30\xb0" is "+30°" (30, 60, 90).
+    bool bytes_ok = true;
+    for (size_t i = 0; i < 3; i++) {
+        double latin1 = calculate_infill_rotation_angle(cube, i, fixed, "+30\xb0") * 180.0 / M_PI;
+        double utf8 = calculate_infill_rotation_angle(cube, i, fixed, "+30\xc2\xb0") * 180.0 / M_PI;
+        if (std::fabs(latin1 - 30.0 * (i + 1)) > 1e-9 || std::fabs(utf8 - 30.0 * (i + 1)) > 1e-9) {
+            bytes_ok = false;
+            std::fprintf(stderr, "layer %zu: \"+30\\xb0\" %.9g, \"+30\u00b0\" %.9g, expected %g\n", i, latin1,
+                         utf8, 30.0 * (i + 1));
+        }
+    }
     clear_infill_rotation_cache();
+    // The drop-in frees every template it parses (valgrind cannot see a leaked handle).
+    bool handles_ok = rotlang_live_handles() == 0;
+    if (!handles_ok) std::fprintf(stderr, "%zu rotlang handles not freed\n", rotlang_live_handles());
 
     std::printf("checked %zu layers of %zu cases on %zu threads: %zu failed, %zu failed on a raft\n", checked.load(),
                 cases.size(), static_cast<size_t>(threads), failed.load(), raft_diffs.load());
     if (!fixed_ok) std::fprintf(stderr, "the fixed angle is not returned for an empty template\n");
     if (!reslice_ok) std::fprintf(stderr, "a re-sliced object kept its old table\n");
-    return failed == 0 && raft_diffs == 0 && fixed_ok && reslice_ok && !cases.empty() ? 0 : 1;
+    return failed == 0 && raft_diffs == 0 && fixed_ok && reslice_ok && same_top_ok && bytes_ok && handles_ok &&
+                   !cases.empty()
+               ? 0
+               : 1;
 }

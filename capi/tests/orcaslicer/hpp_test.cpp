@@ -16,7 +16,19 @@ static int failures = 0;
         }                                                                              \
     } while (0)
 
-int main() {
+template <typename F>
+static RotlangStatus status_of(F f) {
+    try {
+        f();
+    } catch (const rotlang::Error& e) {
+        return e.status();
+    } catch (...) {
+        return static_cast<RotlangStatus>(-1);  // anything but rotlang::Error
+    }
+    return ROTLANG_STATUS_OK;
+}
+
+static void run() {
     CHECK(rotlang::version().size() >= 5);
 
     // Parse and evaluate: the documentation's example on the 20 mm cube.
@@ -86,10 +98,32 @@ int main() {
     rotlang::Evaluator orca_ev = bad.evaluator(cube, orca);
     CHECK(std::isfinite(orca_ev.layer(42).angle) && orca_ev.findings().empty());
 
+    // Ranges at and past the top are OUT_OF_RANGE, never NULL_POINTER (an empty vector's
+    // data()) or std::length_error (a vector sized from an unchecked count).
+    CHECK(status_of([&] { tpl.expand(cube, {}, 100); }) == ROTLANG_STATUS_OUT_OF_RANGE);
+    CHECK(status_of([&] { tpl.expand(cube, {}, 0, SIZE_MAX - 2); }) == ROTLANG_STATUS_OUT_OF_RANGE);
+    CHECK(status_of([&] { tpl.expand(cube, {}, 98, 3); }) == ROTLANG_STATUS_OUT_OF_RANGE);
+    CHECK(tpl.expand(cube, {}, 10, 0).angles.empty());
+    CHECK(status_of([&] { tpl.expand(rotlang::Model::uniform(SIZE_MAX, 0.2)); }) == ROTLANG_STATUS_INVALID_MODEL);
+    CHECK(status_of([&] { tpl.angles(rotlang::Model::uniform(SIZE_MAX, 0.2)); }) == ROTLANG_STATUS_INVALID_MODEL);
+
+    // Bytes as OrcaSlicer reads them: "+30\xb0" is "+30°" in the OrcaSlicer dialect; the
+    // rotlang dialect refuses text that is not UTF-8.
+    auto latin1 = rotlang::Template::from_bytes(std::string_view("+30\xb0", 4));
+    CHECK(latin1.has_errors() && latin1.diagnostics()[0].start == 3 && latin1.diagnostics()[0].end == 4);
+    CHECK(latin1.expand(cube, orca, 0, 3).angles == (std::vector<double>{30, 60, 90}));
+    CHECK(status_of([&] { latin1.angles(cube); }) == ROTLANG_STATUS_INVALID_UTF8);
+
     // Move semantics: the moved-to template works, the handle is freed once.
     rotlang::Template moved = std::move(tpl);
     CHECK(moved.angles(cube) == angles);
+}
 
+int main() {
+    run();
+    // Every handle was freed by its RAII owner (valgrind counts the library's registry as
+    // still reachable, so it would not see a leaked handle).
+    CHECK(rotlang_live_handles() == 0);
     if (failures) return 1;
     std::printf("ok\n");
     return 0;

@@ -5,10 +5,13 @@
 // makes OrcaSlicer hang, crash or compute NaN gets finite angles here instead.
 //
 // The template is parsed and the object's whole angle table computed once per
-// (object, template); every later call checks that the object's layers (each print_z),
-// layer height and shell counts are unchanged, then looks the angle up. A re-sliced
-// object gets a new table. Thread-safe: OrcaSlicer calls this from
-// its layer threads, in any order.
+// (object, template); a later call looks the angle up after checking, in O(1), that the
+// object still has the table's layer count, layer height, raft and shell counts and that
+// the layer asked for (and the one below it, and the top) sit where they did. A call for
+// layer 0, which every pass over the layers makes once, compares every layer's print_z,
+// so a re-slice that restacks the same count of layers to the same top is noticed too.
+// A re-sliced object gets a new table. Thread-safe: OrcaSlicer calls this from its layer
+// threads, in any order.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -31,9 +34,9 @@ namespace Slic3r {
 
 namespace {
 
-// What a table was computed from. Checked on each call to notice a re-sliced object:
-// every layer's print_z, not only the count and the top, since a re-slice can restack
-// the same number of layers to the same top with other heights (and other angles).
+// What a table was computed from, to notice a re-sliced object: every layer's print_z,
+// not only the count and the top, since a re-slice can restack the same number of layers
+// to the same top with other heights (and other angles).
 struct Fingerprint {
     std::vector<double> print_z;
     double layer_height = 0, z_min = 0;
@@ -46,9 +49,10 @@ struct Fingerprint {
         read_settings(object, layer_height, z_min, bottom_shells, top_shells);
     }
 
-    // Whether the object is still what this was taken from. No allocation: a loop over
-    // the layers (what OrcaSlicer's own function does on every call, and more).
-    bool matches(const PrintObject* object) const {
+    // O(1): the settings, the count, the top, and layer `id` and the one below it. Any
+    // layer whose place changed is noticed when it is asked for; `matches` (on layer 0)
+    // catches the rest once per pass.
+    bool quick_matches(const PrintObject* object, std::size_t id) const {
         double h, z;
         int b, t;
         read_settings(object, h, z, b, t);
@@ -56,6 +60,16 @@ struct Fingerprint {
         if (h != layer_height || z != z_min || b != bottom_shells || t != top_shells ||
             layers.size() != print_z.size())
             return false;
+        if (layers.empty()) return true;
+        if (layers.back()->print_z != print_z.back()) return false;
+        if (id < layers.size() && layers[id]->print_z != print_z[id]) return false;
+        return id == 0 || id > layers.size() || layers[id - 1]->print_z == print_z[id - 1];
+    }
+
+    // O(layers), no allocation: every layer's print_z.
+    bool matches(const PrintObject* object) const {
+        if (!quick_matches(object, 0)) return false;
+        const auto& layers = object->layers();
         for (std::size_t i = 0; i < layers.size(); i++)
             if (layers[i]->print_z != print_z[i]) return false;
         return true;
@@ -82,24 +96,28 @@ struct AngleTable {
 std::mutex cache_mutex;
 std::unordered_map<const PrintObject*, std::vector<std::shared_ptr<AngleTable>>> cache;
 
-std::shared_ptr<AngleTable> table_for(const PrintObject* object, const std::string& text) {
+// Whether `table` still fits `object`: checked outside the lock (a table's fingerprint never
+// changes; the object's layers do not change while OrcaSlicer runs its layer threads).
+// Layer 0's call reads every layer, once per pass over the object: O(1) a call on average.
+bool current(const AngleTable& table, const PrintObject* object, std::size_t layer_id) {
+    return layer_id == 0 ? table.fingerprint.matches(object) : table.fingerprint.quick_matches(object, layer_id);
+}
+
+std::shared_ptr<AngleTable> table_for(const PrintObject* object, const std::string& text, std::size_t layer_id) {
     std::shared_ptr<AngleTable> found;
     {
         std::lock_guard<std::mutex> lock(cache_mutex);
         for (auto& table : cache[object])
             if (table->text == text) found = table;
     }
-    // The check reads every layer: done outside the lock, so threads check in parallel
-    // (a table's fingerprint never changes; the object's layers do not change while
-    // OrcaSlicer runs its layer threads).
-    if (found && found->fingerprint.matches(object)) return found;
+    if (found && current(*found, object, layer_id)) return found;
     auto fresh = std::make_shared<AngleTable>(text, object);
     std::lock_guard<std::mutex> lock(cache_mutex);
     auto& tables = cache[object];
     for (auto& table : tables) {
         if (table->text != text) continue;
         // Another thread may have replaced the stale table first: use its table then.
-        if (table != found && table->fingerprint.matches(object)) return table;
+        if (table != found && current(*table, object, layer_id)) return table;
         table = fresh;
         return fresh;
     }
@@ -145,7 +163,7 @@ double calculate_infill_rotation_angle(const PrintObject* object, size_t layer_i
                                        const std::string& template_string) {
     double fixed = M_PI * fixed_infill_angle / 180.0;
     if (template_string.empty() || object == nullptr) return fixed;
-    std::shared_ptr<AngleTable> table = table_for(object, template_string);
+    std::shared_ptr<AngleTable> table = table_for(object, template_string, layer_id);
     std::call_once(table->computed, compute, std::ref(*table), object);
     return layer_id < table->radians.size() ? table->radians[layer_id] : fixed;
 }

@@ -182,10 +182,14 @@ fn on_model(
             .or(o.instruction)
             .unwrap_or_else(|| whole(text));
         let message = if r.fill != Fill::Sparse && same_angle(r.angle, o.angle) {
+            // `S` is plain "solid"; the other solid signs name their pattern.
+            let solid = match r.fill {
+                Fill::Solid => "a solid layer".to_owned(),
+                other => format!("a {} solid layer", other.name()),
+            };
             format!(
-                "OrcaSlicer makes layer {} sparse infill, rotlang a {} solid layer",
-                r.index,
-                r.fill.name()
+                "OrcaSlicer makes layer {} sparse infill, rotlang {solid}",
+                r.index
             )
         } else {
             format!(

@@ -203,3 +203,16 @@ fn orcaslicer_change_detects_rewrites_it_reads_differently() {
     assert_eq!(orcaslicer_change("0 90  +30/50%", "0, 90, +30/50%"), None);
     assert_eq!(orcaslicer_change("B!\n240M3\n#25", "B!, 240M3, #25"), None);
 }
+
+#[test]
+fn solid_layer_messages_read_well() {
+    // `S` once said "rotlang a solid solid layer".
+    assert_eq!(
+        find("0S, 90", DIFFERS).message,
+        "OrcaSlicer makes layer 0 sparse infill, rotlang a solid layer"
+    );
+    assert_eq!(
+        find("0M, 90", DIFFERS).message,
+        "OrcaSlicer makes layer 0 sparse infill, rotlang a monotonic solid layer"
+    );
+}

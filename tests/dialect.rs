@@ -464,7 +464,28 @@ fn compat_flags_every_case_orcaslicer_reads_differently() {
         failures.len(),
         failures.join("\n")
     );
-    eprintln!("same cases with rule-based findings: {same_with_rules}: {rule_findings:?}");
+    // A line the notes can quote as it is.
+    let per_code: Vec<String> = rule_findings
+        .iter()
+        .map(|(code, n)| format!("{n} {code}"))
+        .collect();
+    eprintln!(
+        "{same_with_rules} `same` cases get rule-based findings ({} findings: {})",
+        rule_findings.values().sum::<usize>(),
+        per_code.join(", ")
+    );
+    if dir().1 {
+        let want: BTreeMap<&str, usize> = [
+            ("orcaslicer::ignored-in-list", 28),
+            ("orcaslicer::text-after-bang", 20),
+        ]
+        .into();
+        assert_eq!(
+            (same_with_rules, rule_findings),
+            (40, want),
+            "`same` cases with rule-based findings, and the findings per code"
+        );
+    }
 }
 
 /// `rotlang fmt` leaves a template alone when OrcaSlicer would read the canonical form

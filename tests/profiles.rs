@@ -182,8 +182,14 @@ fn check_runs_over_the_fixture_folder() {
         out.contains("note: ") && out.contains("OrcaSlicer's default 45° is used"),
         "{out}"
     );
+    // 9 findings on the templates, and 12 templates with a direction OrcaSlicer ignores.
+    assert_eq!(
+        out.matches("warning[orcaslicer::direction-ignored]").count(),
+        12,
+        "{out}"
+    );
     assert!(
-        out.ends_with("ok: 15 templates in 8 files, 9 warnings\n"),
+        out.ends_with("ok: 15 templates in 8 files, 21 warnings\n"),
         "{out}"
     );
 }
@@ -303,6 +309,56 @@ fn expand_with_a_profile() {
         err.contains("no `sparse_infill_rotate_template` in this file"),
         "{err}"
     );
+}
+
+/// OrcaSlicer uses the infill direction only for an empty template; rotlang adds it to
+/// every angle. `expand --dialect orcaslicer` and the compat lint follow that.
+#[test]
+fn the_direction_is_orcaslicers_only_for_an_empty_template() {
+    let dir = Scratch::new("direction");
+    let dir45 = dir.file(
+        "dir45.json",
+        br#"{"sparse_infill_rotate_template": "0, 90", "sparse_infill_direction": "45", "layer_height": "0.2", "initial_layer_print_height": "0.2", "bottom_shell_layers": "3", "top_shell_layers": "4"}"#,
+    );
+    let empty = dir.file(
+        "empty.json",
+        br#"{"sparse_infill_rotate_template": "", "sparse_infill_direction": "45"}"#,
+    );
+    let angles = |path: &Path, dialect: &str| {
+        let (code, out, err) = rotlang(&[
+            "expand",
+            "--profile",
+            &path.display().to_string(),
+            "--dialect",
+            dialect,
+            "--format",
+            "csv",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        out.lines()
+            .skip(1)
+            .take(2)
+            .map(|row| row.split(',').nth(3).unwrap().to_owned())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(angles(&dir45, "orcaslicer"), ["0", "90"]);
+    assert_eq!(angles(&dir45, "rotlang"), ["45", "135"]);
+    assert_eq!(angles(&empty, "orcaslicer"), ["45", "45"]);
+    assert_eq!(angles(&empty, "rotlang"), ["45", "45"]);
+    let (code, out, _) = rotlang(&[
+        "check",
+        "--compat",
+        "orcaslicer",
+        "--color",
+        "never",
+        &dir45.display().to_string(),
+    ]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("warning[orcaslicer::direction-ignored]: sparse_infill_rotate_template: OrcaSlicer ignores sparse_infill_direction = 45° when a template is set; rotlang adds it to every angle"),
+        "{out}"
+    );
+    assert!(!out.contains("orcaslicer::differs"), "{out}");
 }
 
 #[test]

@@ -188,6 +188,8 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     // The model first: a usage error should not wait for stdin.
     let mut resolved = args.model.resolve()?;
     let mut base = args.base;
+    // The base is the profile's direction (not --base): OrcaSlicer drops it for a template.
+    let mut direction = false;
     let input = match &args.profile {
         Some(path) => {
             let p = super::files::profile_template(path, args.target.into(), args.model.height)?;
@@ -202,6 +204,7 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
             }
             if base == 0.0 {
                 base = p.base;
+                direction = true;
             }
             Input {
                 name: path.display().to_string(),
@@ -245,6 +248,11 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         end,
     };
     if args.dialect == eval::Dialect::OrcaSlicer {
+        let options = if direction {
+            crate::dialect::orcaslicer::profile_options(&input.text, options)
+        } else {
+            options
+        };
         // No grammar, so no diagnostics: JSON echoes none.
         let empty = crate::Parse::default();
         return super::dialect::expand(&input.text, &resolved.model, options, err, |layers| {

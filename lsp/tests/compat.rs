@@ -22,10 +22,23 @@ fn profiles_get_compat_findings_by_default() {
     let mut lsp = Lsp::start();
     let doc = "{\n  \"layer_height\": \"0.2\",\n  \"sparse_infill_rotate_template\": \"0 90\"\n}\n";
     let diags = lsp.open("file:///tmp/p.json", "json", doc);
+    // No direction set: OrcaSlicer's default 45°, which it ignores for a template.
     assert_eq!(
         codes(&diags),
-        ["orcaslicer::differs", "orcaslicer::space-separated-list"],
+        [
+            "orcaslicer::differs",
+            "orcaslicer::direction-ignored",
+            "orcaslicer::space-separated-list"
+        ],
         "{diags:#?}"
+    );
+    let direction = diags
+        .iter()
+        .find(|d| d["code"] == "orcaslicer::direction-ignored")
+        .unwrap();
+    assert_eq!(
+        direction["message"],
+        "OrcaSlicer ignores sparse_infill_direction = 45° when a template is set; rotlang adds it to every angle"
     );
     let space = diags
         .iter()

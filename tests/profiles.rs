@@ -115,6 +115,48 @@ fn the_project_fixture() {
     assert_eq!(lid.model.layer_height(), 0.16);
 }
 
+/// A part's template takes every model key it does not set from its object, then from
+/// the project: part → object → project.
+#[test]
+fn parts_inherit_from_their_object_then_the_project() {
+    let project = br#"{"layer_height": "0.2", "top_shell_layers": "6", "sparse_infill_direction": "10"}"#;
+    let model = br#"<?xml version="1.0" encoding="UTF-8"?>
+<config>
+  <object id="1">
+    <metadata key="name" value="Box"/>
+    <part id="2" subtype="normal_part">
+      <metadata key="name" value="Plain"/>
+      <metadata key="sparse_infill_rotate_template" value="0, 90"/>
+    </part>
+    <part id="3" subtype="normal_part">
+      <metadata key="name" value="Own"/>
+      <metadata key="bottom_shell_layers" value="7"/>
+      <metadata key="sparse_infill_rotate_template" value="+30/5"/>
+    </part>
+    <metadata key="layer_height" value="0.12"/>
+  </object>
+</config>
+"#;
+    let bytes = zip_of(&[
+        ("Metadata/project_settings.config", project),
+        ("Metadata/model_settings.config", model),
+    ]);
+    let p = profile::parse(Path::new("parts.3mf"), &bytes).unwrap();
+    let object = |f: &profile::Found| f.object.clone().unwrap();
+    let plain = p.model(Target::Sparse, Some(&object(&p.templates[0])), 20.0);
+    assert_eq!(object(&p.templates[0]), "Box / part Plain");
+    // The object's 0.12 mm (set after its parts), the project's top shells and direction.
+    assert_eq!(plain.model.layer_height(), 0.12);
+    assert_eq!(plain.model.top_shells(), 6);
+    assert_eq!(plain.options.base, 10.0);
+    let own = p.model(Target::Sparse, Some(&object(&p.templates[1])), 20.0);
+    assert_eq!(own.model.layer_height(), 0.12);
+    assert_eq!((own.model.bottom_shells(), own.model.top_shells()), (7, 6));
+    // The object itself keeps its own keys and not its part's.
+    let object_model = p.model(Target::Sparse, Some("Box"), 20.0);
+    assert_eq!(object_model.model.bottom_shells(), 3);
+}
+
 #[test]
 fn presets_inherit_from_their_parents() {
     let p = profile::read(&fixture("orca/process/0.28mm Draft @Rotlang.json")).unwrap();

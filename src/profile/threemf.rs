@@ -89,6 +89,9 @@ struct Scope {
     /// Metadata of the current object (or part): key, value, value's contents span, map.
     entries: Vec<(String, String, Span, OffsetMap)>,
     id: Option<String>,
+    /// An object's parts, read: their labels and own settings, completed from the
+    /// object's once the object ends (its metadata may follow its parts).
+    parts: Vec<(String, Settings)>,
 }
 
 /// `<config><object id=…><metadata key=… value=…/><part id=…><metadata …/></part></object>`.
@@ -165,7 +168,11 @@ fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
                         .or(p.id.clone())
                         .unwrap_or_default();
                     let owner = object_label(object.as_ref(), &object_name);
-                    collect(profile, source, p, &format!("{owner} / part {part_name}"));
+                    let label = format!("{owner} / part {part_name}");
+                    let settings = collect(profile, source, p, &label);
+                    if let Some(o) = object.as_mut() {
+                        o.parts.push((label, settings));
+                    }
                 }
                 "object" if object.is_some() => {
                     finish_object(profile, source, object.take(), &object_name);
@@ -186,15 +193,27 @@ fn object_label(object: Option<&Scope>, name: &str) -> String {
     }
 }
 
+/// A part inherits every model key it does not set from its object, which inherits from
+/// the project (`Profile::model`): part → object → project, as OrcaSlicer resolves them.
 fn finish_object(profile: &mut Profile, source: usize, object: Option<Scope>, name: &str) {
-    if let Some(o) = object {
+    if let Some(mut o) = object {
         let label = object_label(Some(&o), name);
-        collect(profile, source, o, &label);
+        let parts = std::mem::take(&mut o.parts);
+        let settings = collect(profile, source, o, &label);
+        for (part, mut own) in parts {
+            own.merge_missing(settings.clone());
+            if !own.values.is_empty() {
+                profile.objects.push((part, own));
+            }
+        }
+        if !settings.values.is_empty() {
+            profile.objects.push((label, settings));
+        }
     }
 }
 
-/// The templates and model settings of one object (or part).
-fn collect(profile: &mut Profile, source: usize, scope: Scope, label: &str) {
+/// The templates and model settings of one object (or part); the settings are returned.
+fn collect(profile: &mut Profile, source: usize, scope: Scope, label: &str) -> Settings {
     let mut settings = Settings::default();
     for (key, value, span, map) in scope.entries {
         if let Some(&(_, target)) = TEMPLATE_KEYS.iter().find(|(k, _)| *k == key) {
@@ -210,9 +229,7 @@ fn collect(profile: &mut Profile, source: usize, scope: Scope, label: &str) {
             settings.set(&key, value, source, span);
         }
     }
-    if !settings.values.is_empty() {
-        profile.objects.push((label.to_owned(), settings));
-    }
+    settings
 }
 
 /// A map built on a tag's text, moved to the tag's place in the document.

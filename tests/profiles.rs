@@ -478,6 +478,76 @@ fn hostile_files_fail_alone() {
     assert!(!out.contains("good.json"), "{out}");
 }
 
+/// Attributes are read by an XML reader: a `key="…"` inside another attribute's value is
+/// text, entities are decoded, and the template keeps its place in the file.
+#[test]
+fn xml_attributes_are_read_as_xml() {
+    let model = br#"<config><object id="1">
+<metadata value=' key="sparse_infill_rotate_template"' key="layer_height"/>
+<metadata key="solid_infill_rotate_template" value="&quot;0&quot;, &#x2B;30/50%"/>
+</object></config>"#;
+    let bytes = zip_of(&[("Metadata/model_settings.config", model)]);
+    let p = profile::parse(Path::new("attrs.3mf"), &bytes).unwrap();
+    let found: Vec<(&str, &str)> = p
+        .templates
+        .iter()
+        .map(|f| (f.key.as_deref().unwrap(), f.text.as_str()))
+        .collect();
+    assert_eq!(found, [("solid_infill_rotate_template", "\"0\", +30/50%")]);
+    let xml = &p.sources[p.templates[0].source].text;
+    let at = |a, b| &xml[p.templates[0].span_in_source(rotlang::Span::new(a, b)).range()];
+    assert_eq!((at(0, 1), at(5, 6)), ("&quot;", "&#x2B;"));
+    // The value of `layer_height` is the text that looked like a key.
+    let object = &p.objects[0].1.values["layer_height"];
+    assert_eq!(object.value, " key=\"sparse_infill_rotate_template\"");
+    // A duplicate attribute is not XML: an error for the file.
+    let dup = zip_of(&[(
+        "Metadata/model_settings.config",
+        br#"<config><object id="1"><metadata key="a" key="b" value="c"/></object></config>"#
+            .as_slice(),
+    )]);
+    let e = profile::parse(Path::new("dup.3mf"), &dup).unwrap_err();
+    assert!(e.message.contains("invalid XML attribute"), "{e}");
+}
+
+/// A preset is a flat object: a template key inside a nested object is not its template.
+#[test]
+fn only_top_level_keys_are_preset_keys() {
+    let doc = br#"{"x": {"sparse_infill_rotate_template": "0 90", "layer_height": "0.1"}, "list": [{"solid_infill_rotate_template": "5"}], "sparse_infill_rotate_template": "+30/5", "layer_height": "0.16"}"#;
+    let p = profile::parse(Path::new("nested.json"), doc).unwrap();
+    let found: Vec<&str> = p.templates.iter().map(|f| f.text.as_str()).collect();
+    assert_eq!(found, ["+30/5"]);
+    assert_eq!(p.settings.values["layer_height"].value, "0.16");
+    assert!(rotlang::profile::json::find_templates(r#"{"x":{"sparse_infill_rotate_template":"0"}}"#).is_empty());
+    // Arrays of values (per extruder) are still read.
+    let p = profile::parse(
+        Path::new("array.json"),
+        br#"{"sparse_infill_rotate_template": ["0, 90"], "layer_height": ["0.1", "0.2"]}"#,
+    )
+    .unwrap();
+    assert_eq!(p.templates[0].text, "0, 90");
+    assert_eq!(p.settings.values["layer_height"].value, "0.1");
+}
+
+/// An archive of more entries than a project holds is refused before its directory is read.
+#[test]
+fn archives_of_too_many_entries_are_refused() {
+    let names: Vec<String> = (0..=profile::MAX_ENTRIES)
+        .map(|i| format!("e{i}"))
+        .collect();
+    let mut entries: Vec<(&str, &[u8])> = names.iter().map(|n| (n.as_str(), &b""[..])).collect();
+    entries.push(("Metadata/project_settings.config", b"{}"));
+    let bytes = zip_of(&entries);
+    let e = profile::parse(Path::new("many.3mf"), &bytes).unwrap_err();
+    assert_eq!(
+        e.message,
+        "a zip archive of 10002 entries, more than the 10000 a project can hold"
+    );
+    // Just under the cap is read.
+    let bytes = zip_of(&entries[2..]);
+    assert!(profile::parse(Path::new("fine.3mf"), &bytes).is_ok());
+}
+
 /// A zip whose headers claim a small entry that inflates to far more: the cap holds.
 #[test]
 fn lying_sizes_are_capped() {

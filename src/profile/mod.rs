@@ -32,6 +32,8 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 
 pub use json::OffsetMap;
+#[cfg(feature = "3mf")]
+pub use threemf::{MAX_ENTRIES, MAX_ENTRY_BYTES};
 pub use settings::{DEFAULT_OBJECT_HEIGHT, MODEL_KEYS, ProfileModel, Setting, Settings};
 
 use crate::{Span, Target};

@@ -403,6 +403,30 @@ fn the_direction_is_orcaslicers_only_for_an_empty_template() {
     assert!(!out.contains("orcaslicer::differs"), "{out}");
 }
 
+/// A template key holding another type: `expand` says what `check` says, not "no key".
+#[test]
+fn expand_names_a_template_of_the_wrong_type() {
+    let dir = Scratch::new("types");
+    let types = dir.file("types.json", br#"{"sparse_infill_rotate_template": 5}"#);
+    let (code, _, err) = rotlang(&["expand", "--profile", &types.display().to_string()]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("types.json: `sparse_infill_rotate_template` should be a template (a string), not `5` (line 1, column 35)"),
+        "{err}"
+    );
+    let (_, out, _) = rotlang(&["check", "--color", "never", &types.display().to_string()]);
+    assert!(
+        out.contains("`sparse_infill_rotate_template` should be a template (a string), not `5`"),
+        "{out}"
+    );
+    let p = profile::read(&types).unwrap();
+    assert!(p.template(Target::Sparse).is_err());
+    assert_eq!(
+        p.template(Target::Solid).unwrap_err(),
+        "no `solid_infill_rotate_template` in this file"
+    );
+}
+
 #[test]
 fn hostile_files_fail_alone() {
     let dir = Scratch::new("hostile");

@@ -150,6 +150,8 @@ pub struct Note {
     pub message: String,
     /// An error fails the file; otherwise it is information.
     pub error: bool,
+    /// The key the note is about (a value of the wrong type), if any.
+    pub key: Option<String>,
 }
 
 /// A file read: its texts, the templates in it, and the settings the model comes from.
@@ -172,6 +174,37 @@ impl Profile {
     pub fn model(&self, target: Target, object: Option<&str>, height: f64) -> ProfileModel {
         let own = object.and_then(|o| self.objects.iter().find(|(n, _)| n == o).map(|(_, s)| s));
         self.settings.model(own, target, height)
+    }
+
+    /// The template of `target` a command takes from this file (`expand --profile`): the
+    /// file's (or the project's) own, else the first object's. When there is none, why:
+    /// the key holds a value of another type (what `check` reports), or no such key.
+    pub fn template(&self, target: Target) -> Result<&Found, String> {
+        let key = TEMPLATE_KEYS
+            .iter()
+            .find(|(_, t)| *t == target)
+            .map_or("", |(k, _)| *k);
+        if let Some(found) = self
+            .templates
+            .iter()
+            .find(|f| f.target == target && f.object.is_none())
+            .or_else(|| self.templates.iter().find(|f| f.target == target))
+        {
+            return Ok(found);
+        }
+        match self
+            .notes
+            .iter()
+            .find(|n| n.error && n.key.as_deref() == Some(key))
+        {
+            Some(note) => {
+                let text = self.sources.get(note.source).map_or("", |s| s.text.as_str());
+                let (line, column) = crate::diagnostic::LineIndex::new(text)
+                    .line_col(note.span.start.min(text.len()));
+                Err(format!("{} (line {line}, column {column})", note.message))
+            }
+            None => Err(format!("no `{key}` in this file")),
+        }
     }
 
     /// Whether any note is an error.
@@ -323,6 +356,7 @@ pub(crate) fn json_file(profile: &mut Profile, source: usize, object: Option<&st
             span: Span::new(offset, offset),
             message: format!("invalid JSON: {message}"),
             error: true,
+            key: None,
         });
     }
     let mut keys: Vec<&str> = TEMPLATE_KEYS.iter().map(|(k, _)| *k).collect();
@@ -364,6 +398,7 @@ pub(crate) fn json_file(profile: &mut Profile, source: usize, object: Option<&st
                             &doc[span.range()]
                         ),
                         error: template.is_some(),
+                        key: Some(kv.key.clone()),
                     });
                 }
             }

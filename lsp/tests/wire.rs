@@ -593,6 +593,47 @@ fn formatting_replaces_the_whole_document_or_nothing() {
     );
 }
 
+/// Where OrcaSlicer's reading matters (profiles by default; `.rot` with `compat` on),
+/// formatting leaves a template alone when OrcaSlicer would read the canonical form
+/// differently: `0,,90` is 0°, 0°, 90° for it, `0, 90` is not.
+#[test]
+fn formatting_keeps_what_orcaslicer_reads() {
+    let mut lsp = Lsp::start();
+    let format = |lsp: &mut Lsp, uri: &str| {
+        lsp.result(
+            "textDocument/formatting",
+            json!({"textDocument": {"uri": uri}, "options": {"tabSize": 4, "insertSpaces": true}}),
+        )
+    };
+    let doc = "{\"sparse_infill_rotate_template\": \"0,,90\", \"solid_infill_rotate_template\": \"+30,90\"}";
+    lsp.open(JSON, "json", doc);
+    let edits = format(&mut lsp, JSON);
+    assert_eq!(
+        edits[0]["newText"],
+        "{\"sparse_infill_rotate_template\": \"0,,90\", \"solid_infill_rotate_template\": \"+30, 90\"}"
+    );
+    let ini = "file:///tmp/wire-fmt.ini";
+    lsp.open(ini, "ini", "sparse_infill_rotate_template = 0,,90\n");
+    assert_eq!(format(&mut lsp, ini), json!([]), "nothing OrcaSlicer reads alike");
+    // A `.rot` file is rotlang's unless compat is asked for.
+    lsp.open(ROT, "rotlang", "0,,90\n");
+    assert_eq!(format(&mut lsp, ROT)[0]["newText"], "0, 90\n");
+    lsp.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"rotlang": {"compat": "orcaslicer"}}}),
+    );
+    assert_eq!(format(&mut lsp, ROT), json!([]));
+    // Off: profiles are formatted as rotlang reads them.
+    lsp.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"rotlang": {"compat": "off"}}}),
+    );
+    assert_eq!(
+        format(&mut lsp, ini)[0]["newText"],
+        "sparse_infill_rotate_template = 0, 90\n"
+    );
+}
+
 #[test]
 fn inlay_hints_show_the_resolved_turn() {
     let mut lsp = Lsp::start();

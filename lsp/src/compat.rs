@@ -32,8 +32,15 @@ pub fn diagnostics(
         Kind::Jsonc => Some("profile.jsonc"),
         Kind::Ini => Some("profile.ini"),
     };
-    let profile =
-        name.and_then(|n| rotlang::profile::parse(Path::new(n), doc.text.as_bytes()).ok());
+    let profile = name.and_then(|n| {
+        let mut p = rotlang::profile::parse(Path::new(n), doc.text.as_bytes()).ok()?;
+        // A file on disk: its `inherits` parents are found beside it, as the CLI finds them.
+        if let Some(path) = uri.to_file_path() {
+            p.path = path.into_owned();
+            p.resolve_inherits();
+        }
+        Some(p)
+    });
     let mut out = Vec::new();
     // A template with errors gets those first: OrcaSlicer's view of text rotlang rejects
     // would only add noise until it is fixed.

@@ -207,6 +207,16 @@ impl Profile {
         }
     }
 
+    /// For a JSON preset with `inherits`: the model keys it lacks, taken from its parent
+    /// presets beside [`Profile::path`] (`<inherits>.json` in the same folder, recursively),
+    /// as [`read`] does. For a text read some other way (an editor's buffer), set `path` to
+    /// the file's place first, so that its parents are found as the CLI finds them.
+    pub fn resolve_inherits(&mut self) {
+        if self.kind == Some(Kind::Json) {
+            settings::resolve_inherits(&mut self.settings, &self.path);
+        }
+    }
+
     /// Whether any note is an error.
     pub fn has_errors(&self) -> bool {
         self.notes.iter().any(|n| n.error)
@@ -241,9 +251,7 @@ fn error(path: &Path, message: impl Into<String>) -> ProfileError {
 pub fn read(path: &Path) -> Result<Profile, ProfileError> {
     let bytes = read_bounded(path)?;
     let mut profile = parse(path, &bytes)?;
-    if profile.kind == Some(Kind::Json) {
-        settings::resolve_inherits(&mut profile.settings, path);
-    }
+    profile.resolve_inherits();
     Ok(profile)
 }
 

@@ -16,7 +16,7 @@ pub fn formatting(
     pos: &Positions,
     keep_orcaslicer: bool,
 ) -> Option<Vec<TextEdit>> {
-    let formatted = formatted_text(doc, keep_orcaslicer)?;
+    let formatted = formatted_keeping(doc, keep_orcaslicer)?;
     if formatted == doc.text {
         return Some(Vec::new());
     }
@@ -35,9 +35,14 @@ fn orcaslicer_reads_differently(text: &str, formatted: &str) -> bool {
     before != after && rotlang::dialect::compat::orcaslicer_change(&before, &after).is_some()
 }
 
-/// The document with every template in canonical form; with `keep_orcaslicer`, templates
-/// OrcaSlicer would read differently once formatted stay as they are.
-pub fn formatted_text(doc: &Document, keep_orcaslicer: bool) -> Option<String> {
+/// The document with every template in canonical form.
+pub fn formatted_text(doc: &Document) -> Option<String> {
+    formatted_keeping(doc, false)
+}
+
+/// [`formatted_text`]; with `keep_orcaslicer`, templates OrcaSlicer would read
+/// differently once formatted stay as they are.
+pub fn formatted_keeping(doc: &Document, keep_orcaslicer: bool) -> Option<String> {
     match doc.kind {
         Kind::Rot => {
             let region = doc.regions.first()?;

@@ -160,8 +160,9 @@ fn json_profile_diagnostics_land_on_the_right_characters() {
     let start = doc.find("\\ud835").unwrap() as u64;
     assert_eq!(diags[0]["range"], range(0, start, 0, start + 12));
 
-    // A good profile has no diagnostics.
-    lsp.change(JSON, 3, r#"{"sparse_infill_rotate_template": "+10L25%, -10l25%", "solid_infill_rotate_template": "0, 90"}"#);
+    // A good profile has no diagnostics (its directions 0: OrcaSlicer's default 45° would
+    // be ignored by OrcaSlicer and added by rotlang, orcaslicer::direction-ignored).
+    lsp.change(JSON, 3, r#"{"sparse_infill_rotate_template": "+10L25%, -10l25%", "solid_infill_rotate_template": "0, 90", "sparse_infill_direction": "0", "solid_infill_direction": 0}"#);
     assert!(lsp.diagnostics(JSON, Some(3)).is_empty());
 }
 

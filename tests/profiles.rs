@@ -119,7 +119,8 @@ fn the_project_fixture() {
 /// the project: part → object → project.
 #[test]
 fn parts_inherit_from_their_object_then_the_project() {
-    let project = br#"{"layer_height": "0.2", "top_shell_layers": "6", "sparse_infill_direction": "10"}"#;
+    let project =
+        br#"{"layer_height": "0.2", "top_shell_layers": "6", "sparse_infill_direction": "10"}"#;
     let model = br#"<?xml version="1.0" encoding="UTF-8"?>
 <config>
   <object id="1">
@@ -226,7 +227,8 @@ fn check_runs_over_the_fixture_folder() {
     );
     // 9 findings on the templates, and 12 templates with a direction OrcaSlicer ignores.
     assert_eq!(
-        out.matches("warning[orcaslicer::direction-ignored]").count(),
+        out.matches("warning[orcaslicer::direction-ignored]")
+            .count(),
         12,
         "{out}"
     );
@@ -519,7 +521,11 @@ fn xml_attributes_are_read_as_xml() {
         .collect();
     assert_eq!(found, [("solid_infill_rotate_template", "\"0\", +30/50%")]);
     let xml = &p.sources[p.templates[0].source].text;
-    let at = |a, b| &xml[p.templates[0].span_in_source(rotlang::Span::new(a, b)).range()];
+    let at = |a, b| {
+        &xml[p.templates[0]
+            .span_in_source(rotlang::Span::new(a, b))
+            .range()]
+    };
     assert_eq!((at(0, 1), at(5, 6)), ("&quot;", "&#x2B;"));
     // The value of `layer_height` is the text that looked like a key.
     let object = &p.objects[0].1.values["layer_height"];
@@ -542,7 +548,10 @@ fn only_top_level_keys_are_preset_keys() {
     let found: Vec<&str> = p.templates.iter().map(|f| f.text.as_str()).collect();
     assert_eq!(found, ["+30/5"]);
     assert_eq!(p.settings.values["layer_height"].value, "0.16");
-    assert!(rotlang::profile::json::find_templates(r#"{"x":{"sparse_infill_rotate_template":"0"}}"#).is_empty());
+    assert!(
+        rotlang::profile::json::find_templates(r#"{"x":{"sparse_infill_rotate_template":"0"}}"#)
+            .is_empty()
+    );
     // Arrays of values (per extruder) are still read.
     let p = profile::parse(
         Path::new("array.json"),

@@ -11,11 +11,7 @@ use crate::position::Positions;
 
 /// `None` when a template has errors; an empty list when the document is already
 /// formatted; otherwise a single whole-document edit.
-pub fn formatting(
-    doc: &Document,
-    pos: &Positions,
-    keep_orcaslicer: bool,
-) -> Option<Vec<TextEdit>> {
+pub fn formatting(doc: &Document, pos: &Positions, keep_orcaslicer: bool) -> Option<Vec<TextEdit>> {
     let formatted = formatted_keeping(doc, keep_orcaslicer)?;
     if formatted == doc.text {
         return Some(Vec::new());

@@ -418,7 +418,7 @@ impl LanguageServer for Backend {
         guard(|| {
             formatting::formatting(&doc, &Positions::new(&doc.text, encoding), keep_orcaslicer)
         })
-            .ok_or_else(internal)
+        .ok_or_else(internal)
     }
 
     async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {

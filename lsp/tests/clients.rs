@@ -110,7 +110,10 @@ fn completion_replaces_the_instruction_typed_so_far_as_eglot_expects() {
             assert_eq!(unit["textEdit"]["newText"], want, "{fixture} {label}");
             assert_eq!(unit["textEdit"]["range"], range(0, 0, 0, end as u64));
             assert!(
-                unit["filterText"].as_str().unwrap().starts_with(&text[..end]),
+                unit["filterText"]
+                    .as_str()
+                    .unwrap()
+                    .starts_with(&text[..end]),
                 "{fixture} {label}: {unit:#?}"
             );
             assert_eq!(

@@ -119,7 +119,10 @@ fn inherited_settings_are_read_beside_the_file() {
     let differs = |d: &serde_json::Value| d["code"] == "orcaslicer::differs";
     if let Some(d) = diags.iter().find(|d| differs(d)) {
         let lib = rotlang::dialect::compat(&found.text, found.target, &pm.model, pm.options);
-        let lib = lib.iter().find(|d| d.code == "orcaslicer::differs").unwrap();
+        let lib = lib
+            .iter()
+            .find(|d| d.code == "orcaslicer::differs")
+            .unwrap();
         assert_eq!(d["message"], lib.message);
     }
     // An unsaved buffer (no file behind it) keeps OrcaSlicer's defaults.

@@ -9,7 +9,10 @@ use serde_json::{Map, Value};
 const CLIENT_KEYS: [&str; 2] = ["server.path", "trace.server"];
 
 fn declared() -> Map<String, Value> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../editors/vscode/package.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../editors/vscode/package.json"
+    );
     let text = std::fs::read_to_string(path).expect("editors/vscode/package.json");
     let manifest: Value = serde_json::from_str(&text).expect("package.json is JSON");
     manifest["contributes"]["configuration"]["properties"]
@@ -70,8 +73,11 @@ fn package_json_defaults_are_the_server_defaults() {
             }
         }
     }
-    let mut settings = ModelSettings::default();
-    settings.layers = 7;
+    // Changed first: the defaults must come from the section, not be left over.
+    let mut settings = ModelSettings {
+        layers: 7,
+        ..ModelSettings::default()
+    };
     let rejected = settings.replace(&Value::Object(section));
     assert!(rejected.is_empty(), "{rejected:?}");
     assert_eq!(settings, ModelSettings::default());

@@ -615,7 +615,11 @@ fn formatting_keeps_what_orcaslicer_reads() {
     );
     let ini = "file:///tmp/wire-fmt.ini";
     lsp.open(ini, "ini", "sparse_infill_rotate_template = 0,,90\n");
-    assert_eq!(format(&mut lsp, ini), json!([]), "nothing OrcaSlicer reads alike");
+    assert_eq!(
+        format(&mut lsp, ini),
+        json!([]),
+        "nothing OrcaSlicer reads alike"
+    );
     // A `.rot` file is rotlang's unless compat is asked for.
     lsp.open(ROT, "rotlang", "0,,90\n");
     assert_eq!(format(&mut lsp, ROT)[0]["newText"], "0, 90\n");

@@ -32,9 +32,9 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 
 pub use json::OffsetMap;
+pub use settings::{DEFAULT_OBJECT_HEIGHT, MODEL_KEYS, ProfileModel, Setting, Settings};
 #[cfg(feature = "3mf")]
 pub use threemf::{MAX_ENTRIES, MAX_ENTRY_BYTES};
-pub use settings::{DEFAULT_OBJECT_HEIGHT, MODEL_KEYS, ProfileModel, Setting, Settings};
 
 use crate::{Span, Target};
 
@@ -198,7 +198,10 @@ impl Profile {
             .find(|n| n.error && n.key.as_deref() == Some(key))
         {
             Some(note) => {
-                let text = self.sources.get(note.source).map_or("", |s| s.text.as_str());
+                let text = self
+                    .sources
+                    .get(note.source)
+                    .map_or("", |s| s.text.as_str());
                 let (line, column) = crate::diagnostic::LineIndex::new(text)
                     .line_col(note.span.start.min(text.len()));
                 Err(format!("{} (line {line}, column {column})", note.message))

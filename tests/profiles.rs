@@ -641,3 +641,25 @@ proptest! {
         let _ = profile::json::strip_jsonc(&doc);
     }
 }
+
+/// Every `profile::` code `rotlang explain` documents: its example, read as a JSON preset,
+/// gets a note of that severity (`check` reports notes under these codes).
+#[test]
+fn explained_profile_examples_report_their_code() {
+    let docs: Vec<_> = rotlang::explain::codes()
+        .iter()
+        .filter(|d| d.code.starts_with("profile::"))
+        .collect();
+    assert_eq!(docs.len(), 2);
+    for doc in docs {
+        let p = profile::parse(Path::new("example.json"), doc.example.as_bytes()).unwrap();
+        let error = doc.code == "profile::invalid";
+        assert_eq!(doc.severity, if error { "error" } else { "warning" });
+        assert!(
+            p.notes.iter().any(|n| n.error == error),
+            "{}: {:?}",
+            doc.code,
+            p.notes
+        );
+    }
+}

@@ -162,6 +162,22 @@ static CODES: &[CodeDoc] = &[
         "Use a count below 2147483647 (a length like `100%` for the whole object).",
     ),
     doc(
+        "profile::invalid",
+        E,
+        "a profile file that OrcaSlicer cannot read as it is: invalid JSON, or a template key holding something other than a string",
+        "`rotlang check` reads OrcaSlicer presets, `.ini` exports and `.3mf` projects. A JSON syntax error stops the reading at that point (templates after it are missed); a template key (`sparse_infill_rotate_template`, `solid_infill_rotate_template`) must hold a string, as OrcaSlicer writes it. The file fails; the other files are still checked.",
+        "{\"sparse_infill_rotate_template\": 90}",
+        "Fix the JSON at the position shown, or quote the template: `\"sparse_infill_rotate_template\": \"90\"`.",
+    ),
+    doc(
+        "profile::value",
+        W,
+        "a model key of a profile holds a value rotlang cannot use",
+        "The model of a profile's templates comes from its `layer_height`, `initial_layer_print_height`, `bottom_shell_layers`, `top_shell_layers` and infill direction. A key holding an object, a list of no numbers or another type is skipped, and OrcaSlicer's default is used (a note says which).",
+        "{\"layer_height\": {\"x\": 1}, \"sparse_infill_rotate_template\": \"0, 90\"}",
+        "Write the value as OrcaSlicer does: a number in a string (`\"layer_height\": \"0.2\"`).",
+    ),
+    doc(
         "rotlang-lsp::document-too-large",
         W,
         "the document is larger than the language server checks",

@@ -19,7 +19,12 @@ fn emitted_codes() -> BTreeSet<String> {
                 continue;
             }
             let text = std::fs::read_to_string(&path).expect("a source file");
-            for prefix in ["\"rotlang::", "\"orcaslicer::", "\"rotlang-lsp::"] {
+            for prefix in [
+                "\"rotlang::",
+                "\"orcaslicer::",
+                "\"rotlang-lsp::",
+                "\"profile::",
+            ] {
                 for (at, _) in text.match_indices(prefix) {
                     let rest = &text[at + 1..];
                     let end = rest

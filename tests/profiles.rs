@@ -386,6 +386,19 @@ fn the_direction_is_orcaslicers_only_for_an_empty_template() {
             .collect::<Vec<_>>()
     };
     assert_eq!(angles(&dir45, "orcaslicer"), ["0", "90"]);
+    let (_, _, err) = rotlang(&[
+        "expand",
+        "--profile",
+        &dir45.display().to_string(),
+        "--dialect",
+        "orcaslicer",
+    ]);
+    assert!(
+        err.contains(
+            "note: OrcaSlicer ignores the profile's direction (45°) when a template is set"
+        ),
+        "{err}"
+    );
     assert_eq!(angles(&dir45, "rotlang"), ["45", "135"]);
     assert_eq!(angles(&empty, "orcaslicer"), ["45", "45"]);
     assert_eq!(angles(&empty, "rotlang"), ["45", "45"]);

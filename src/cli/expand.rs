@@ -249,7 +249,16 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     };
     if args.dialect == eval::Dialect::OrcaSlicer {
         let options = if direction {
-            crate::dialect::orcaslicer::profile_options(&input.text, options)
+            let theirs = crate::dialect::orcaslicer::profile_options(&input.text, options);
+            if theirs.base != options.base {
+                writeln!(
+                    err,
+                    "note: OrcaSlicer ignores the profile's direction ({}°) when a template is set",
+                    options.base
+                )
+                .map_err(|e| UsageError(e.to_string()))?;
+            }
+            theirs
         } else {
             options
         };

@@ -464,7 +464,28 @@ fn compat_flags_every_case_orcaslicer_reads_differently() {
         failures.len(),
         failures.join("\n")
     );
-    eprintln!("same cases with rule-based findings: {same_with_rules}: {rule_findings:?}");
+    // A line the notes can quote as it is.
+    let per_code: Vec<String> = rule_findings
+        .iter()
+        .map(|(code, n)| format!("{n} {code}"))
+        .collect();
+    eprintln!(
+        "{same_with_rules} `same` cases get rule-based findings ({} findings: {})",
+        rule_findings.values().sum::<usize>(),
+        per_code.join(", ")
+    );
+    if dir().1 {
+        let want: BTreeMap<&str, usize> = [
+            ("orcaslicer::ignored-in-list", 28),
+            ("orcaslicer::text-after-bang", 20),
+        ]
+        .into();
+        assert_eq!(
+            (same_with_rules, rule_findings),
+            (40, want),
+            "`same` cases with rule-based findings, and the findings per code"
+        );
+    }
 }
 
 /// `rotlang fmt` leaves a template alone when OrcaSlicer would read the canonical form
@@ -521,11 +542,17 @@ fn explained_compat_examples_report_their_code() {
         .collect();
     assert_eq!(docs.len(), rotlang::dialect::compat::CODES.len());
     for doc in docs {
+        // The direction finding needs a profile's direction: OrcaSlicer's default 45°.
+        let base = if doc.code == rotlang::dialect::compat::DIRECTION_IGNORED {
+            45.0
+        } else {
+            0.0
+        };
         let found = rotlang::dialect::compat(
             doc.example,
             Target::Sparse,
             &Model::cube20(),
-            Options::default(),
+            Options { base, seed: 0 },
         );
         let d = found
             .iter()

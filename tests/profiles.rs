@@ -115,6 +115,49 @@ fn the_project_fixture() {
     assert_eq!(lid.model.layer_height(), 0.16);
 }
 
+/// A part's template takes every model key it does not set from its object, then from
+/// the project: part → object → project.
+#[test]
+fn parts_inherit_from_their_object_then_the_project() {
+    let project =
+        br#"{"layer_height": "0.2", "top_shell_layers": "6", "sparse_infill_direction": "10"}"#;
+    let model = br#"<?xml version="1.0" encoding="UTF-8"?>
+<config>
+  <object id="1">
+    <metadata key="name" value="Box"/>
+    <part id="2" subtype="normal_part">
+      <metadata key="name" value="Plain"/>
+      <metadata key="sparse_infill_rotate_template" value="0, 90"/>
+    </part>
+    <part id="3" subtype="normal_part">
+      <metadata key="name" value="Own"/>
+      <metadata key="bottom_shell_layers" value="7"/>
+      <metadata key="sparse_infill_rotate_template" value="+30/5"/>
+    </part>
+    <metadata key="layer_height" value="0.12"/>
+  </object>
+</config>
+"#;
+    let bytes = zip_of(&[
+        ("Metadata/project_settings.config", project),
+        ("Metadata/model_settings.config", model),
+    ]);
+    let p = profile::parse(Path::new("parts.3mf"), &bytes).unwrap();
+    let object = |f: &profile::Found| f.object.clone().unwrap();
+    let plain = p.model(Target::Sparse, Some(&object(&p.templates[0])), 20.0);
+    assert_eq!(object(&p.templates[0]), "Box / part Plain");
+    // The object's 0.12 mm (set after its parts), the project's top shells and direction.
+    assert_eq!(plain.model.layer_height(), 0.12);
+    assert_eq!(plain.model.top_shells(), 6);
+    assert_eq!(plain.options.base, 10.0);
+    let own = p.model(Target::Sparse, Some(&object(&p.templates[1])), 20.0);
+    assert_eq!(own.model.layer_height(), 0.12);
+    assert_eq!((own.model.bottom_shells(), own.model.top_shells()), (7, 6));
+    // The object itself keeps its own keys and not its part's.
+    let object_model = p.model(Target::Sparse, Some("Box"), 20.0);
+    assert_eq!(object_model.model.bottom_shells(), 3);
+}
+
 #[test]
 fn presets_inherit_from_their_parents() {
     let p = profile::read(&fixture("orca/process/0.28mm Draft @Rotlang.json")).unwrap();
@@ -182,8 +225,15 @@ fn check_runs_over_the_fixture_folder() {
         out.contains("note: ") && out.contains("OrcaSlicer's default 45° is used"),
         "{out}"
     );
+    // 9 findings on the templates, and 12 templates with a direction OrcaSlicer ignores.
+    assert_eq!(
+        out.matches("warning[orcaslicer::direction-ignored]")
+            .count(),
+        12,
+        "{out}"
+    );
     assert!(
-        out.ends_with("ok: 15 templates in 8 files, 9 warnings\n"),
+        out.ends_with("ok: 15 templates in 8 files, 21 warnings\n"),
         "{out}"
     );
 }
@@ -305,6 +355,93 @@ fn expand_with_a_profile() {
     );
 }
 
+/// OrcaSlicer uses the infill direction only for an empty template; rotlang adds it to
+/// every angle. `expand --dialect orcaslicer` and the compat lint follow that.
+#[test]
+fn the_direction_is_orcaslicers_only_for_an_empty_template() {
+    let dir = Scratch::new("direction");
+    let dir45 = dir.file(
+        "dir45.json",
+        br#"{"sparse_infill_rotate_template": "0, 90", "sparse_infill_direction": "45", "layer_height": "0.2", "initial_layer_print_height": "0.2", "bottom_shell_layers": "3", "top_shell_layers": "4"}"#,
+    );
+    let empty = dir.file(
+        "empty.json",
+        br#"{"sparse_infill_rotate_template": "", "sparse_infill_direction": "45"}"#,
+    );
+    let angles = |path: &Path, dialect: &str| {
+        let (code, out, err) = rotlang(&[
+            "expand",
+            "--profile",
+            &path.display().to_string(),
+            "--dialect",
+            dialect,
+            "--format",
+            "csv",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        out.lines()
+            .skip(1)
+            .take(2)
+            .map(|row| row.split(',').nth(3).unwrap().to_owned())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(angles(&dir45, "orcaslicer"), ["0", "90"]);
+    let (_, _, err) = rotlang(&[
+        "expand",
+        "--profile",
+        &dir45.display().to_string(),
+        "--dialect",
+        "orcaslicer",
+    ]);
+    assert!(
+        err.contains(
+            "note: OrcaSlicer ignores the profile's direction (45°) when a template is set"
+        ),
+        "{err}"
+    );
+    assert_eq!(angles(&dir45, "rotlang"), ["45", "135"]);
+    assert_eq!(angles(&empty, "orcaslicer"), ["45", "45"]);
+    assert_eq!(angles(&empty, "rotlang"), ["45", "45"]);
+    let (code, out, _) = rotlang(&[
+        "check",
+        "--compat",
+        "orcaslicer",
+        "--color",
+        "never",
+        &dir45.display().to_string(),
+    ]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains("warning[orcaslicer::direction-ignored]: sparse_infill_rotate_template: OrcaSlicer ignores sparse_infill_direction = 45° when a template is set; rotlang adds it to every angle"),
+        "{out}"
+    );
+    assert!(!out.contains("orcaslicer::differs"), "{out}");
+}
+
+/// A template key holding another type: `expand` says what `check` says, not "no key".
+#[test]
+fn expand_names_a_template_of_the_wrong_type() {
+    let dir = Scratch::new("types");
+    let types = dir.file("types.json", br#"{"sparse_infill_rotate_template": 5}"#);
+    let (code, _, err) = rotlang(&["expand", "--profile", &types.display().to_string()]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("types.json: `sparse_infill_rotate_template` should be a template (a string), not `5` (line 1, column 35)"),
+        "{err}"
+    );
+    let (_, out, _) = rotlang(&["check", "--color", "never", &types.display().to_string()]);
+    assert!(
+        out.contains("`sparse_infill_rotate_template` should be a template (a string), not `5`"),
+        "{out}"
+    );
+    let p = profile::read(&types).unwrap();
+    assert!(p.template(Target::Sparse).is_err());
+    assert_eq!(
+        p.template(Target::Solid).unwrap_err(),
+        "no `solid_infill_rotate_template` in this file"
+    );
+}
+
 #[test]
 fn hostile_files_fail_alone() {
     let dir = Scratch::new("hostile");
@@ -380,6 +517,83 @@ fn hostile_files_fail_alone() {
     assert!(!out.contains("good.json"), "{out}");
 }
 
+/// Attributes are read by an XML reader: a `key="…"` inside another attribute's value is
+/// text, entities are decoded, and the template keeps its place in the file.
+#[test]
+fn xml_attributes_are_read_as_xml() {
+    let model = br#"<config><object id="1">
+<metadata value=' key="sparse_infill_rotate_template"' key="layer_height"/>
+<metadata key="solid_infill_rotate_template" value="&quot;0&quot;, &#x2B;30/50%"/>
+</object></config>"#;
+    let bytes = zip_of(&[("Metadata/model_settings.config", model)]);
+    let p = profile::parse(Path::new("attrs.3mf"), &bytes).unwrap();
+    let found: Vec<(&str, &str)> = p
+        .templates
+        .iter()
+        .map(|f| (f.key.as_deref().unwrap(), f.text.as_str()))
+        .collect();
+    assert_eq!(found, [("solid_infill_rotate_template", "\"0\", +30/50%")]);
+    let xml = &p.sources[p.templates[0].source].text;
+    let at = |a, b| {
+        &xml[p.templates[0]
+            .span_in_source(rotlang::Span::new(a, b))
+            .range()]
+    };
+    assert_eq!((at(0, 1), at(5, 6)), ("&quot;", "&#x2B;"));
+    // The value of `layer_height` is the text that looked like a key.
+    let object = &p.objects[0].1.values["layer_height"];
+    assert_eq!(object.value, " key=\"sparse_infill_rotate_template\"");
+    // A duplicate attribute is not XML: an error for the file.
+    let dup = zip_of(&[(
+        "Metadata/model_settings.config",
+        br#"<config><object id="1"><metadata key="a" key="b" value="c"/></object></config>"#
+            .as_slice(),
+    )]);
+    let e = profile::parse(Path::new("dup.3mf"), &dup).unwrap_err();
+    assert!(e.message.contains("invalid XML attribute"), "{e}");
+}
+
+/// A preset is a flat object: a template key inside a nested object is not its template.
+#[test]
+fn only_top_level_keys_are_preset_keys() {
+    let doc = br#"{"x": {"sparse_infill_rotate_template": "0 90", "layer_height": "0.1"}, "list": [{"solid_infill_rotate_template": "5"}], "sparse_infill_rotate_template": "+30/5", "layer_height": "0.16"}"#;
+    let p = profile::parse(Path::new("nested.json"), doc).unwrap();
+    let found: Vec<&str> = p.templates.iter().map(|f| f.text.as_str()).collect();
+    assert_eq!(found, ["+30/5"]);
+    assert_eq!(p.settings.values["layer_height"].value, "0.16");
+    assert!(
+        rotlang::profile::json::find_templates(r#"{"x":{"sparse_infill_rotate_template":"0"}}"#)
+            .is_empty()
+    );
+    // Arrays of values (per extruder) are still read.
+    let p = profile::parse(
+        Path::new("array.json"),
+        br#"{"sparse_infill_rotate_template": ["0, 90"], "layer_height": ["0.1", "0.2"]}"#,
+    )
+    .unwrap();
+    assert_eq!(p.templates[0].text, "0, 90");
+    assert_eq!(p.settings.values["layer_height"].value, "0.1");
+}
+
+/// An archive of more entries than a project holds is refused before its directory is read.
+#[test]
+fn archives_of_too_many_entries_are_refused() {
+    let names: Vec<String> = (0..=profile::MAX_ENTRIES)
+        .map(|i| format!("e{i}"))
+        .collect();
+    let mut entries: Vec<(&str, &[u8])> = names.iter().map(|n| (n.as_str(), &b""[..])).collect();
+    entries.push(("Metadata/project_settings.config", b"{}"));
+    let bytes = zip_of(&entries);
+    let e = profile::parse(Path::new("many.3mf"), &bytes).unwrap_err();
+    assert_eq!(
+        e.message,
+        "a zip archive of 10002 entries, more than the 10000 a project can hold"
+    );
+    // Just under the cap is read.
+    let bytes = zip_of(&entries[2..]);
+    assert!(profile::parse(Path::new("fine.3mf"), &bytes).is_ok());
+}
+
 /// A zip whose headers claim a small entry that inflates to far more: the cap holds.
 #[test]
 fn lying_sizes_are_capped() {
@@ -438,5 +652,27 @@ proptest! {
             prop_assert!(doc.get(span.range()).is_some(), "{span:?} in {doc:?}");
         }
         let _ = profile::json::strip_jsonc(&doc);
+    }
+}
+
+/// Every `profile::` code `rotlang explain` documents: its example, read as a JSON preset,
+/// gets a note of that severity (`check` reports notes under these codes).
+#[test]
+fn explained_profile_examples_report_their_code() {
+    let docs: Vec<_> = rotlang::explain::codes()
+        .iter()
+        .filter(|d| d.code.starts_with("profile::"))
+        .collect();
+    assert_eq!(docs.len(), 2);
+    for doc in docs {
+        let p = profile::parse(Path::new("example.json"), doc.example.as_bytes()).unwrap();
+        let error = doc.code == "profile::invalid";
+        assert_eq!(doc.severity, if error { "error" } else { "warning" });
+        assert!(
+            p.notes.iter().any(|n| n.error == error),
+            "{}: {:?}",
+            doc.code,
+            p.notes
+        );
     }
 }

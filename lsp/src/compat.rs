@@ -11,7 +11,7 @@ use tower_lsp_server::ls_types::{Diagnostic, Uri};
 use crate::diagnostics::convert;
 use crate::document::{Document, Kind};
 use crate::position::Positions;
-use crate::settings::{Compat, ModelSettings};
+use crate::settings::ModelSettings;
 
 /// Beside the document's own diagnostics (capped at their own limit).
 const MAX_FINDINGS: usize = 100;
@@ -22,12 +22,7 @@ pub fn diagnostics(
     pos: &Positions,
     settings: &ModelSettings,
 ) -> Vec<Diagnostic> {
-    let on = match settings.compat {
-        Compat::Off => false,
-        Compat::On => true,
-        Compat::Auto => doc.kind != Kind::Rot,
-    };
-    if !on {
+    if !settings.compat.applies_to(doc.kind) {
         return Vec::new();
     }
     // The profile's own layer heights, shells and direction (a name that says its kind).
@@ -37,8 +32,15 @@ pub fn diagnostics(
         Kind::Jsonc => Some("profile.jsonc"),
         Kind::Ini => Some("profile.ini"),
     };
-    let profile =
-        name.and_then(|n| rotlang::profile::parse(Path::new(n), doc.text.as_bytes()).ok());
+    let profile = name.and_then(|n| {
+        let mut p = rotlang::profile::parse(Path::new(n), doc.text.as_bytes()).ok()?;
+        // A file on disk: its `inherits` parents are found beside it, as the CLI finds them.
+        if let Some(path) = uri.to_file_path() {
+            p.path = path.into_owned();
+            p.resolve_inherits();
+        }
+        Some(p)
+    });
     let mut out = Vec::new();
     // A template with errors gets those first: OrcaSlicer's view of text rotlang rejects
     // would only add noise until it is fixed.

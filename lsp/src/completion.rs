@@ -7,7 +7,10 @@
 //! filters by the symbol at point, replaces the symbol with `insertText`, then applies the
 //! edit over the same characters: right when its mode makes an instruction one symbol (the
 //! documented `rot-mode` does), and nothing after the cursor is lost. A label typed in part
-//! (`c` of `cm`, `*` of `*2`) is completed, not repeated.
+//! (`*` of `*2`) is completed, not repeated; a unit typed so far (`m`, `c`, `mm` after a
+//! count's number) is replaced by the item's unit (`+30/5m`: `cm` gives `+30/5cm`, `m`
+//! gives `+30/5m`). Where the new text does not begin with the text typed (`cm` after
+//! `m`), `filterText` is the typed text and the label, so prefix-filtering clients keep it.
 
 use rotlang::{Joint, Solid, Target, Unit};
 use tower_lsp_server::ls_types::{
@@ -70,22 +73,32 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
     );
     let (joint_fits, layers_unit_fits) = hash_roles(&region.text, at);
     let mut items = Vec::new();
+    let typed_unit = unit_typed(typed);
     let mut push = |label: String, kind, detail: &str, doc_text: String, sort: usize| {
-        // The longest end of `typed` that begins the label but is not all of it.
-        let partial = (1..label.len())
-            .rev()
-            .find(|&n| label.is_char_boundary(n) && typed.ends_with(&label[..n]))
-            .unwrap_or(0);
-        let new_text = doc.encode(&format!(
-            "{}{label}{after}",
-            &typed[..typed.len() - partial]
-        ));
+        let partial = if kind == CompletionItemKind::UNIT {
+            // The unit typed so far, whichever it begins: the item's unit replaces it.
+            typed_unit
+        } else {
+            // The longest end of `typed` that begins the label but is not all of it.
+            (1..label.len())
+                .rev()
+                .find(|&n| label.is_char_boundary(n) && typed.ends_with(&label[..n]))
+                .unwrap_or(0)
+        };
+        let kept = &typed[..typed.len() - partial];
+        let new_text = doc.encode(&format!("{kept}{label}{after}"));
+        // Clients show an item when the text typed begins its filter text.
+        let filter_text = if format!("{kept}{label}").starts_with(typed) {
+            new_text.clone()
+        } else {
+            doc.encode(&format!("{typed}{label}{after}"))
+        };
         items.push(CompletionItem {
             text_edit: Some(CompletionTextEdit::Edit(TextEdit::new(
                 range,
                 new_text.clone(),
             ))),
-            filter_text: Some(new_text.clone()),
+            filter_text: Some(filter_text),
             insert_text: Some(new_text),
             label,
             kind: Some(kind),
@@ -166,6 +179,20 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
     Some(items)
 }
 
+/// The length in bytes of the unit typed at the end of `typed`: the longest end that begins
+/// some unit (`m` of `m` or `mm`, `c` of `cm`, `mm`) right after a count's number; 0 if none.
+fn unit_typed(typed: &str) -> usize {
+    (1..=typed.len().min(2))
+        .rev()
+        .filter(|&n| typed.is_char_boundary(typed.len() - n))
+        .find(|&n| {
+            let (before, end) = typed.split_at(typed.len() - n);
+            before.ends_with(|c: char| c.is_ascii_digit() || c == '.')
+                && Unit::ALL.iter().any(|u| u.symbol().starts_with(end))
+        })
+        .unwrap_or(0)
+}
+
 /// `#` is both a joint (a step) and a unit (standard layers): offer each once, where it
 /// fits. The joint fits while the instruction typed so far has no joint; the unit fits
 /// right after a count's number (digits after a joint or a flip).
@@ -190,6 +217,19 @@ fn hash_roles(text: &str, at: usize) -> (bool, bool) {
 #[cfg(test)]
 mod tests {
     use super::hash_roles;
+
+    #[test]
+    fn the_unit_typed_so_far() {
+        use super::unit_typed;
+        assert_eq!(unit_typed("+30/5m"), 1);
+        assert_eq!(unit_typed("+30/5c"), 1);
+        assert_eq!(unit_typed("+30/5mm"), 2);
+        assert_eq!(unit_typed("+30/5.5%"), 1);
+        assert_eq!(unit_typed("+30/5"), 0);
+        assert_eq!(unit_typed("+30/"), 0);
+        assert_eq!(unit_typed("+30/5x"), 0);
+        assert_eq!(unit_typed("é"), 0);
+    }
 
     #[test]
     fn hash_is_offered_once_per_role() {

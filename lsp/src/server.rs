@@ -411,11 +411,14 @@ impl LanguageServer for Backend {
     }
 
     async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
-        let Some((doc, encoding, _)) = self.snapshot(&params.text_document.uri) else {
+        let Some((doc, encoding, settings)) = self.snapshot(&params.text_document.uri) else {
             return Ok(None);
         };
-        guard(|| formatting::formatting(&doc, &Positions::new(&doc.text, encoding)))
-            .ok_or_else(internal)
+        let keep_orcaslicer = settings.compat.applies_to(doc.kind);
+        guard(|| {
+            formatting::formatting(&doc, &Positions::new(&doc.text, encoding), keep_orcaslicer)
+        })
+        .ok_or_else(internal)
     }
 
     async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {

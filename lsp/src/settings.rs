@@ -48,6 +48,16 @@ pub enum Compat {
 }
 
 impl Compat {
+    /// Whether OrcaSlicer's reading matters for a document of `kind`: the compat findings
+    /// are published, and formatting keeps what OrcaSlicer reads.
+    pub fn applies_to(self, kind: crate::document::Kind) -> bool {
+        match self {
+            Compat::Off => false,
+            Compat::On => true,
+            Compat::Auto => kind != crate::document::Kind::Rot,
+        }
+    }
+
     fn from_value(value: &Value) -> Option<Compat> {
         match value {
             Value::Bool(true) => Some(Compat::On),

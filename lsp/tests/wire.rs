@@ -160,8 +160,9 @@ fn json_profile_diagnostics_land_on_the_right_characters() {
     let start = doc.find("\\ud835").unwrap() as u64;
     assert_eq!(diags[0]["range"], range(0, start, 0, start + 12));
 
-    // A good profile has no diagnostics.
-    lsp.change(JSON, 3, r#"{"sparse_infill_rotate_template": "+10L25%, -10l25%", "solid_infill_rotate_template": "0, 90"}"#);
+    // A good profile has no diagnostics (its directions 0: OrcaSlicer's default 45° would
+    // be ignored by OrcaSlicer and added by rotlang, orcaslicer::direction-ignored).
+    lsp.change(JSON, 3, r#"{"sparse_infill_rotate_template": "+10L25%, -10l25%", "solid_infill_rotate_template": "0, 90", "sparse_infill_direction": "0", "solid_infill_direction": 0}"#);
     assert!(lsp.diagnostics(JSON, Some(3)).is_empty());
 }
 
@@ -590,6 +591,51 @@ fn formatting_replaces_the_whole_document_or_nothing() {
     assert_eq!(
         edits[0]["newText"],
         "{\"sparse_infill_rotate_template\": \"0, 90\", \"x\": \"\\u00b0\"}"
+    );
+}
+
+/// Where OrcaSlicer's reading matters (profiles by default; `.rot` with `compat` on),
+/// formatting leaves a template alone when OrcaSlicer would read the canonical form
+/// differently: `0,,90` is 0°, 0°, 90° for it, `0, 90` is not.
+#[test]
+fn formatting_keeps_what_orcaslicer_reads() {
+    let mut lsp = Lsp::start();
+    let format = |lsp: &mut Lsp, uri: &str| {
+        lsp.result(
+            "textDocument/formatting",
+            json!({"textDocument": {"uri": uri}, "options": {"tabSize": 4, "insertSpaces": true}}),
+        )
+    };
+    let doc = "{\"sparse_infill_rotate_template\": \"0,,90\", \"solid_infill_rotate_template\": \"+30,90\"}";
+    lsp.open(JSON, "json", doc);
+    let edits = format(&mut lsp, JSON);
+    assert_eq!(
+        edits[0]["newText"],
+        "{\"sparse_infill_rotate_template\": \"0,,90\", \"solid_infill_rotate_template\": \"+30, 90\"}"
+    );
+    let ini = "file:///tmp/wire-fmt.ini";
+    lsp.open(ini, "ini", "sparse_infill_rotate_template = 0,,90\n");
+    assert_eq!(
+        format(&mut lsp, ini),
+        json!([]),
+        "nothing OrcaSlicer reads alike"
+    );
+    // A `.rot` file is rotlang's unless compat is asked for.
+    lsp.open(ROT, "rotlang", "0,,90\n");
+    assert_eq!(format(&mut lsp, ROT)[0]["newText"], "0, 90\n");
+    lsp.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"rotlang": {"compat": "orcaslicer"}}}),
+    );
+    assert_eq!(format(&mut lsp, ROT), json!([]));
+    // Off: profiles are formatted as rotlang reads them.
+    lsp.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"rotlang": {"compat": "off"}}}),
+    );
+    assert_eq!(
+        format(&mut lsp, ini)[0]["newText"],
+        "sparse_infill_rotate_template = 0, 90\n"
     );
 }
 

@@ -216,6 +216,8 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         };
         writeln!(err, "{note}").map_err(|e| UsageError(e.to_string()))?;
     }
+    // The base is the profile's direction (not --base): OrcaSlicer drops it for a template.
+    let mut direction = false;
     let input = match &profile {
         Some(path) => {
             let p = super::files::profile_template(path, args.target.into(), args.model.height)?;
@@ -230,6 +232,7 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
             }
             if base == 0.0 {
                 base = p.base;
+                direction = true;
             }
             Input {
                 name: path.display().to_string(),
@@ -273,6 +276,20 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         end,
     };
     if args.dialect == eval::Dialect::OrcaSlicer {
+        let options = if direction {
+            let theirs = crate::dialect::orcaslicer::profile_options(&input.text, options);
+            if theirs.base != options.base {
+                writeln!(
+                    err,
+                    "note: OrcaSlicer ignores the profile's direction ({}°) when a template is set",
+                    options.base
+                )
+                .map_err(|e| UsageError(e.to_string()))?;
+            }
+            theirs
+        } else {
+            options
+        };
         // No grammar, so no syntax diagnostics: the JSON's are the dialect's findings (a
         // hang, undefined behaviour, NaN layers), known once the layers are written.
         return super::dialect::expand(&input.text, &resolved.model, options, err, |layers| {

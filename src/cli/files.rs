@@ -357,16 +357,9 @@ pub(crate) fn profile_template(
     height: Option<f64>,
 ) -> Result<ProfileTemplate, UsageError> {
     let profile = profile::read(path).map_err(|e| UsageError(e.to_string()))?;
-    let key = profile::TEMPLATE_KEYS
-        .iter()
-        .find(|(_, t)| *t == target)
-        .map_or("", |(k, _)| *k);
     let found = profile
-        .templates
-        .iter()
-        .find(|f| f.target == target && f.object.is_none())
-        .or_else(|| profile.templates.iter().find(|f| f.target == target))
-        .ok_or_else(|| UsageError(format!("{}: no `{key}` in this file", path.display())))?;
+        .template(target)
+        .map_err(|why| UsageError(format!("{}: {why}", path.display())))?;
     let pm = profile.model(
         target,
         found.object.as_deref(),

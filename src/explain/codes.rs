@@ -8,13 +8,14 @@
 pub struct CodeDoc {
     /// The stable code, e.g. `rotlang::unknown-sign`.
     pub code: &'static str,
-    /// `error` or `warning`.
+    /// `error` or `warning` (`info` for a note of the language server).
     pub severity: &'static str,
     /// One line: what is wrong.
     pub summary: &'static str,
     /// Why it is a problem, in a few sentences.
     pub explanation: &'static str,
-    /// A template that gets this diagnostic.
+    /// A template that gets this diagnostic (for the language server's own codes, the
+    /// document that gets it).
     pub example: &'static str,
     /// What to write instead.
     pub fix: &'static str,
@@ -53,6 +54,7 @@ const fn doc(
 
 const E: &str = "error";
 const W: &str = "warning";
+const I: &str = "info";
 
 static CODES: &[CodeDoc] = &[
     doc(
@@ -62,6 +64,14 @@ static CODES: &[CodeDoc] = &[
         "`rotlang check --compat orcaslicer` evaluates both readings on the model (the profile's own, or the 20 mm cube) and reports the first layer where they part, with both angles, on the instruction rotlang uses there. The other `orcaslicer::` findings usually say why.",
         "0 90",
         "Rewrite the instruction so both read it alike (see the other `orcaslicer::` findings), or keep it if the profile is only for rotlang-based slicers.",
+    ),
+    doc(
+        "orcaslicer::direction-ignored",
+        W,
+        "OrcaSlicer ignores the profile's infill direction when a template is set; rotlang adds it to every angle",
+        "OrcaSlicer turns an empty template's layers to `sparse_infill_direction` (`solid_infill_direction` for solid infill), but any other template's angles are the template's alone. rotlang takes the profile's direction as its base and adds it to every angle: `0, 90` in a profile with `sparse_infill_direction` = 45 is 0°, 90° for OrcaSlicer and 45°, 135° for rotlang. Reported by `rotlang check --compat orcaslicer` on profiles (and by the language server).",
+        "0, 90",
+        "Set the direction to 0 in the profile and write it into the template's angles (`45, 135`), so both read the same; or keep it if the profile is only for rotlang-based slicers.",
     ),
     doc(
         "orcaslicer::empty-instruction",
@@ -150,6 +160,46 @@ static CODES: &[CodeDoc] = &[
         "OrcaSlicer converts counts to 32-bit integers; a count that is infinite, NaN or beyond 2147483647 layers is undefined behaviour in C++ (in practice a crash). rotlang holds the angle from that layer.",
         "+30/1e10",
         "Use a count below 2147483647 (a length like `100%` for the whole object).",
+    ),
+    doc(
+        "profile::invalid",
+        E,
+        "a profile file that OrcaSlicer cannot read as it is: invalid JSON, or a template key holding something other than a string",
+        "`rotlang check` reads OrcaSlicer presets, `.ini` exports and `.3mf` projects. A JSON syntax error stops the reading at that point (templates after it are missed); a template key (`sparse_infill_rotate_template`, `solid_infill_rotate_template`) must hold a string, as OrcaSlicer writes it. The file fails; the other files are still checked.",
+        "{\"sparse_infill_rotate_template\": 90}",
+        "Fix the JSON at the position shown, or quote the template: `\"sparse_infill_rotate_template\": \"90\"`.",
+    ),
+    doc(
+        "profile::value",
+        W,
+        "a model key of a profile holds a value rotlang cannot use",
+        "The model of a profile's templates comes from its `layer_height`, `initial_layer_print_height`, `bottom_shell_layers`, `top_shell_layers` and infill direction. A key holding an object, a list of no numbers or another type is skipped, and OrcaSlicer's default is used (a note says which).",
+        "{\"layer_height\": {\"x\": 1}, \"sparse_infill_rotate_template\": \"0, 90\"}",
+        "Write the value as OrcaSlicer does: a number in a string (`\"layer_height\": \"0.2\"`).",
+    ),
+    doc(
+        "rotlang-lsp::document-too-large",
+        W,
+        "the document is larger than the language server checks",
+        "The language server (`rotlang-lsp`) checks documents up to `rotlang.maxDocumentBytes` bytes (4 MiB by default), so that a huge file cannot freeze the editor. A larger document gets this one warning at its start and nothing else: no diagnostics, hover or formatting.",
+        "a 5 MiB JSON file open in the editor",
+        "Raise the setting `rotlang.maxDocumentBytes` (see `lsp/README.md`), or check the file with `rotlang check FILE`, which has no such limit.",
+    ),
+    doc(
+        "rotlang-lsp::json-syntax",
+        E,
+        "the JSON profile is not valid JSON",
+        "The language server reads OrcaSlicer presets as JSON (comments and trailing commas are allowed in `.jsonc`). At a syntax error it stops reading: templates after that point are not found, so they get no diagnostics.",
+        "{\"sparse_infill_rotate_template\": \"0, 90\"",
+        "Fix the JSON at the position shown (here: close the object with `}`); the templates after it are then checked again.",
+    ),
+    doc(
+        "rotlang-lsp::too-many",
+        I,
+        "more problems than the language server lists in one document",
+        "The language server sends at most 200 diagnostics per document, errors first, so that a pasted megabyte of text does not flood the editor. This last entry says how many there were.",
+        "a document holding 201 unknown signs: `x x x … x`",
+        "Fix the problems listed (errors come first), or run `rotlang check FILE` to see them all.",
     ),
     doc(
         "rotlang::angle-out-of-range",

@@ -19,7 +19,12 @@ fn emitted_codes() -> BTreeSet<String> {
                 continue;
             }
             let text = std::fs::read_to_string(&path).expect("a source file");
-            for prefix in ["\"rotlang::", "\"orcaslicer::"] {
+            for prefix in [
+                "\"rotlang::",
+                "\"orcaslicer::",
+                "\"rotlang-lsp::",
+                "\"profile::",
+            ] {
                 for (at, _) in text.match_indices(prefix) {
                     let rest = &text[at + 1..];
                     let end = rest
@@ -34,10 +39,10 @@ fn emitted_codes() -> BTreeSet<String> {
         }
     }
     let mut found = BTreeSet::new();
-    walk(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
-        &mut found,
-    );
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    walk(&root.join("src"), &mut found);
+    // The language server's own codes (`rotlang-lsp::`) are explained here too.
+    walk(&root.join("lsp/src"), &mut found);
     found
 }
 

@@ -128,16 +128,6 @@ impl OffsetMap {
         }
     }
 
-    /// The same map for a text that starts `by` bytes further into the document.
-    #[cfg(feature = "3mf")]
-    pub(crate) fn shifted(mut self, by: usize) -> OffsetMap {
-        self.doc_start += by;
-        for s in &mut self.segments {
-            s.doc += by;
-        }
-        self
-    }
-
     /// `len` bytes copied verbatim: template offset `text` is document offset `doc`.
     pub(crate) fn push_verbatim(&mut self, text: usize, doc: usize, len: usize) {
         if len > 0 {
@@ -205,7 +195,8 @@ pub struct KeyValues {
     pub array: bool,
 }
 
-/// Find every template in a JSON document. Keys match at any depth; a value may be a
+/// Find every template in a JSON document: keys of the top-level object only (presets are
+/// flat objects; a key inside a nested object is some other thing's). A value may be a
 /// string or an array of strings. Values of another type are skipped.
 pub fn find_templates(doc: &str) -> Vec<JsonTemplate> {
     let keys: Vec<&str> = TEMPLATE_KEYS.iter().map(|(k, _)| *k).collect();
@@ -235,18 +226,32 @@ pub fn find_templates(doc: &str) -> Vec<JsonTemplate> {
     found
 }
 
-/// Find the values of the given keys, at any depth, in document order. Comments are
-/// skipped (jsonc); malformed input ends the scan where it cannot be read reliably.
+/// Find the values of the given keys of the top-level object, in document order (keys of
+/// nested objects and arrays are not the preset's). Comments are skipped (jsonc); malformed
+/// input ends the scan where it cannot be read reliably.
 pub fn find_values(doc: &str, keys: &[&str]) -> Vec<KeyValues> {
     let bytes = doc.as_bytes();
     let mut found = Vec::new();
     let mut i = 0;
+    // Nesting outside strings: 1 inside the top-level object.
+    let mut depth = 0usize;
+    let mut top_is_object = false;
     while i < bytes.len() {
         if let Some(end) = comment_end(bytes, i) {
             i = end;
             continue;
         }
         if bytes[i] != b'"' {
+            match bytes[i] {
+                b'{' | b'[' => {
+                    if depth == 0 {
+                        top_is_object = bytes[i] == b'{';
+                    }
+                    depth += 1;
+                }
+                b'}' | b']' => depth = depth.saturating_sub(1),
+                _ => {}
+            }
             i += 1;
             continue;
         }
@@ -255,8 +260,11 @@ pub fn find_values(doc: &str, keys: &[&str]) -> Vec<KeyValues> {
         };
         i = key.end;
         let mut j = skip_ws(bytes, i);
-        if bytes.get(j) != Some(&b':') || !keys.contains(&key.text.as_str()) {
-            continue; // a value, or a key we do not look for
+        if bytes.get(j) != Some(&b':')
+            || !(depth == 1 && top_is_object)
+            || !keys.contains(&key.text.as_str())
+        {
+            continue; // a value, a nested key, or a key we do not look for
         }
         j = skip_ws(bytes, j + 1);
         let mut kv = KeyValues {
@@ -267,12 +275,19 @@ pub fn find_values(doc: &str, keys: &[&str]) -> Vec<KeyValues> {
         };
         if bytes.get(j) == Some(&b'[') {
             kv.array = true;
+            // The main loop counts the `]` that ends it.
+            depth += 1;
             j += 1;
             loop {
                 j = skip_ws(bytes, j);
                 match bytes.get(j) {
                     Some(b',') => j += 1,
                     Some(b']') | None => break,
+                    // A nested object or array: noted, then scanned (and counted) as usual.
+                    Some(b'{' | b'[') => {
+                        kv.values.push(JsonValue::Other(Span::new(j, j + 1)));
+                        break;
+                    }
                     Some(_) => match value_at(doc, j) {
                         Some((value, end)) => {
                             kv.values.push(value);
@@ -290,7 +305,8 @@ pub fn find_values(doc: &str, keys: &[&str]) -> Vec<KeyValues> {
             match value_at(doc, j) {
                 Some((value, end)) => {
                     kv.values.push(value);
-                    i = end;
+                    // An object value is scanned on (its keys are nested): its `{` counted.
+                    i = if bytes[j] == b'{' { j } else { end };
                 }
                 None => {
                     found.push(kv);

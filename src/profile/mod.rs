@@ -33,6 +33,8 @@ use std::path::{Path, PathBuf};
 
 pub use json::OffsetMap;
 pub use settings::{DEFAULT_OBJECT_HEIGHT, MODEL_KEYS, ProfileModel, Setting, Settings};
+#[cfg(feature = "3mf")]
+pub use threemf::{MAX_ENTRIES, MAX_ENTRY_BYTES};
 
 use crate::{Span, Target};
 
@@ -148,6 +150,8 @@ pub struct Note {
     pub message: String,
     /// An error fails the file; otherwise it is information.
     pub error: bool,
+    /// The key the note is about (a value of the wrong type), if any.
+    pub key: Option<String>,
 }
 
 /// A file read: its texts, the templates in it, and the settings the model comes from.
@@ -170,6 +174,50 @@ impl Profile {
     pub fn model(&self, target: Target, object: Option<&str>, height: f64) -> ProfileModel {
         let own = object.and_then(|o| self.objects.iter().find(|(n, _)| n == o).map(|(_, s)| s));
         self.settings.model(own, target, height)
+    }
+
+    /// The template of `target` a command takes from this file (`expand --profile`): the
+    /// file's (or the project's) own, else the first object's. When there is none, why:
+    /// the key holds a value of another type (what `check` reports), or no such key.
+    pub fn template(&self, target: Target) -> Result<&Found, String> {
+        let key = TEMPLATE_KEYS
+            .iter()
+            .find(|(_, t)| *t == target)
+            .map_or("", |(k, _)| *k);
+        if let Some(found) = self
+            .templates
+            .iter()
+            .find(|f| f.target == target && f.object.is_none())
+            .or_else(|| self.templates.iter().find(|f| f.target == target))
+        {
+            return Ok(found);
+        }
+        match self
+            .notes
+            .iter()
+            .find(|n| n.error && n.key.as_deref() == Some(key))
+        {
+            Some(note) => {
+                let text = self
+                    .sources
+                    .get(note.source)
+                    .map_or("", |s| s.text.as_str());
+                let (line, column) = crate::diagnostic::LineIndex::new(text)
+                    .line_col(note.span.start.min(text.len()));
+                Err(format!("{} (line {line}, column {column})", note.message))
+            }
+            None => Err(format!("no `{key}` in this file")),
+        }
+    }
+
+    /// For a JSON preset with `inherits`: the model keys it lacks, taken from its parent
+    /// presets beside [`Profile::path`] (`<inherits>.json` in the same folder, recursively),
+    /// as [`read`] does. For a text read some other way (an editor's buffer), set `path` to
+    /// the file's place first, so that its parents are found as the CLI finds them.
+    pub fn resolve_inherits(&mut self) {
+        if self.kind == Some(Kind::Json) {
+            settings::resolve_inherits(&mut self.settings, &self.path);
+        }
     }
 
     /// Whether any note is an error.
@@ -206,9 +254,7 @@ fn error(path: &Path, message: impl Into<String>) -> ProfileError {
 pub fn read(path: &Path) -> Result<Profile, ProfileError> {
     let bytes = read_bounded(path)?;
     let mut profile = parse(path, &bytes)?;
-    if profile.kind == Some(Kind::Json) {
-        settings::resolve_inherits(&mut profile.settings, path);
-    }
+    profile.resolve_inherits();
     Ok(profile)
 }
 
@@ -321,6 +367,7 @@ pub(crate) fn json_file(profile: &mut Profile, source: usize, object: Option<&st
             span: Span::new(offset, offset),
             message: format!("invalid JSON: {message}"),
             error: true,
+            key: None,
         });
     }
     let mut keys: Vec<&str> = TEMPLATE_KEYS.iter().map(|(k, _)| *k).collect();
@@ -362,6 +409,7 @@ pub(crate) fn json_file(profile: &mut Profile, source: usize, object: Option<&st
                             &doc[span.range()]
                         ),
                         error: template.is_some(),
+                        key: Some(kv.key.clone()),
                     });
                 }
             }

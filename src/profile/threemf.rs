@@ -15,10 +15,20 @@ use crate::Span;
 /// Settings files are kilobytes; a project's whole model settings a few megabytes.
 pub const MAX_ENTRY_BYTES: u64 = 16 * 1024 * 1024;
 
+/// A project holds a few dozen entries (the model, settings, plate pictures); reading the
+/// central directory costs memory per entry (600k empty entries took 410 MB), so an archive
+/// claiming more is refused before it is read.
+pub const MAX_ENTRIES: u64 = 10_000;
+
 const PROJECT: &str = "Metadata/project_settings.config";
 const MODEL: &str = "Metadata/model_settings.config";
 
 pub(super) fn read(name: &str, bytes: &[u8], profile: &mut Profile) -> Result<(), String> {
+    if let Some(n) = entry_count(bytes).filter(|&n| n > MAX_ENTRIES) {
+        return Err(format!(
+            "a zip archive of {n} entries, more than the {MAX_ENTRIES} a project can hold"
+        ));
+    }
     let mut archive = zip::ZipArchive::new(Cursor::new(bytes))
         .map_err(|e| format!("not a readable 3mf (zip) archive: {e}"))?;
     let mut any = false;
@@ -50,6 +60,38 @@ pub(super) fn read(name: &str, bytes: &[u8], profile: &mut Profile) -> Result<()
         ));
     }
     Ok(())
+}
+
+/// The number of entries the archive's end-of-central-directory record (or its zip64
+/// record) declares, which is what the zip reader will read; `None` when there is no such
+/// record (the zip reader then reports the archive).
+fn entry_count(bytes: &[u8]) -> Option<u64> {
+    const EOCD: &[u8] = b"PK\x05\x06";
+    const LOCATOR: &[u8] = b"PK\x06\x07";
+    const EOCD64: &[u8] = b"PK\x06\x06";
+    let u16_at = |at: usize| Some(u16::from_le_bytes(bytes.get(at..at + 2)?.try_into().ok()?));
+    let u32_at = |at: usize| Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?));
+    let u64_at = |at: usize| Some(u64::from_le_bytes(bytes.get(at..at + 8)?.try_into().ok()?));
+    // The record is 22 bytes plus a comment of at most 65535, at the end of the file.
+    let last = bytes.len().checked_sub(22)?;
+    let eocd = (last.saturating_sub(65535)..=last)
+        .rev()
+        .find(|&at| bytes[at..].starts_with(EOCD))?;
+    let count = u16_at(eocd + 10)?;
+    let (size, offset) = (u32_at(eocd + 12)?, u32_at(eocd + 16)?);
+    if count != u16::MAX && size != u32::MAX && offset != u32::MAX {
+        return Some(u64::from(count));
+    }
+    // Zip64: the locator sits right before the record and points at the zip64 record.
+    let locator = eocd.checked_sub(20)?;
+    if !bytes[locator..].starts_with(LOCATOR) {
+        return Some(u64::from(count));
+    }
+    let at = usize::try_from(u64_at(locator + 8)?).ok()?;
+    if !bytes.get(at..)?.starts_with(EOCD64) {
+        return None;
+    }
+    u64_at(at + 32)
 }
 
 /// The text of entry `path`, `None` if the archive has none; inflation is capped.
@@ -89,6 +131,9 @@ struct Scope {
     /// Metadata of the current object (or part): key, value, value's contents span, map.
     entries: Vec<(String, String, Span, OffsetMap)>,
     id: Option<String>,
+    /// An object's parts, read: their labels and own settings, completed from the
+    /// object's once the object ends (its metadata may follow its parts).
+    parts: Vec<(String, Settings)>,
 }
 
 /// `<config><object id=…><metadata key=… value=…/><part id=…><metadata …/></part></object>`.
@@ -114,11 +159,11 @@ fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
             Event::Start(e) | Event::Empty(e) => {
                 let empty = text.as_bytes().get(end.saturating_sub(2)) == Some(&b'/');
                 let name = e.local_name();
-                let tag = &text[start..end];
+                let attrs = || attributes(&e, &text, start);
                 match name.as_ref() {
                     "object" if object.is_none() => {
                         object = Some(Scope {
-                            id: attribute(tag, "id").map(|(v, ..)| v),
+                            id: find(&attrs()?, "id").map(|(v, ..)| v),
                             ..Scope::default()
                         });
                         object_name.clear();
@@ -128,7 +173,7 @@ fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
                     }
                     "part" if object.is_some() && part.is_none() => {
                         part = Some(Scope {
-                            id: attribute(tag, "id").map(|(v, ..)| v),
+                            id: find(&attrs()?, "id").map(|(v, ..)| v),
                             ..Scope::default()
                         });
                         if empty {
@@ -136,11 +181,10 @@ fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
                         }
                     }
                     "metadata" if object.is_some() => {
+                        let attrs = attrs()?;
                         if let (Some((key, ..)), Some((value, span, map))) =
-                            (attribute(tag, "key"), attribute(tag, "value"))
+                            (find(&attrs, "key"), find(&attrs, "value"))
                         {
-                            let map = shift(map, start);
-                            let span = Span::new(span.start + start, span.end + start);
                             if let Some(p) = part.as_mut() {
                                 p.entries.push((key, value, span, map));
                             } else if let Some(o) = object.as_mut() {
@@ -165,7 +209,11 @@ fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
                         .or(p.id.clone())
                         .unwrap_or_default();
                     let owner = object_label(object.as_ref(), &object_name);
-                    collect(profile, source, p, &format!("{owner} / part {part_name}"));
+                    let label = format!("{owner} / part {part_name}");
+                    let settings = collect(profile, source, p, &label);
+                    if let Some(o) = object.as_mut() {
+                        o.parts.push((label, settings));
+                    }
                 }
                 "object" if object.is_some() => {
                     finish_object(profile, source, object.take(), &object_name);
@@ -186,15 +234,27 @@ fn object_label(object: Option<&Scope>, name: &str) -> String {
     }
 }
 
+/// A part inherits every model key it does not set from its object, which inherits from
+/// the project (`Profile::model`): part → object → project, as OrcaSlicer resolves them.
 fn finish_object(profile: &mut Profile, source: usize, object: Option<Scope>, name: &str) {
-    if let Some(o) = object {
+    if let Some(mut o) = object {
         let label = object_label(Some(&o), name);
-        collect(profile, source, o, &label);
+        let parts = std::mem::take(&mut o.parts);
+        let settings = collect(profile, source, o, &label);
+        for (part, mut own) in parts {
+            own.merge_missing(settings.clone());
+            if !own.values.is_empty() {
+                profile.objects.push((part, own));
+            }
+        }
+        if !settings.values.is_empty() {
+            profile.objects.push((label, settings));
+        }
     }
 }
 
-/// The templates and model settings of one object (or part).
-fn collect(profile: &mut Profile, source: usize, scope: Scope, label: &str) {
+/// The templates and model settings of one object (or part); the settings are returned.
+fn collect(profile: &mut Profile, source: usize, scope: Scope, label: &str) -> Settings {
     let mut settings = Settings::default();
     for (key, value, span, map) in scope.entries {
         if let Some(&(_, target)) = TEMPLATE_KEYS.iter().find(|(k, _)| *k == key) {
@@ -210,47 +270,52 @@ fn collect(profile: &mut Profile, source: usize, scope: Scope, label: &str) {
             settings.set(&key, value, source, span);
         }
     }
-    if !settings.values.is_empty() {
-        profile.objects.push((label.to_owned(), settings));
-    }
+    settings
 }
 
-/// A map built on a tag's text, moved to the tag's place in the document.
-fn shift(map: OffsetMap, by: usize) -> OffsetMap {
-    map.shifted(by)
+/// One attribute of a tag: its name, its value unescaped, the span of the raw value in
+/// the document and the map from the value to the document.
+type Attr = (String, String, Span, OffsetMap);
+
+/// The attributes of a tag, read by quick-xml (quoting, `=`, duplicates checked), each value
+/// unescaped (`&quot;`, `&amp;`, `&#x2B;`, …) with its place in `text`. `at` is the tag's
+/// offset, for the error's line and column.
+fn attributes(
+    tag: &quick_xml::events::BytesStart<'_>,
+    text: &str,
+    at: usize,
+) -> Result<Vec<Attr>, String> {
+    let mut out = Vec::new();
+    for attr in tag.attributes().with_checks(true) {
+        let attr = attr.map_err(|e| {
+            let (line, col) = crate::diagnostic::LineIndex::new(text).line_col(at.min(text.len()));
+            format!("{MODEL}: invalid XML attribute in the tag at {line}:{col}: {e}")
+        })?;
+        let key: &str = attr.key.as_ref();
+        // The raw value is borrowed from `text` (the reader reads from the string): its
+        // place is where it points.
+        let raw: &str = &attr.value;
+        let offset = (raw.as_ptr() as usize).wrapping_sub(text.as_ptr() as usize);
+        if text.get(offset..offset + raw.len()) != Some(raw) {
+            return Err(format!("{MODEL}: cannot place the attribute `{key}`"));
+        }
+        let (value, map) = unescape_xml(raw, offset);
+        out.push((
+            key.to_owned(),
+            value,
+            Span::new(offset, offset + raw.len()),
+            map,
+        ));
+    }
+    Ok(out)
 }
 
-/// The value of attribute `name` in the raw tag text: unescaped, the span of its contents
-/// within the tag, and the map from the value to the tag text.
-fn attribute(tag: &str, name: &str) -> Option<(String, Span, OffsetMap)> {
-    let bytes = tag.as_bytes();
-    let mut i = 0;
-    while i < bytes.len() {
-        // Find `name` `=` quote, at an attribute boundary.
-        let rest = &tag[i..];
-        let at = rest.find(name)?;
-        let pos = i + at;
-        let before_ok = pos > 0 && bytes[pos - 1].is_ascii_whitespace();
-        let mut j = pos + name.len();
-        while j < bytes.len() && bytes[j].is_ascii_whitespace() {
-            j += 1;
-        }
-        if before_ok && bytes.get(j) == Some(&b'=') {
-            j += 1;
-            while j < bytes.len() && bytes[j].is_ascii_whitespace() {
-                j += 1;
-            }
-            let quote = *bytes.get(j)?;
-            if quote == b'"' || quote == b'\'' {
-                let open = j + 1;
-                let close = open + tag[open..].find(quote as char)?;
-                let (text, map) = unescape_xml(&tag[open..close], open);
-                return Some((text, Span::new(open, close), map));
-            }
-        }
-        i = pos + name.len();
-    }
-    None
+/// The value of attribute `name`: unescaped, its raw span, its map.
+fn find(attrs: &[Attr], name: &str) -> Option<(String, Span, OffsetMap)> {
+    attrs
+        .iter()
+        .find(|(k, ..)| k == name)
+        .map(|(_, v, span, map)| (v.clone(), *span, map.clone()))
 }
 
 /// XML entities (`&amp;` `&lt;` `&gt;` `&quot;` `&apos;` `&#N;` `&#xH;`) decoded, with the

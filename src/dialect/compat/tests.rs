@@ -203,3 +203,69 @@ fn orcaslicer_change_detects_rewrites_it_reads_differently() {
     assert_eq!(orcaslicer_change("0 90  +30/50%", "0, 90, +30/50%"), None);
     assert_eq!(orcaslicer_change("B!\n240M3\n#25", "B!, 240M3, #25"), None);
 }
+
+#[test]
+fn solid_layer_messages_read_well() {
+    // `S` once said "rotlang a solid solid layer".
+    assert_eq!(
+        find("0S, 90", DIFFERS).message,
+        "OrcaSlicer makes layer 0 sparse infill, rotlang a solid layer"
+    );
+    assert_eq!(
+        find("0M, 90", DIFFERS).message,
+        "OrcaSlicer makes layer 0 sparse infill, rotlang a monotonic solid layer"
+    );
+}
+
+fn lint_on(text: &str, target: Target, base: f64) -> Vec<Diagnostic> {
+    compat(text, target, &Model::cube20(), Options { base, seed: 0 })
+}
+
+#[test]
+fn a_profile_direction_is_ignored_by_orcaslicer_when_a_template_is_set() {
+    // OrcaSlicer: 0, 90; rotlang: 45, 135. One rule-based finding, no shifted `differs`.
+    let found = lint_on("0, 90", Target::Sparse, 45.0);
+    assert_eq!(
+        found.iter().map(|d| d.code).collect::<Vec<_>>(),
+        [DIRECTION_IGNORED]
+    );
+    assert_eq!(
+        found[0].message,
+        "OrcaSlicer ignores sparse_infill_direction = 45° when a template is set; rotlang adds it to every angle"
+    );
+    assert_eq!(found[0].severity, crate::Severity::Warning);
+    assert_eq!(found[0].primary_span(), Span::new(0, 5));
+    assert!(RULES.contains(&DIRECTION_IGNORED));
+    let solid = lint_on("+30/50%", Target::Solid, 30.0);
+    assert!(
+        solid[0]
+            .message
+            .starts_with("OrcaSlicer ignores solid_infill_direction = 30°"),
+        "{solid:?}"
+    );
+    // Where the template itself is read differently, both real angles are named:
+    // OrcaSlicer reads `1:4` as 1°; rotlang turns it to 90° + 45°.
+    let d = lint_on("0, 1:4", Target::Sparse, 45.0)
+        .into_iter()
+        .find(|d| d.code == DIFFERS)
+        .expect("differs");
+    assert_eq!(d.message, "OrcaSlicer turns layer 1 to 1°, rotlang to 135°");
+    // An empty template takes the direction in both readings; 0° and 360° are no direction.
+    assert!(lint_on("", Target::Sparse, 45.0).is_empty());
+    assert!(lint_on("0, 90", Target::Sparse, 0.0).is_empty());
+    assert!(lint_on("0, 90", Target::Sparse, 360.0).is_empty());
+}
+
+#[test]
+fn orcaslicer_options_in_a_profile_keep_the_direction_for_empty_text_only() {
+    let with = Options {
+        base: 45.0,
+        seed: 7,
+    };
+    let (empty, set) = (
+        orcaslicer::profile_options("", with),
+        orcaslicer::profile_options("0, 90", with),
+    );
+    assert_eq!((empty.base, empty.seed), (45.0, 7));
+    assert_eq!((set.base, set.seed), (0.0, 7));
+}

@@ -61,6 +61,27 @@ pub fn is_list(text: &str) -> bool {
     !text.bytes().any(|b| META.contains(&b) || is_joint(b))
 }
 
+/// The options of OrcaSlicer's reading of `text` in a profile whose infill direction
+/// (`sparse_infill_direction`, OrcaSlicer's `fixed_infill_angle`) is `options.base`.
+/// OrcaSlicer uses the direction only for an empty template: any other template's angles
+/// are the template's alone (SEMANTICS 10.2), so the base is dropped. rotlang's reading
+/// adds the direction to every angle; [`crate::dialect::compat`] reports the difference
+/// (`orcaslicer::direction-ignored`).
+///
+/// [`layers`] itself adds `options.base` to every angle (a base chosen on the command line
+/// or by an embedder); pass its options through this function when the base is a
+/// profile's direction.
+pub fn profile_options(text: &str, options: Options) -> Options {
+    if text.is_empty() {
+        options
+    } else {
+        Options {
+            base: 0.0,
+            ..options
+        }
+    }
+}
+
 /// The layers of `model` as OrcaSlicer computes them for `text`, bottom to top.
 pub fn layers<'a>(text: &str, model: &'a Model, options: Options) -> Layers<'a> {
     let reading = if text.is_empty() {

@@ -45,14 +45,18 @@ pub fn diagnostics(
     // A template with errors gets those first: OrcaSlicer's view of text rotlang rejects
     // would only add noise until it is fixed.
     for region in doc.regions.iter().filter(|r| !r.parse.has_errors()) {
-        let (model, options) = match &profile {
-            Some(p) => {
-                let m = p.model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
-                (m.model, m.options)
-            }
-            None => (crate::preview::model_of(settings), Options::default()),
+        let found = match &profile {
+            Some(p) => p
+                .model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT)
+                .compat(&region.text, region.target),
+            None => rotlang::dialect::compat(
+                &region.text,
+                region.target,
+                &crate::preview::model_of(settings),
+                Options::default(),
+            ),
         };
-        for d in rotlang::dialect::compat(&region.text, region.target, &model, options) {
+        for d in found {
             if out.len() >= MAX_FINDINGS {
                 return out;
             }

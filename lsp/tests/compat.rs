@@ -22,23 +22,35 @@ fn profiles_get_compat_findings_by_default() {
     let mut lsp = Lsp::start();
     let doc = "{\n  \"layer_height\": \"0.2\",\n  \"sparse_infill_rotate_template\": \"0 90\"\n}\n";
     let diags = lsp.open("file:///tmp/p.json", "json", doc);
-    // No direction set: OrcaSlicer's default 45°, which it ignores for a template.
+    // No direction set: OrcaSlicer's default 45° is rotlang's base, but a default the
+    // profile never chose is nothing to act on (the angles are compared without it).
     assert_eq!(
         codes(&diags),
+        ["orcaslicer::differs", "orcaslicer::space-separated-list"],
+        "{diags:#?}"
+    );
+    // A direction the profile sets, OrcaSlicer ignores for a template: said once.
+    let set = doc.replace(
+        "\"0.2\",",
+        "\"0.2\",\n  \"sparse_infill_direction\": \"30\",",
+    );
+    let with_direction = lsp.open("file:///tmp/q.json", "json", &set);
+    assert_eq!(
+        codes(&with_direction),
         [
             "orcaslicer::differs",
             "orcaslicer::direction-ignored",
             "orcaslicer::space-separated-list"
         ],
-        "{diags:#?}"
+        "{with_direction:#?}"
     );
-    let direction = diags
+    let direction = with_direction
         .iter()
         .find(|d| d["code"] == "orcaslicer::direction-ignored")
         .unwrap();
     assert_eq!(
         direction["message"],
-        "OrcaSlicer ignores sparse_infill_direction = 45° when a template is set; rotlang adds it to every angle"
+        "OrcaSlicer ignores sparse_infill_direction = 30° when a template is set; rotlang adds it to every angle"
     );
     let space = diags
         .iter()
@@ -89,7 +101,7 @@ fn inherited_settings_are_read_beside_the_file() {
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("parent.json"),
-        r#"{"name": "parent", "sparse_infill_direction": "0", "layer_height": "0.1", "bottom_shell_layers": "3", "top_shell_layers": "4", "initial_layer_print_height": "0.1"}"#,
+        r#"{"name": "parent", "sparse_infill_direction": "30", "layer_height": "0.1", "bottom_shell_layers": "3", "top_shell_layers": "4", "initial_layer_print_height": "0.1"}"#,
     )
     .unwrap();
     let child = dir.join("child.json");
@@ -97,10 +109,10 @@ fn inherited_settings_are_read_beside_the_file() {
     std::fs::write(&child, text).unwrap();
     let mut lsp = Lsp::start();
     let diags = lsp.open(&format!("file://{}", child.display()), "json", text);
-    // The parent's direction 0: nothing for OrcaSlicer to ignore (45° by default).
+    // The parent's direction, 30°, is the profile's own: OrcaSlicer ignores it here.
     let from_server = codes(&diags);
     assert!(
-        !from_server.contains(&"orcaslicer::direction-ignored".to_owned()),
+        from_server.contains(&"orcaslicer::direction-ignored".to_owned()),
         "{diags:#?}"
     );
     // What `rotlang check --compat orcaslicer child.json` reports.
@@ -108,27 +120,28 @@ fn inherited_settings_are_read_beside_the_file() {
     let found = &profile.templates[0];
     let pm = profile.model(found.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
     assert_eq!(pm.model.layer_height(), 0.1);
-    let mut from_cli: Vec<String> =
-        rotlang::dialect::compat(&found.text, found.target, &pm.model, pm.options)
-            .iter()
-            .map(|d| d.code.to_owned())
-            .collect();
+    let mut from_cli: Vec<String> = pm
+        .compat(&found.text, found.target)
+        .iter()
+        .map(|d| d.code.to_owned())
+        .collect();
     from_cli.sort();
     assert_eq!(from_server, from_cli);
     // The message of the model finding names the same layer (0.1 mm layers, not 0.2).
     let differs = |d: &serde_json::Value| d["code"] == "orcaslicer::differs";
     if let Some(d) = diags.iter().find(|d| differs(d)) {
-        let lib = rotlang::dialect::compat(&found.text, found.target, &pm.model, pm.options);
+        let lib = pm.compat(&found.text, found.target);
         let lib = lib
             .iter()
             .find(|d| d.code == "orcaslicer::differs")
             .unwrap();
         assert_eq!(d["message"], lib.message);
     }
-    // An unsaved buffer (no file behind it) keeps OrcaSlicer's defaults.
+    // An unsaved buffer (no file behind it) keeps OrcaSlicer's defaults: no parent, so
+    // no direction of its own to report.
     let diags = lsp.open("untitled:Untitled-1", "json", text);
     assert!(
-        codes(&diags).contains(&"orcaslicer::direction-ignored".to_owned()),
+        !codes(&diags).contains(&"orcaslicer::direction-ignored".to_owned()),
         "{diags:#?}"
     );
     let _ = std::fs::remove_dir_all(&dir);

@@ -205,12 +205,7 @@ impl Run {
                 for n in &pm.notes {
                     model_notes.insert(format!("{file}: {n}"), ());
                 }
-                diagnostics.extend(compat::compat(
-                    &found.text,
-                    found.target,
-                    &pm.model,
-                    pm.options,
-                ));
+                diagnostics.extend(pm.compat(&found.text, found.target));
             }
             self.templates += 1;
             self.count(&diagnostics);

@@ -69,7 +69,7 @@ static CODES: &[CodeDoc] = &[
         "orcaslicer::direction-ignored",
         W,
         "OrcaSlicer ignores the profile's infill direction when a template is set; rotlang adds it to every angle",
-        "OrcaSlicer turns an empty template's layers to `sparse_infill_direction` (`solid_infill_direction` for solid infill), but any other template's angles are the template's alone. rotlang takes the profile's direction as its base and adds it to every angle: `0, 90` in a profile with `sparse_infill_direction` = 45 is 0°, 90° for OrcaSlicer and 45°, 135° for rotlang. Reported by `rotlang check --compat orcaslicer` on profiles (and by the language server).",
+        "OrcaSlicer turns an empty template's layers to `sparse_infill_direction` (`solid_infill_direction` for solid infill), but any other template's angles are the template's alone. rotlang takes the profile's direction as its base and adds it to every angle: `0, 90` in a profile with `sparse_infill_direction` = 45 is 0°, 90° for OrcaSlicer and 45°, 135° for rotlang. Reported by `rotlang check --compat orcaslicer` on profiles that set the direction themselves (or inherit it from a preset they name), and by the language server; where a profile sets none, rotlang uses OrcaSlicer's default 45° as its base and says so in a note, and compares the angles without it.",
         "0, 90",
         "Set the direction to 0 in the profile and write it into the template's angles (`45, 135`), so both read the same; or keep it if the profile is only for rotlang-based slicers.",
     ),
@@ -292,10 +292,10 @@ static CODES: &[CodeDoc] = &[
     doc(
         "rotlang::empty-instruction",
         W,
-        "an empty instruction between separators",
-        "Two commas in a row, a leading comma or a comma alone enclose nothing. OrcaSlicer reads an empty instruction as `0`; rotlang ignores it.",
+        "an empty instruction between separators, or a trailing comma",
+        "Two commas in a row, a leading comma, a comma alone or a comma after the last instruction enclose nothing. OrcaSlicer reads an empty instruction as `0` (a comma that ends the text it drops, as rotlang does); rotlang ignores it.",
         "10,,20",
-        "Remove the extra comma: `10, 20`.",
+        "Remove the extra comma: `10, 20`; remove a trailing one: `0, 90`.",
     ),
     doc(
         "rotlang::flip-without-count",

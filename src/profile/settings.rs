@@ -58,6 +58,23 @@ pub struct ProfileModel {
     pub model: Model,
     pub options: Options,
     pub notes: Vec<String>,
+    /// Whether the direction in `options.base` is the profile's own (set in it, an object
+    /// of it, or a preset it inherits), not OrcaSlicer's default.
+    pub direction_set: bool,
+}
+
+impl ProfileModel {
+    /// The OrcaSlicer compat lint of `text` on this model and base
+    /// ([`crate::dialect::compat::compat`]). `orcaslicer::direction-ignored` only where the
+    /// profile sets the direction itself: a default it never chose is nothing to act on,
+    /// and the angles are compared without it all the same.
+    pub fn compat(&self, text: &str, target: Target) -> Vec<crate::Diagnostic> {
+        let mut found = crate::dialect::compat::compat(text, target, &self.model, self.options);
+        if !self.direction_set {
+            found.retain(|d| d.code != crate::dialect::compat::DIRECTION_IGNORED);
+        }
+        found
+    }
 }
 
 impl Settings {
@@ -140,6 +157,14 @@ impl Settings {
             "",
             &mut notes,
         );
+        let direction_keys: &[&str] = match target {
+            Target::Sparse => &["sparse_infill_direction", "infill_direction"],
+            Target::Solid => &["solid_infill_direction"],
+        };
+        let direction_set = direction_keys
+            .iter()
+            .find_map(|k| lookup(k))
+            .is_some_and(|s| parse_number(&s.value).is_some());
         let base = match target {
             Target::Sparse => number(
                 &["sparse_infill_direction", "infill_direction"],
@@ -189,6 +214,7 @@ impl Settings {
             model: model.with_shells(bottom, top),
             options: Options { base, seed: 0 },
             notes,
+            direction_set,
         }
     }
 }

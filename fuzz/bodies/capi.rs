@@ -1,7 +1,8 @@
 //! Fuzz target `capi`: the C ABI with arbitrary bytes, as a C caller could pass them.
 //! Bytes 0..8 choose the target, dialect, model (uniform, or heights read from the input as
 //! raw doubles: NaN, negative, zero, huge), the layer range and the buffer size; the rest
-//! is the template, not necessarily UTF-8. Every call must return a status (never
+//! is the template, not necessarily UTF-8, read by `rotlang_parse` or (byte 0's high bit)
+//! `rotlang_parse_bytes`, which keeps invalid bytes for the OrcaSlicer dialect. Every call must return a status (never
 //! `INTERNAL`, which is a caught panic), successful angles must be finite, the evaluator
 //! must agree with the batch, and a second free must be refused.
 
@@ -15,9 +16,15 @@ pub fn run(data: &[u8]) {
     h[..head.len()].copy_from_slice(head);
 
     let mut template = std::ptr::null_mut();
+    let bytes = h[0] & 0x80 != 0;
+    let parse = if bytes {
+        rotlang_parse_bytes
+    } else {
+        rotlang_parse
+    };
     // SAFETY: `rest` is readable for its length; `template` is writable.
     let status = unsafe {
-        rotlang_parse(
+        parse(
             rest.as_ptr().cast(),
             rest.len(),
             u32::from(h[0] % 3),
@@ -26,8 +33,8 @@ pub fn run(data: &[u8]) {
     };
     let utf8 = std::str::from_utf8(rest).is_ok();
     match status {
-        RotlangStatus::Ok => assert!(utf8 && h[0] % 3 < 2 && !template.is_null()),
-        RotlangStatus::InvalidUtf8 => assert!(!utf8 && template.is_null()),
+        RotlangStatus::Ok => assert!((utf8 || bytes) && h[0] % 3 < 2 && !template.is_null()),
+        RotlangStatus::InvalidUtf8 => assert!(!utf8 && !bytes && template.is_null()),
         RotlangStatus::InvalidArgument => assert!(h[0] % 3 == 2 && template.is_null()),
         other => panic!("rotlang_parse: {other:?}"),
     }
@@ -122,6 +129,8 @@ pub fn run(data: &[u8]) {
         RotlangStatus::InvalidModel => assert_eq!(counted, RotlangStatus::InvalidModel),
         RotlangStatus::InvalidArgument => assert!(options.dialect > 1),
         RotlangStatus::TemplateHasErrors => assert!(has_errors && options.dialect == 0),
+        // Kept bytes that are not UTF-8 read only in the OrcaSlicer dialect.
+        RotlangStatus::InvalidUtf8 => assert!(bytes && !utf8 && options.dialect == 0),
         RotlangStatus::OutOfRange | RotlangStatus::BufferTooSmall => {}
         other => panic!("rotlang_expand: {other:?}"),
     }

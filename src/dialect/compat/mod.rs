@@ -284,6 +284,10 @@ fn reference_models() -> [Model; 3] {
 /// What OrcaSlicer does differently after `text` becomes `changed` (on reference models),
 /// or `None` when it reads both alike. The formatter asks before rewriting a template.
 pub fn orcaslicer_change(text: &str, changed: &str) -> Option<String> {
+    // Formatting changes separators only: most texts keep OrcaSlicer's tokens exactly.
+    if orcaslicer::same_reading(text, changed) {
+        return None;
+    }
     for model in reference_models() {
         let options = Options::default();
         let mut a = orcaslicer::layers(text, &model, options);

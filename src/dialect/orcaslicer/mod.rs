@@ -288,28 +288,58 @@ enum Reading {
 
 /// 10.2: split at every `,`; a trailing `,` adds no piece; trim; read a decimal prefix.
 fn list(text: &str) -> Vec<(f64, Span)> {
+    pieces(text).collect()
+}
+
+/// The pieces of the list reading, one at a time: each piece's number and span.
+fn pieces(text: &str) -> impl Iterator<Item = (f64, Span)> + '_ {
     let bytes = text.as_bytes();
-    let mut pieces = Vec::new();
-    let mut start = 0;
-    loop {
-        let end = bytes[start..]
+    let mut start = Some(0);
+    std::iter::from_fn(move || {
+        let from = start?;
+        let end = bytes[from..]
             .iter()
             .position(|&b| b == b',')
-            .map_or(bytes.len(), |p| start + p);
-        let (mut a, mut b) = (start, end);
+            .map_or(bytes.len(), |p| from + p);
+        let (mut a, mut b) = (from, end);
         while a < b && scan::is_space(bytes[a]) {
             a += 1;
         }
         while b > a && scan::is_space(bytes[b - 1]) {
             b -= 1;
         }
-        pieces.push((scan::list_number(&bytes[a..b]), Span::new(a, b)));
-        if end == bytes.len() || end + 1 == bytes.len() {
-            break;
-        }
-        start = end + 1;
+        start = (end != bytes.len() && end + 1 != bytes.len()).then_some(end + 1);
+        Some((scan::list_number(&bytes[a..b]), Span::new(a, b)))
+    })
+}
+
+/// The tokens of the metalanguage reading (10.3), as text: split at runs of whitespace
+/// and commas; a run at the start yields an empty first token.
+fn token_texts(text: &str) -> impl Iterator<Item = &[u8]> + '_ {
+    let bytes = text.as_bytes();
+    let separator = |b: &u8| *b == b',' || scan::is_space(*b);
+    let leading = bytes.first().filter(|b| separator(b)).map(|_| &bytes[..0]);
+    leading
+        .into_iter()
+        .chain(bytes.split(separator).filter(|t| !t.is_empty()))
+}
+
+/// Whether OrcaSlicer reads `a` and `b` alike on every model, decided from the texts
+/// alone: both empty; both plain lists whose pieces read the same numbers; or both read
+/// by the metalanguage with the same tokens (it sees nothing but their texts). Streaming,
+/// without allocation: a cheap exact check before comparing angles layer by layer. `false`
+/// does not prove the angles differ (`0 0` and `0, 0` give the same angles).
+pub fn same_reading(a: &str, b: &str) -> bool {
+    if a.is_empty() || b.is_empty() {
+        return a.is_empty() && b.is_empty();
     }
-    pieces
+    match (is_list(a), is_list(b)) {
+        (true, true) => pieces(a)
+            .map(|(v, _)| v.to_bits())
+            .eq(pieces(b).map(|(v, _)| v.to_bits())),
+        (false, false) => token_texts(a).eq(token_texts(b)),
+        _ => false,
+    }
 }
 
 /// What a token's count makes of the range (10.6 step 5), decided by its text alone.

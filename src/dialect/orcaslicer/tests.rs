@@ -151,3 +151,48 @@ fn walks_end_at_the_first_token_and_after_a_range() {
         &[5.0, 10.0, 30.0, 5.0, 25.0, 5.0, 25.0],
     );
 }
+
+#[test]
+fn same_reading_sees_what_orcaslicer_sees() {
+    for (a, b, same) in [
+        ("", "", true),
+        ("", "0", false),
+        ("0 90", "0, 90", false),
+        ("0 0", "0, 0", false),
+        ("10,,20", "10, 20", false),
+        ("10, 20,", "10, 20", true),
+        ("10 ,20", "10, 20", true),
+        ("+10  +20", "+10, +20", true),
+        (",+10", "+10", false),
+        ("+10,,+20", "+10, +20", true),
+        ("1:4", "1:4, 0", false),
+        ("+10", "10", false),
+    ] {
+        assert_eq!(same_reading(a, b), same, "{a:?} vs {b:?}");
+        assert_eq!(same_reading(b, a), same, "{b:?} vs {a:?}");
+    }
+    // Where it says "same", every layer is the same, bit for bit, on two models.
+    let mut compared = 0;
+    for text in [
+        "0 90",
+        "10,,20",
+        "+10L25%,, -10l25%",
+        " 5, 10!, +20",
+        "10!, 5*",
+        "#14 +15R",
+        "1e5 ,2",
+    ] {
+        let formatted = crate::format::format(text, crate::Target::Sparse)
+            .unwrap_or_else(|| panic!("{text:?} has errors"));
+        if same_reading(text, &formatted) {
+            compared += 1;
+            for model in [cube(50), first_layer(50)] {
+                let bits = |t: &str| -> Vec<u64> {
+                    angles(t, &model).iter().map(|a| a.to_bits()).collect()
+                };
+                assert_eq!(bits(text), bits(&formatted), "{text:?}");
+            }
+        }
+    }
+    assert_eq!(compared, 4, "+10L25%, 10!, #14 and 1e5 keep their reading");
+}

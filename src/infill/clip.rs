@@ -57,6 +57,8 @@ pub(crate) struct Edges {
     stamp: Vec<u32>,
     segment: u32,
     crossings: Vec<f64>,
+    /// `clip`'s cuts, kept for the next call.
+    cuts: Vec<f64>,
 }
 
 impl Edges {
@@ -116,6 +118,7 @@ impl Edges {
             height,
             segment: 0,
             crossings: Vec::new(),
+            cuts: Vec::new(),
         }
     }
 
@@ -165,7 +168,9 @@ impl Edges {
             self.stamp = vec![u32::MAX; self.edges.len()];
         }
         // Where the polyline crosses an edge, as `segment index + t`.
-        let mut cuts: Vec<f64> = vec![0.0];
+        let mut cuts = std::mem::take(&mut self.cuts);
+        cuts.clear();
+        cuts.push(0.0);
         for (k, w) in pts.windows(2).enumerate() {
             let (p, q) = (w[0], w[1]);
             let (lo, hi) = (p.y.min(q.y), p.y.max(q.y));
@@ -176,18 +181,32 @@ impl Edges {
             {
                 continue;
             }
-            self.segment = self.segment.wrapping_add(1);
+            let (s0, s1) = (self.strip(lo), self.strip(hi));
+            // Within one strip an edge is met once; across strips, the stamp skips repeats.
+            let stamped = s0 != s1;
+            if stamped {
+                self.segment = self.segment.wrapping_add(1);
+            }
             let d1 = q - p;
+            let (px0, px1) = (p.x.min(q.x), p.x.max(q.x));
             let first = cuts.len();
-            for s in self.strip(lo)..=self.strip(hi) {
+            for s in s0..=s1 {
                 for &i in &self.strips[s] {
                     let i = i as usize;
-                    if self.stamp[i] == self.segment {
+                    if stamped {
+                        if self.stamp[i] == self.segment {
+                            continue;
+                        }
+                        self.stamp[i] = self.segment;
+                    }
+                    let Edge { a, b } = self.edges[i];
+                    if a.x.max(b.x) < px0 || a.x.min(b.x) > px1 {
                         continue;
                     }
-                    self.stamp[i] = self.segment;
-                    let Edge { a, b } = self.edges[i];
-                    if a.x.max(b.x) < p.x.min(q.x) || a.x.min(b.x) > p.x.max(q.x) {
+                    // The edge's ends on opposite sides of the segment's line (cheap, and
+                    // false for nearly every edge) before any division.
+                    let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
+                    if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
                         continue;
                     }
                     let d2 = b - a;
@@ -224,7 +243,12 @@ impl Edges {
             piece.push(at(g1));
             out.push(piece);
         }
+        self.cuts = cuts;
     }
+}
+
+fn cross(a: Coord, b: Coord) -> f64 {
+    a.x * b.y - a.y * b.x
 }
 
 fn strip(y: f64, min: f64, height: f64, n: usize) -> usize {

@@ -5,8 +5,15 @@ use geo::{Coord, LineString};
 use super::Toolpaths;
 use super::clip::Frame;
 
+// Plain square roots, not `hypot` (several times slower, and coordinates are bounded by
+// MAX_COORDINATE, so nothing overflows); comparisons use squared distances.
+fn dist2(a: Coord, b: Coord) -> f64 {
+    let d = b - a;
+    d.x * d.x + d.y * d.y
+}
+
 fn dist(a: Coord, b: Coord) -> f64 {
-    (b.x - a.x).hypot(b.y - a.y)
+    dist2(a, b).sqrt()
 }
 
 /// Drops vertices closer than `min` to the previous one, keeping both ends; `false` when
@@ -16,18 +23,19 @@ pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
     let Some(&end) = path.last() else {
         return false;
     };
+    let min2 = min * min;
     let mut kept = 1;
     for i in 1..path.len() - 1 {
-        if dist(path[kept - 1], path[i]) >= min {
+        if dist2(path[kept - 1], path[i]) >= min2 {
             path[kept] = path[i];
             kept += 1;
         }
     }
     path.truncate(kept);
-    while path.len() > 1 && dist(path[path.len() - 1], end) < min {
+    while path.len() > 1 && dist2(path[path.len() - 1], end) < min2 {
         path.pop();
     }
-    if dist(path[path.len() - 1], end) >= min {
+    if dist2(path[path.len() - 1], end) >= min2 {
         path.push(end);
     }
     path.len() >= 2
@@ -82,7 +90,8 @@ fn monotonic_order(mut paths: Vec<Vec<Coord>>, frame: &Frame) -> Vec<Vec<Coord>>
 /// used up, so that a layer of many thousand short walls orders in O(n) rather than O(n²).
 fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
     let n = paths.len();
-    if n <= 2 {
+    // One path has no order to choose; two still may need the second reversed.
+    if n <= 1 {
         return paths;
     }
     let ends: Vec<[Coord; 2]> = paths.iter().map(|p| [p[0], p[p.len() - 1]]).collect();
@@ -100,7 +109,7 @@ fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
                     continue;
                 }
                 for (side, &p) in e.iter().enumerate() {
-                    let d = dist(at, p);
+                    let d = dist2(at, p);
                     if d < best.0 {
                         best = (d, i, side == 1);
                     }
@@ -237,7 +246,7 @@ impl Grid {
                         self.population -= before - cell.len();
                         for &id in cell.iter() {
                             let p = ends[id as usize / 2][id as usize % 2];
-                            let d = dist(at, p);
+                            let d = dist2(at, p);
                             if best.is_none_or(|(bd, bid)| d < bd || (d == bd && id < bid)) {
                                 best = Some((d, id));
                             }
@@ -247,8 +256,8 @@ impl Grid {
                 }
             }
             // Cells beyond this ring are at least `ring × cell` away from `at`.
-            if let Some((d, _)) = best
-                && d <= ring as f64 * self.cell
+            if let Some((d2, _)) = best
+                && d2 <= (ring as f64 * self.cell).powi(2)
             {
                 break;
             }

@@ -434,6 +434,96 @@ fn travel_is_reported_and_short() {
     );
 }
 
+/// The fast inset of convex outlines with convex holes (no geo buffer) covers the same
+/// area as geo's buffer, whether the grown holes stay apart, meet each other, or meet the
+/// outline (then the boolean difference); a non-convex ring is left to the buffer.
+#[test]
+fn convex_inset_matches_the_general_buffer() {
+    use geo::{Area, Buffer};
+    let two_holes = MultiPolygon::new(vec![Polygon::new(
+        shapes::square(40.0).0[0].exterior().clone(),
+        vec![
+            shapes::circle(5.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(-8.0),
+            shapes::circle(5.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(8.0),
+        ],
+    )]);
+    let cases = [
+        ("square", shapes::square(20.0)),
+        ("circle", shapes::circle(10.0)),
+        ("holed", shapes::holed_square(40.0, 10.0)),
+        ("two holes", two_holes),
+        ("islands", {
+            let mut m = shapes::square(10.0);
+            m.0.extend(shapes::circle(3.0).0.into_iter().map(|p| {
+                use geo::Translate;
+                p.translate(20.0, 0.0)
+            }));
+            m
+        }),
+    ];
+    for (name, region) in &cases {
+        for d in [0.2, 1.0, 2.9, 3.5, 6.0, 9.0] {
+            let fast = region::convex_inset(region, d, 0.05).expect("all rings convex");
+            let slow = region.buffer(-d);
+            let (a, b) = (fast.unsigned_area(), slow.unsigned_area());
+            assert!(
+                (a - b).abs() <= 0.005 * b.max(1.0),
+                "{name} inset by {d}: {a} here, {b} by geo's buffer"
+            );
+        }
+    }
+    assert!(region::convex_inset(&shapes::star(10.0, 4.5), 0.2, 0.2).is_none());
+    assert!(region::convex_inset(&shapes::l_shape(20.0), 0.2, 0.2).is_none());
+}
+
+trait Shift {
+    fn map_coords_shift(self, dx: f64) -> Self;
+}
+
+impl Shift for LineString<f64> {
+    fn map_coords_shift(self, dx: f64) -> Self {
+        use geo::MapCoords;
+        self.map_coords(|c| Coord {
+            x: c.x + dx,
+            y: c.y,
+        })
+    }
+}
+
+/// Two lines are ordered too: the second is reversed so that it starts where the first
+/// ended (an early return for `n <= 2` left them both left to right, 19.7 mm of travel).
+#[test]
+fn two_paths_are_ordered_with_reversal() {
+    let rect = MultiPolygon::new(vec![Polygon::new(
+        LineString::from(vec![
+            (0.0, 0.0),
+            (20.0, 0.0),
+            (20.0, 5.0),
+            (0.0, 5.0),
+            (0.0, 0.0),
+        ]),
+        vec![],
+    )]);
+    let paths = super::fill(
+        &rect,
+        &Params::new(Pattern::Lines, 0.2, W).centring(Centring::Global),
+    )
+    .unwrap();
+    assert_eq!(paths.polylines.len(), 2);
+    let (a, b) = (&paths.polylines[0].0, &paths.polylines[1].0);
+    assert!(
+        (a[0].x < a[a.len() - 1].x) != (b[0].x < b[b.len() - 1].x),
+        "both lines run the same way: {a:?} {b:?}"
+    );
+    assert!(paths.travel < 2.5, "travel {}", paths.travel);
+}
+
 #[test]
 fn solid_signs_use_their_fill_kind() {
     let settings = Settings {

@@ -59,6 +59,99 @@ pub(crate) struct Edges {
     crossings: Vec<f64>,
     /// `clip`'s cuts, kept for the next call.
     cuts: Vec<f64>,
+    /// For `clip`, built by its first call: the edges in a grid of square cells, so that a
+    /// short segment well inside the region tests no edge at all.
+    grid: Option<Grid>,
+}
+
+/// Edges by cell, in one flat list: cell `c` holds `edges[start[c]..start[c + 1]]`.
+struct Grid {
+    min: Coord,
+    /// 1 / the cell's side.
+    inv: f64,
+    nx: usize,
+    ny: usize,
+    start: Vec<u32>,
+    edges: Vec<u32>,
+}
+
+impl Grid {
+    fn new(edges: &[Edge], min: Coord, max: Coord) -> Grid {
+        let size = max - min;
+        let wanted = (4 * edges.len()).clamp(16, 1 << 16) as f64;
+        let side = ((size.x.max(0.0) * size.y.max(0.0) / wanted).sqrt())
+            .max(size.x.max(size.y) / 1024.0)
+            .max(1e-9);
+        let inv = 1.0 / side;
+        let nx = ((size.x * inv) as usize + 1).min(1024);
+        let ny = ((size.y * inv) as usize + 1).min(1024);
+        let col = |x: f64| (((x - min.x) * inv).max(0.0) as usize).min(nx - 1);
+        let row = |y: f64| (((y - min.y) * inv).max(0.0) as usize).min(ny - 1);
+        // A little slack on each side so that rounding never drops an edge from the cell
+        // a crossing lies in.
+        let slack = side * 1e-6;
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(edges.len() * 4);
+        for (i, e) in edges.iter().enumerate() {
+            let (lo, hi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
+            for r in row(lo - slack)..=row(hi + slack) {
+                // The edge's x range within this row.
+                let (y0, y1) = (
+                    (min.y + r as f64 * side).max(lo),
+                    (min.y + (r + 1) as f64 * side).min(hi),
+                );
+                let x_at = |y: f64| {
+                    if e.b.y == e.a.y {
+                        e.a.x
+                    } else {
+                        e.a.x + (y - e.a.y) * (e.b.x - e.a.x) / (e.b.y - e.a.y)
+                    }
+                };
+                let (xa, xb) = if e.b.y == e.a.y {
+                    (e.a.x.min(e.b.x), e.a.x.max(e.b.x))
+                } else {
+                    let (p, q) = (x_at(y0.min(y1)), x_at(y1.max(y0)));
+                    (p.min(q), p.max(q))
+                };
+                for c in col(xa - slack)..=col(xb + slack) {
+                    pairs.push(((r * nx + c) as u32, i as u32));
+                }
+            }
+        }
+        let mut start = vec![0u32; nx * ny + 1];
+        for &(c, _) in &pairs {
+            start[c as usize + 1] += 1;
+        }
+        for c in 0..nx * ny {
+            start[c + 1] += start[c];
+        }
+        let mut fill = start.clone();
+        let mut list = vec![0u32; pairs.len()];
+        for &(c, i) in &pairs {
+            list[fill[c as usize] as usize] = i;
+            fill[c as usize] += 1;
+        }
+        Grid {
+            min,
+            inv,
+            nx,
+            ny,
+            start,
+            edges: list,
+        }
+    }
+
+    fn col(&self, x: f64) -> usize {
+        (((x - self.min.x) * self.inv).max(0.0) as usize).min(self.nx - 1)
+    }
+
+    fn row(&self, y: f64) -> usize {
+        (((y - self.min.y) * self.inv).max(0.0) as usize).min(self.ny - 1)
+    }
+
+    fn cell(&self, r: usize, c: usize) -> &[u32] {
+        let k = r * self.nx + c;
+        &self.edges[self.start[k] as usize..self.start[k + 1] as usize]
+    }
 }
 
 impl Edges {
@@ -119,7 +212,13 @@ impl Edges {
             segment: 0,
             crossings: Vec::new(),
             cuts: Vec::new(),
+            grid: None,
         }
+    }
+
+    /// The edges, in the frame.
+    pub fn segments(&self) -> impl Iterator<Item = (Coord, Coord)> + '_ {
+        self.edges.iter().map(|e| (e.a, e.b))
     }
 
     fn strip(&self, y: f64) -> usize {
@@ -181,44 +280,50 @@ impl Edges {
             {
                 continue;
             }
-            let (s0, s1) = (self.strip(lo), self.strip(hi));
-            // Within one strip an edge is met once; across strips, the stamp skips repeats.
-            let stamped = s0 != s1;
+            let grid = self
+                .grid
+                .get_or_insert_with(|| Grid::new(&self.edges, self.min, self.max));
+            let (px0, px1) = (p.x.min(q.x), p.x.max(q.x));
+            let (c0, c1) = (grid.col(px0), grid.col(px1));
+            let (r0, r1) = (grid.row(lo), grid.row(hi));
+            // Within one cell an edge is met once; across cells, the stamp skips repeats.
+            let stamped = c0 != c1 || r0 != r1;
             if stamped {
                 self.segment = self.segment.wrapping_add(1);
             }
             let d1 = q - p;
-            let (px0, px1) = (p.x.min(q.x), p.x.max(q.x));
             let first = cuts.len();
-            for s in s0..=s1 {
-                for &i in &self.strips[s] {
-                    let i = i as usize;
-                    if stamped {
-                        if self.stamp[i] == self.segment {
+            for r in r0..=r1 {
+                for c in c0..=c1 {
+                    for &i in grid.cell(r, c) {
+                        let i = i as usize;
+                        if stamped {
+                            if self.stamp[i] == self.segment {
+                                continue;
+                            }
+                            self.stamp[i] = self.segment;
+                        }
+                        let Edge { a, b } = self.edges[i];
+                        if a.x.max(b.x) < px0 || a.x.min(b.x) > px1 {
                             continue;
                         }
-                        self.stamp[i] = self.segment;
-                    }
-                    let Edge { a, b } = self.edges[i];
-                    if a.x.max(b.x) < px0 || a.x.min(b.x) > px1 {
-                        continue;
-                    }
-                    // The edge's ends on opposite sides of the segment's line (cheap, and
-                    // false for nearly every edge) before any division.
-                    let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
-                    if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
-                        continue;
-                    }
-                    let d2 = b - a;
-                    let den = d1.x * d2.y - d1.y * d2.x;
-                    if den == 0.0 {
-                        continue;
-                    }
-                    let ap = a - p;
-                    let t = (ap.x * d2.y - ap.y * d2.x) / den;
-                    let u = (ap.x * d1.y - ap.y * d1.x) / den;
-                    if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
-                        cuts.push(k as f64 + t);
+                        // The edge's ends on opposite sides of the segment's line (cheap,
+                        // and false for nearly every edge) before any division.
+                        let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
+                        if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
+                            continue;
+                        }
+                        let d2 = b - a;
+                        let den = d1.x * d2.y - d1.y * d2.x;
+                        if den == 0.0 {
+                            continue;
+                        }
+                        let ap = a - p;
+                        let t = (ap.x * d2.y - ap.y * d2.x) / den;
+                        let u = (ap.x * d1.y - ap.y * d1.x) / den;
+                        if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
+                            cuts.push(k as f64 + t);
+                        }
                     }
                 }
             }

@@ -167,9 +167,13 @@ fn every_pattern_stays_inside_every_shape() {
 /// less depending on where the lines fall: that is placement, not the formula). The
 /// shapes are scaled up for sparse patterns accordingly.
 ///
-/// Exceptions: lightning is sparse by design (asserted: more than a tenth of the density
-/// asked and at most 10% above it; a star's long outline gets the most branches); a gyroid layer varies with its height like the surface's section
-/// (asserted: each layer within −15%/+30%, the mean over a period of heights within 10%).
+/// Each shape is scaled to span at least 12 repeats of the pattern (`cell`) across its
+/// narrowest part: the rule the module documentation states (with fewer, a line more or
+/// less across the region is a large share of it: at 4 repeats densities are up to a
+/// quarter off). Exceptions: lightning is sparse by design (asserted: 0.5–0.8 of the
+/// density asked, 0.5–1.1 on the star, whose long outline gets the most branches); a gyroid
+/// layer varies with its height like the surface's section (asserted: each layer within
+/// −15%/+30%, the mean over a period of heights within 10%).
 #[test]
 fn density_is_what_was_asked() {
     let mut failures = Vec::new();
@@ -193,7 +197,10 @@ fn density_is_what_was_asked() {
                             &prepared,
                             &prepared.fill(&Params::new(pattern, rho, W)).unwrap(),
                         );
-                        check(d > 0.1 * rho && d <= 1.1 * rho, format!("{label}: {d}"));
+                        // Measured: 0.57–0.69 of ρ on the square, circle, L and holed
+                        // square, about 1.0 on the star.
+                        let most = if name == "star" { 1.1 } else { 0.8 };
+                        check(d >= 0.5 * rho && d <= most * rho, format!("{label}: {d}"));
                     }
                     Pattern::Gyroid => {
                         let period = TAU * W * GYROID_LAMBDA / rho;

@@ -358,13 +358,47 @@ mod preview {
     }
 }
 
-/// The pictures checked in for the README are valid SVG with something drawn in them.
+/// The README's pictures are what its own commands draw: each `cargo run --release -- …`
+/// line of its pictures section is run (with the binary under test, its `--out` moved to a
+/// temporary file) and the output compared byte for byte with the checked-in SVG, which
+/// must also render with something drawn in it. A change to the drawing code that is not
+/// followed by regenerating the pictures fails here.
+#[cfg(feature = "cli")]
 #[test]
-fn readme_pictures_render() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img");
-    for name in ["plot", "preview", "preview-star"] {
-        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("checked in");
-        let picture = render(&svg, &format!("readme-{name}"));
+fn readme_pictures_are_what_its_commands_draw() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("README.md");
+    let section = &readme[readme
+        .find("## Pictures: `rotlang plot` and `rotlang preview`")
+        .expect("the pictures section")..];
+    let section = &section[..section[3..].find("\n## ").map_or(section.len(), |i| i + 3)];
+    let mut checked = Vec::new();
+    for line in section.lines() {
+        let Some(args) = line.strip_prefix("cargo run --release -- ") else {
+            continue;
+        };
+        let mut words = shell_words(args);
+        let out = words
+            .iter()
+            .position(|w| w == "--out")
+            .expect("the command writes a file");
+        let target = words[out + 1].clone();
+        let temp = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("readme-{}", target.replace('/', "-")));
+        words[out + 1] = temp.to_string_lossy().into_owned();
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(&words)
+            .status()
+            .expect("rotlang runs");
+        assert!(status.success(), "{line}");
+        let drawn = std::fs::read(&temp).expect("the picture is written");
+        let checked_in = std::fs::read(root.join(&target)).expect("checked in");
+        assert!(
+            drawn == checked_in,
+            "{target} is not what `{line}` draws now: run the README's command again"
+        );
+        let svg = String::from_utf8(drawn).expect("UTF-8");
+        let picture = render(&svg, &format!("readme-{}", target.replace('/', "-")));
         let coloured = picture
             .pixels()
             .iter()
@@ -372,6 +406,47 @@ fn readme_pictures_render() {
                 c.red().max(c.green()).max(c.blue()) - c.red().min(c.green()).min(c.blue()) > 80
             })
             .count();
-        assert!(coloured > 1000, "{name}: {coloured} coloured pixels");
+        assert!(coloured > 1000, "{target}: {coloured} coloured pixels");
+        // Every picture the section shows is one of those regenerated.
+        checked.push(target);
     }
+    for (i, _) in section.match_indices("](docs/img/") {
+        let rest = &section[i + 2..];
+        let shown = &rest[..rest.find(')').unwrap()];
+        assert!(
+            checked.iter().any(|c| c == shown),
+            "{shown} is shown but no command draws it"
+        );
+    }
+    assert!(checked.len() >= 2, "{checked:?}");
+}
+
+/// Words of a shell command line: spaces separate them, single quotes hold spaces.
+#[cfg(feature = "cli")]
+fn shell_words(line: &str) -> Vec<String> {
+    let mut words = Vec::new();
+    let mut word = String::new();
+    let (mut quoted, mut started) = (false, false);
+    for c in line.chars() {
+        match c {
+            '\'' => {
+                quoted = !quoted;
+                started = true;
+            }
+            ' ' if !quoted => {
+                if started {
+                    words.push(std::mem::take(&mut word));
+                }
+                started = false;
+            }
+            c => {
+                word.push(c);
+                started = true;
+            }
+        }
+    }
+    if started {
+        words.push(word);
+    }
+    words
 }

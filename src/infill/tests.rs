@@ -677,3 +677,92 @@ proptest! {
         prop_assert!(paths.travel.is_finite() && paths.length.is_finite());
     }
 }
+
+/// A radial polygon's ring (as `polygon` makes), moved to `centre`, clockwise if `hole`.
+fn radial_ring(radii: &[f64], turn: f64, centre: Coord, hole: bool) -> LineString<f64> {
+    let mut ring = polygon(radii, turn).0.remove(0).into_inner().0;
+    for c in &mut ring.0 {
+        *c = *c + centre;
+    }
+    if hole {
+        ring.0.reverse();
+    }
+    ring
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Regions with holes (concave ones too) and several islands, each island possibly
+    /// holed: every path inside its island and outside every hole, no short segment.
+    /// The outline's vertices are at least 8 mm out with six or more of them, so it holds
+    /// the disc of 6.9 mm in which the holes (within 1.5 mm of points 3.5 mm out) lie apart;
+    /// islands are 14 mm apart and at most 6 mm in radius, their holes within 0.9 mm of
+    /// their centres (inside their 1.7 mm inner disc).
+    #[test]
+    fn random_regions_with_holes_and_islands(
+        outer in prop::collection::vec(8.0f64..15.0, 6..14),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..8), 0..4),
+        islands in prop::collection::vec(
+            (prop::collection::vec(2.0f64..6.0, 6..12), any::<bool>()), 2..4),
+        hole_radii in prop::collection::vec(0.3f64..0.9, 3..7),
+        turn in 0.0f64..TAU,
+        pattern in pattern_strategy(),
+        rho in 0.05f64..1.0,
+        angle in -720.0f64..720.0,
+        z in 0.0f64..50.0,
+        global in any::<bool>(),
+    ) {
+        let centring = if global { Centring::Global } else { Centring::Object };
+        let params = Params::new(pattern, rho, W).angle(angle).z(z).centring(centring);
+        // One outline with up to three holes.
+        let interiors = holes
+            .iter()
+            .enumerate()
+            .map(|(i, radii)| {
+                let a = turn + TAU * i as f64 / 3.0;
+                let centre = Coord { x: 3.5 * a.cos(), y: 3.5 * a.sin() };
+                radial_ring(radii, turn, centre, true)
+            })
+            .collect();
+        let holed = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&outer, turn, Coord::zero(), false),
+            interiors,
+        )]);
+        // Several islands, some holed.
+        let archipelago = MultiPolygon::new(
+            islands
+                .iter()
+                .enumerate()
+                .map(|(i, (radii, holed))| {
+                    let centre = Coord { x: 14.0 * i as f64, y: 3.0 * i as f64 };
+                    let holes = if *holed {
+                        vec![radial_ring(&hole_radii, -turn, centre, true)]
+                    } else {
+                        vec![]
+                    };
+                    Polygon::new(radial_ring(radii, turn, centre, false), holes)
+                })
+                .collect(),
+        );
+        for (name, region) in [("holed", &holed), ("islands", &archipelago)] {
+            let paths = fill(region, &params).unwrap();
+            let label = format!("{pattern} at {rho} on {name} {region:?}");
+            assert_inside(&label, region, &paths, W);
+            assert_segments(&label, &paths, W);
+            prop_assert!(paths.travel.is_finite() && paths.length.is_finite());
+            // Each island gets some infill when it is wide enough for a line.
+            if name == "islands" && rho >= 0.2 && pattern != Pattern::Lightning {
+                for polygon in &region.0 {
+                    let rings = rings_of(&MultiPolygon::new(vec![polygon.clone()]));
+                    let on = paths
+                        .polylines
+                        .iter()
+                        .flat_map(|l| l.0.iter())
+                        .any(|&p| inside(&rings, p));
+                    prop_assert!(on, "{label}: an island without infill");
+                }
+            }
+        }
+    }
+}

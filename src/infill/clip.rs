@@ -156,7 +156,7 @@ impl Grid {
 
 impl Edges {
     pub fn new(rings: &[Vec<Coord>], frame: &Frame) -> Edges {
-        let mut edges = Vec::new();
+        let mut edges = Vec::with_capacity(rings.iter().map(Vec::len).sum());
         let mut min = Coord {
             x: f64::INFINITY,
             y: f64::INFINITY,

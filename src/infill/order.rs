@@ -48,7 +48,10 @@ pub(crate) fn order(paths: Vec<Vec<Coord>>, monotonic: bool, frame: Frame) -> To
     } else {
         nearest(paths)
     };
-    let mut toolpaths = Toolpaths::default();
+    let mut toolpaths = Toolpaths {
+        polylines: Vec::with_capacity(ordered.len()),
+        ..Toolpaths::default()
+    };
     let mut last: Option<Coord> = None;
     for path in ordered {
         if let (Some(l), Some(&first)) = (last, path.first()) {

@@ -248,6 +248,7 @@ pub(crate) fn convex_inset(
                 .enumerate()
                 .all(|(i, a)| holes[i + 1..].iter().all(|b| separated(a, b)));
         let closed = |mut ring: Vec<Coord>| {
+            ring.reserve_exact(1);
             ring.push(ring[0]);
             LineString::new(ring)
         };

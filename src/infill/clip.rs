@@ -48,7 +48,10 @@ struct Edge {
 /// short segment meets only the edges near it.
 pub(crate) struct Edges {
     edges: Vec<Edge>,
-    strips: Vec<Vec<u32>>,
+    /// Strip `s` holds `strip_edges[strip_start[s]..strip_start[s + 1]]` (one flat list:
+    /// two allocations, not one per strip).
+    strip_start: Vec<u32>,
+    strip_edges: Vec<u32>,
     pub min: Coord,
     pub max: Coord,
     height: f64,
@@ -193,19 +196,34 @@ impl Edges {
         }
         let n = (edges.len() / 4).clamp(1, 512);
         let height = ((max.y - min.y) / n as f64).max(f64::MIN_POSITIVE);
-        let mut strips = vec![Vec::new(); n];
-        for (i, e) in edges.iter().enumerate() {
+        let span = |e: &Edge| {
             let (lo, hi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
-            let (s0, s1) = (strip(lo, min.y, height, n), strip(hi, min.y, height, n));
-            for s in &mut strips[s0..=s1] {
-                s.push(i as u32);
+            strip(lo, min.y, height, n)..=strip(hi, min.y, height, n)
+        };
+        // Count, then place (a counting sort by strip).
+        let mut strip_start = vec![0u32; n + 1];
+        for e in &edges {
+            for s in span(e) {
+                strip_start[s + 1] += 1;
+            }
+        }
+        for s in 0..n {
+            strip_start[s + 1] += strip_start[s];
+        }
+        let mut next = strip_start.clone();
+        let mut strip_edges = vec![0u32; strip_start[n] as usize];
+        for (i, e) in edges.iter().enumerate() {
+            for s in span(e) {
+                strip_edges[next[s] as usize] = i as u32;
+                next[s] += 1;
             }
         }
         Edges {
             // Allocated by the first `clip`: straight lines never need it.
             stamp: Vec::new(),
             edges,
-            strips,
+            strip_start,
+            strip_edges,
             min,
             max,
             height,
@@ -222,7 +240,7 @@ impl Edges {
     }
 
     fn strip(&self, y: f64) -> usize {
-        strip(y, self.min.y, self.height, self.strips.len())
+        strip(y, self.min.y, self.height, self.strip_start.len() - 1)
     }
 
     /// The inside intervals `[x0, x1]` of the horizontal line at `y`, left to right.
@@ -232,7 +250,9 @@ impl Edges {
             return;
         }
         self.crossings.clear();
-        for &i in &self.strips[self.strip(y)] {
+        let s = self.strip(y);
+        let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
+        for &i in &self.strip_edges[from as usize..to as usize] {
             let Edge { a, b } = self.edges[i as usize];
             if (a.y <= y) != (b.y <= y) {
                 self.crossings
@@ -249,7 +269,9 @@ impl Edges {
             return false;
         }
         let mut inside = false;
-        for &i in &self.strips[self.strip(p.y)] {
+        let s = self.strip(p.y);
+        let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
+        for &i in &self.strip_edges[from as usize..to as usize] {
             let Edge { a, b } = self.edges[i as usize];
             if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
                 inside = !inside;

@@ -41,12 +41,15 @@ fn found(p: &Pixmap, x: f64, y: f64, r: i32, colour: (u8, u8, u8)) -> bool {
     (-r..=r).any(|dx| (-r..=r).any(|dy| near(pixel(p, x + dx as f64, y + dy as f64), colour)))
 }
 
+/// An axis's ticks: (value, pixel).
+type Ticks = Vec<(f64, f64)>;
+
 /// The axes as the picture labels them, read from the SVG's text (not from
 /// `plot::layout`, which draws them): each angle tick is a grid line followed by its label,
 /// each height label is centred under its x. Returns (angle ticks, direction ticks, height
 /// ticks) as (value, pixel) pairs; the last five angle-like ticks belong to the direction
 /// panel.
-fn axes(svg: &str) -> (Vec<(f64, f64)>, Vec<(f64, f64)>, Vec<(f64, f64)>) {
+fn axes(svg: &str) -> (Ticks, Ticks, Ticks) {
     let attr = |tag: &str, name: &str| -> f64 {
         let key = format!(" {name}=\"");
         let at = tag.find(&key).expect("attribute") + key.len();

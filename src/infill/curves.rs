@@ -95,7 +95,8 @@ pub(crate) fn gyroid(
             break;
         }
         let index = |u: f64| (((u - u_first) / width).floor().max(0.0) as usize).min(n - 2);
-        for i in index(ua)..=index(ub) {
+        let (i0, i1) = (index(ua), index(ub));
+        for (i, e) in envelope.iter_mut().enumerate().take(i1 + 1).skip(i0) {
             let (l, r) = (u_first + i as f64 * width, u_first + (i + 1) as f64 * width);
             // Across the interval, or the whole edge when it is parallel to v.
             let (p, q) = if ub > ua {
@@ -104,7 +105,6 @@ pub(crate) fn gyroid(
                 (va, vb)
             };
             let (lo, hi) = (p.min(q), p.max(q));
-            let e = &mut envelope[i];
             *e = (e.0.min(lo), e.1.max(hi));
         }
     }

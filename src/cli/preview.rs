@@ -120,6 +120,7 @@ pub enum PatternArg {
     Gyroid,
     Spiral,
     Lightning,
+    Cubic,
 }
 
 impl From<PatternArg> for Pattern {
@@ -133,6 +134,7 @@ impl From<PatternArg> for Pattern {
             PatternArg::Gyroid => Pattern::Gyroid,
             PatternArg::Spiral => Pattern::Spiral,
             PatternArg::Lightning => Pattern::Lightning,
+            PatternArg::Cubic => Pattern::Cubic,
         }
     }
 }

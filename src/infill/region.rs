@@ -156,16 +156,34 @@ impl Region {
         let theta = params.angle.rem_euclid(360.0).to_radians();
         let mut paths: Vec<Vec<Coord>> = Vec::new();
         match params.pattern {
-            Pattern::Lines => straight::families(self, centre, theta, &[0.0], w / rho, &mut paths),
-            Pattern::Grid => {
-                straight::families(self, centre, theta, &[0.0, 90.0], 2.0 * w / rho, &mut paths)
+            Pattern::Lines => {
+                straight::families(self, centre, theta, &[0.0], w / rho, 0.0, &mut paths)
             }
+            Pattern::Grid => straight::families(
+                self,
+                centre,
+                theta,
+                &[0.0, 90.0],
+                2.0 * w / rho,
+                0.0,
+                &mut paths,
+            ),
             Pattern::Triangles => straight::families(
                 self,
                 centre,
                 theta,
                 &[0.0, 60.0, 120.0],
                 3.0 * w / rho,
+                0.0,
+                &mut paths,
+            ),
+            Pattern::Cubic => straight::families(
+                self,
+                centre,
+                theta,
+                &[0.0, 120.0, 240.0],
+                3.0 * w / rho,
+                params.z / std::f64::consts::SQRT_2,
                 &mut paths,
             ),
             Pattern::Hexagons => {

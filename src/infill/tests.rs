@@ -35,6 +35,7 @@ fn cell(pattern: Pattern, rho: f64) -> f64 {
         Pattern::Hexagons => 2.0 * W / rho,
         Pattern::Gyroid => TAU * W * GYROID_LAMBDA / rho,
         Pattern::Lightning => 5.0 * W / rho,
+        Pattern::Cubic => 3.0 * W / rho,
     }
 }
 
@@ -258,6 +259,7 @@ fn straight_patterns_run_along_the_scheduled_angle() {
         (Pattern::Lines, &[0.0][..]),
         (Pattern::Grid, &[0.0, 90.0]),
         (Pattern::Triangles, &[0.0, 60.0, 120.0]),
+        (Pattern::Cubic, &[0.0, 60.0, 120.0]),
     ] {
         let settings = Settings {
             pattern,
@@ -765,4 +767,46 @@ proptest! {
             }
         }
     }
+}
+
+/// Cubic: the section of cubes standing on a corner. Its three families (θ, θ+120°,
+/// θ+240°) move `z/√2` along their normals per mm of height, so that the family along θ
+/// at height z is the one at height 0 moved by z/√2; at z = 0 they meet in points, as
+/// triangles do.
+#[test]
+fn cubic_families_shift_with_height() {
+    let region = Region::new(&shapes::square(40.0), W).unwrap();
+    let rho = 0.2;
+    let spacing = 3.0 * W / rho;
+    for z in [0.0, 0.3, 1.0, 2.5, 7.0] {
+        let paths = region
+            .fill(&Params::new(Pattern::Cubic, rho, W).angle(0.0).z(z))
+            .unwrap();
+        // The horizontal family: y ≡ z/√2 (mod spacing); the centre is the origin.
+        let mut horizontal = 0;
+        for line in &paths.polylines {
+            let (a, b) = (line.0[0], line.0[1]);
+            if same_direction(direction(a, b), 0.0) {
+                horizontal += 1;
+                let phase = (a.y - z / std::f64::consts::SQRT_2).rem_euclid(spacing);
+                assert!(
+                    phase < 1e-6 || spacing - phase < 1e-6,
+                    "z {z}: a line at y {}",
+                    a.y
+                );
+            }
+        }
+        assert!(horizontal >= 5, "z {z}: {horizontal} horizontal lines");
+        let d = paths.length * W / region.area();
+        assert!((d / rho - 1.0).abs() < 0.1, "z {z}: density {d}");
+    }
+    // Different heights give different layers; a whole period (spacing·√2) the same one.
+    let at = |z: f64| {
+        region
+            .fill(&Params::new(Pattern::Cubic, rho, W).angle(20.0).z(z))
+            .unwrap()
+    };
+    assert_ne!(at(0.0).polylines, at(1.0).polylines);
+    let (a, b) = (at(1.0), at(1.0 + spacing * std::f64::consts::SQRT_2));
+    assert!((a.length - b.length).abs() < 1e-6 * a.length);
 }

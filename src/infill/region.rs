@@ -429,13 +429,27 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
     for i in 0..n {
         let (a, b, c) = (kept[(i + n - 1) % n], kept[i], kept[(i + 1) % n]);
         let (n0, n1) = (normal(a, b), normal(b, c));
-        let turn = cross(n0, n1).atan2(n0.x * n1.x + n0.y * n1.y).max(0.0);
-        let steps = (turn / arc).ceil().max(1.0) as usize;
-        let start = n0.y.atan2(n0.x);
-        for k in 0..=steps {
-            let (s, c) = (start + turn * k as f64 / steps as f64).sin_cos();
-            out.push(b + Coord { x: c, y: s } * d);
+        let (sin, cos) = (cross(n0, n1), n0.x * n1.x + n0.y * n1.y);
+        // Most corners of a round hole turn by less than `arc`: their two ends only, no
+        // trigonometry; sharper ones in equal steps, each the last rotated.
+        let steps = if sin >= 0.0 && cos >= arc.cos() {
+            1
+        } else {
+            (sin.atan2(cos).max(0.0) / arc).ceil().max(1.0) as usize
+        };
+        out.push(b + n0 * d);
+        if steps > 1 {
+            let (s, c) = (sin.atan2(cos).max(0.0) / steps as f64).sin_cos();
+            let mut v = n0;
+            for _ in 1..steps {
+                v = Coord {
+                    x: v.x * c - v.y * s,
+                    y: v.x * s + v.y * c,
+                };
+                out.push(b + v * d);
+            }
         }
+        out.push(b + n1 * d);
     }
     Some(out)
 }

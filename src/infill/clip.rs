@@ -200,22 +200,24 @@ impl Edges {
             let (lo, hi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
             strip(lo, min.y, height, n)..=strip(hi, min.y, height, n)
         };
-        // Count, then place (a counting sort by strip).
+        // A counting sort by strip: counts, their running sums (each strip's end), then
+        // the edges placed from each end down, in reverse, which leaves every strip's
+        // start in `strip_start` and its edges in ascending order.
         let mut strip_start = vec![0u32; n + 1];
         for e in &edges {
             for s in span(e) {
-                strip_start[s + 1] += 1;
+                strip_start[s] += 1;
             }
         }
-        for s in 0..n {
-            strip_start[s + 1] += strip_start[s];
+        for s in 1..n {
+            strip_start[s] += strip_start[s - 1];
         }
-        let mut next = strip_start.clone();
+        strip_start[n] = strip_start[n - 1];
         let mut strip_edges = vec![0u32; strip_start[n] as usize];
-        for (i, e) in edges.iter().enumerate() {
+        for (i, e) in edges.iter().enumerate().rev() {
             for s in span(e) {
-                strip_edges[next[s] as usize] = i as u32;
-                next[s] += 1;
+                strip_start[s] -= 1;
+                strip_edges[strip_start[s] as usize] = i as u32;
             }
         }
         Edges {

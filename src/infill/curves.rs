@@ -54,7 +54,7 @@ pub(crate) fn gyroid(
             } else {
                 (su, cz, sz * cu)
             };
-            let r = a.hypot(b);
+            let r = (a * a + b * b).sqrt();
             let phi = b.atan2(a);
             let delta = (-c / r).clamp(-1.0, 1.0).acos();
             (u, phi + delta, phi - delta)

@@ -97,34 +97,36 @@ fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
     if n <= 1 {
         return paths;
     }
+    if n <= 64 {
+        // Few paths: a plain scan, in place. The paths not yet taken stay in their order
+        // (rotated, not swapped), so ties go to the lowest index as in the grid search.
+        let mut paths = paths;
+        let mut at = paths[0][paths[0].len() - 1];
+        for i in 1..n {
+            let mut best = (f64::INFINITY, i, false);
+            for (j, p) in paths.iter().enumerate().skip(i) {
+                for (reversed, q) in [(false, p[0]), (true, p[p.len() - 1])] {
+                    let d = dist2(at, q);
+                    if d < best.0 {
+                        best = (d, j, reversed);
+                    }
+                }
+            }
+            let (_, j, reversed) = best;
+            paths[i..=j].rotate_right(1);
+            if reversed {
+                paths[i].reverse();
+            }
+            at = paths[i][paths[i].len() - 1];
+        }
+        return paths;
+    }
     let ends: Vec<[Coord; 2]> = paths.iter().map(|p| [p[0], p[p.len() - 1]]).collect();
     let mut used = vec![false; n];
     let mut order: Vec<(usize, bool)> = Vec::with_capacity(n);
     used[0] = true;
     order.push((0, false));
     let mut at = ends[0][1];
-    if n <= 64 {
-        // Few paths: a plain scan is quicker than building the grid.
-        for _ in 1..n {
-            let mut best = (f64::INFINITY, 0, false);
-            for (i, e) in ends.iter().enumerate() {
-                if used[i] {
-                    continue;
-                }
-                for (side, &p) in e.iter().enumerate() {
-                    let d = dist2(at, p);
-                    if d < best.0 {
-                        best = (d, i, side == 1);
-                    }
-                }
-            }
-            let (_, i, reversed) = best;
-            used[i] = true;
-            order.push((i, reversed));
-            at = ends[i][if reversed { 0 } else { 1 }];
-        }
-        return take_in_order(paths, order);
-    }
     let mut grid = Grid::new(&ends, &used, n - 1);
     let mut left = n - 1;
     while left > 0 {

@@ -14,7 +14,7 @@ fn main() {
     divan::main();
 }
 
-const PATTERNS: [Pattern; 8] = Pattern::ALL;
+const PATTERNS: [Pattern; Pattern::ALL.len()] = Pattern::ALL;
 const W: f64 = 0.4;
 
 fn shape(name: &str) -> MultiPolygon<f64> {

@@ -64,6 +64,10 @@ pub struct Layout {
     /// The angle axis range (degrees).
     pub angle_min: f64,
     pub angle_max: f64,
+    /// The direction axis runs from this to 180° above it: 0 (directions in [0, 180)), or
+    /// −90 (in [−90, 90)) when the directions cluster around 0°, where [0, 180) would split
+    /// them between its two edges.
+    pub direction_min: f64,
 }
 
 impl Layout {
@@ -78,10 +82,11 @@ impl Layout {
         r.y + r.h - (angle - self.angle_min) / (self.angle_max - self.angle_min) * r.h
     }
 
-    /// The y pixel of a direction (in [0, 180)) in the direction panel.
-    pub fn y_direction(&self, direction: f64) -> f64 {
+    /// The y pixel of an angle's direction in the direction panel (any angle: it is
+    /// wrapped into the panel's range, `direction_min` to 180° above it).
+    pub fn y_direction(&self, angle: f64) -> f64 {
         let r = &self.directions;
-        r.y + r.h - direction / 180.0 * r.h
+        r.y + r.h - wrap180(angle - self.direction_min) / 180.0 * r.h
     }
 }
 
@@ -97,6 +102,11 @@ pub const LINE_COLOUR: &str = "#1f4e9c";
 pub const POINT_COLOUR: &str = "#2a7f62";
 /// The colour of solid layers' markers.
 pub const SOLID_COLOUR: &str = "#e07000";
+/// Rows of instruction labels, and the width of one character of them (11 px sans-serif,
+/// generously: digits and signs are about 6.1 px).
+const LABEL_ROWS: usize = 3;
+const LABEL_CHAR: f64 = 6.8;
+
 const SHADES: [&str; 6] = [
     "#e8eef9", "#fbeee0", "#e6f4ea", "#f6e6f2", "#fff8d6", "#e6f3f7",
 ];
@@ -110,8 +120,8 @@ struct Column {
     last: f64,
     /// The instruction governing the column's first layer (index in the template).
     instruction: Option<usize>,
-    /// Direction pixel rows with a point: (row, solid).
-    points: Vec<(u16, bool)>,
+    /// Direction pixel rows with a point: (row in [0, 180), row in [−90, 90), solid).
+    points: Vec<(u16, u16, bool)>,
     solid: bool,
 }
 
@@ -121,6 +131,9 @@ struct Data {
     angle_min: f64,
     angle_max: f64,
     layers: usize,
+    /// Sparse-or-solid points near 0° (or 180°), and near 90°: which range to draw on.
+    near_0: usize,
+    near_90: usize,
 }
 
 fn frame(options: &PlotOptions) -> (Rect, Rect) {
@@ -149,6 +162,7 @@ fn gather(template: &Template, model: &Model, options: eval::Options, plot: &Plo
     let (mut angle_min, mut angle_max) = (f64::INFINITY, f64::NEG_INFINITY);
     let index_of = |span: crate::Span| template.instructions.iter().position(|i| i.span == span);
     let mut layers = 0;
+    let (mut near_0, mut near_90) = (0, 0);
     for layer in eval::layers(template, model, options) {
         layers += 1;
         let z = (layer.bottom + layer.top) / 2.0;
@@ -158,9 +172,17 @@ fn gather(template: &Template, model: &Model, options: eval::Options, plot: &Plo
         angle_max = angle_max.max(a);
         let solid = layer.fill != Fill::Sparse;
         let direction = wrap180(a);
-        let row = ((1.0 - direction / 180.0) * directions.h)
-            .round()
-            .clamp(0.0, u16::MAX as f64) as u16;
+        let row_of = |from: f64| {
+            ((1.0 - wrap180(a - from) / 180.0) * directions.h)
+                .round()
+                .clamp(0.0, u16::MAX as f64) as u16
+        };
+        let (row, centred_row) = (row_of(0.0), row_of(-90.0));
+        if !(30.0..150.0).contains(&direction) {
+            near_0 += 1;
+        } else if (60.0..120.0).contains(&direction) {
+            near_90 += 1;
+        }
         let column = columns[c].get_or_insert_with(|| Column {
             first: a,
             min: a,
@@ -174,8 +196,8 @@ fn gather(template: &Template, model: &Model, options: eval::Options, plot: &Plo
         column.max = column.max.max(a);
         column.last = a;
         column.solid |= solid;
-        if !column.points.contains(&(row, solid)) {
-            column.points.push((row, solid));
+        if !column.points.contains(&(row, centred_row, solid)) {
+            column.points.push((row, centred_row, solid));
         }
     }
     if !angle_min.is_finite() {
@@ -187,6 +209,8 @@ fn gather(template: &Template, model: &Model, options: eval::Options, plot: &Plo
         angle_min,
         angle_max,
         layers,
+        near_0,
+        near_90,
     }
 }
 
@@ -216,6 +240,12 @@ fn layout_of(data: &Data, plot: &PlotOptions) -> Layout {
         z_max: data.z_max,
         angle_min: lo,
         angle_max: hi,
+        // Only for a clear cluster: directions turning evenly stay on [0, 180).
+        direction_min: if data.near_0 > 2 * data.near_90 {
+            -90.0
+        } else {
+            0.0
+        },
     }
 }
 
@@ -324,8 +354,14 @@ pub fn svg(
         num(options.base, 4),
         options.seed
     );
-    // Instruction ranges: runs of columns governed by the same instruction.
+    // Instruction ranges: runs of columns governed by the same instruction. Their labels
+    // are whole, never cut to a letter: each goes in the first of three rows where it does
+    // not run into the label before it, and is left out (the shading still shows its
+    // range) when none has room.
     let mut run_start = 0;
+    let mut row_ends = [f64::NEG_INFINITY; LABEL_ROWS];
+    // Drawn after all the shading, which would otherwise cover a label running on.
+    let mut labels = String::new();
     let n = data.columns.len();
     let governing = |c: usize| data.columns[c].as_ref().and_then(|col| col.instruction);
     for c in 1..=n {
@@ -352,19 +388,25 @@ pub fn svg(
                 .get(index)
                 .and_then(|i| source.get(i.span.range()))
                 .unwrap_or("");
-            let room = (width / 7.0) as usize;
-            if room >= 2 && !text.trim().is_empty() {
+            let label = shorten(text, 40);
+            let label_width = LABEL_CHAR * label.chars().count() as f64;
+            // From the range's start, kept inside the panel.
+            let x = (x0 + 2.0).min(a.x + a.w - label_width - 2.0).max(a.x + 2.0);
+            let row = row_ends.iter().position(|&end| x >= end + 6.0);
+            if let (Some(row), false) = (row, label.is_empty()) {
+                row_ends[row] = x + label_width;
                 let _ = write!(
-                    s,
+                    labels,
                     r##"<text x="{}" y="{}" fill="#333" font-size="11">{}</text>"##,
-                    num(x0 + 2.0, 2),
-                    num(a.y + 13.0, 2),
-                    escape(&shorten(text, room))
+                    num(x, 2),
+                    num(a.y + 13.0 + 13.0 * row as f64, 2),
+                    escape(&label)
                 );
             }
         }
         run_start = c;
     }
+    s.push_str(&labels);
     axes(&mut s, &layout, &data);
     // The unwrapped angle: a line through every column's first, lowest, highest and last.
     let mut path = String::new();
@@ -393,7 +435,12 @@ pub fn svg(
     for (c, col) in data.columns.iter().enumerate() {
         let Some(col) = col else { continue };
         let x = a.x + c as f64 + 0.5;
-        for &(row, solid) in &col.points {
+        for &(row, centred_row, solid) in &col.points {
+            let row = if layout.direction_min < 0.0 {
+                centred_row
+            } else {
+                row
+            };
             let y = d.y + row as f64;
             if solid {
                 let _ = write!(squares, "M{} {}h5v5h-5z", num(x - 2.5, 2), num(y - 2.5, 2));
@@ -473,14 +520,26 @@ fn axes(s: &mut String, layout: &Layout, data: &Data) {
         tick(s, a, y, &format!("{}°", num(v, 3)));
         v += astep;
     }
-    for v in [0.0, 45.0, 90.0, 135.0, 180.0] {
-        tick(s, d, layout.y_direction(v), &format!("{}°", num(v, 0)));
+    for k in 0..=4 {
+        let v = layout.direction_min + 45.0 * k as f64;
+        let y = d.y + d.h - 45.0 * k as f64 / 180.0 * d.h;
+        tick(s, d, y, &format!("{}°", num(v, 0)));
     }
-    for (r, label) in [(a, "angle (°)"), (d, "direction (° mod 180)")] {
-        let (x, y) = (16.0, r.y + r.h / 2.0);
+    // The direction axis says which range the angles were wrapped into, on a second line.
+    let wrapped = if layout.direction_min < 0.0 {
+        "mod 180, in [−90, 90)"
+    } else {
+        "mod 180, in [0, 180)"
+    };
+    for (r, label, x, size) in [
+        (a, "angle (°)", 16.0, 12),
+        (d, "direction (°)", 14.0, 12),
+        (d, wrapped, 28.0, 10),
+    ] {
+        let y = r.y + r.h / 2.0;
         let _ = write!(
             s,
-            r#"<text x="{x}" y="{y}" text-anchor="middle" transform="rotate(-90 {x} {y})">{label}</text>"#,
+            r#"<text x="{x}" y="{y}" font-size="{size}" text-anchor="middle" transform="rotate(-90 {x} {y})">{label}</text>"#,
             x = num(x, 2),
             y = num(y, 2)
         );

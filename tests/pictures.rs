@@ -41,6 +41,50 @@ fn found(p: &Pixmap, x: f64, y: f64, r: i32, colour: (u8, u8, u8)) -> bool {
     (-r..=r).any(|dx| (-r..=r).any(|dy| near(pixel(p, x + dx as f64, y + dy as f64), colour)))
 }
 
+/// An axis's ticks: (value, pixel).
+type Ticks = Vec<(f64, f64)>;
+
+/// The axes as the picture labels them, read from the SVG's text (not from
+/// `plot::layout`, which draws them): each angle tick is a grid line followed by its label,
+/// each height label is centred under its x. Returns (angle ticks, direction ticks, height
+/// ticks) as (value, pixel) pairs; the last five angle-like ticks belong to the direction
+/// panel.
+fn axes(svg: &str) -> (Ticks, Ticks, Ticks) {
+    let attr = |tag: &str, name: &str| -> f64 {
+        let key = format!(" {name}=\"");
+        let at = tag.find(&key).expect("attribute") + key.len();
+        tag[at..tag[at..].find('"').unwrap() + at].parse().unwrap()
+    };
+    let mut ticks = Vec::new();
+    let marker = "stroke=\"#ddd\"/><text";
+    for (i, _) in svg.match_indices(marker) {
+        let line = &svg[svg[..i].rfind("<line").unwrap()..i];
+        let text = &svg[i + marker.len()..];
+        let label = &text[text.find('>').unwrap() + 1..text.find("</text>").unwrap()];
+        let value: f64 = label
+            .trim_end_matches('°')
+            .parse()
+            .expect("a number of degrees");
+        ticks.push((value, attr(line, "y1")));
+    }
+    let directions = ticks.split_off(ticks.len() - 5);
+    let mut heights = Vec::new();
+    for (i, _) in svg.match_indices("text-anchor=\"middle\">") {
+        let tag = &svg[svg[..i].rfind("<text").unwrap()..i];
+        let rest = &svg[i + "text-anchor=\"middle\">".len()..];
+        if let Ok(z) = rest[..rest.find('<').unwrap()].parse::<f64>() {
+            heights.push((z, attr(tag, "x")));
+        }
+    }
+    (ticks, directions, heights)
+}
+
+/// The pixel of `value` on an axis given by its ticks (linear between the first and last).
+fn on_axis(ticks: &[(f64, f64)], value: f64) -> f64 {
+    let (a, b) = (ticks[0], ticks[ticks.len() - 1]);
+    a.1 + (value - a.0) / (b.0 - a.0) * (b.1 - a.1)
+}
+
 #[test]
 fn plot_line_and_points_are_where_the_angles_say() {
     let text = "+2, 0*, +3";
@@ -52,21 +96,26 @@ fn plot_line_and_points_are_where_the_angles_say() {
     };
     let style = PlotOptions::default();
     let svg = plot::svg(&template, &model, options, text, &style);
-    let layout = plot::layout(&template, &model, options, &style);
+    let (angle_ticks, direction_ticks, height_ticks) = axes(&svg);
+    // The height axis spans the 20 mm cube; directions are labelled over 180°.
+    assert_eq!(height_ticks.first().map(|t| t.0), Some(0.0));
+    assert_eq!(height_ticks.last().map(|t| t.0), Some(20.0));
+    let from = direction_ticks[0].0;
+    assert_eq!(direction_ticks[4].0, from + 180.0);
     let picture = render(&svg, "plot");
     let line = hex(plot::LINE_COLOUR);
     let dots = hex(plot::POINT_COLOUR);
     let layers: Vec<_> = rotlang::eval::layers(&template, &model, options).collect();
     for l in layers.iter().step_by(7) {
-        let x = layout.x((l.bottom + l.top) / 2.0);
-        let y = layout.y_angle(l.angle);
+        let x = on_axis(&height_ticks, (l.bottom + l.top) / 2.0);
+        let y = on_axis(&angle_ticks, l.angle);
         assert!(
             found(&picture, x, y, 2, line),
             "layer {}: no line at ({x}, {y}) for {}°",
             l.index,
             l.angle
         );
-        let yd = layout.y_direction(l.angle.rem_euclid(180.0));
+        let yd = on_axis(&direction_ticks, (l.angle - from).rem_euclid(180.0) + from);
         assert!(
             found(&picture, x, yd, 2, dots),
             "layer {}: no point at ({x}, {yd})",
@@ -75,15 +124,117 @@ fn plot_line_and_points_are_where_the_angles_say() {
     }
     // And not everywhere: the line is absent well away from the angle (angles rise).
     let l = &layers[50];
-    let x = layout.x((l.bottom + l.top) / 2.0);
+    let x = on_axis(&height_ticks, (l.bottom + l.top) / 2.0);
+    let (top, bottom) = (angle_ticks.last().unwrap().1, angle_ticks[0].1);
     for dy in [-40.0, 40.0] {
-        let y = layout.y_angle(l.angle) + dy;
-        if y > layout.angles.y && y < layout.angles.y + layout.angles.h {
+        let y = on_axis(&angle_ticks, l.angle) + dy;
+        if y > top && y < bottom {
             assert!(
                 !found(&picture, x, y, 1, line),
                 "a line at ({x}, {y}), far from {}°",
                 l.angle
             );
+        }
+    }
+}
+
+/// A ±10° wobble is drawn on −90° to 90°, where it is one continuous band around 0°, not
+/// split between 0° and 180° (the axis says so); turns around 90° stay on 0° to 180°.
+#[test]
+fn plot_wobble_around_zero_is_not_split_at_the_seam() {
+    let text = "+10L25%, -10l25%, -10L25%, +10l25%";
+    let template = rotlang::parse(text, rotlang::Target::Sparse).template;
+    let model = Model::cube20();
+    let svg = plot::svg(
+        &template,
+        &model,
+        Options::default(),
+        text,
+        &PlotOptions::default(),
+    );
+    assert!(svg.contains("mod 180, in [−90, 90)"));
+    let (_, direction_ticks, height_ticks) = axes(&svg);
+    let labels: Vec<f64> = direction_ticks.iter().map(|t| t.0).collect();
+    assert_eq!(labels, [-90.0, -45.0, 0.0, 45.0, 90.0]);
+    let picture = render(&svg, "plot-wobble");
+    let dots = hex(plot::POINT_COLOUR);
+    let layers: Vec<_> = rotlang::eval::layers(&template, &model, Options::default()).collect();
+    let mut negative = 0;
+    for l in layers.iter().step_by(5) {
+        assert!(l.angle.abs() <= 10.0 + 1e-9);
+        negative += usize::from(l.angle < -1.0);
+        let x = on_axis(&height_ticks, (l.bottom + l.top) / 2.0);
+        let y = on_axis(&direction_ticks, l.angle);
+        assert!(
+            found(&picture, x, y, 2, dots),
+            "layer {} at {}°: no point at ({x}, {y})",
+            l.index,
+            l.angle
+        );
+        // Nothing at the panel's edges, where [0, 180) would have put half of them.
+        for edge in [-88.0, 88.0] {
+            let y = on_axis(&direction_ticks, edge);
+            assert!(
+                !found(&picture, x, y, 1, dots),
+                "layer {}: a point at {edge}°",
+                l.index
+            );
+        }
+    }
+    assert!(negative > 3, "the wobble goes below 0°");
+    let text = "+80L50%, -10";
+    let template = rotlang::parse(text, rotlang::Target::Sparse).template;
+    let svg = plot::svg(
+        &template,
+        &model,
+        Options::default(),
+        text,
+        &PlotOptions::default(),
+    );
+    assert!(svg.contains("mod 180, in [0, 180)"));
+}
+
+/// Instruction labels are whole (`30M`, not `3…`) and do not run into each other.
+#[test]
+fn plot_labels_are_whole_and_apart() {
+    let text = "30M, 90, +45/8, 0, +30/50%";
+    let template = rotlang::parse(text, rotlang::Target::Sparse).template;
+    let svg = plot::svg(
+        &template,
+        &Model::cube20(),
+        Options::default(),
+        text,
+        &PlotOptions::default(),
+    );
+    let mut labels = Vec::new();
+    for (i, _) in svg.match_indices("font-size=\"11\">") {
+        let tag = &svg[svg[..i].rfind("<text").unwrap()..i];
+        let rest = &svg[i + "font-size=\"11\">".len()..];
+        let label = rest[..rest.find('<').unwrap()].to_owned();
+        let num = |name: &str| -> f64 {
+            let key = format!(" {name}=\"");
+            let at = tag.find(&key).unwrap() + key.len();
+            tag[at..at + tag[at..].find('"').unwrap()].parse().unwrap()
+        };
+        labels.push((label, num("x"), num("y")));
+    }
+    for want in ["30M", "90", "+45/8", "0", "+30/50%"] {
+        assert!(
+            labels.iter().any(|l| l.0 == want),
+            "no label {want}: {labels:?}"
+        );
+    }
+    assert!(!svg.contains('…'));
+    // Labels on one row: each ends (at 7 px a character, more than 11 px sans-serif
+    // takes) before the next begins.
+    for a in &labels {
+        for b in &labels {
+            if a.2 == b.2 && a.1 < b.1 {
+                assert!(
+                    a.1 + 7.0 * a.0.chars().count() as f64 <= b.1,
+                    "{a:?} runs into {b:?}"
+                );
+            }
         }
     }
 }
@@ -210,13 +361,47 @@ mod preview {
     }
 }
 
-/// The pictures checked in for the README are valid SVG with something drawn in them.
+/// The README's pictures are what its own commands draw: each `cargo run --release -- …`
+/// line of its pictures section is run (with the binary under test, its `--out` moved to a
+/// temporary file) and the output compared byte for byte with the checked-in SVG, which
+/// must also render with something drawn in it. A change to the drawing code that is not
+/// followed by regenerating the pictures fails here.
+#[cfg(feature = "cli")]
 #[test]
-fn readme_pictures_render() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/img");
-    for name in ["plot", "preview", "preview-star"] {
-        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("checked in");
-        let picture = render(&svg, &format!("readme-{name}"));
+fn readme_pictures_are_what_its_commands_draw() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).expect("README.md");
+    let section = &readme[readme
+        .find("## Pictures: `rotlang plot` and `rotlang preview`")
+        .expect("the pictures section")..];
+    let section = &section[..section[3..].find("\n## ").map_or(section.len(), |i| i + 3)];
+    let mut checked = Vec::new();
+    for line in section.lines() {
+        let Some(args) = line.strip_prefix("cargo run --release -- ") else {
+            continue;
+        };
+        let mut words = shell_words(args);
+        let out = words
+            .iter()
+            .position(|w| w == "--out")
+            .expect("the command writes a file");
+        let target = words[out + 1].clone();
+        let temp = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("readme-{}", target.replace('/', "-")));
+        words[out + 1] = temp.to_string_lossy().into_owned();
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(&words)
+            .status()
+            .expect("rotlang runs");
+        assert!(status.success(), "{line}");
+        let drawn = std::fs::read(&temp).expect("the picture is written");
+        let checked_in = std::fs::read(root.join(&target)).expect("checked in");
+        assert!(
+            drawn == checked_in,
+            "{target} is not what `{line}` draws now: run the README's command again"
+        );
+        let svg = String::from_utf8(drawn).expect("UTF-8");
+        let picture = render(&svg, &format!("readme-{}", target.replace('/', "-")));
         let coloured = picture
             .pixels()
             .iter()
@@ -224,6 +409,47 @@ fn readme_pictures_render() {
                 c.red().max(c.green()).max(c.blue()) - c.red().min(c.green()).min(c.blue()) > 80
             })
             .count();
-        assert!(coloured > 1000, "{name}: {coloured} coloured pixels");
+        assert!(coloured > 1000, "{target}: {coloured} coloured pixels");
+        // Every picture the section shows is one of those regenerated.
+        checked.push(target);
     }
+    for (i, _) in section.match_indices("](docs/img/") {
+        let rest = &section[i + 2..];
+        let shown = &rest[..rest.find(')').unwrap()];
+        assert!(
+            checked.iter().any(|c| c == shown),
+            "{shown} is shown but no command draws it"
+        );
+    }
+    assert!(checked.len() >= 2, "{checked:?}");
+}
+
+/// Words of a shell command line: spaces separate them, single quotes hold spaces.
+#[cfg(feature = "cli")]
+fn shell_words(line: &str) -> Vec<String> {
+    let mut words = Vec::new();
+    let mut word = String::new();
+    let (mut quoted, mut started) = (false, false);
+    for c in line.chars() {
+        match c {
+            '\'' => {
+                quoted = !quoted;
+                started = true;
+            }
+            ' ' if !quoted => {
+                if started {
+                    words.push(std::mem::take(&mut word));
+                }
+                started = false;
+            }
+            c => {
+                word.push(c);
+                started = true;
+            }
+        }
+    }
+    if started {
+        words.push(word);
+    }
+    words
 }

@@ -121,6 +121,7 @@ pub enum PatternArg {
     Gyroid,
     Spiral,
     Lightning,
+    Cubic,
 }
 
 impl From<PatternArg> for Pattern {
@@ -134,6 +135,7 @@ impl From<PatternArg> for Pattern {
             PatternArg::Gyroid => Pattern::Gyroid,
             PatternArg::Spiral => Pattern::Spiral,
             PatternArg::Lightning => Pattern::Lightning,
+            PatternArg::Cubic => Pattern::Cubic,
         }
     }
 }

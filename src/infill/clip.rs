@@ -48,7 +48,10 @@ struct Edge {
 /// short segment meets only the edges near it.
 pub(crate) struct Edges {
     edges: Vec<Edge>,
-    strips: Vec<Vec<u32>>,
+    /// Strip `s` holds `strip_edges[strip_start[s]..strip_start[s + 1]]` (one flat list:
+    /// two allocations, not one per strip).
+    strip_start: Vec<u32>,
+    strip_edges: Vec<u32>,
     pub min: Coord,
     pub max: Coord,
     height: f64,
@@ -57,11 +60,106 @@ pub(crate) struct Edges {
     stamp: Vec<u32>,
     segment: u32,
     crossings: Vec<f64>,
+    /// `clip`'s cuts, kept for the next call.
+    cuts: Vec<f64>,
+    /// For `clip`, built by its first call: the edges in a grid of square cells, so that a
+    /// short segment well inside the region tests no edge at all.
+    grid: Option<Grid>,
+}
+
+/// Edges by cell, in one flat list: cell `c` holds `edges[start[c]..start[c + 1]]`.
+struct Grid {
+    min: Coord,
+    /// 1 / the cell's side.
+    inv: f64,
+    nx: usize,
+    ny: usize,
+    start: Vec<u32>,
+    edges: Vec<u32>,
+}
+
+impl Grid {
+    fn new(edges: &[Edge], min: Coord, max: Coord) -> Grid {
+        let size = max - min;
+        let wanted = (4 * edges.len()).clamp(16, 1 << 16) as f64;
+        let side = ((size.x.max(0.0) * size.y.max(0.0) / wanted).sqrt())
+            .max(size.x.max(size.y) / 1024.0)
+            .max(1e-9);
+        let inv = 1.0 / side;
+        let nx = ((size.x * inv) as usize + 1).min(1024);
+        let ny = ((size.y * inv) as usize + 1).min(1024);
+        let col = |x: f64| (((x - min.x) * inv).max(0.0) as usize).min(nx - 1);
+        let row = |y: f64| (((y - min.y) * inv).max(0.0) as usize).min(ny - 1);
+        // A little slack on each side so that rounding never drops an edge from the cell
+        // a crossing lies in.
+        let slack = side * 1e-6;
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(edges.len() * 4);
+        for (i, e) in edges.iter().enumerate() {
+            let (lo, hi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
+            for r in row(lo - slack)..=row(hi + slack) {
+                // The edge's x range within this row.
+                let (y0, y1) = (
+                    (min.y + r as f64 * side).max(lo),
+                    (min.y + (r + 1) as f64 * side).min(hi),
+                );
+                let x_at = |y: f64| {
+                    if e.b.y == e.a.y {
+                        e.a.x
+                    } else {
+                        e.a.x + (y - e.a.y) * (e.b.x - e.a.x) / (e.b.y - e.a.y)
+                    }
+                };
+                let (xa, xb) = if e.b.y == e.a.y {
+                    (e.a.x.min(e.b.x), e.a.x.max(e.b.x))
+                } else {
+                    let (p, q) = (x_at(y0.min(y1)), x_at(y1.max(y0)));
+                    (p.min(q), p.max(q))
+                };
+                for c in col(xa - slack)..=col(xb + slack) {
+                    pairs.push(((r * nx + c) as u32, i as u32));
+                }
+            }
+        }
+        let mut start = vec![0u32; nx * ny + 1];
+        for &(c, _) in &pairs {
+            start[c as usize + 1] += 1;
+        }
+        for c in 0..nx * ny {
+            start[c + 1] += start[c];
+        }
+        let mut fill = start.clone();
+        let mut list = vec![0u32; pairs.len()];
+        for &(c, i) in &pairs {
+            list[fill[c as usize] as usize] = i;
+            fill[c as usize] += 1;
+        }
+        Grid {
+            min,
+            inv,
+            nx,
+            ny,
+            start,
+            edges: list,
+        }
+    }
+
+    fn col(&self, x: f64) -> usize {
+        (((x - self.min.x) * self.inv).max(0.0) as usize).min(self.nx - 1)
+    }
+
+    fn row(&self, y: f64) -> usize {
+        (((y - self.min.y) * self.inv).max(0.0) as usize).min(self.ny - 1)
+    }
+
+    fn cell(&self, r: usize, c: usize) -> &[u32] {
+        let k = r * self.nx + c;
+        &self.edges[self.start[k] as usize..self.start[k + 1] as usize]
+    }
 }
 
 impl Edges {
     pub fn new(rings: &[Vec<Coord>], frame: &Frame) -> Edges {
-        let mut edges = Vec::new();
+        let mut edges = Vec::with_capacity(rings.iter().map(Vec::len).sum());
         let mut min = Coord {
             x: f64::INFINITY,
             y: f64::INFINITY,
@@ -98,29 +196,53 @@ impl Edges {
         }
         let n = (edges.len() / 4).clamp(1, 512);
         let height = ((max.y - min.y) / n as f64).max(f64::MIN_POSITIVE);
-        let mut strips = vec![Vec::new(); n];
-        for (i, e) in edges.iter().enumerate() {
+        let span = |e: &Edge| {
             let (lo, hi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
-            let (s0, s1) = (strip(lo, min.y, height, n), strip(hi, min.y, height, n));
-            for s in &mut strips[s0..=s1] {
-                s.push(i as u32);
+            strip(lo, min.y, height, n)..=strip(hi, min.y, height, n)
+        };
+        // A counting sort by strip: counts, their running sums (each strip's end), then
+        // the edges placed from each end down, in reverse, which leaves every strip's
+        // start in `strip_start` and its edges in ascending order.
+        let mut strip_start = vec![0u32; n + 1];
+        for e in &edges {
+            for s in span(e) {
+                strip_start[s] += 1;
+            }
+        }
+        for s in 1..n {
+            strip_start[s] += strip_start[s - 1];
+        }
+        strip_start[n] = strip_start[n - 1];
+        let mut strip_edges = vec![0u32; strip_start[n] as usize];
+        for (i, e) in edges.iter().enumerate().rev() {
+            for s in span(e) {
+                strip_start[s] -= 1;
+                strip_edges[strip_start[s] as usize] = i as u32;
             }
         }
         Edges {
             // Allocated by the first `clip`: straight lines never need it.
             stamp: Vec::new(),
             edges,
-            strips,
+            strip_start,
+            strip_edges,
             min,
             max,
             height,
             segment: 0,
             crossings: Vec::new(),
+            cuts: Vec::new(),
+            grid: None,
         }
     }
 
+    /// The edges, in the frame.
+    pub fn segments(&self) -> impl Iterator<Item = (Coord, Coord)> + '_ {
+        self.edges.iter().map(|e| (e.a, e.b))
+    }
+
     fn strip(&self, y: f64) -> usize {
-        strip(y, self.min.y, self.height, self.strips.len())
+        strip(y, self.min.y, self.height, self.strip_start.len() - 1)
     }
 
     /// The inside intervals `[x0, x1]` of the horizontal line at `y`, left to right.
@@ -130,7 +252,9 @@ impl Edges {
             return;
         }
         self.crossings.clear();
-        for &i in &self.strips[self.strip(y)] {
+        let s = self.strip(y);
+        let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
+        for &i in &self.strip_edges[from as usize..to as usize] {
             let Edge { a, b } = self.edges[i as usize];
             if (a.y <= y) != (b.y <= y) {
                 self.crossings
@@ -147,7 +271,9 @@ impl Edges {
             return false;
         }
         let mut inside = false;
-        for &i in &self.strips[self.strip(p.y)] {
+        let s = self.strip(p.y);
+        let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
+        for &i in &self.strip_edges[from as usize..to as usize] {
             let Edge { a, b } = self.edges[i as usize];
             if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
                 inside = !inside;
@@ -165,7 +291,9 @@ impl Edges {
             self.stamp = vec![u32::MAX; self.edges.len()];
         }
         // Where the polyline crosses an edge, as `segment index + t`.
-        let mut cuts: Vec<f64> = vec![0.0];
+        let mut cuts = std::mem::take(&mut self.cuts);
+        cuts.clear();
+        cuts.push(0.0);
         for (k, w) in pts.windows(2).enumerate() {
             let (p, q) = (w[0], w[1]);
             let (lo, hi) = (p.y.min(q.y), p.y.max(q.y));
@@ -176,30 +304,50 @@ impl Edges {
             {
                 continue;
             }
-            self.segment = self.segment.wrapping_add(1);
+            let grid = self
+                .grid
+                .get_or_insert_with(|| Grid::new(&self.edges, self.min, self.max));
+            let (px0, px1) = (p.x.min(q.x), p.x.max(q.x));
+            let (c0, c1) = (grid.col(px0), grid.col(px1));
+            let (r0, r1) = (grid.row(lo), grid.row(hi));
+            // Within one cell an edge is met once; across cells, the stamp skips repeats.
+            let stamped = c0 != c1 || r0 != r1;
+            if stamped {
+                self.segment = self.segment.wrapping_add(1);
+            }
             let d1 = q - p;
             let first = cuts.len();
-            for s in self.strip(lo)..=self.strip(hi) {
-                for &i in &self.strips[s] {
-                    let i = i as usize;
-                    if self.stamp[i] == self.segment {
-                        continue;
-                    }
-                    self.stamp[i] = self.segment;
-                    let Edge { a, b } = self.edges[i];
-                    if a.x.max(b.x) < p.x.min(q.x) || a.x.min(b.x) > p.x.max(q.x) {
-                        continue;
-                    }
-                    let d2 = b - a;
-                    let den = d1.x * d2.y - d1.y * d2.x;
-                    if den == 0.0 {
-                        continue;
-                    }
-                    let ap = a - p;
-                    let t = (ap.x * d2.y - ap.y * d2.x) / den;
-                    let u = (ap.x * d1.y - ap.y * d1.x) / den;
-                    if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
-                        cuts.push(k as f64 + t);
+            for r in r0..=r1 {
+                for c in c0..=c1 {
+                    for &i in grid.cell(r, c) {
+                        let i = i as usize;
+                        if stamped {
+                            if self.stamp[i] == self.segment {
+                                continue;
+                            }
+                            self.stamp[i] = self.segment;
+                        }
+                        let Edge { a, b } = self.edges[i];
+                        if a.x.max(b.x) < px0 || a.x.min(b.x) > px1 {
+                            continue;
+                        }
+                        // The edge's ends on opposite sides of the segment's line (cheap,
+                        // and false for nearly every edge) before any division.
+                        let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
+                        if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
+                            continue;
+                        }
+                        let d2 = b - a;
+                        let den = d1.x * d2.y - d1.y * d2.x;
+                        if den == 0.0 {
+                            continue;
+                        }
+                        let ap = a - p;
+                        let t = (ap.x * d2.y - ap.y * d2.x) / den;
+                        let u = (ap.x * d1.y - ap.y * d1.x) / den;
+                        if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
+                            cuts.push(k as f64 + t);
+                        }
                     }
                 }
             }
@@ -224,7 +372,12 @@ impl Edges {
             piece.push(at(g1));
             out.push(piece);
         }
+        self.cuts = cuts;
     }
+}
+
+fn cross(a: Coord, b: Coord) -> f64 {
+    a.x * b.y - a.y * b.x
 }
 
 fn strip(y: f64, min: f64, height: f64, n: usize) -> usize {

@@ -54,7 +54,7 @@ pub(crate) fn gyroid(
             } else {
                 (su, cz, sz * cu)
             };
-            let r = a.hypot(b);
+            let r = (a * a + b * b).sqrt();
             let phi = b.atan2(a);
             let delta = (-c / r).clamp(-1.0, 1.0).acos();
             (u, phi + delta, phi - delta)
@@ -70,30 +70,73 @@ pub(crate) fn gyroid(
         ((v0 / scale - hi) / TAU).floor() as i64,
         ((v1 / scale - lo) / TAU).ceil() as i64,
     );
+    // The region's extent in v over each interval between samples (its boundary's, hence
+    // the region's): a curve is built and clipped only from the first to the last interval
+    // where it can meet the region, not across the whole bounding box.
+    let n = samples.len();
+    let mut envelope = vec![(f64::INFINITY, f64::NEG_INFINITY); n.saturating_sub(1)];
+    let u_first = s0 as f64 * step * scale;
+    let width = step * scale;
+    for (a, b) in edges.segments() {
+        let (a, b) = if along_y {
+            ((a.y, a.x), (b.y, b.x))
+        } else {
+            ((a.x, a.y), (b.x, b.y))
+        };
+        let ((ua, va), (ub, vb)) = if a.0 <= b.0 { (a, b) } else { (b, a) };
+        let v_at = |u: f64| {
+            if ub > ua {
+                va + (vb - va) * ((u - ua) / (ub - ua)).clamp(0.0, 1.0)
+            } else {
+                va
+            }
+        };
+        if n < 2 {
+            break;
+        }
+        let index = |u: f64| (((u - u_first) / width).floor().max(0.0) as usize).min(n - 2);
+        let (i0, i1) = (index(ua), index(ub));
+        for (i, e) in envelope.iter_mut().enumerate().take(i1 + 1).skip(i0) {
+            let (l, r) = (u_first + i as f64 * width, u_first + (i + 1) as f64 * width);
+            // Across the interval, or the whole edge when it is parallel to v.
+            let (p, q) = if ub > ua {
+                (v_at(l.max(ua)), v_at(r.min(ub)))
+            } else {
+                (va, vb)
+            };
+            let (lo, hi) = (p.min(q), p.max(q));
+            *e = (e.0.min(lo), e.1.max(hi));
+        }
+    }
+    // Half a nozzle of slack: the test is only a shortcut, the clip decides.
+    let slack = region.nozzle() / 2.0;
     let mut curve = Vec::with_capacity(samples.len());
     let mut local = Vec::new();
     for branch in 0..2 {
         for m in m0..=m1 {
             let shift = m as f64 * TAU;
+            let v = |i: usize| {
+                let (_, plus, minus) = samples[i];
+                (if branch == 0 { plus } else { minus } + shift) * scale
+            };
+            let meets = |i: usize| {
+                let (p, q) = (v(i), v(i + 1));
+                let (lo, hi) = envelope[i];
+                p.max(q) >= lo - slack && p.min(q) <= hi + slack
+            };
+            let Some(first) = (0..n.saturating_sub(1)).find(|&i| meets(i)) else {
+                continue;
+            };
+            let last = (first..n - 1).rev().find(|&i| meets(i)).unwrap_or(first);
             curve.clear();
-            curve.extend(samples.iter().map(|&(u, plus, minus)| {
-                let v = (if branch == 0 { plus } else { minus } + shift) * scale;
-                let u = u * scale;
+            curve.extend((first..=last + 1).map(|i| {
+                let (v, u) = (v(i), samples[i].0 * scale);
                 if along_y {
                     Coord { x: v, y: u }
                 } else {
                     Coord { x: u, y: v }
                 }
             }));
-            let (lo, hi) = curve
-                .iter()
-                .map(|p| if along_y { p.x } else { p.y })
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-                    (l.min(v), h.max(v))
-                });
-            if hi < v0 || lo > v1 {
-                continue;
-            }
             local.clear();
             edges.clip(&curve, &mut local);
             out.extend(
@@ -197,7 +240,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
 /// The loops' offsets: arcs in steps of 0.5 rad (not geo's 0.2): the loops are far from
 /// the outline, and a third of the vertices makes the offset three times quicker.
 fn shrink(area: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
-    super::region::convex_inset(area, d).unwrap_or_else(|| {
+    super::region::convex_inset(area, d, 0.5).unwrap_or_else(|| {
         area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
     })
 }

@@ -82,7 +82,7 @@ fn dot(a: Coord, b: Coord) -> f64 {
 }
 
 fn length(a: Coord) -> f64 {
-    a.x.hypot(a.y)
+    (a.x * a.x + a.y * a.y).sqrt()
 }
 
 fn rotate(v: Coord, angle: f64) -> Coord {

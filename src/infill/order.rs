@@ -5,8 +5,15 @@ use geo::{Coord, LineString};
 use super::Toolpaths;
 use super::clip::Frame;
 
+// Plain square roots, not `hypot` (several times slower, and coordinates are bounded by
+// MAX_COORDINATE, so nothing overflows); comparisons use squared distances.
+fn dist2(a: Coord, b: Coord) -> f64 {
+    let d = b - a;
+    d.x * d.x + d.y * d.y
+}
+
 fn dist(a: Coord, b: Coord) -> f64 {
-    (b.x - a.x).hypot(b.y - a.y)
+    dist2(a, b).sqrt()
 }
 
 /// Drops vertices closer than `min` to the previous one, keeping both ends; `false` when
@@ -16,18 +23,19 @@ pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
     let Some(&end) = path.last() else {
         return false;
     };
+    let min2 = min * min;
     let mut kept = 1;
     for i in 1..path.len() - 1 {
-        if dist(path[kept - 1], path[i]) >= min {
+        if dist2(path[kept - 1], path[i]) >= min2 {
             path[kept] = path[i];
             kept += 1;
         }
     }
     path.truncate(kept);
-    while path.len() > 1 && dist(path[path.len() - 1], end) < min {
+    while path.len() > 1 && dist2(path[path.len() - 1], end) < min2 {
         path.pop();
     }
-    if dist(path[path.len() - 1], end) >= min {
+    if dist2(path[path.len() - 1], end) >= min2 {
         path.push(end);
     }
     path.len() >= 2
@@ -40,7 +48,10 @@ pub(crate) fn order(paths: Vec<Vec<Coord>>, monotonic: bool, frame: Frame) -> To
     } else {
         nearest(paths)
     };
-    let mut toolpaths = Toolpaths::default();
+    let mut toolpaths = Toolpaths {
+        polylines: Vec::with_capacity(ordered.len()),
+        ..Toolpaths::default()
+    };
     let mut last: Option<Coord> = None;
     for path in ordered {
         if let (Some(l), Some(&first)) = (last, path.first()) {
@@ -82,7 +93,32 @@ fn monotonic_order(mut paths: Vec<Vec<Coord>>, frame: &Frame) -> Vec<Vec<Coord>>
 /// used up, so that a layer of many thousand short walls orders in O(n) rather than O(n²).
 fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
     let n = paths.len();
-    if n <= 2 {
+    // One path has no order to choose; two still may need the second reversed.
+    if n <= 1 {
+        return paths;
+    }
+    if n <= 64 {
+        // Few paths: a plain scan, in place. The paths not yet taken stay in their order
+        // (rotated, not swapped), so ties go to the lowest index as in the grid search.
+        let mut paths = paths;
+        let mut at = paths[0][paths[0].len() - 1];
+        for i in 1..n {
+            let mut best = (f64::INFINITY, i, false);
+            for (j, p) in paths.iter().enumerate().skip(i) {
+                for (reversed, q) in [(false, p[0]), (true, p[p.len() - 1])] {
+                    let d = dist2(at, q);
+                    if d < best.0 {
+                        best = (d, j, reversed);
+                    }
+                }
+            }
+            let (_, j, reversed) = best;
+            paths[i..=j].rotate_right(1);
+            if reversed {
+                paths[i].reverse();
+            }
+            at = paths[i][paths[i].len() - 1];
+        }
         return paths;
     }
     let ends: Vec<[Coord; 2]> = paths.iter().map(|p| [p[0], p[p.len() - 1]]).collect();
@@ -91,28 +127,6 @@ fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
     used[0] = true;
     order.push((0, false));
     let mut at = ends[0][1];
-    if n <= 64 {
-        // Few paths: a plain scan is quicker than building the grid.
-        for _ in 1..n {
-            let mut best = (f64::INFINITY, 0, false);
-            for (i, e) in ends.iter().enumerate() {
-                if used[i] {
-                    continue;
-                }
-                for (side, &p) in e.iter().enumerate() {
-                    let d = dist(at, p);
-                    if d < best.0 {
-                        best = (d, i, side == 1);
-                    }
-                }
-            }
-            let (_, i, reversed) = best;
-            used[i] = true;
-            order.push((i, reversed));
-            at = ends[i][if reversed { 0 } else { 1 }];
-        }
-        return take_in_order(paths, order);
-    }
     let mut grid = Grid::new(&ends, &used, n - 1);
     let mut left = n - 1;
     while left > 0 {
@@ -237,7 +251,7 @@ impl Grid {
                         self.population -= before - cell.len();
                         for &id in cell.iter() {
                             let p = ends[id as usize / 2][id as usize % 2];
-                            let d = dist(at, p);
+                            let d = dist2(at, p);
                             if best.is_none_or(|(bd, bid)| d < bd || (d == bd && id < bid)) {
                                 best = Some((d, id));
                             }
@@ -247,8 +261,8 @@ impl Grid {
                 }
             }
             // Cells beyond this ring are at least `ring × cell` away from `at`.
-            if let Some((d, _)) = best
-                && d <= ring as f64 * self.cell
+            if let Some((d2, _)) = best
+                && d2 <= (ring as f64 * self.cell).powi(2)
             {
                 break;
             }

@@ -1,6 +1,6 @@
 //! A layer's region, inset by half a nozzle, ready to be filled many times.
 
-use geo::{Area, Buffer, Coord, LineString, MultiPolygon, Polygon};
+use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
 use super::clip::Frame;
 use super::{Error, MAX_COORDINATE, MAX_VERTICES, Order, Params, Pattern, Toolpaths};
@@ -62,7 +62,7 @@ impl Region {
             }
         }
         let cleaned = clean(region);
-        let inset = convex_inset(&cleaned, nozzle / 2.0).unwrap_or_else(|| {
+        let inset = convex_inset(&cleaned, nozzle / 2.0, 0.2).unwrap_or_else(|| {
             if cleaned.0.is_empty() {
                 cleaned.clone()
             } else {
@@ -156,16 +156,34 @@ impl Region {
         let theta = params.angle.rem_euclid(360.0).to_radians();
         let mut paths: Vec<Vec<Coord>> = Vec::new();
         match params.pattern {
-            Pattern::Lines => straight::families(self, centre, theta, &[0.0], w / rho, &mut paths),
-            Pattern::Grid => {
-                straight::families(self, centre, theta, &[0.0, 90.0], 2.0 * w / rho, &mut paths)
+            Pattern::Lines => {
+                straight::families(self, centre, theta, &[0.0], w / rho, 0.0, &mut paths)
             }
+            Pattern::Grid => straight::families(
+                self,
+                centre,
+                theta,
+                &[0.0, 90.0],
+                2.0 * w / rho,
+                0.0,
+                &mut paths,
+            ),
             Pattern::Triangles => straight::families(
                 self,
                 centre,
                 theta,
                 &[0.0, 60.0, 120.0],
                 3.0 * w / rho,
+                0.0,
+                &mut paths,
+            ),
+            Pattern::Cubic => straight::families(
+                self,
+                centre,
+                theta,
+                &[0.0, 120.0, 240.0],
+                3.0 * w / rho,
+                params.z / std::f64::consts::SQRT_2,
                 &mut paths,
             ),
             Pattern::Hexagons => {
@@ -217,18 +235,73 @@ fn open_ring(ring: &LineString<f64>) -> Vec<Coord> {
     c
 }
 
-/// The exact inward offset of one convex polygon without holes; `None` when the region
-/// is anything else (then geo's general buffer does it). Most layers of most parts are convex, and
-/// this is a hundred times faster than the general offset.
-pub(crate) fn convex_inset(region: &MultiPolygon<f64>, d: f64) -> Option<MultiPolygon<f64>> {
-    let [polygon] = region.0.as_slice() else {
-        return None;
-    };
-    if !polygon.interiors().is_empty() {
-        return None;
+/// The inward offset by `d` of a region whose outlines and holes are all convex (most
+/// layers of most parts: a box, a tube, a plate with round holes), without geo's general
+/// buffer, which is about a hundred times slower: each outline is clipped by its edges'
+/// half-planes moved inward (exact), each hole grows by `d` with round corners (arcs in
+/// steps of at most `arc` radians). Where grown holes stay inside the shrunk outline and
+/// apart, that is the offset; where they meet it or each other, the shrunk outline minus
+/// the grown holes by geo's boolean difference (still exact: eroding `A ∖ H` by a disc is
+/// eroding `A` less `H` dilated). `None` when some ring is not convex.
+pub(crate) fn convex_inset(
+    region: &MultiPolygon<f64>,
+    d: f64,
+    arc: f64,
+) -> Option<MultiPolygon<f64>> {
+    let mut out = Vec::with_capacity(region.0.len());
+    for polygon in &region.0 {
+        let exterior = convex_ring_inset(&polygon.exterior().0, d)?;
+        let mut holes = Vec::with_capacity(polygon.interiors().len());
+        for hole in polygon.interiors() {
+            holes.push(convex_ring_grow(&hole.0, d, arc)?);
+        }
+        if exterior.is_empty() {
+            continue;
+        }
+        let apart = holes
+            .iter()
+            .all(|h| h.iter().all(|&p| inside_convex(&exterior, p)))
+            && holes
+                .iter()
+                .enumerate()
+                .all(|(i, a)| holes[i + 1..].iter().all(|b| separated(a, b)));
+        let closed = |mut ring: Vec<Coord>| {
+            ring.reserve_exact(1);
+            ring.push(ring[0]);
+            LineString::new(ring)
+        };
+        if apart {
+            out.push(Polygon::new(
+                closed(exterior),
+                holes.into_iter().map(closed).collect(),
+            ));
+        } else {
+            let outer = Polygon::new(closed(exterior), vec![]);
+            let grown: Vec<Polygon<f64>> = holes
+                .into_iter()
+                .map(|h| Polygon::new(closed(h), vec![]))
+                .collect();
+            // Grown holes may overlap: their union first (a multi-polygon's overlaps would
+            // otherwise cancel out).
+            let grown = if grown.len() > 1 {
+                geo::unary_union(&grown)
+            } else {
+                MultiPolygon::new(grown)
+            };
+            out.extend(outer.difference(&grown).0);
+        }
     }
-    let mut pts = open_ring(polygon.exterior());
-    // Counter-clockwise, without collinear vertices (their offset lines are parallel).
+    Some(MultiPolygon::new(out))
+}
+
+/// A ring's points without the closing repeat, counter-clockwise, collinear and repeated
+/// vertices dropped; `None` when it has a reflex vertex.
+fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
+    let mut pts: Vec<Coord> = ring.to_vec();
+    if pts.len() > 1 && pts.first() == pts.last() {
+        pts.pop();
+    }
+    pts.dedup();
     if signed_area(&pts) < 0.0 {
         pts.reverse();
     }
@@ -237,7 +310,8 @@ pub(crate) fn convex_inset(region: &MultiPolygon<f64>, d: f64) -> Option<MultiPo
     for i in 0..n {
         let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
         let cross = cross(b - a, c - b);
-        let scale = (b - a).x.hypot((b - a).y) * (c - b).x.hypot((c - b).y);
+        let (u, v) = (b - a, c - b);
+        let scale = ((u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y)).sqrt();
         if cross < -1e-12 * scale {
             return None; // a reflex vertex: not convex
         }
@@ -245,13 +319,39 @@ pub(crate) fn convex_inset(region: &MultiPolygon<f64>, d: f64) -> Option<MultiPo
             kept.push(b);
         }
     }
+    // A ring that winds more than once has no reflex vertex either: its edges' direction
+    // turns through more than a full turn, so their x components change sign more than
+    // twice.
     let n = kept.len();
-    if n < 3 {
-        return None;
+    let signs = (0..n)
+        .map(|i| (kept[(i + 1) % n] - kept[i]).x)
+        .filter(|&x| x != 0.0)
+        .map(|x| x > 0.0);
+    let mut changes = 0;
+    let mut first = None;
+    let mut last = None;
+    for s in signs {
+        if last.is_some_and(|l| l != s) {
+            changes += 1;
+        }
+        first.get_or_insert(s);
+        last = Some(s);
     }
-    // The inset of a convex polygon is the intersection of its edges' half-planes, each
-    // moved inward by d: clip the polygon by each in turn (exact, and empty when the
-    // polygon is thinner than 2d).
+    if first != last {
+        changes += 1;
+    }
+    (n >= 3 && changes <= 2).then_some(kept)
+}
+
+/// The exact inward offset of one convex ring: empty when it is thinner than `2d`.
+fn convex_ring_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
+    let kept = convex_ring(ring)?;
+    let n = kept.len();
+    if let Some(mitred) = mitred_inset(&kept, d) {
+        return Some(mitred);
+    }
+    // Some edge vanishes: the intersection of the edges' half-planes, each moved inward by
+    // d, clipping the ring by each in turn.
     let mut out = kept.clone();
     let mut next = Vec::with_capacity(n + 1);
     for i in 0..n {
@@ -273,17 +373,104 @@ pub(crate) fn convex_inset(region: &MultiPolygon<f64>, d: f64) -> Option<MultiPo
         }
         std::mem::swap(&mut out, &mut next);
         if out.len() < 3 {
-            return Some(MultiPolygon::new(vec![]));
+            return Some(Vec::new());
         }
     }
     if signed_area(&out) <= 0.0 {
-        return Some(MultiPolygon::new(vec![]));
+        return Some(Vec::new());
     }
-    out.push(out[0]);
-    Some(MultiPolygon::new(vec![Polygon::new(
-        LineString::new(out),
-        vec![],
-    )]))
+    Some(out)
+}
+
+/// The inset of a counter-clockwise convex ring by `d` where no edge vanishes: each vertex
+/// moves along its bisector to the point `d` from both its edges (O(n), where clipping by
+/// every half-plane is O(n²)); `None` when some edge would turn around.
+fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
+    let n = ring.len();
+    let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
+        let (u, v) = (unit(b - a), unit(c - b));
+        // The inward normals (left of each edge) and their mitre.
+        let (nu, nv) = (Coord { x: -u.y, y: u.x }, Coord { x: -v.y, y: v.x });
+        let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
+        if k <= 1e-9 {
+            return None;
+        }
+        out.push(b + (nu + nv) * (d / k));
+    }
+    for i in 0..n {
+        let (a, b) = (ring[i], ring[(i + 1) % n]);
+        let (p, q) = (out[i], out[(i + 1) % n]);
+        let (e, f) = (b - a, q - p);
+        if e.x * f.x + e.y * f.y <= 0.0 {
+            return None;
+        }
+    }
+    Some(out)
+}
+
+/// One convex ring grown outward by `d`: each edge moved out, each corner an arc of radius
+/// `d` about its vertex, with its points on the arc (so the chords cut in by at most
+/// `d·(1 − cos(arc/2))`).
+fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
+    let kept = convex_ring(ring)?;
+    let n = kept.len();
+    let normal = |a: Coord, b: Coord| {
+        let e = b - a;
+        let len = e.x.hypot(e.y);
+        Coord {
+            x: e.y / len,
+            y: -e.x / len,
+        }
+    };
+    let mut out = Vec::with_capacity(2 * n);
+    for i in 0..n {
+        let (a, b, c) = (kept[(i + n - 1) % n], kept[i], kept[(i + 1) % n]);
+        let (n0, n1) = (normal(a, b), normal(b, c));
+        let (sin, cos) = (cross(n0, n1), n0.x * n1.x + n0.y * n1.y);
+        // Most corners of a round hole turn by less than `arc`: their two ends only, no
+        // trigonometry; sharper ones in equal steps, each the last rotated.
+        let steps = if sin >= 0.0 && cos >= arc.cos() {
+            1
+        } else {
+            (sin.atan2(cos).max(0.0) / arc).ceil().max(1.0) as usize
+        };
+        out.push(b + n0 * d);
+        if steps > 1 {
+            let (s, c) = (sin.atan2(cos).max(0.0) / steps as f64).sin_cos();
+            let mut v = n0;
+            for _ in 1..steps {
+                v = Coord {
+                    x: v.x * c - v.y * s,
+                    y: v.x * s + v.y * c,
+                };
+                out.push(b + v * d);
+            }
+        }
+        out.push(b + n1 * d);
+    }
+    Some(out)
+}
+
+/// Whether `p` is strictly inside the counter-clockwise convex ring.
+fn inside_convex(ring: &[Coord], p: Coord) -> bool {
+    let n = ring.len();
+    (0..n).all(|i| cross(ring[(i + 1) % n] - ring[i], p - ring[i]) > 0.0)
+}
+
+/// Whether two counter-clockwise convex rings are apart: some edge of one has the whole
+/// other strictly on its outer side.
+fn separated(a: &[Coord], b: &[Coord]) -> bool {
+    let outside = |r: &[Coord], s: &[Coord]| {
+        let n = r.len();
+        (0..n).any(|i| {
+            let (p, q) = (r[i], r[(i + 1) % n]);
+            s.iter().all(|&x| cross(q - p, x - p) < 0.0)
+        })
+    };
+    outside(a, b) || outside(b, a)
 }
 
 pub(crate) fn cross(a: Coord, b: Coord) -> f64 {

@@ -6,23 +6,26 @@ use super::Region;
 use super::clip::{Edges, Frame};
 
 /// One family of lines per offset (degrees from θ), `spacing` apart, every family with a
-/// line through `centre` (so that three families at 60° meet in common points).
+/// line through `centre` (so that three families at 60° meet in common points), or
+/// `shift` mm to the left of it (cubic).
 pub(crate) fn families(
     region: &Region,
     centre: Coord,
     theta: f64,
     offsets: &[f64],
     spacing: f64,
+    shift: f64,
     out: &mut Vec<Vec<Coord>>,
 ) {
     let mut intervals = Vec::new();
     for &offset in offsets {
         let frame = Frame::new(centre, theta + offset.to_radians());
         let mut edges = Edges::new(region.rings(), &frame);
-        let first = (edges.min.y / spacing).ceil() as i64;
-        let last = (edges.max.y / spacing).floor() as i64;
+        let shift = shift.rem_euclid(spacing);
+        let first = ((edges.min.y - shift) / spacing).ceil() as i64;
+        let last = ((edges.max.y - shift) / spacing).floor() as i64;
         for k in first..=last {
-            let y = k as f64 * spacing;
+            let y = k as f64 * spacing + shift;
             edges.scan(y, &mut intervals);
             for &(x0, x1) in &intervals {
                 out.push(vec![

@@ -35,6 +35,7 @@ fn cell(pattern: Pattern, rho: f64) -> f64 {
         Pattern::Hexagons => 2.0 * W / rho,
         Pattern::Gyroid => TAU * W * GYROID_LAMBDA / rho,
         Pattern::Lightning => 5.0 * W / rho,
+        Pattern::Cubic => 3.0 * W / rho,
     }
 }
 
@@ -167,9 +168,13 @@ fn every_pattern_stays_inside_every_shape() {
 /// less depending on where the lines fall: that is placement, not the formula). The
 /// shapes are scaled up for sparse patterns accordingly.
 ///
-/// Exceptions: lightning is sparse by design (asserted: more than a tenth of the density
-/// asked and at most 10% above it; a star's long outline gets the most branches); a gyroid layer varies with its height like the surface's section
-/// (asserted: each layer within −15%/+30%, the mean over a period of heights within 10%).
+/// Each shape is scaled to span at least 12 repeats of the pattern (`cell`) across its
+/// narrowest part: the rule the module documentation states (with fewer, a line more or
+/// less across the region is a large share of it: at 4 repeats densities are up to a
+/// quarter off). Exceptions: lightning is sparse by design (asserted: 0.5–0.8 of the
+/// density asked, 0.5–1.1 on the star, whose long outline gets the most branches); a gyroid
+/// layer varies with its height like the surface's section (asserted: each layer within
+/// −15%/+30%, the mean over a period of heights within 10%).
 #[test]
 fn density_is_what_was_asked() {
     let mut failures = Vec::new();
@@ -193,7 +198,10 @@ fn density_is_what_was_asked() {
                             &prepared,
                             &prepared.fill(&Params::new(pattern, rho, W)).unwrap(),
                         );
-                        check(d > 0.1 * rho && d <= 1.1 * rho, format!("{label}: {d}"));
+                        // Measured: 0.57–0.69 of ρ on the square, circle, L and holed
+                        // square, about 1.0 on the star.
+                        let most = if name == "star" { 1.1 } else { 0.8 };
+                        check(d >= 0.5 * rho && d <= most * rho, format!("{label}: {d}"));
                     }
                     Pattern::Gyroid => {
                         let period = TAU * W * GYROID_LAMBDA / rho;
@@ -251,6 +259,7 @@ fn straight_patterns_run_along_the_scheduled_angle() {
         (Pattern::Lines, &[0.0][..]),
         (Pattern::Grid, &[0.0, 90.0]),
         (Pattern::Triangles, &[0.0, 60.0, 120.0]),
+        (Pattern::Cubic, &[0.0, 60.0, 120.0]),
     ] {
         let settings = Settings {
             pattern,
@@ -434,6 +443,96 @@ fn travel_is_reported_and_short() {
     );
 }
 
+/// The fast inset of convex outlines with convex holes (no geo buffer) covers the same
+/// area as geo's buffer, whether the grown holes stay apart, meet each other, or meet the
+/// outline (then the boolean difference); a non-convex ring is left to the buffer.
+#[test]
+fn convex_inset_matches_the_general_buffer() {
+    use geo::{Area, Buffer};
+    let two_holes = MultiPolygon::new(vec![Polygon::new(
+        shapes::square(40.0).0[0].exterior().clone(),
+        vec![
+            shapes::circle(5.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(-8.0),
+            shapes::circle(5.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(8.0),
+        ],
+    )]);
+    let cases = [
+        ("square", shapes::square(20.0)),
+        ("circle", shapes::circle(10.0)),
+        ("holed", shapes::holed_square(40.0, 10.0)),
+        ("two holes", two_holes),
+        ("islands", {
+            let mut m = shapes::square(10.0);
+            m.0.extend(shapes::circle(3.0).0.into_iter().map(|p| {
+                use geo::Translate;
+                p.translate(20.0, 0.0)
+            }));
+            m
+        }),
+    ];
+    for (name, region) in &cases {
+        for d in [0.2, 1.0, 2.9, 3.5, 6.0, 9.0] {
+            let fast = region::convex_inset(region, d, 0.05).expect("all rings convex");
+            let slow = region.buffer(-d);
+            let (a, b) = (fast.unsigned_area(), slow.unsigned_area());
+            assert!(
+                (a - b).abs() <= 0.005 * b.max(1.0),
+                "{name} inset by {d}: {a} here, {b} by geo's buffer"
+            );
+        }
+    }
+    assert!(region::convex_inset(&shapes::star(10.0, 4.5), 0.2, 0.2).is_none());
+    assert!(region::convex_inset(&shapes::l_shape(20.0), 0.2, 0.2).is_none());
+}
+
+trait Shift {
+    fn map_coords_shift(self, dx: f64) -> Self;
+}
+
+impl Shift for LineString<f64> {
+    fn map_coords_shift(self, dx: f64) -> Self {
+        use geo::MapCoords;
+        self.map_coords(|c| Coord {
+            x: c.x + dx,
+            y: c.y,
+        })
+    }
+}
+
+/// Two lines are ordered too: the second is reversed so that it starts where the first
+/// ended (an early return for `n <= 2` left them both left to right, 19.7 mm of travel).
+#[test]
+fn two_paths_are_ordered_with_reversal() {
+    let rect = MultiPolygon::new(vec![Polygon::new(
+        LineString::from(vec![
+            (0.0, 0.0),
+            (20.0, 0.0),
+            (20.0, 5.0),
+            (0.0, 5.0),
+            (0.0, 0.0),
+        ]),
+        vec![],
+    )]);
+    let paths = super::fill(
+        &rect,
+        &Params::new(Pattern::Lines, 0.2, W).centring(Centring::Global),
+    )
+    .unwrap();
+    assert_eq!(paths.polylines.len(), 2);
+    let (a, b) = (&paths.polylines[0].0, &paths.polylines[1].0);
+    assert!(
+        (a[0].x < a[a.len() - 1].x) != (b[0].x < b[b.len() - 1].x),
+        "both lines run the same way: {a:?} {b:?}"
+    );
+    assert!(paths.travel < 2.5, "travel {}", paths.travel);
+}
+
 #[test]
 fn solid_signs_use_their_fill_kind() {
     let settings = Settings {
@@ -579,4 +678,135 @@ proptest! {
         assert_segments(&label, &paths, W);
         prop_assert!(paths.travel.is_finite() && paths.length.is_finite());
     }
+}
+
+/// A radial polygon's ring (as `polygon` makes), moved to `centre`, clockwise if `hole`.
+fn radial_ring(radii: &[f64], turn: f64, centre: Coord, hole: bool) -> LineString<f64> {
+    let mut ring = polygon(radii, turn).0.remove(0).into_inner().0;
+    for c in &mut ring.0 {
+        *c = *c + centre;
+    }
+    if hole {
+        ring.0.reverse();
+    }
+    ring
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Regions with holes (concave ones too) and several islands, each island possibly
+    /// holed: every path inside its island and outside every hole, no short segment.
+    /// The outline's vertices are at least 8 mm out with six or more of them, so it holds
+    /// the disc of 6.9 mm in which the holes (within 1.5 mm of points 3.5 mm out) lie apart;
+    /// islands are 14 mm apart and at most 6 mm in radius, their holes within 0.9 mm of
+    /// their centres (inside their 1.7 mm inner disc).
+    #[test]
+    fn random_regions_with_holes_and_islands(
+        outer in prop::collection::vec(8.0f64..15.0, 6..14),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..8), 0..4),
+        islands in prop::collection::vec(
+            (prop::collection::vec(2.0f64..6.0, 6..12), any::<bool>()), 2..4),
+        hole_radii in prop::collection::vec(0.3f64..0.9, 3..7),
+        turn in 0.0f64..TAU,
+        pattern in pattern_strategy(),
+        rho in 0.05f64..1.0,
+        angle in -720.0f64..720.0,
+        z in 0.0f64..50.0,
+        global in any::<bool>(),
+    ) {
+        let centring = if global { Centring::Global } else { Centring::Object };
+        let params = Params::new(pattern, rho, W).angle(angle).z(z).centring(centring);
+        // One outline with up to three holes.
+        let interiors = holes
+            .iter()
+            .enumerate()
+            .map(|(i, radii)| {
+                let a = turn + TAU * i as f64 / 3.0;
+                let centre = Coord { x: 3.5 * a.cos(), y: 3.5 * a.sin() };
+                radial_ring(radii, turn, centre, true)
+            })
+            .collect();
+        let holed = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&outer, turn, Coord::zero(), false),
+            interiors,
+        )]);
+        // Several islands, some holed.
+        let archipelago = MultiPolygon::new(
+            islands
+                .iter()
+                .enumerate()
+                .map(|(i, (radii, holed))| {
+                    let centre = Coord { x: 14.0 * i as f64, y: 3.0 * i as f64 };
+                    let holes = if *holed {
+                        vec![radial_ring(&hole_radii, -turn, centre, true)]
+                    } else {
+                        vec![]
+                    };
+                    Polygon::new(radial_ring(radii, turn, centre, false), holes)
+                })
+                .collect(),
+        );
+        for (name, region) in [("holed", &holed), ("islands", &archipelago)] {
+            let paths = fill(region, &params).unwrap();
+            let label = format!("{pattern} at {rho} on {name} {region:?}");
+            assert_inside(&label, region, &paths, W);
+            assert_segments(&label, &paths, W);
+            prop_assert!(paths.travel.is_finite() && paths.length.is_finite());
+            // Each island gets some infill when it is wide enough for a line.
+            if name == "islands" && rho >= 0.2 && pattern != Pattern::Lightning {
+                for polygon in &region.0 {
+                    let rings = rings_of(&MultiPolygon::new(vec![polygon.clone()]));
+                    let on = paths
+                        .polylines
+                        .iter()
+                        .flat_map(|l| l.0.iter())
+                        .any(|&p| inside(&rings, p));
+                    prop_assert!(on, "{label}: an island without infill");
+                }
+            }
+        }
+    }
+}
+
+/// Cubic: the section of cubes standing on a corner. Its three families (θ, θ+120°,
+/// θ+240°) move `z/√2` along their normals per mm of height, so that the family along θ
+/// at height z is the one at height 0 moved by z/√2; at z = 0 they meet in points, as
+/// triangles do.
+#[test]
+fn cubic_families_shift_with_height() {
+    let region = Region::new(&shapes::square(40.0), W).unwrap();
+    let rho = 0.2;
+    let spacing = 3.0 * W / rho;
+    for z in [0.0, 0.3, 1.0, 2.5, 7.0] {
+        let paths = region
+            .fill(&Params::new(Pattern::Cubic, rho, W).angle(0.0).z(z))
+            .unwrap();
+        // The horizontal family: y ≡ z/√2 (mod spacing); the centre is the origin.
+        let mut horizontal = 0;
+        for line in &paths.polylines {
+            let (a, b) = (line.0[0], line.0[1]);
+            if same_direction(direction(a, b), 0.0) {
+                horizontal += 1;
+                let phase = (a.y - z / std::f64::consts::SQRT_2).rem_euclid(spacing);
+                assert!(
+                    phase < 1e-6 || spacing - phase < 1e-6,
+                    "z {z}: a line at y {}",
+                    a.y
+                );
+            }
+        }
+        assert!(horizontal >= 5, "z {z}: {horizontal} horizontal lines");
+        let d = paths.length * W / region.area();
+        assert!((d / rho - 1.0).abs() < 0.1, "z {z}: density {d}");
+    }
+    // Different heights give different layers; a whole period (spacing·√2) the same one.
+    let at = |z: f64| {
+        region
+            .fill(&Params::new(Pattern::Cubic, rho, W).angle(20.0).z(z))
+            .unwrap()
+    };
+    assert_ne!(at(0.0).polylines, at(1.0).polylines);
+    let (a, b) = (at(1.0), at(1.0 + spacing * std::f64::consts::SQRT_2));
+    assert!((a.length - b.length).abs() < 1e-6 * a.length);
 }

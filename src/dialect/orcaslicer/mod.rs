@@ -87,7 +87,10 @@ pub fn layers<'a>(text: &str, model: &'a Model, options: Options) -> Layers<'a> 
     let reading = if text.is_empty() {
         Reading::Empty
     } else if is_list(text) {
-        Reading::List(list(text))
+        Reading::List {
+            text: text.into(),
+            next: 0,
+        }
     } else {
         Reading::Meta(Box::new(Meta::new(text, model)))
     };
@@ -198,8 +201,11 @@ impl Iterator for Layers<'_> {
             let base = self.options.base;
             let outcome = match &mut self.reading {
                 Reading::Empty => Outcome::Angle(base),
-                Reading::List(pieces) => {
-                    let (value, span) = pieces[index % pieces.len()];
+                Reading::List { text, next } => {
+                    // Layer i gets piece i mod n, and layers come in order: read the
+                    // pieces in turn, from the first again after the last.
+                    let (value, span, after) = piece(text, *next);
+                    *next = after.unwrap_or(0);
                     instruction = Some(span);
                     if finite_in_radians(value) {
                         Outcome::Angle(base + value)
@@ -281,35 +287,42 @@ impl Halt {
 #[derive(Clone, Debug)]
 enum Reading {
     Empty,
-    /// The list reading: each piece's number and span (never empty).
-    List(Vec<(f64, Span)>),
+    /// The list reading: the text, and where the piece of the next layer begins. No piece
+    /// is stored: a megabyte list costs its text, not a vector of pieces.
+    List {
+        text: Box<str>,
+        next: usize,
+    },
     Meta(Box<Meta>),
 }
 
 /// 10.2: split at every `,`; a trailing `,` adds no piece; trim; read a decimal prefix.
-fn list(text: &str) -> Vec<(f64, Span)> {
-    pieces(text).collect()
+/// The piece that begins at byte `from`: its number, its span, and where the next piece
+/// begins (`None` after the last).
+fn piece(text: &str, from: usize) -> (f64, Span, Option<usize>) {
+    let bytes = text.as_bytes();
+    let end = bytes[from..]
+        .iter()
+        .position(|&b| b == b',')
+        .map_or(bytes.len(), |p| from + p);
+    let (mut a, mut b) = (from, end);
+    while a < b && scan::is_space(bytes[a]) {
+        a += 1;
+    }
+    while b > a && scan::is_space(bytes[b - 1]) {
+        b -= 1;
+    }
+    let next = (end != bytes.len() && end + 1 != bytes.len()).then_some(end + 1);
+    (scan::list_number(&bytes[a..b]), Span::new(a, b), next)
 }
 
-/// The pieces of the list reading, one at a time: each piece's number and span.
-fn pieces(text: &str) -> impl Iterator<Item = (f64, Span)> + '_ {
-    let bytes = text.as_bytes();
-    let mut start = Some(0);
+/// The pieces of the list reading, one at a time: each piece's number.
+fn pieces(text: &str) -> impl Iterator<Item = f64> + '_ {
+    let mut from = Some(0);
     std::iter::from_fn(move || {
-        let from = start?;
-        let end = bytes[from..]
-            .iter()
-            .position(|&b| b == b',')
-            .map_or(bytes.len(), |p| from + p);
-        let (mut a, mut b) = (from, end);
-        while a < b && scan::is_space(bytes[a]) {
-            a += 1;
-        }
-        while b > a && scan::is_space(bytes[b - 1]) {
-            b -= 1;
-        }
-        start = (end != bytes.len() && end + 1 != bytes.len()).then_some(end + 1);
-        Some((scan::list_number(&bytes[a..b]), Span::new(a, b)))
+        let (value, _, next) = piece(text, from?);
+        from = next;
+        Some(value)
     })
 }
 
@@ -334,9 +347,7 @@ pub fn same_reading(a: &str, b: &str) -> bool {
         return a.is_empty() && b.is_empty();
     }
     match (is_list(a), is_list(b)) {
-        (true, true) => pieces(a)
-            .map(|(v, _)| v.to_bits())
-            .eq(pieces(b).map(|(v, _)| v.to_bits())),
+        (true, true) => pieces(a).map(f64::to_bits).eq(pieces(b).map(f64::to_bits)),
         (false, false) => token_texts(a).eq(token_texts(b)),
         _ => false,
     }

@@ -482,6 +482,9 @@ fn c_int(x: f64) -> Option<i64> {
     (x > -2_147_483_649.0 && x < 2_147_483_648.0).then(|| x.trunc() as i64)
 }
 
+/// No walk remembered from this token (see `Meta::chain_of`).
+const NO_CHAIN: u32 = u32::MAX;
+
 /// What a remembered walk does (see [`REMEMBER_AFTER`]).
 #[derive(Clone, Copy, Debug)]
 struct Chain {
@@ -517,7 +520,10 @@ struct Meta {
     next: Vec<usize>,
     prev: Vec<usize>,
     live: usize,
-    chains: Vec<Option<Chain>>,
+    /// Per token, the index in `chains` of the walk remembered from it (`NO_CHAIN`: none):
+    /// few tokens start long walks, so the chains themselves are kept apart.
+    chain_of: Vec<u32>,
+    chains: Vec<Chain>,
     k: usize,
     start: f64,
     add: f64,
@@ -542,7 +548,8 @@ impl Meta {
             next: (0..n).map(|i| (i + 1) % n).collect(),
             prev: (0..n).map(|i| (i + n - 1) % n).collect(),
             live: n,
-            chains: vec![None; n],
+            chain_of: vec![NO_CHAIN; n],
+            chains: Vec::new(),
             tokens,
             k: 0,
             start: 0.0,
@@ -614,7 +621,8 @@ impl Meta {
         let mut moves: u64 = 0;
         let mut dummies = 0;
         let mut remembered = false;
-        if let Some(chain) = self.chains[from].filter(|c| c.live == self.live) {
+        let remembered_here = self.chains.get(self.chain_of[from] as usize).copied();
+        if let Some(chain) = remembered_here.filter(|c| c.live == self.live) {
             self.apply(chain);
             moves = chain.moves;
             remembered = true;
@@ -677,7 +685,7 @@ impl Meta {
             last = p;
             p = self.next[p];
         }
-        self.chains[from] = Some(Chain {
+        let chain = Chain {
             live: self.live,
             end,
             stops,
@@ -685,7 +693,19 @@ impl Meta {
             start,
             add: add.unwrap_or(self.add),
             last,
-        });
+        };
+        match self.chains.get_mut(self.chain_of[from] as usize) {
+            Some(old) => *old = chain,
+            // Past u32::MAX chains (four billion long walks) a walk is simply not remembered.
+            None => {
+                if let Ok(i) = u32::try_from(self.chains.len())
+                    && i != NO_CHAIN
+                {
+                    self.chain_of[from] = i;
+                    self.chains.push(chain);
+                }
+            }
+        }
     }
 
     fn apply(&mut self, chain: Chain) {

@@ -149,6 +149,22 @@ pub unsafe extern "C" fn rotlang_parse(
     target: u32,
     out: *mut *mut RotlangTemplate,
 ) -> RotlangStatus {
+    // SAFETY: the caller's contract, passed on.
+    unsafe { parse(text, length, target, out, false) }
+}
+
+/// `rotlang_parse` (`keep_bytes` false: text that is not UTF-8 is refused) and
+/// `rotlang_parse_bytes` (true: any bytes are kept).
+///
+/// # Safety
+/// As `rotlang_parse`.
+unsafe fn parse(
+    text: *const c_char,
+    length: usize,
+    target: u32,
+    out: *mut *mut RotlangTemplate,
+    keep_bytes: bool,
+) -> RotlangStatus {
     guard(|| {
         // SAFETY: the caller's contract on `out`.
         let out = unsafe { util::out::<*mut RotlangTemplate>(out) }?;
@@ -156,13 +172,22 @@ pub unsafe extern "C" fn rotlang_parse(
         let target = decode_target(target)?;
         // SAFETY: the caller's contract on `text`.
         let bytes = unsafe { bytes(text.cast(), length) }?;
-        let text = std::str::from_utf8(bytes).map_err(|e| {
-            Failure::with(
-                RotlangStatus::InvalidUtf8,
-                format!("invalid byte at offset {}", e.valid_up_to()),
-            )
-        })?;
-        *out = handle::new_template(TemplateData::new(text.to_owned(), target));
+        let data = match std::str::from_utf8(bytes) {
+            Ok(text) => TemplateData::new(text.to_owned(), target),
+            Err(e) if !keep_bytes => {
+                return Err(Failure::with(
+                    RotlangStatus::InvalidUtf8,
+                    format!("invalid byte at offset {}", e.valid_up_to()),
+                ));
+            }
+            Err(e) => {
+                let (text, origin) = lossy(bytes);
+                let mut data = TemplateData::with_origin(text, target, Some(&origin));
+                data.invalid_utf8 = Some(e.valid_up_to());
+                data
+            }
+        };
+        *out = handle::new_template(data);
         Ok(())
     })
 }
@@ -199,25 +224,8 @@ pub unsafe extern "C" fn rotlang_parse_bytes(
     target: u32,
     out: *mut *mut RotlangTemplate,
 ) -> RotlangStatus {
-    guard(|| {
-        // SAFETY: the caller's contract on `out`.
-        let out = unsafe { util::out::<*mut RotlangTemplate>(out) }?;
-        *out = std::ptr::null_mut();
-        let target = decode_target(target)?;
-        // SAFETY: the caller's contract on `text`.
-        let bytes = unsafe { bytes(text.cast(), length) }?;
-        let data = match std::str::from_utf8(bytes) {
-            Ok(text) => TemplateData::new(text.to_owned(), target),
-            Err(e) => {
-                let (text, origin) = lossy(bytes);
-                let mut data = TemplateData::with_origin(text, target, Some(&origin));
-                data.invalid_utf8 = Some(e.valid_up_to());
-                data
-            }
-        };
-        *out = handle::new_template(data);
-        Ok(())
-    })
+    // SAFETY: the caller's contract, passed on.
+    unsafe { parse(text, length, target, out, true) }
 }
 
 /// Frees a template. Freeing NULL is `NULL_POINTER`; freeing a handle twice (or a pointer

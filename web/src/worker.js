@@ -18,6 +18,15 @@ function options(state) {
   return o;
 }
 
+// The layers in the chosen reading. The base stands for the profile's infill direction,
+// which OrcaSlicer uses only for an empty template (rotlang::dialect::orcaslicer::
+// profile_options; the compat lint says so as orcaslicer::direction-ignored).
+function readingOptions(state) {
+  const o = options(state);
+  if (o.dialect === 'orcaslicer' && state.text !== '') o.base = 0;
+  return o;
+}
+
 const ops = {
   async analyse(state) {
     const r = await rotlang;
@@ -31,7 +40,7 @@ const ops = {
       out.refused = `${Number(layers).toLocaleString('en')} layers asked for; the playground evaluates up to ${MAX_LAYERS.toLocaleString('en')} (the CLI up to 100,000,000)`;
     } else if (!check.hasErrors || (state.dialect && state.dialect !== 'rotlang')) {
       try {
-        const e = r.expand(state.text, options(state));
+        const e = r.expand(state.text, readingOptions(state));
         // Each instruction's layers: first, last and how many.
         const ranges = e.instructions.map(() => ({ first: -1, last: -1, count: 0 }));
         for (let i = 0; i < e.instructionIndex.length; i++) {

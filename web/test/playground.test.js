@@ -381,6 +381,13 @@ test('OrcaSlicer compat findings, and the OrcaSlicer reading in the plot', async
   const { dots } = await drawnPlot(page);
   assert.equal(dots.length, 100);
   assert.ok(dots.every((d) => Math.abs(d.angle) < 0.5), 'every layer drawn at 0°');
+  // The base is the slicer's infill direction: OrcaSlicer uses it for an empty template
+  // only, so its reading of `0 90` stays at 0° (rotlang's adds it).
+  await page.fill('#base', '45');
+  await page.waitForFunction(() => /orcaslicer::direction-ignored/.test(document.querySelector('#compat-list').textContent));
+  await settled(page, '0 90');
+  const shifted = await drawnPlot(page);
+  assert.ok(shifted.dots.every((d) => Math.abs(d.angle) < 0.5), 'OrcaSlicer ignores the direction for a template');
   await shot(page, 'compat');
   await page.close();
 });

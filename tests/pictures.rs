@@ -80,6 +80,18 @@ fn axes(svg: &str) -> (Ticks, Ticks, Ticks) {
 }
 
 /// The pixel of `value` on an axis given by its ticks (linear between the first and last).
+/// The chart of a sparse template on the 20 mm cube, with the default options and style.
+fn default_plot(text: &str) -> String {
+    let template = rotlang::parse(text, rotlang::Target::Sparse).template;
+    plot::svg(
+        &template,
+        &Model::cube20(),
+        Options::default(),
+        text,
+        &PlotOptions::default(),
+    )
+}
+
 fn on_axis(ticks: &[(f64, f64)], value: f64) -> f64 {
     let (a, b) = (ticks[0], ticks[ticks.len() - 1]);
     a.1 + (value - a.0) / (b.0 - a.0) * (b.1 - a.1)
@@ -145,13 +157,7 @@ fn plot_wobble_around_zero_is_not_split_at_the_seam() {
     let text = "+10L25%, -10l25%, -10L25%, +10l25%";
     let template = rotlang::parse(text, rotlang::Target::Sparse).template;
     let model = Model::cube20();
-    let svg = plot::svg(
-        &template,
-        &model,
-        Options::default(),
-        text,
-        &PlotOptions::default(),
-    );
+    let svg = default_plot(text);
     assert!(svg.contains("mod 180, in [−90, 90)"));
     let (_, direction_ticks, height_ticks) = axes(&svg);
     let labels: Vec<f64> = direction_ticks.iter().map(|t| t.0).collect();
@@ -182,30 +188,13 @@ fn plot_wobble_around_zero_is_not_split_at_the_seam() {
         }
     }
     assert!(negative > 3, "the wobble goes below 0°");
-    let text = "+80L50%, -10";
-    let template = rotlang::parse(text, rotlang::Target::Sparse).template;
-    let svg = plot::svg(
-        &template,
-        &model,
-        Options::default(),
-        text,
-        &PlotOptions::default(),
-    );
-    assert!(svg.contains("mod 180, in [0, 180)"));
+    assert!(default_plot("+80L50%, -10").contains("mod 180, in [0, 180)"));
 }
 
 /// Instruction labels are whole (`30M`, not `3…`) and do not run into each other.
 #[test]
 fn plot_labels_are_whole_and_apart() {
-    let text = "30M, 90, +45/8, 0, +30/50%";
-    let template = rotlang::parse(text, rotlang::Target::Sparse).template;
-    let svg = plot::svg(
-        &template,
-        &Model::cube20(),
-        Options::default(),
-        text,
-        &PlotOptions::default(),
-    );
+    let svg = default_plot("30M, 90, +45/8, 0, +30/50%");
     let mut labels = Vec::new();
     for (i, _) in svg.match_indices("font-size=\"11\">") {
         let tag = &svg[svg[..i].rfind("<text").unwrap()..i];

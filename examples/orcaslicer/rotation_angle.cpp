@@ -131,10 +131,12 @@ void compute(AngleTable& table, const PrintObject* object) {
     const auto& layers = object->layers();
     std::vector<double> heights;
     heights.reserve(layers.size());
-    double below = object->slicing_parameters().object_print_z_min;
+    const double z_min = object->slicing_parameters().object_print_z_min;
+    double below = 0;
     for (const auto* layer : layers) {
-        heights.push_back(layer->print_z - below);
-        below = layer->print_z;
+        double top = layer->print_z - z_min;
+        heights.push_back(top - below);
+        below = top;
     }
     const auto& region = object->print()->default_region_config();
     try {
@@ -162,10 +164,15 @@ void compute(AngleTable& table, const PrintObject* object) {
 double calculate_infill_rotation_angle(const PrintObject* object, size_t layer_id, const double& fixed_infill_angle,
                                        const std::string& template_string) {
     double fixed = M_PI * fixed_infill_angle / 180.0;
-    if (template_string.empty() || object == nullptr) return fixed;
-    std::shared_ptr<AngleTable> table = table_for(object, template_string, layer_id);
+    if (template_string.empty() || object == nullptr || object->layers().empty()) return fixed;
+    // OrcaSlicer passes Layer::id(), which counts the raft layers below the object; its
+    // function turns it back into an index into layers() (an id below the object's first
+    // layer reads layer 0), and so does this.
+    const std::size_t first_id = object->get_layer(0)->id();
+    const std::size_t index = layer_id > first_id ? layer_id - first_id : 0;
+    std::shared_ptr<AngleTable> table = table_for(object, template_string, index);
     std::call_once(table->computed, compute, std::ref(*table), object);
-    return layer_id < table->radians.size() ? table->radians[layer_id] : fixed;
+    return index < table->radians.size() ? table->radians[index] : fixed;
 }
 
 // Drops every cached table (call when a Print is cleared, so that a new object at the

@@ -35,7 +35,13 @@ struct Case {
     std::string model, status, text;
     std::vector<double> degrees;  // NaN: OrcaSlicer's angle is NaN there
     std::vector<double> on_raft;  // the dialect on the raft object's own layer tops
+    size_t raft = 0;              // which raft (0, 1, 2: 1, 2 or 3 raft layers)
 };
+
+// Rafts of 1, 2 and 3 layers whose tops (object_print_z_min, raft and gap) are not a
+// multiple of any model's layer height, so the object's layers sit off the layer grid.
+static const size_t RAFT_LAYERS[3] = {1, 2, 3};
+static const double RAFT_TOP[3] = {0.35, 0.53, 0.81};
 
 struct ModelSpec {
     double layer_height;
@@ -96,22 +102,29 @@ int main(int argc, char** argv) {
     }
 
     // One Print per model (its shell counts) and one object per model, plus the same
-    // object on a 1.5 mm raft. On the raft, OrcaSlicer measures layer tops as
-    // print_z - object_print_z_min, which can differ from the running sums in the last
-    // bit (and so break a tie the other way): the expectation there is the dialect on
-    // exactly those tops, computed here through rotlang.hpp.
+    // object on rafts of 1, 2 and 3 layers (each case on one of them in turn). OrcaSlicer
+    // calls with Layer::id(), which counts the raft layers: layer i of the object is id
+    // R + i. On a raft, OrcaSlicer measures layer tops as print_z - object_print_z_min,
+    // which can differ from the running sums in the last bit (and so break a tie the
+    // other way): the expectation there is the dialect on exactly those tops, computed
+    // here through rotlang.hpp.
     std::map<std::string, std::unique_ptr<Print>> prints;
-    std::map<std::string, std::unique_ptr<PrintObject>> objects, rafted;
+    std::map<std::string, std::unique_ptr<PrintObject>> objects;
+    std::map<std::string, std::unique_ptr<PrintObject>> rafted[3];
     for (const auto& [name, m] : specs) {
         auto print = std::make_unique<Print>();
         print->m_region.bottom_shell_layers.value = m.bottom;
         print->m_region.top_shell_layers.value = m.top;
         objects[name] = std::make_unique<PrintObject>(print.get(), m.heights, m.layer_height, 0.0);
-        rafted[name] = std::make_unique<PrintObject>(print.get(), m.heights, m.layer_height, 1.5);
+        for (size_t r = 0; r < 3; r++)
+            rafted[r][name] =
+                std::make_unique<PrintObject>(print.get(), m.heights, m.layer_height, RAFT_TOP[r], RAFT_LAYERS[r]);
         prints[name] = std::move(print);
     }
-    for (Case& c : cases) {
-        const PrintObject* raft = rafted.at(c.model).get();
+    for (size_t k = 0; k < cases.size(); k++) {
+        Case& c = cases[k];
+        c.raft = k % 3;
+        const PrintObject* raft = rafted[c.raft].at(c.model).get();
         std::vector<double> heights;
         double below = 0;
         for (const Layer* l : raft->layers()) {
@@ -135,14 +148,16 @@ int main(int argc, char** argv) {
         for (size_t k : order) {
             const Case& c = cases[k];
             const PrintObject* object = objects.at(c.model).get();
-            const PrintObject* raft = rafted.at(c.model).get();
+            const PrintObject* raft = rafted[c.raft].at(c.model).get();
+            const size_t raft_layers = RAFT_LAYERS[c.raft];
             std::vector<size_t> layers(c.degrees.size());
             for (size_t i = 0; i < layers.size(); i++) layers[i] = i;
             std::shuffle(layers.begin(), layers.end(), rng);
             for (size_t i : layers) {
                 double fixed = 45.0;  // ignored by every non-empty template
                 double got = calculate_infill_rotation_angle(object, i, fixed, c.text) * 180.0 / M_PI;
-                double on_raft = calculate_infill_rotation_angle(raft, i, fixed, c.text) * 180.0 / M_PI;
+                double on_raft =
+                    calculate_infill_rotation_angle(raft, raft_layers + i, fixed, c.text) * 180.0 / M_PI;
                 checked++;
                 if (!close(got, c.degrees[i])) {
                     if (failed++ < 10)
@@ -150,8 +165,9 @@ int main(int argc, char** argv) {
                                      c.model.c_str(), c.status.c_str(), i, got, c.degrees[i]);
                 }
                 if (!close(on_raft, c.on_raft[i]) && raft_diffs++ < 10)
-                    std::fprintf(stderr, "%s on %s with a raft, layer %zu: %.9g, expected %.9g\n", c.text.c_str(),
-                                 c.model.c_str(), i, on_raft, c.on_raft[i]);
+                    std::fprintf(stderr, "%s on %s with a raft of %zu layers, layer %zu (id %zu): %.9g, expected %.9g\n",
+                                 c.text.c_str(), c.model.c_str(), raft_layers, i, raft_layers + i, on_raft,
+                                 c.on_raft[i]);
             }
         }
     };
@@ -201,6 +217,31 @@ int main(int argc, char** argv) {
                          utf8, 30.0 * (i + 1));
         }
     }
+    // Issue 16: `B!, 90M2, +15#10` on the cube over a raft of 3 layers (0.81 mm). The
+    // object's layer i has id 3 + i and gets the angle it has without a raft: layer 1 (id 4)
+    // 0 degrees; the top 3 layers their own angles, not the fixed one; an
+    // id inside the raft reads layer 0, as OrcaSlicer's function does.
+    bool raft_ok = true;
+    {
+        const ModelSpec& cube_spec = specs.at("cube20");
+        PrintObject plain(prints.at("cube20").get(), cube_spec.heights, cube_spec.layer_height, 0.0);
+        PrintObject on_raft(prints.at("cube20").get(), cube_spec.heights, cube_spec.layer_height, 0.81, 3);
+        const std::string text = "B!, 90M2, +15#10";
+        auto deg = [&](const PrintObject& o, size_t id) {
+            return calculate_infill_rotation_angle(&o, id, fixed, text) * 180.0 / M_PI;
+        };
+        for (size_t i = 0; i < cube_spec.heights.size(); i++)
+            if (std::fabs(deg(on_raft, 3 + i) - deg(plain, i)) > 1e-9) {
+                raft_ok = false;
+                std::fprintf(stderr, "%s, raft of 3: layer %zu (id %zu) %.9g, without a raft %.9g\n", text.c_str(), i,
+                             3 + i, deg(on_raft, 3 + i), deg(plain, i));
+            }
+        for (size_t id = 0; id < 3; id++) raft_ok = raft_ok && deg(on_raft, id) == deg(plain, 0);
+        // (Layer 4 itself is at 105 degrees: reading layers()[id] would show.)
+        raft_ok = raft_ok && std::fabs(deg(on_raft, 4)) < 1e-9 && std::fabs(deg(plain, 4) - 105.0) < 1e-9;
+        if (!raft_ok) std::fprintf(stderr, "%s on a raft of 3 layers: ids not read as OrcaSlicer does\n", text.c_str());
+    }
+
     clear_infill_rotation_cache();
     // The drop-in frees every template it parses (valgrind cannot see a leaked handle).
     bool handles_ok = rotlang_live_handles() == 0;
@@ -210,7 +251,7 @@ int main(int argc, char** argv) {
                 cases.size(), static_cast<size_t>(threads), failed.load(), raft_diffs.load());
     if (!fixed_ok) std::fprintf(stderr, "the fixed angle is not returned for an empty template\n");
     if (!reslice_ok) std::fprintf(stderr, "a re-sliced object kept its old table\n");
-    return failed == 0 && raft_diffs == 0 && fixed_ok && reslice_ok && same_top_ok && bytes_ok && handles_ok &&
+    return failed == 0 && raft_diffs == 0 && raft_ok && fixed_ok && reslice_ok && same_top_ok && bytes_ok && handles_ok &&
                    !cases.empty()
                ? 0
                : 1;

@@ -38,9 +38,13 @@ public:
 
 class PrintObject {
 public:
-    /// Layers stacked from `z_min` (a raft below the object, or 0) with these heights.
-    PrintObject(const Print* print, const std::vector<double>& heights, double layer_height, double z_min)
-        : m_print(print) {
+    /// Layers stacked from `z_min` (the top of a raft of `raft_layers` layers below the
+    /// object, or 0) with these heights. As in OrcaSlicer, the raft layers are not the
+    /// object's (they are support layers), but they are counted in its layers' ids: the
+    /// object's first layer has id `raft_layers`.
+    PrintObject(const Print* print, const std::vector<double>& heights, double layer_height, double z_min,
+                std::size_t raft_layers = 0)
+        : m_print(print), m_raft_layers(raft_layers) {
         m_config.layer_height.value = layer_height;
         m_slicing.object_print_z_min = z_min;
         restack(heights);
@@ -56,7 +60,7 @@ public:
         for (std::size_t i = 0; i < heights.size(); i++) {
             double below = top;
             top += heights[i];
-            m_layers.push_back(new Layer(i, top, top - below));
+            m_layers.push_back(new Layer(m_raft_layers + i, top, top - below));
         }
     }
 
@@ -73,6 +77,7 @@ private:
         m_layers.clear();
     }
     const Print* m_print;
+    std::size_t m_raft_layers;
     LayerPtrs m_layers;
     PrintObjectConfig m_config;
     SlicingParameters m_slicing;

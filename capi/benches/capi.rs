@@ -192,3 +192,48 @@ fn orcaslicer_table_10k(bencher: Bencher) {
             black_box(table)
         });
 }
+
+/// Issue 16 item 6: a megabyte of digits (one number, OrcaSlicer's list reading) parsed
+/// and expanded on the 100-layer cube in the OrcaSlicer dialect. It took 3-5 s when each
+/// layer read the megabyte again and `rotlang_parse` parsed it in rotlang's grammar too;
+/// the CLI (`rotlang expand --dialect orcaslicer`) does the same work in about 10 ms.
+#[divan::bench(args = ["digits", "list"])]
+fn c_abi_orcaslicer_megabyte(bencher: Bencher, kind: &str) {
+    let text: String = match kind {
+        "digits" => (0..1 << 20)
+            .map(|i| char::from(b'0' + (i % 10) as u8))
+            .collect(),
+        _ => "0, 90, ".repeat((1 << 20) / 7),
+    };
+    let model = rotlang_model_uniform(100, 0.2, 0.0);
+    let orca = RotlangOptions {
+        base: 0.0,
+        seed: 0,
+        dialect: RotlangDialect::Orcaslicer as u32,
+    };
+    let mut out = vec![0.0; 100];
+    bencher.bench_local(|| {
+        let mut t = std::ptr::null_mut();
+        // SAFETY: every pointer is valid; `out` holds 100 doubles.
+        unsafe {
+            assert_eq!(
+                rotlang_parse(text.as_ptr().cast(), text.len(), 0, &mut t),
+                RotlangStatus::Ok
+            );
+            let status = rotlang_expand(
+                t,
+                &model,
+                &orca,
+                0,
+                ROTLANG_TO_TOP,
+                out.as_mut_ptr(),
+                std::ptr::null_mut(),
+                out.len(),
+                std::ptr::null_mut(),
+            );
+            assert_eq!(status, RotlangStatus::Ok);
+            rotlang_template_free(t);
+        }
+        black_box(&out);
+    });
+}

@@ -138,7 +138,7 @@ fn open(owner: &Owner) -> Result<Cursor<'_>, Failure> {
     Ok(match owner.settings.dialect {
         // The stream checked the template; the rotlang dialect has a better cursor.
         RotlangDialect::Rotlang => Cursor::Rotlang(eval::Evaluator::new(
-            &owner.template.parse.template,
+            &owner.template.parsed().parse.template,
             &owner.model,
             owner.settings.options,
         )),

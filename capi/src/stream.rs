@@ -92,11 +92,11 @@ impl<'a> Stream<'a> {
                         ),
                     ));
                 }
-                if data.parse.has_errors() {
+                if data.parsed().parse.has_errors() {
                     return Err(RotlangStatus::TemplateHasErrors.into());
                 }
                 Ok(Stream::Rotlang(eval::layers(
-                    &data.parse.template,
+                    &data.parsed().parse.template,
                     model,
                     settings.options,
                 )))

@@ -1,6 +1,7 @@
 //! Parsing into a template handle, and reading its diagnostics.
 
 use std::ffi::{CString, c_char};
+use std::sync::OnceLock;
 
 use rotlang::{Parse, Target};
 
@@ -53,14 +54,27 @@ struct Stored {
     end: usize,
 }
 
-/// What a template handle holds; immutable once built, shared by every thread.
+/// What a template handle holds; immutable once built, shared by every thread. rotlang's
+/// own parse (the rotlang dialect's template and the diagnostics) is made on first use:
+/// a slicer that evaluates only in the OrcaSlicer dialect, which reads the raw text,
+/// never pays for it (a megabyte template parses in about half a second; the OrcaSlicer
+/// dialect reads it in milliseconds).
 pub(crate) struct TemplateData {
     pub text: String,
-    pub parse: Parse,
-    diagnostics: Vec<Stored>,
+    target: Target,
+    /// For text made by `lossy` from bytes that are not UTF-8: those bytes, to map the
+    /// diagnostics' spans back to offsets in what the caller gave.
+    raw: Option<Box<[u8]>>,
+    parsed: OnceLock<Parsed>,
     /// Parsed by `rotlang_parse_bytes` from text that is not UTF-8: the offset of the
     /// first invalid byte. Only the OrcaSlicer dialect evaluates such a template.
     pub invalid_utf8: Option<usize>,
+}
+
+/// rotlang's parse of a template, and its diagnostics in C form.
+pub(crate) struct Parsed {
+    pub parse: Parse,
+    diagnostics: Vec<Stored>,
 }
 
 /// `bytes` as text for a reader of bytes (OrcaSlicer's): valid UTF-8 stays as it is, each
@@ -93,18 +107,29 @@ fn c_string(s: &str) -> CString {
 
 impl TemplateData {
     pub(crate) fn new(text: String, target: Target) -> TemplateData {
-        Self::with_origin(text, target, None)
+        TemplateData {
+            text,
+            target,
+            raw: None,
+            parsed: OnceLock::new(),
+            invalid_utf8: None,
+        }
     }
 
-    /// `origin`: where each byte offset of `text` came from in the caller's bytes (for
-    /// text made by `lossy`), so that spans are offsets in what the caller gave.
-    fn with_origin(text: String, target: Target, origin: Option<&[usize]>) -> TemplateData {
+    /// rotlang's parse and diagnostics, made on the first call.
+    pub(crate) fn parsed(&self) -> &Parsed {
+        self.parsed.get_or_init(|| self.parse_now())
+    }
+
+    fn parse_now(&self) -> Parsed {
+        let origin = self.raw.as_deref().map(|raw| lossy(raw).1);
         let to_caller = |offset: usize| {
             origin
+                .as_deref()
                 .and_then(|o| o.get(offset).copied())
                 .unwrap_or(offset)
         };
-        let parse = rotlang::parse(&text, target);
+        let parse = rotlang::parse(&self.text, self.target);
         let diagnostics = parse
             .diagnostics
             .iter()
@@ -123,12 +148,7 @@ impl TemplateData {
                 }
             })
             .collect();
-        TemplateData {
-            text,
-            parse,
-            diagnostics,
-            invalid_utf8: None,
-        }
+        Parsed { parse, diagnostics }
     }
 }
 
@@ -181,8 +201,8 @@ unsafe fn parse(
                 ));
             }
             Err(e) => {
-                let (text, origin) = lossy(bytes);
-                let mut data = TemplateData::with_origin(text, target, Some(&origin));
+                let mut data = TemplateData::new(lossy(bytes).0, target);
+                data.raw = Some(bytes.into());
                 data.invalid_utf8 = Some(e.valid_up_to());
                 data
             }
@@ -248,7 +268,7 @@ pub unsafe extern "C" fn rotlang_template_diagnostic_count(
     guard(|| {
         // SAFETY: the caller's contract on `out`.
         let out = unsafe { util::out::<usize>(out) }?;
-        *out = handle::template(template)?.diagnostics.len();
+        *out = handle::template(template)?.parsed().diagnostics.len();
         Ok(())
     })
 }
@@ -265,7 +285,7 @@ pub unsafe extern "C" fn rotlang_template_has_errors(
     guard(|| {
         // SAFETY: the caller's contract on `out`.
         let out = unsafe { util::out::<i32>(out) }?;
-        *out = i32::from(handle::template(template)?.parse.has_errors());
+        *out = i32::from(handle::template(template)?.parsed().parse.has_errors());
         Ok(())
     })
 }
@@ -284,12 +304,13 @@ pub unsafe extern "C" fn rotlang_template_diagnostic(
         // SAFETY: the caller's contract on `out`.
         let out = unsafe { util::out::<RotlangDiagnostic>(out) }?;
         let data = handle::template(template)?;
-        let d = data.diagnostics.get(index).ok_or_else(|| {
+        let parsed = data.parsed();
+        let d = parsed.diagnostics.get(index).ok_or_else(|| {
             Failure::with(
                 RotlangStatus::OutOfRange,
                 format!(
                     "diagnostic {index} of a template with {}",
-                    data.diagnostics.len()
+                    parsed.diagnostics.len()
                 ),
             )
         })?;

@@ -87,10 +87,7 @@ pub fn layers<'a>(text: &str, model: &'a Model, options: Options) -> Layers<'a> 
     let reading = if text.is_empty() {
         Reading::Empty
     } else if is_list(text) {
-        Reading::List {
-            text: text.into(),
-            next: 0,
-        }
+        list_reading(text)
     } else {
         Reading::Meta(Box::new(Meta::new(text, model)))
     };
@@ -201,9 +198,24 @@ impl Iterator for Layers<'_> {
             let base = self.options.base;
             let outcome = match &mut self.reading {
                 Reading::Empty => Outcome::Angle(base),
+                Reading::Table { pieces, next } => {
+                    // Layer i gets piece i mod n, and layers come in order.
+                    let (value, span) = pieces[*next];
+                    *next = if *next + 1 == pieces.len() {
+                        0
+                    } else {
+                        *next + 1
+                    };
+                    instruction = Some(span);
+                    if finite_in_radians(value) {
+                        Outcome::Angle(base + value)
+                    } else {
+                        Outcome::Nan(None)
+                    }
+                }
                 Reading::List { text, next } => {
-                    // Layer i gets piece i mod n, and layers come in order: read the
-                    // pieces in turn, from the first again after the last.
+                    // As above, the pieces read in turn from the text, from the first
+                    // again after the last.
                     let (value, span, after) = piece(text, *next);
                     *next = after.unwrap_or(0);
                     instruction = Some(span);
@@ -293,7 +305,41 @@ enum Reading {
         text: Box<str>,
         next: usize,
     },
+    /// The list reading with every piece read once: for lists of few or long pieces,
+    /// where reading a piece again on every layer would cost its length each time (a
+    /// megabyte number re-read on every layer), and a plain list is `pieces[i mod n]`.
+    Table {
+        pieces: Box<[(f64, Span)]>,
+        next: usize,
+    },
     Meta(Box<Meta>),
+}
+
+/// The list reading of `text`: a table of its pieces when it costs at most a few
+/// thousand entries or no more than the text itself (24 bytes a piece against at least
+/// 24 bytes of text a piece); otherwise the pieces are read from the text in turn, each
+/// then costing fewer than 24 bytes of reading on average.
+fn list_reading(text: &str) -> Reading {
+    const FEW: usize = 4096;
+    let commas = text.bytes().filter(|&b| b == b',').count();
+    if commas < FEW || commas * size_of::<(f64, Span)>() <= text.len() {
+        let mut pieces = Vec::with_capacity(commas + 1);
+        let mut from = Some(0);
+        while let Some(at) = from {
+            let (value, span, next) = piece(text, at);
+            pieces.push((value, span));
+            from = next;
+        }
+        Reading::Table {
+            pieces: pieces.into(),
+            next: 0,
+        }
+    } else {
+        Reading::List {
+            text: text.into(),
+            next: 0,
+        }
+    }
 }
 
 /// 10.2: split at every `,`; a trailing `,` adds no piece; trim; read a decimal prefix.

@@ -196,3 +196,52 @@ fn same_reading_sees_what_orcaslicer_sees() {
     }
     assert_eq!(compared, 4, "+10L25%, 10!, #14 and 1e5 keep their reading");
 }
+
+/// Issue 16 item 6: a list of few, long pieces (a megabyte of digits) was read again from
+/// the text on every layer, a megabyte a layer. Such a list is read once into a table; a
+/// long list of short pieces is still read from the text in turn (its pieces cost less
+/// than a table), and both give the same angles and spans.
+#[test]
+fn long_pieces_are_read_once_short_ones_streamed() {
+    let table = |text: &str| matches!(super::list_reading(text), Reading::Table { .. });
+    let digits: String = (0..1 << 20)
+        .map(|i| char::from(b'0' + (i % 10) as u8))
+        .collect();
+    assert!(table(&digits));
+    assert!(table("0, 90"));
+    let long_pieces = format!("{digits}, 7, {digits}");
+    assert!(table(&long_pieces));
+    let short_pieces = "1,".repeat(100_000);
+    assert!(!table(&short_pieces));
+
+    let model = cube(7);
+    let streamed = |text: &str| {
+        let mut reading = layers(text, &model, Options::default());
+        reading.reading = Reading::List {
+            text: text.into(),
+            next: 0,
+        };
+        reading
+            .map(|l| (l.angle.to_bits(), l.instruction))
+            .collect::<Vec<_>>()
+    };
+    let tabled = |text: &str| {
+        layers(text, &model, Options::default())
+            .map(|l| (l.angle.to_bits(), l.instruction))
+            .collect::<Vec<_>>()
+    };
+    for text in [
+        "0, 90",
+        "10,,20, ",
+        "1e400, 5",
+        &long_pieces,
+        &short_pieces[..40],
+    ] {
+        assert_eq!(
+            tabled(text),
+            streamed(text),
+            "{}",
+            &text[..text.len().min(20)]
+        );
+    }
+}

@@ -145,6 +145,15 @@ impl<'a> Stream<'a> {
         }
     }
 
+    /// The fixed cycle of angles when the template is a plain list (see
+    /// `eval::Layers::cycle`): layer `k` is entry `k mod n`, with no findings.
+    pub(crate) fn plain_cycle(&self) -> Option<eval::Cycle> {
+        match self {
+            Stream::Rotlang(layers) => layers.plain_cycle(),
+            Stream::OrcaSlicer(layers) => layers.plain_cycle(),
+        }
+    }
+
     /// Skips to layer `index` (at or after the current position).
     pub(crate) fn seek(&mut self, index: usize) {
         while self.layer_position() < index {

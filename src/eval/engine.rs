@@ -539,6 +539,35 @@ impl Engine {
         self.ze = measure(step.extent(), at, model);
     }
 
+    /// The angle and fill of each step when the template is a plain cycle: every step
+    /// absolute, one layer, run once, never spent, not a dummy, not flipped and not
+    /// random. Then every layer starts a range (a layer is at least 0.001 mm, far more
+    /// than `TIE`), the steps come in turn, and layer `k` takes step `k mod n` whatever
+    /// came before: `a0` is the step's angle, `d` is 0 and the progress is 1, so its
+    /// angle is exactly what `layer` computes, `finite(base + alpha + 0 · shape(1))`.
+    pub(crate) fn plain_cycle(&self) -> Option<Vec<(f64, Fill)>> {
+        let n = self.steps.len();
+        if n == 0 {
+            return None;
+        }
+        (0..n)
+            .map(|c| {
+                let step = self.steps.at(c);
+                let plain = !step.relative
+                    && !step.dummy
+                    && !step.one_time
+                    && step.runs == 1
+                    && !step.flipped
+                    && matches!(step.extent_kind, ExtentKind::OneLayer)
+                    && !matches!(step.joint, Joint::Random | Joint::PseudoRandom);
+                plain.then(|| {
+                    let s = shape(step.joint, 1.0, false, || 0.0);
+                    (finite(self.base + step.alpha + 0.0 * s), step.fill)
+                })
+            })
+            .collect()
+    }
+
     fn all_spent(&self) -> bool {
         self.spent == self.steps.len()
     }

@@ -119,7 +119,48 @@ pub struct Layers<'a> {
     at: Cursor,
 }
 
+/// A template that gives layer `k` the angle and fill `cycle[k mod n]`, whatever the
+/// model: see [`Layers::plain_cycle`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cycle {
+    /// Angle (degrees, base included) and fill of each entry.
+    pub entries: Vec<(f64, Fill)>,
+}
+
+impl Cycle {
+    /// Layer `index`'s angle and fill.
+    #[inline]
+    pub fn at(&self, index: usize) -> (f64, Fill) {
+        self.entries[index % self.entries.len()]
+    }
+
+    /// The angles (and fills) of layers `first..first + angles.len()`, written in turn:
+    /// copies of the cycle, no per-layer arithmetic but the wrap.
+    pub fn write(&self, first: usize, angles: &mut [f64], mut fills: Option<&mut [Fill]>) {
+        let n = self.entries.len();
+        let mut k = first % n;
+        for (i, slot) in angles.iter_mut().enumerate() {
+            let (angle, fill) = self.entries[k];
+            *slot = angle;
+            if let Some(f) = fills.as_deref_mut().and_then(|f| f.get_mut(i)) {
+                *f = fill;
+            }
+            k += 1;
+            if k == n {
+                k = 0;
+            }
+        }
+    }
+}
+
 impl Layers<'_> {
+    /// `Some` when every layer's angle and fill is an entry of a fixed cycle (a plain
+    /// list of absolute angles, `0, 90`): then [`Cycle::write`] gives the same layers as
+    /// this stream, far faster. The layers' `instruction` spans are not in the cycle.
+    pub fn plain_cycle(&self) -> Option<Cycle> {
+        self.engine.plain_cycle().map(|entries| Cycle { entries })
+    }
+
     /// The index of the layer the next call to `next` yields.
     pub fn position(&self) -> usize {
         self.at.index

@@ -498,3 +498,57 @@ fn parse_layers_is_layers_of_the_parse() {
         }
     }
 }
+
+/// Issue 19: a plain list's cycle gives every layer exactly (bitwise, fills too) what the
+/// stream gives, on uniform and listed models, with a base; anything else has no cycle.
+#[test]
+fn plain_cycles_are_the_stream_bitwise() {
+    let models = [
+        Model::cube20(),
+        Model::uniform(1000, 0.2, Some(0.3)).unwrap(),
+        Model::from_heights(vec![0.001, 1000.0, 0.001, 0.3, 0.07, 999.9], 0.2).unwrap(),
+        Model::uniform(3, 0.001, None).unwrap(),
+    ];
+    let plain = [
+        "0, 90",
+        "0, 0.0, 0e5",
+        "45",
+        "0, 15, 30, 45D, 90S",
+        "1e9, 999999999.5, 30",
+        "10N, 20Z, 30$",
+    ];
+    for text in plain {
+        let t = template(text);
+        for model in &models {
+            for base in [0.0, -0.0, 45.0, -1e300] {
+                let options = Options { base, seed: 7 };
+                let cycle = layers(&t, model, options)
+                    .plain_cycle()
+                    .unwrap_or_else(|| panic!("{text:?} is a plain list"));
+                let mut angles = vec![f64::NAN; model.len()];
+                let mut fills = vec![Fill::Sparse; model.len()];
+                cycle.write(0, &mut angles, Some(&mut fills));
+                for (i, layer) in layers(&t, model, options).enumerate() {
+                    assert_eq!(
+                        angles[i].to_bits(),
+                        layer.angle.to_bits(),
+                        "{text:?} layer {i}"
+                    );
+                    assert_eq!(fills[i], layer.fill, "{text:?} layer {i}");
+                    assert_eq!(cycle.at(i).0.to_bits(), layer.angle.to_bits());
+                }
+            }
+        }
+    }
+    for text in [
+        "+90", "0, 90!", "0*2, 90", "0#2, 90", "~30", "-30R", "30/1mm",
+    ] {
+        let t = template(text);
+        assert!(
+            layers(&t, &Model::cube20(), Options::default())
+                .plain_cycle()
+                .is_none(),
+            "{text:?} is not a plain list"
+        );
+    }
+}

@@ -40,7 +40,7 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use super::{Finding, HANGS, NAN, UNDEFINED};
 use crate::diagnostic::Span;
-use crate::eval::{Cursor, Layer, Model, Options, random_unit};
+use crate::eval::{Cursor, Cycle, Layer, Model, Options, random_unit};
 use crate::ir::{Fill, Joint};
 
 /// A walk that reads at least this many dummies is remembered (with its effect composed)
@@ -120,6 +120,27 @@ pub struct Layers<'a> {
 }
 
 impl Layers<'_> {
+    /// `Some` when OrcaSlicer reads the text as a list (10.2) whose every piece gives a
+    /// finite angle: layer `k` then takes piece `k mod n`, with no finding, and
+    /// [`Cycle::write`] gives the same angles as this stream (every fill sparse).
+    pub fn plain_cycle(&self) -> Option<Cycle> {
+        let Reading::Table { pieces, .. } = &self.reading else {
+            return None;
+        };
+        if self.halted {
+            return None;
+        }
+        let base = self.options.base;
+        pieces
+            .iter()
+            .map(|&(value, _)| {
+                let a = base + value;
+                (finite_in_radians(value) && a.is_finite()).then_some((a, Fill::Sparse))
+            })
+            .collect::<Option<Vec<_>>>()
+            .map(|entries| Cycle { entries })
+    }
+
     /// What was found in the layers yielded so far: a hang, undefined behaviour, NaN
     /// layers (codes `orcaslicer::hangs`, `orcaslicer::undefined`, `orcaslicer::nan`).
     pub fn findings(&self) -> &[Finding] {

@@ -245,3 +245,33 @@ fn long_pieces_are_read_once_short_ones_streamed() {
         );
     }
 }
+
+/// Issue 19: the list reading's cycle gives every layer exactly what the stream gives;
+/// a list with a piece OrcaSlicer cannot turn into a finite angle has none.
+#[test]
+fn list_cycles_are_the_stream_bitwise() {
+    let models = [cube(57), first_layer(31)];
+    for text in ["0, 90", "10,,20, ", "45°, 1e, 0 90", "7"] {
+        for model in &models {
+            for base in [0.0, 45.0] {
+                let options = Options { base, seed: 0 };
+                let cycle = layers(text, model, options).plain_cycle().unwrap();
+                let mut angles = vec![f64::NAN; model.len()];
+                cycle.write(0, &mut angles, None);
+                let streamed: Vec<u64> = layers(text, model, options)
+                    .map(|l| l.angle.to_bits())
+                    .collect();
+                let cycled: Vec<u64> = angles.iter().map(|a| a.to_bits()).collect();
+                assert_eq!(cycled, streamed, "{text:?}");
+            }
+        }
+    }
+    for text in ["1e400, 5", "+30", "0 90 +5"] {
+        assert!(
+            layers(text, &cube(3), Options::default())
+                .plain_cycle()
+                .is_none(),
+            "{text:?}"
+        );
+    }
+}

@@ -138,7 +138,7 @@ impl<'a> Stream<'a> {
             // layers that way (see `eval::Layers::fold`). It has no findings.
             Stream::Rotlang(layers) => (layers.fold(init, f), Vec::new()),
             Stream::OrcaSlicer(mut layers) => {
-                let result = layers.by_ref().fold(init, f);
+                let result = layers.fold_rest(init, f);
                 let found = layers.findings().iter().map(to_c).collect();
                 (result, found)
             }

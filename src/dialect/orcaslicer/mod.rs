@@ -120,6 +120,50 @@ pub struct Layers<'a> {
 }
 
 impl Layers<'_> {
+    /// `fold` over the layers left, keeping the stream (for its findings): `next` in a
+    /// loop, with the metalanguage's layers inside a range (no walk, a finite angle: most
+    /// layers) computed in a tight loop that keeps the state in registers, exactly as
+    /// `Meta::layer` computes them; every other layer goes through `next`.
+    #[inline]
+    pub fn fold_rest<B, F: FnMut(B, Layer) -> B>(&mut self, init: B, mut f: F) -> B {
+        let mut acc = init;
+        let len = self.model.len();
+        loop {
+            if let (false, Reading::Meta(meta)) = (self.halted, &mut self.reading) {
+                let (base, seed) = (self.options.base, self.options.seed);
+                let at = &mut self.at;
+                while at.index < len {
+                    let (below, top) = (at.bottom, at.top);
+                    if meta.limit < 0.5 * (below + top) {
+                        break;
+                    }
+                    let Some(angle) = meta.in_range(top, at.index, seed) else {
+                        break;
+                    };
+                    let angle = base + angle;
+                    if !angle.is_finite() {
+                        break;
+                    }
+                    let layer = Layer {
+                        index: at.index,
+                        bottom: below,
+                        top,
+                        angle,
+                        fill: Fill::Sparse,
+                        instruction: meta.governing,
+                    };
+                    self.below = angle;
+                    at.advance_in(self.model);
+                    acc = f(acc, layer);
+                }
+            }
+            match self.next() {
+                Some(layer) => acc = f(acc, layer),
+                None => return acc,
+            }
+        }
+    }
+
     /// `Some` when OrcaSlicer reads the text as a list (10.2) whose every piece gives a
     /// finite angle: layer `k` then takes piece `k mod n`, with no finding, and
     /// [`Cycle::write`] gives the same angles as this stream (every fill sparse).
@@ -284,6 +328,11 @@ impl Iterator for Layers<'_> {
             fill: Fill::Sparse,
             instruction,
         })
+    }
+
+    #[inline]
+    fn fold<B, F: FnMut(B, Layer) -> B>(mut self, init: B, f: F) -> B {
+        self.fold_rest(init, f)
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
@@ -656,16 +705,15 @@ impl Meta {
                 self.walk(at, bottom, model)?;
             }
         }
+        if let Some(angle) = self.in_range(top, at.index, seed) {
+            return Ok(Ok(angle));
+        }
         let progress = if self.negative {
             (self.limit - top) / (self.limit - self.zs)
         } else {
             (top - self.zs) / (self.limit - self.zs)
         };
         let random = || random_unit(seed, at.index);
-        let angle = self.start + self.add * shape(self.form, progress, self.negative, random);
-        if finite_in_radians(angle) {
-            return Ok(Ok(angle));
-        }
         // 10.7: a NaN layer; progress clamped (1 for an empty range) gives rotlang's angle.
         let clamped = if self.limit == self.zs {
             1.0
@@ -674,6 +722,20 @@ impl Meta {
         };
         let angle = self.start + self.add * shape(self.form, clamped, self.negative, random);
         Ok(Err(finite_in_radians(angle).then_some(angle)))
+    }
+
+    /// The angle of the layer of top `top` in the current range, when it is finite in
+    /// radians (10.4 step 3).
+    #[inline(always)]
+    fn in_range(&self, top: f64, index: usize, seed: u64) -> Option<f64> {
+        let progress = if self.negative {
+            (self.limit - top) / (self.limit - self.zs)
+        } else {
+            (top - self.zs) / (self.limit - self.zs)
+        };
+        let random = || random_unit(seed, index);
+        let angle = self.start + self.add * shape(self.form, progress, self.negative, random);
+        finite_in_radians(angle).then_some(angle)
     }
 
     /// 10.5: read tokens from the cursor until the walk stops.
@@ -867,6 +929,7 @@ impl Meta {
 }
 
 /// Section 5's shapes as OrcaSlicer computes them (10.4 step 3), on unclamped progress.
+#[inline]
 fn shape(form: Option<Joint>, v: f64, negative: bool, random: impl FnOnce() -> f64) -> f64 {
     let Some(joint) = form else { return v };
     match joint {

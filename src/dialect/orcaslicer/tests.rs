@@ -275,3 +275,41 @@ fn list_cycles_are_the_stream_bitwise() {
         );
     }
 }
+
+/// Issue 19: `fold` (the tight in-range loop) gives every layer, findings included,
+/// exactly what `next` gives: ranges, joints, random joints, NaN layers, hangs.
+#[test]
+fn fold_is_next_bitwise() {
+    let texts = [
+        "+30/50%",
+        "5, 10!, +20, +10L25%, -10l25%",
+        "+10L25%, -10l25%, -10L25%, +10l25%",
+        "+45#3",
+        "0, 15, 30, +45/10#, B!, +30",
+        "+30~5, -20^4, +10|3",
+        "+1e308/5, -1e308N3",
+        "10!, 5*",
+        "+5-0.5mm, -3$2cm",
+        "+0/0, 7",
+    ];
+    for text in texts {
+        for model in [cube(120), first_layer(77)] {
+            let options = Options {
+                base: 15.0,
+                seed: 3,
+            };
+            let mut stepped = layers(text, &model, options);
+            let mut by_next = Vec::new();
+            while let Some(l) = stepped.next() {
+                by_next.push((l.index, l.angle.to_bits(), l.instruction));
+            }
+            let mut folded = layers(text, &model, options);
+            let by_fold = folded.fold_rest(Vec::new(), |mut v, l| {
+                v.push((l.index, l.angle.to_bits(), l.instruction));
+                v
+            });
+            assert_eq!(by_fold, by_next, "{text}");
+            assert_eq!(folded.findings(), stepped.findings(), "{text}");
+        }
+    }
+}

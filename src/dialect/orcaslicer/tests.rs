@@ -279,6 +279,8 @@ fn list_cycles_are_the_stream_bitwise() {
 /// Issue 19: `fold` (the tight in-range loop) gives every layer, findings included,
 /// exactly what `next` gives: ranges, joints, random joints, NaN layers, hangs.
 #[test]
+// `next`, one layer at a time, spelled out: what `fold` must equal.
+#[allow(clippy::while_let_on_iterator)]
 fn fold_is_next_bitwise() {
     let texts = [
         "+30/50%",

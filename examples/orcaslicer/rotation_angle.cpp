@@ -11,8 +11,10 @@
 // layer 0, which every pass over the layers makes once, compares every layer's print_z,
 // so a re-slice that restacks the same count of layers to the same top is noticed too.
 // A re-sliced object gets a new table. Thread-safe: OrcaSlicer calls this from its layer
-// threads, in any order.
+// threads, in any order; a call for the object and template the thread asked for last
+// takes no lock (its checks and the table are read without contention).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -95,6 +97,18 @@ struct AngleTable {
 
 std::mutex cache_mutex;
 std::unordered_map<const PrintObject*, std::vector<std::shared_ptr<AngleTable>>> cache;
+// Tables replaced by a re-slice, kept until the cache is cleared: a thread's last table
+// (below) may still point to one.
+std::vector<std::shared_ptr<AngleTable>> retired;
+// Bumped by clear_infill_rotation_cache: a thread's last table from before is gone.
+std::atomic<std::uint64_t> generation{1};
+
+// Each thread's last (object, table): a cached call reads it without any lock. Plain
+// pointers (no destructor), so the thread-local access is a single load; the table they
+// point to lives until the cache is cleared, which OrcaSlicer does only between slices.
+thread_local const PrintObject* last_object = nullptr;
+thread_local const AngleTable* last_table = nullptr;
+thread_local std::uint64_t last_generation = 0;
 
 // Whether `table` still fits `object`: checked outside the lock (a table's fingerprint never
 // changes; the object's layers do not change while OrcaSlicer runs its layer threads).
@@ -118,6 +132,7 @@ std::shared_ptr<AngleTable> table_for(const PrintObject* object, const std::stri
         if (table->text != text) continue;
         // Another thread may have replaced the stale table first: use its table then.
         if (table != found && current(*table, object, layer_id)) return table;
+        retired.push_back(table);
         table = fresh;
         return fresh;
     }
@@ -139,24 +154,31 @@ void compute(AngleTable& table, const PrintObject* object) {
         below = top;
     }
     const auto& region = object->print()->default_region_config();
-    try {
-        auto model = rotlang::Model::from_heights(std::move(heights), object->config().layer_height.value)
-                         .shells(static_cast<std::uint32_t>(std::max(0, region.bottom_shell_layers.value)),
-                                 static_cast<std::uint32_t>(std::max(0, region.top_shell_layers.value)));
-        // OrcaSlicer reads the template's bytes as they are, UTF-8 or not: so does
-        // from_bytes (the OrcaSlicer dialect gives "+30\xb0" the angles of "+30°").
-        auto tpl = rotlang::Template::from_bytes(table.text);
-        rotlang::Options options;
-        options.dialect = ROTLANG_DROPIN_DIALECT;
-        std::vector<double> degrees = tpl.angles(model, options);
-        table.radians.reserve(degrees.size());
-        for (double a : degrees) table.radians.push_back(M_PI * a / 180.0);  // as OrcaSlicer rounds
-    } catch (const rotlang::Error&) {
-        // A model rotlang refuses (no layers, a layer of zero height) or, in the rotlang
-        // dialect, a template with errors or not UTF-8: the table stays empty and every layer gets
-        // the fixed angle, as with an empty template.
-        table.radians.clear();
+    // The C API directly (rotlang.hpp's Template would read the diagnostics, which costs
+    // rotlang's own parse of the text; the OrcaSlicer dialect reads the raw text), and the
+    // angles written straight into the table.
+    RotlangModel model = rotlang_model_heights(heights.data(), heights.size(), object->config().layer_height.value);
+    model.bottom_shells = static_cast<std::uint32_t>(std::max(0, region.bottom_shell_layers.value));
+    model.top_shells = static_cast<std::uint32_t>(std::max(0, region.top_shell_layers.value));
+    RotlangOptions options = {0.0, 0, static_cast<std::uint32_t>(ROTLANG_DROPIN_DIALECT)};
+    // OrcaSlicer reads the template's bytes as they are, UTF-8 or not: so does
+    // rotlang_parse_bytes (the OrcaSlicer dialect gives "+30\xb0" the angles of "+30°").
+    RotlangTemplate* tpl = nullptr;
+    RotlangStatus status = rotlang_parse_bytes(table.text.data(), table.text.size(), ROTLANG_TARGET_SPARSE, &tpl);
+    if (status == ROTLANG_STATUS_OK) {
+        table.radians.resize(heights.size());
+        status = rotlang_expand(tpl, &model, &options, 0, ROTLANG_TO_TOP, table.radians.data(), nullptr,
+                                table.radians.size(), nullptr);
+        rotlang_template_free(tpl);
     }
+    if (status != ROTLANG_STATUS_OK) {
+        // A model rotlang refuses (no layers, a layer of zero height) or, in the rotlang
+        // dialect, a template with errors or not UTF-8: the table stays empty and every
+        // layer gets the fixed angle, as with an empty template.
+        table.radians.clear();
+        return;
+    }
+    for (double& a : table.radians) a = M_PI * a / 180.0;  // as OrcaSlicer rounds
 }
 
 }  // namespace
@@ -170,8 +192,18 @@ double calculate_infill_rotation_angle(const PrintObject* object, size_t layer_i
     // layer reads layer 0), and so does this.
     const std::size_t first_id = object->get_layer(0)->id();
     const std::size_t index = layer_id > first_id ? layer_id - first_id : 0;
+    // The lock-free path: this thread's last table, if it is this object's and this
+    // template's and still fits the object.
+    const std::uint64_t now = generation.load(std::memory_order_acquire);
+    const AngleTable* last = last_table;
+    if (last != nullptr && last_object == object && last_generation == now && last->text == template_string &&
+        current(*last, object, index))
+        return index < last->radians.size() ? last->radians[index] : fixed;
     std::shared_ptr<AngleTable> table = table_for(object, template_string, index);
     std::call_once(table->computed, compute, std::ref(*table), object);
+    last_object = object;
+    last_table = table.get();
+    last_generation = now;
     return index < table->radians.size() ? table->radians[index] : fixed;
 }
 
@@ -179,7 +211,9 @@ double calculate_infill_rotation_angle(const PrintObject* object, size_t layer_i
 // address of a deleted one cannot meet its tables; the fingerprint catches most of that).
 void clear_infill_rotation_cache() {
     std::lock_guard<std::mutex> lock(cache_mutex);
+    generation.fetch_add(1, std::memory_order_acq_rel);
     cache.clear();
+    retired.clear();
 }
 
 }  // namespace Slic3r

@@ -242,6 +242,15 @@ int main(int argc, char** argv) {
         if (!raft_ok) std::fprintf(stderr, "%s on a raft of 3 layers: ids not read as OrcaSlicer does\n", text.c_str());
     }
 
+    // A cached call takes no lock: it reads the thread's last table. Clearing the cache
+    // frees that table; the next call must not read it (valgrind sees a read of freed
+    // memory) and gives the same angle from a new table.
+    double cached = calculate_infill_rotation_angle(cube, 7, fixed, "+10/1mm, -5");
+    clear_infill_rotation_cache();
+    bool cleared_ok = calculate_infill_rotation_angle(cube, 7, fixed, "+10/1mm, -5") == cached &&
+                      calculate_infill_rotation_angle(cube, 8, fixed, "+10/1mm, -5") != cached;
+    if (!cleared_ok) std::fprintf(stderr, "after clearing the cache, a call gave another angle\n");
+
     clear_infill_rotation_cache();
     // The drop-in frees every template it parses (valgrind cannot see a leaked handle).
     bool handles_ok = rotlang_live_handles() == 0;
@@ -251,7 +260,7 @@ int main(int argc, char** argv) {
                 cases.size(), static_cast<size_t>(threads), failed.load(), raft_diffs.load());
     if (!fixed_ok) std::fprintf(stderr, "the fixed angle is not returned for an empty template\n");
     if (!reslice_ok) std::fprintf(stderr, "a re-sliced object kept its old table\n");
-    return failed == 0 && raft_diffs == 0 && raft_ok && fixed_ok && reslice_ok && same_top_ok && bytes_ok && handles_ok &&
+    return failed == 0 && raft_diffs == 0 && raft_ok && cleared_ok && fixed_ok && reslice_ok && same_top_ok && bytes_ok && handles_ok &&
                    !cases.empty()
                ? 0
                : 1;

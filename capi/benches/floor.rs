@@ -71,7 +71,11 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let once = args.iter().any(|a| a == "once");
     let quick = args.iter().any(|a| a == "quick");
-    // `-- only=K`: the K-th template of the table alone (for callgrind).
+    // `-- only=K`: the K-th template of the table alone (for callgrind); `-- size=N`: that
+    // model size alone, printed as the only column (instruction counts per size).
+    let size: Option<usize> = args
+        .iter()
+        .find_map(|a| a.strip_prefix("size=").and_then(|k| k.parse().ok()));
     let only: Option<usize> = args
         .iter()
         .find_map(|a| a.strip_prefix("only=").and_then(|k| k.parse().ok()));
@@ -79,8 +83,8 @@ fn main() {
         (true, ..) => 1,
         (false, true, _) => 20,
         (false, false, 10_000) => 200,
-        (false, false, 100_000) => 50,
-        _ => 10,
+        (false, false, 100_000) => 100,
+        _ => 30,
     };
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!(
@@ -108,6 +112,13 @@ fn main() {
             let per_layer = |layers: usize| {
                 best(text, dialect, layers, runs(layers)).as_secs_f64() * 1e9 / layers as f64
             };
+            if let Some(n) = size {
+                println!(
+                    "| `{text}` | {name} | {n} layers: {:.2} ns a layer |",
+                    per_layer(n)
+                );
+                continue;
+            }
             let (small, medium, large) =
                 (per_layer(10_000), per_layer(100_000), per_layer(1_000_000));
             let total_us = small * 10_000.0 / 1000.0;

@@ -212,3 +212,58 @@ pub unsafe extern "C" fn rotlang_angle_at(
         Ok(())
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::RotlangDialect;
+    use crate::template::{rotlang_parse, rotlang_template_free};
+
+    /// A plain list is copied from its cycle (issue 19): a range that starts inside the
+    /// cycle gives each layer its entry's angle and fill, in both dialects.
+    #[test]
+    fn plain_list_ranges_match_the_stream() {
+        let model = crate::model::rotlang_model_uniform(50, 0.2, 0.0);
+        for plain in ["0, 90D, 45", "0, 90, 45"] {
+            for dialect in [RotlangDialect::Rotlang, RotlangDialect::Orcaslicer] {
+                let options = RotlangOptions {
+                    base: 10.0,
+                    seed: 0,
+                    dialect: dialect as u32,
+                };
+                let mut t = std::ptr::null_mut();
+                let (mut angles, mut fills) = ([0.0; 7], [9u8; 7]);
+                // SAFETY: valid text, out-pointers and 7-entry buffers.
+                let status = unsafe {
+                    assert_eq!(
+                        rotlang_parse(plain.as_ptr().cast(), plain.len(), 0, &mut t),
+                        RotlangStatus::Ok
+                    );
+                    let status = rotlang_expand(
+                        t,
+                        &model,
+                        &options,
+                        4,
+                        7,
+                        angles.as_mut_ptr(),
+                        fills.as_mut_ptr(),
+                        7,
+                        std::ptr::null_mut(),
+                    );
+                    rotlang_template_free(t);
+                    status
+                };
+                assert_eq!(status, RotlangStatus::Ok);
+                // Layers 4..11 take entries 1, 2, 0, 1, 2, 0, 1.
+                assert_eq!(
+                    angles,
+                    [100.0, 55.0, 10.0, 100.0, 55.0, 10.0, 100.0],
+                    "{plain}"
+                );
+                // `90D` is a dense layer in rotlang; OrcaSlicer reads it as `90`.
+                let dense = u8::from(dialect == RotlangDialect::Rotlang && plain.contains('D'));
+                assert_eq!(fills, [dense, 0, 0, dense, 0, 0, dense], "{plain}");
+            }
+        }
+    }
+}

@@ -4,7 +4,7 @@ import { createEditor, highlight, replaceAll, showDiagnostics } from './editor.j
 import { Engine } from './engine.js';
 import { EXAMPLES } from './examples.js';
 import { MAX_LAYERS, MAX_TEMPLATE } from './limits.js';
-import { cursorX, layerAt, plotSvg, plotWidth } from './plot.js';
+import { cursorX, layerAt, plotParts, plotWidth } from './plot.js';
 import { decodeState, encodeState } from './share.js';
 
 const $ = (id) => document.getElementById(id);
@@ -113,32 +113,44 @@ function applyState(s) {
 
 function schedule(delay = 120) {
   clearTimeout(timer);
-  timer = setTimeout(analyse, delay);
+  timer = setTimeout(() => { timer = null; analyse(); }, delay);
 }
 
 let pendingLayer = null;
 let analysedRequest = null; // what the last analysis was asked, for the preview and chart
 
-async function analyse() {
-  const text = view.state.doc.toString();
+// What an analysis of the page as it is now asks the worker.
+function currentRequest() {
   const s = viewState();
-  const id = ++seq;
   const model = modelState();
   if (model.firstLayerHeight === undefined) delete model.firstLayerHeight;
+  return { text: s.text, target: s.target, dialect: s.dialect, model, base: s.base, seed: s.seed };
+}
+
+let answered = 0; // the seq of the last analysis that came back (stale or not)
+let answeredRequest = null; // the request of the last answer that was shown
+
+async function analyse() {
+  const req = currentRequest();
+  const { text } = req;
+  const id = ++seq;
   status('checking…');
   let r;
-  const req = { text, target: s.target, dialect: s.dialect, model, base: s.base, seed: s.seed };
   try {
     r = await engine.request('analyse', req);
   } catch (e) {
     if (id !== seq) return;
+    answeredRequest = req;
     status(e.message, true);
     return;
+  } finally {
+    answered = Math.max(answered, id);
   }
   if (id !== seq || text !== view.state.doc.toString()) return; // stale
   analysis = r;
   analysedText = text;
   analysedRequest = req;
+  answeredRequest = req;
   showDiagnostics(view, [...r.check.diagnostics, ...(r.compat ?? []).map((d) => ({ ...d, severity: 'info' }))]);
   renderProblems(r.check);
   renderCompat(r);
@@ -213,16 +225,42 @@ function renderCompat(r) {
 
 // ---- plot, slider, preview -----------------------------------------------------------
 
-function renderPlot() {
-  const plot = $('plot');
+// One lasting <svg> element, redrawn in place: a reader holding it (a screen reader, a
+// test) never holds a detached picture after a redraw or a resize.
+const SVG_NS = 'http://www.w3.org/2000/svg';
+const plotSvg = document.createElementNS(SVG_NS, 'svg');
+plotSvg.setAttribute('class', 'plot');
+plotSvg.setAttribute('role', 'img');
+$('plot').append(plotSvg);
+let drawn = { layers: null, width: 0 }; // what the picture shows
+
+function drawPlot() {
   const l = analysis?.layers;
+  const width = plotWidth($('plot').clientWidth);
   if (!l) {
-    plot.innerHTML = '';
+    plotSvg.replaceChildren();
+    plotSvg.setAttribute('display', 'none');
+    drawn = { layers: null, width };
+    return;
+  }
+  const p = plotParts(l.angles, l.fills, { width });
+  plotSvg.setAttribute('width', p.width);
+  plotSvg.setAttribute('height', p.height);
+  plotSvg.setAttribute('viewBox', `0 0 ${p.width} ${p.height}`);
+  plotSvg.setAttribute('aria-label', p.label);
+  plotSvg.removeAttribute('display');
+  plotSvg.innerHTML = p.body;
+  drawn = { layers: l, width };
+}
+
+function renderPlot() {
+  const l = analysis?.layers;
+  drawPlot();
+  if (!l) {
     $('preview').innerHTML = '';
     $('layer-info').textContent = '';
     return;
   }
-  plot.innerHTML = plotSvg(l.angles, l.fills, { width: plot.clientWidth });
   $('chart-svg').innerHTML = '';
   if ($('chart').open) renderChart();
   const slider = $('layer-slider');
@@ -243,7 +281,7 @@ function renderLayer() {
   const k = l.instructionIndex[i];
   const ins = k >= 0 ? l.instructions[k] : null;
   $('layer-info').textContent = `layer ${i}: ${deg(angle)}${fill !== 'sparse' ? ` (${fill})` : ''}${ins ? ` · ${ins.text}` : ' · holds'}`;
-  const cursor = $('plot').querySelector('.cursor');
+  const cursor = plotSvg.querySelector('.cursor');
   if (cursor) {
     const x = cursorX(i, l.angles.length, cursor.ownerSVGElement.viewBox.baseVal.width);
     cursor.setAttribute('x1', x);
@@ -259,9 +297,12 @@ function renderLayer() {
 // layer asked for is drawn.
 let previewSeq = 0;
 let previewTimer = null;
+let previewsInFlight = 0;
 function schedulePreview(layer) {
   clearTimeout(previewTimer);
   previewTimer = setTimeout(async () => {
+    previewTimer = null;
+    previewsInFlight++;
     const id = ++previewSeq;
     const density = Math.min(100, Math.max(1, num('density') ?? 20)) / 100;
     try {
@@ -271,6 +312,8 @@ function schedulePreview(layer) {
       if (id === previewSeq) $('preview').innerHTML = svg;
     } catch (e) {
       if (id === previewSeq) $('preview').textContent = `no preview: ${e.message}`;
+    } finally {
+      previewsInFlight--;
     }
   }, 30);
 }
@@ -299,21 +342,18 @@ $('layer-slider').addEventListener('input', renderLayer);
 for (const id of ['pattern', 'density', 'shape']) $(id).addEventListener('input', renderLayer);
 
 $('plot').addEventListener('mousemove', (e) => {
-  const svg = $('plot').querySelector('svg');
+  const svg = plotSvg;
   const l = analysis?.layers;
-  if (!svg || !l) return;
+  if (drawn.layers !== l || !l) return;
   const box = svg.getBoundingClientRect();
   const vb = svg.viewBox.baseVal;
   setLayer(layerAt(((e.clientX - box.left) / box.width) * vb.width, l.angles.length, vb.width));
 });
-// Both pictures are drawn at the width they are shown at: redrawn when it changes.
-let shownWidth = 0;
+// Both pictures are drawn at the width they are shown at: redrawn when it changes (a
+// scroll bar that comes with the first picture narrows the page).
 new ResizeObserver(() => {
-  const w = plotWidth($('plot').clientWidth);
-  if (w === shownWidth) return;
-  shownWidth = w;
-  if (!analysis?.layers) return;
-  $('plot').innerHTML = plotSvg(analysis.layers.angles, analysis.layers.fills, { width: w });
+  if (plotWidth($('plot').clientWidth) === drawn.width || !analysis?.layers) return;
+  drawPlot();
   renderLayer();
   if ($('chart').open) renderChart();
 }).observe($('plot'));
@@ -487,5 +527,15 @@ if (initial) applyState(initial);
 schedule(0);
 engine.request('signs').then((s) => { signs = s; }).catch(() => {});
 engine.request('version').then((v) => { $('version').textContent = `rotlang ${v}`; }).catch(() => {});
+// Whether the page shows what its controls ask for: no analysis or preview waiting or
+// under way, the last answer is for the page as it is, and the plot is drawn from it at
+// the width it is shown at. The browser tests wait for this instead of for time.
+function idle() {
+  if (timer !== null || answered !== seq || previewTimer !== null || previewsInFlight > 0) return false;
+  if (JSON.stringify(answeredRequest) !== JSON.stringify(currentRequest())) return false;
+  const l = analysis?.layers;
+  return !l || (drawn.layers === l && drawn.width === plotWidth($('plot').clientWidth));
+}
+
 // For the browser tests and the curious: the editor view.
-window.rotlangPlayground = { view, engine, state: () => viewState(), analysis: () => analysis, analysedText: () => analysedText };
+window.rotlangPlayground = { view, engine, state: () => viewState(), analysis: () => analysis, analysedText: () => analysedText, idle };

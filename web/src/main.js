@@ -111,6 +111,13 @@ function applyState(s) {
 
 // ---- analysis -------------------------------------------------------------------
 
+// An edit makes a shown share link stale: it goes, and so does the state in the address.
+function edited() {
+  if ($('share-link').hidden) return;
+  $('share-link').hidden = true;
+  history.replaceState(null, '', location.pathname + location.search);
+}
+
 function schedule(delay = 120) {
   clearTimeout(timer);
   timer = setTimeout(() => { timer = null; analyse(); }, delay);
@@ -154,7 +161,7 @@ async function analyse() {
   showDiagnostics(view, [...r.check.diagnostics, ...(r.compat ?? []).map((d) => ({ ...d, severity: 'info' }))]);
   renderProblems(r.check);
   renderCompat(r);
-  $('explain').textContent = typeof r.explain === 'string' ? r.explain : '';
+  $('explain').textContent = words(r, req);
   if (r.refused) {
     status(`refused: ${r.refused}`, true);
   } else if (r.modelError) {
@@ -167,6 +174,22 @@ async function analyse() {
     status(`${l.layers.toLocaleString('en')} layers · ${l.instructions.length} instruction${l.instructions.length === 1 ? '' : 's'}`);
   }
   renderPlot();
+}
+
+// The template in words (rotlang::explain describes the template, not the base), with
+// the base direction and the reading said first when they change what is drawn.
+function words(r, req) {
+  if (typeof r.explain !== 'string') return '';
+  const lines = [];
+  const base = Number(req.base ?? 0);
+  if (base && r.layers && req.dialect !== 'orcaslicer') {
+    lines.push(`The base direction, ${deg(base)} (a profile's infill direction), is added to every angle below: 0° is drawn at ${deg(base)}.`);
+  }
+  if (req.dialect === 'orcaslicer' && r.compare?.firstDifference) {
+    const d = r.compare.firstDifference;
+    lines.push(`OrcaSlicer reads this template differently from layer ${d.layer} (see the OrcaSlicer panel); the plot and the layer show its reading, the words below rotlang's.`);
+  }
+  return [...lines, r.explain].join('\n\n');
 }
 
 function renderProblems(check) {
@@ -253,12 +276,31 @@ function drawPlot() {
   drawn = { layers: l, width };
 }
 
+// Why the Angles panel has no plot, in words (an empty box says nothing).
+function plotMessage(r) {
+  if (!r || r.layers) return null;
+  if (r.refused) return `No angles: ${r.refused}.`;
+  if (r.modelError) return `No angles: the model is not valid (${r.modelError}).`;
+  const errors = r.check.diagnostics.filter((d) => d.severity === 'error');
+  if (errors.length) {
+    const d = errors[0];
+    const more = errors.length + r.check.omitted - 1;
+    return `No angles: rotlang cannot read this template (${d.message}, column ${d.column}${more > 0 ? `, and ${more} more` : ''}). Fix it, or choose "as OrcaSlicer reads it" to plot OrcaSlicer's angles.`;
+  }
+  return 'No angles for this template.';
+}
+
 function renderPlot() {
   const l = analysis?.layers;
   drawPlot();
+  const message = plotMessage(analysis);
+  $('plot-message').textContent = message ?? '';
+  $('plot-message').hidden = !message;
+  $('plot-message').classList.toggle('error', Boolean(message));
   if (!l) {
     $('preview').innerHTML = '';
     $('layer-info').textContent = '';
+    $('chart-svg').innerHTML = '';
     return;
   }
   $('chart-svg').innerHTML = '';
@@ -293,6 +335,17 @@ function renderLayer() {
     : null);
 }
 
+// What the preview of `layer` draws: the template in rotlang's reading. In OrcaSlicer's,
+// rotlang::infill draws rotlang's angles only, so it is given the layer's angle as
+// OrcaSlicer computes it (the analysis's, base included) as a one-angle template: the
+// picture shows the angle the layer text and the plot give.
+function previewRequest(layer) {
+  const l = analysis?.layers;
+  if (analysedRequest?.dialect !== 'orcaslicer' || !l) return analysedRequest;
+  const angle = l.angles[Math.min(layer, l.angles.length - 1)];
+  return { ...analysedRequest, dialect: 'rotlang', text: String(Number(angle.toFixed(9))), base: 0 };
+}
+
 // The preview is drawn by rotlang in the worker; while the slider moves only the last
 // layer asked for is drawn.
 let previewSeq = 0;
@@ -307,7 +360,7 @@ function schedulePreview(layer) {
     const density = Math.min(100, Math.max(1, num('density') ?? 20)) / 100;
     try {
       const svg = await engine.request('preview', {
-        ...analysedRequest, layer, pattern: $('pattern').value, density, shape: $('shape').value,
+        ...previewRequest(layer), layer, pattern: $('pattern').value, density, shape: $('shape').value,
       });
       if (id === previewSeq) $('preview').innerHTML = svg;
     } catch (e) {
@@ -320,6 +373,11 @@ function schedulePreview(layer) {
 
 async function renderChart() {
   if (!analysedRequest || !analysis?.layers) return;
+  if (analysedRequest.dialect === 'orcaslicer') {
+    // rotlang::plot draws rotlang's reading only; the plot above is OrcaSlicer's.
+    $('chart-svg').textContent = 'This chart draws rotlang\'s reading only; the plot above shows the angles as OrcaSlicer reads them.';
+    return;
+  }
   try {
     // At the width it is shown at: rotlang draws its text at 12 px.
     const width = Math.max(300, Math.round($('chart-svg').clientWidth || 720));
@@ -508,8 +566,11 @@ document.addEventListener('drop', async (e) => {
 });
 
 for (const id of ['target', 'dialect', 'layers', 'layer-height', 'first-layer', 'bottom-shells', 'top-shells', 'base', 'seed']) {
-  $(id).addEventListener('input', () => schedule());
+  $(id).addEventListener('input', () => { edited(); schedule(); });
 }
+for (const id of ['layer-slider', 'pattern', 'density', 'shape']) $(id).addEventListener('input', edited);
+// "In words" is open on a wide screen; on a phone it would push the plot far down.
+if (matchMedia('(min-width: 821px)').matches) $('words').open = true;
 $('layers').max = String(MAX_LAYERS * 50);
 
 // ---- start ------------------------------------------------------------------------
@@ -517,7 +578,7 @@ $('layers').max = String(MAX_LAYERS * 50);
 let view = null;
 const initial = sharedState(decodeState(location.hash));
 view = createEditor($('editor'), initial?.text ?? '+10L25%, -10l25%, -10L25%, +10l25%', {
-  onChange: () => schedule(),
+  onChange: () => { edited(); schedule(); },
   onRefused: (m) => status(m, true),
   format,
   hover,

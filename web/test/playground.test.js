@@ -501,6 +501,10 @@ test('readable at phone width: no sideways scrolling, panels as wide as the scre
   assert.ok(overflow <= 0, `${overflow}px wider than the screen`);
   const widths = await page.locator('main section').evaluateAll((ss) => ss.map((s) => `${s.id} ${Math.round(s.getBoundingClientRect().width)}`));
   assert.equal(new Set(widths.map((w) => w.split(' ')[1])).size, 1, `panel widths: ${widths.join(', ')}`);
+  // "In words" starts closed: the plot is on the first screen.
+  assert.equal(await page.evaluate(() => document.querySelector('#words').open), false);
+  const plotTop = await page.evaluate(() => document.querySelector('#plot').getBoundingClientRect().top);
+  assert.ok(plotTop < 844, `the plot starts ${Math.round(plotTop)} px down`);
   const plotText = await smallestText(page, '#plot svg');
   assert.ok(plotText >= 11, `the angle plot's text is ${plotText.toFixed(1)} px`);
   await page.click('#chart summary');
@@ -534,6 +538,102 @@ test('a share link with a template over the cap: refused at load with a lasting 
   assert.match(await huge.textContent('#notice'), /it has 1,080,000 characters/);
   assert.equal(await huge.evaluate(() => window.rotlangPlayground.view.state.doc.length), 34);
   await huge.close();
+});
+
+// Issue 17, the playground's items.
+test('no request fails on load (the favicon is there) and nothing is logged as an error', async () => {
+  const page = await browser.context.newPage();
+  const failed = [];
+  const consoleErrors = [];
+  page.on('response', (r) => { if (r.status() >= 400) failed.push(`${r.status()} ${r.url()}`); });
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  await page.goto(base);
+  await page.waitForFunction(() => window.rotlangPlayground?.analysis() && window.rotlangPlayground.idle());
+  // Headless Chromium asks for no icon itself: the page names one, and it is served (a
+  // browser with no icon named asks for /favicon.ico, a 404 on a static host).
+  const icon = await page.evaluate(async () => {
+    const link = document.querySelector('link[rel~="icon"]');
+    if (!link) return null;
+    const r = await fetch(link.href);
+    return { status: r.status, type: r.headers.get('content-type'), svg: (await r.text()).startsWith('<svg') };
+  });
+  assert.deepEqual(icon, { status: 200, type: 'image/svg+xml', svg: true });
+  assert.deepEqual(failed, []);
+  assert.deepEqual(consoleErrors, []);
+  await page.close();
+});
+
+test('as OrcaSlicer reads it, the layer text, the preview and the chart follow that reading', async () => {
+  const page = await open();
+  await type(page, '0 90');
+  await page.selectOption('#dialect', 'orcaslicer');
+  await page.waitForFunction(() => window.rotlangPlayground.analysis()?.layers?.dialect === 'orcaslicer');
+  await settled(page, '0 90');
+  await page.focus('#layer-slider');
+  await page.keyboard.press('End');
+  for (let i = 0; i < 14; i++) await page.keyboard.press('ArrowLeft');
+  assert.equal(await page.inputValue('#layer-slider'), '85');
+  assert.match(await page.textContent('#layer-info'), /^layer 85: 0°/);
+  // rotlang reads `0 90` as 0, 90, …: layer 85 would be drawn at 90°.
+  const dirs = await lineDirections(page, 85);
+  assert.ok(dirs.length > 5, `${dirs.length} lines`);
+  for (const d of dirs) assert.ok(Math.min(d, 180 - d) < 0.5, `a line at ${d}°, OrcaSlicer reads 0°`);
+  await page.click('#chart summary');
+  await page.waitForFunction(() => /rotlang's reading only/.test(document.querySelector('#chart-svg').textContent));
+  assert.equal(await page.locator('#chart-svg svg').count(), 0, 'no chart of the other reading');
+  await page.close();
+});
+
+test('"In words" says the base direction: 0, 90 with base 45 is drawn at 45° and 135°', async () => {
+  const page = await open('#t=0%2C+90&base=45');
+  await settled(page, '0, 90');
+  const words = await page.textContent('#explain');
+  assert.match(words, /base direction, 45°.*added to every angle/);
+  const angles = await page.evaluate(() => [...window.rotlangPlayground.analysis().layers.angles.slice(0, 2)]);
+  assert.deepEqual(angles, [45, 135]);
+  await page.close();
+});
+
+test('an error: the tooltip is a readable box beside the squiggle; the Angles panel says why it is empty', async () => {
+  const page = await open();
+  await type(page, '+30X5');
+  const range = page.locator('.cm-lintRange-error');
+  await range.first().hover();
+  const tip = page.locator('.cm-tooltip-lint');
+  await tip.waitFor();
+  const box = await page.locator('.cm-tooltip-hover').boundingBox();
+  const font = await tip.evaluate((t) => getComputedStyle(t).fontFamily);
+  assert.ok(box.width <= 480, `the tooltip is ${box.width} px wide`);
+  assert.doesNotMatch(font, /mono/, font);
+  const heading = await page.locator('h1').boundingBox();
+  assert.ok(box.y >= heading.y + heading.height || box.x >= heading.x + heading.width, 'the heading stays visible');
+  await shot(page, 'error-tooltip');
+  const message = page.locator('#plot-message');
+  assert.ok(await message.isVisible());
+  assert.match(await message.textContent(), /No angles: rotlang cannot read this template \(unknown sign `X`, column 4\)/);
+  await type(page, '+30');
+  assert.ok(await message.isHidden());
+  await page.close();
+});
+
+test('the share link goes when the state changes after it; no stray full stop by the file button', async () => {
+  const page = await open();
+  await type(page, '0, 90');
+  await page.click('#share');
+  const link = page.locator('#share-link');
+  await link.waitFor();
+  assert.match(await link.inputValue(), /#t=0%2C\+90/);
+  await type(page, '0, 45');
+  assert.ok(await link.isHidden(), 'the old link is not offered for the new state');
+  assert.equal(await page.evaluate(() => location.hash), '');
+  const after = await page.evaluate(() => {
+    const input = document.querySelector('#profile');
+    let text = '';
+    for (let n = input.nextSibling; n; n = n.nextSibling) text += n.textContent;
+    return text.trim();
+  });
+  assert.equal(after, '', 'nothing follows the file button ("No file chosen.")');
+  await page.close();
 });
 
 test('a text over the cap can still shrink: Backspace works, growing is refused', async () => {

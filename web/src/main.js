@@ -182,7 +182,7 @@ function words(r, req) {
   if (typeof r.explain !== 'string') return '';
   const lines = [];
   const base = Number(req.base ?? 0);
-  if (base && r.layers && req.dialect !== 'orcaslicer') {
+  if (base && r.layers) {
     lines.push(`The base direction, ${deg(base)} (a profile's infill direction), is added to every angle below: 0° is drawn at ${deg(base)}.`);
   }
   if (req.dialect === 'orcaslicer' && r.compare?.firstDifference) {
@@ -493,6 +493,11 @@ window.addEventListener('hashchange', () => {
   if (s) applyState(sharedState(s));
 });
 
+// The base a profile's template is evaluated with: the library's reading of a profile
+// (rotlang::profile::ProfileModel::options, both readings alike) turns an empty template
+// by the profile's infill direction (`readProfile`'s `base`) and no other.
+const profileBase = (p, text) => (text === '' ? p.base : 0);
+
 async function loadProfile(file) {
   try {
     const bytes = await file.arrayBuffer();
@@ -514,7 +519,7 @@ async function loadProfile(file) {
     const m = p.model;
     applyState({
       layers: m.layers, layerHeight: m.layerHeight, firstLayerHeight: m.firstLayerHeight ?? '',
-      bottomShells: m.bottomShells, topShells: m.topShells, base: p.base,
+      bottomShells: m.bottomShells, topShells: m.topShells, base: profileBase(p, first.text),
       pattern: PATTERN_NAMES.includes(p.pattern) ? p.pattern : undefined,
       density: Number.isFinite(p.density) ? p.density : undefined,
       target: first.target, text: first.text,
@@ -530,7 +535,7 @@ async function loadProfile(file) {
       b.type = 'button';
       b.textContent = `${named(t)}: ${t.text.length > 40 ? `${t.text.slice(0, 40)}…` : t.text || '(empty)'}`;
       if (fits(t)) {
-        b.addEventListener('click', () => applyState({ target: t.target, text: t.text }));
+        b.addEventListener('click', () => applyState({ target: t.target, text: t.text, base: profileBase(p, t.text) }));
       } else {
         b.disabled = true;
         b.textContent += ` (not loaded: ${chars(t.text.length)})`;

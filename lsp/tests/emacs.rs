@@ -99,4 +99,21 @@ fn emacs_eglot_diagnoses_clears_hovers_and_completes() {
         r["json_completed"], "{\n  \"sparse_infill_rotate_template\": \"0, +30/5cm\"\n}\n",
         "{r:#}"
     );
+
+    // Issue 17: only OrcaSlicer profiles. An unrelated package.json keeps its own mode
+    // and gets no rotlang server; a preset is recognised by its folder too.
+    assert_ne!(r["package_mode"], "rotlang-json-mode", "{r:#}");
+    assert_eq!(r["package_server"], false, "{r:#}");
+    assert_eq!(r["folder_mode"], "rotlang-json-mode", "{r:#}");
+    // An .ini export: attached, one error on the X.
+    assert_eq!(r["ini_mode"], "rotlang-ini-mode", "{r:#}");
+    assert_eq!(r["ini_connected"], true, "{r:#}");
+    let diags = r["ini_diagnostics"].as_array().expect("ini diagnostics");
+    assert_eq!(diags.len(), 1, "{r:#}");
+    let col = "sparse_infill_rotate_template = 0, +30".len() as i64;
+    assert_eq!(
+        (diags[0]["line"].as_i64(), diags[0]["col"].as_i64()),
+        (Some(2), Some(col)),
+        "{r:#}"
+    );
 }

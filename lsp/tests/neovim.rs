@@ -80,3 +80,92 @@ fn neovim_shows_the_diagnostic_clears_it_and_hovers() {
         assert!(words.contains(&word), "{word} in {words:?}");
     }
 }
+
+/// The README's own Neovim 0.7 set-up, extracted from `lsp/README.md` and run as the
+/// whole `init.lua`: a `.rot` file, a JSON preset, a `.jsonc` one and an `.ini` export
+/// each get the server and their diagnostic (the snippet covered `rotlang` and `json`).
+#[test]
+fn neovim_runs_the_readme_snippet_for_every_kind_of_file() {
+    let lsp = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(lsp.join("README.md")).expect("lsp/README.md");
+    let section = readme
+        .split("### Neovim 0.7")
+        .nth(1)
+        .expect("a Neovim 0.7 section");
+    let lua_block = |text: &str| -> String {
+        let start = text.find("```lua\n").expect("a lua block") + "```lua\n".len();
+        let end = start + text[start..].find("```").expect("the block ends");
+        text[start..end].to_string()
+    };
+    // The `iskeyword` snippet every version uses, then the 0.7 one.
+    let keyword = lua_block(readme.split("## Neovim").nth(1).expect("## Neovim"));
+    let init = format!("{keyword}\n{}", lua_block(section));
+    assert!(init.contains("vim.lsp.start_client"), "{init}");
+    let base = std::env::temp_dir().join(format!("rotlang-nvim-readme-{}", std::process::id()));
+    let (script, out) = (base.with_extension("lua"), base.with_extension("json"));
+    std::fs::write(&script, &init).expect("write the snippet");
+    let _ = std::fs::remove_file(&out);
+    let status = Command::new("bash")
+        .arg(lsp.join("tests/nvim/run.sh"))
+        .arg(env!("CARGO_BIN_EXE_rotlang-lsp"))
+        .arg(&out)
+        .arg(&script)
+        .stdin(Stdio::null())
+        .status()
+        .expect("run tests/nvim/run.sh");
+    let _ = std::fs::remove_file(&script);
+    if status.code() == Some(77) {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "Neovim could not be installed in CI (see the message above)"
+        );
+        eprintln!("SKIPPED: Neovim is not available (see the message above)");
+        return;
+    }
+    assert!(status.success(), "run.sh failed: {status}");
+    let text = std::fs::read_to_string(&out).expect("readme.lua wrote its result");
+    let _ = std::fs::remove_file(&out);
+    let r: Value = serde_json::from_str(&text).expect("result JSON");
+    assert_eq!(r["ok"], true, "{r:#}");
+    for (name, filetype, line, prefix) in [
+        ("bad.rot", "rotlang", 0, "0, +30"),
+        (
+            "preset.json",
+            "json",
+            1,
+            "  \"sparse_infill_rotate_template\": \"0, +30",
+        ),
+        (
+            "preset.jsonc",
+            "jsonc",
+            2,
+            "  \"sparse_infill_rotate_template\": \"0, +30",
+        ),
+        (
+            "export.ini",
+            "dosini",
+            1,
+            "sparse_infill_rotate_template = 0, +30",
+        ),
+    ] {
+        let f = &r["files"][name];
+        assert_eq!(f["filetype"], filetype, "{name}: {r:#}");
+        assert_eq!(
+            f["client"], "rotlang",
+            "{name}: the server is attached: {r:#}"
+        );
+        assert_eq!(f["diagnosed"], true, "{name}: {r:#}");
+        assert_eq!(
+            (f["lnum"].as_i64(), f["col"].as_i64()),
+            (Some(line), Some(prefix.len() as i64)),
+            "{name}: the error at the X: {r:#}"
+        );
+        assert!(
+            f["message"]
+                .as_str()
+                .unwrap_or("")
+                .contains("unknown sign `X`"),
+            "{name}: {r:#}"
+        );
+    }
+}

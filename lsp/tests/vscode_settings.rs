@@ -100,3 +100,25 @@ fn package_json_defaults_are_the_server_defaults() {
         }
     }
 }
+
+/// The extension's README documents every setting the extension declares (it listed 6 of
+/// 9), and says how to install the `.vsix`.
+#[test]
+fn the_extension_readme_lists_every_setting() {
+    let readme = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../editors/vscode/README.md"
+    ))
+    .expect("editors/vscode/README.md");
+    let rows: Vec<&str> = readme
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `rotlang."))
+        .filter_map(|l| l.split('`').next())
+        .collect();
+    let mut declared: Vec<String> = declared().keys().cloned().collect();
+    declared.sort();
+    let mut listed: Vec<String> = rows.iter().map(|s| s.to_string()).collect();
+    listed.sort();
+    assert_eq!(listed, declared, "the README's settings table");
+    assert!(readme.contains("code --install-extension target/rotlang.vsix"));
+}

@@ -2,7 +2,7 @@
 // quick fixes), hover, completion of signs, formatting and the highlight of the
 // instruction that governs a chosen layer. Everything comes from the worker's analysis.
 import { EditorState, StateEffect, StateField } from '@codemirror/state';
-import { EditorView, Decoration, hoverTooltip, keymap, lineNumbers, drawSelection, highlightActiveLine } from '@codemirror/view';
+import { EditorView, Decoration, hoverTooltip, keymap, lineNumbers, drawSelection, highlightActiveLine, tooltips } from '@codemirror/view';
 import { defaultKeymap, history, historyKeymap } from '@codemirror/commands';
 import { setDiagnostics, lintKeymap } from '@codemirror/lint';
 import { autocompletion, completionKeymap } from '@codemirror/autocomplete';
@@ -49,6 +49,14 @@ export function createEditor(host, text, hooks) {
     extensions: [
       lineNumbers(),
       history(),
+      // Tooltips keep below the page's header: a box that would not fit above the line
+      // there (the lint's opens above) opens below it instead of covering the heading.
+      tooltips({
+        tooltipSpace: () => ({
+          top: document.querySelector('header')?.getBoundingClientRect().bottom ?? 0,
+          left: 0, right: window.innerWidth, bottom: window.innerHeight,
+        }),
+      }),
       drawSelection(),
       highlightActiveLine(),
       EditorView.lineWrapping,
@@ -57,7 +65,8 @@ export function createEditor(host, text, hooks) {
       autocompletion({ override: [completeSigns], activateOnTyping: true }),
       hoverTooltip((view, pos) => {
         const dom = hooks.hover(pos);
-        return dom ? { pos, above: true, create: () => ({ dom }) } : null;
+        // Below the line: above it, the box would cover the page's heading.
+        return dom ? { pos, above: false, create: () => ({ dom }) } : null;
       }, { hoverTime: 250 }),
       // Refuse an edit that would make the template larger than the playground takes.
       // An edit that does not lengthen it always passes (Backspace on a text already over

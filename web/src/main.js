@@ -4,7 +4,7 @@ import { createEditor, highlight, replaceAll, showDiagnostics } from './editor.j
 import { Engine } from './engine.js';
 import { EXAMPLES } from './examples.js';
 import { MAX_LAYERS, MAX_TEMPLATE } from './limits.js';
-import { cursorX, layerAt, plotSvg, plotWidth } from './plot.js';
+import { cursorX, layerAt, plotParts, plotWidth } from './plot.js';
 import { decodeState, encodeState } from './share.js';
 
 const $ = (id) => document.getElementById(id);
@@ -111,38 +111,57 @@ function applyState(s) {
 
 // ---- analysis -------------------------------------------------------------------
 
+// An edit makes a shown share link stale: it goes, and so does the state in the address.
+function edited() {
+  if ($('share-link').hidden) return;
+  $('share-link').hidden = true;
+  history.replaceState(null, '', location.pathname + location.search);
+}
+
 function schedule(delay = 120) {
   clearTimeout(timer);
-  timer = setTimeout(analyse, delay);
+  timer = setTimeout(() => { timer = null; analyse(); }, delay);
 }
 
 let pendingLayer = null;
 let analysedRequest = null; // what the last analysis was asked, for the preview and chart
 
-async function analyse() {
-  const text = view.state.doc.toString();
+// What an analysis of the page as it is now asks the worker.
+function currentRequest() {
   const s = viewState();
-  const id = ++seq;
   const model = modelState();
   if (model.firstLayerHeight === undefined) delete model.firstLayerHeight;
+  return { text: s.text, target: s.target, dialect: s.dialect, model, base: s.base, seed: s.seed };
+}
+
+let answered = 0; // the seq of the last analysis that came back (stale or not)
+let answeredRequest = null; // the request of the last answer that was shown
+
+async function analyse() {
+  const req = currentRequest();
+  const { text } = req;
+  const id = ++seq;
   status('checking…');
   let r;
-  const req = { text, target: s.target, dialect: s.dialect, model, base: s.base, seed: s.seed };
   try {
     r = await engine.request('analyse', req);
   } catch (e) {
     if (id !== seq) return;
+    answeredRequest = req;
     status(e.message, true);
     return;
+  } finally {
+    answered = Math.max(answered, id);
   }
   if (id !== seq || text !== view.state.doc.toString()) return; // stale
   analysis = r;
   analysedText = text;
   analysedRequest = req;
+  answeredRequest = req;
   showDiagnostics(view, [...r.check.diagnostics, ...(r.compat ?? []).map((d) => ({ ...d, severity: 'info' }))]);
   renderProblems(r.check);
   renderCompat(r);
-  $('explain').textContent = typeof r.explain === 'string' ? r.explain : '';
+  $('explain').textContent = words(r, req);
   if (r.refused) {
     status(`refused: ${r.refused}`, true);
   } else if (r.modelError) {
@@ -155,6 +174,22 @@ async function analyse() {
     status(`${l.layers.toLocaleString('en')} layers · ${l.instructions.length} instruction${l.instructions.length === 1 ? '' : 's'}`);
   }
   renderPlot();
+}
+
+// The template in words (rotlang::explain describes the template, not the base), with
+// the base direction and the reading said first when they change what is drawn.
+function words(r, req) {
+  if (typeof r.explain !== 'string') return '';
+  const lines = [];
+  const base = Number(req.base ?? 0);
+  if (base && r.layers) {
+    lines.push(`The base direction, ${deg(base)} (a profile's infill direction), is added to every angle below: 0° is drawn at ${deg(base)}.`);
+  }
+  if (req.dialect === 'orcaslicer' && r.compare?.firstDifference) {
+    const d = r.compare.firstDifference;
+    lines.push(`OrcaSlicer reads this template differently from layer ${d.layer} (see the OrcaSlicer panel); the plot and the layer show its reading, the words below rotlang's.`);
+  }
+  return [...lines, r.explain].join('\n\n');
 }
 
 function renderProblems(check) {
@@ -213,16 +248,61 @@ function renderCompat(r) {
 
 // ---- plot, slider, preview -----------------------------------------------------------
 
-function renderPlot() {
-  const plot = $('plot');
+// One lasting <svg> element, redrawn in place: a reader holding it (a screen reader, a
+// test) never holds a detached picture after a redraw or a resize.
+const SVG_NS = 'http://www.w3.org/2000/svg';
+const plotSvg = document.createElementNS(SVG_NS, 'svg');
+plotSvg.setAttribute('class', 'plot');
+plotSvg.setAttribute('role', 'img');
+$('plot').append(plotSvg);
+let drawn = { layers: null, width: 0 }; // what the picture shows
+
+function drawPlot() {
   const l = analysis?.layers;
+  const width = plotWidth($('plot').clientWidth);
   if (!l) {
-    plot.innerHTML = '';
-    $('preview').innerHTML = '';
-    $('layer-info').textContent = '';
+    plotSvg.replaceChildren();
+    plotSvg.setAttribute('display', 'none');
+    drawn = { layers: null, width };
     return;
   }
-  plot.innerHTML = plotSvg(l.angles, l.fills, { width: plot.clientWidth });
+  const p = plotParts(l.angles, l.fills, { width });
+  plotSvg.setAttribute('width', p.width);
+  plotSvg.setAttribute('height', p.height);
+  plotSvg.setAttribute('viewBox', `0 0 ${p.width} ${p.height}`);
+  plotSvg.setAttribute('aria-label', p.label);
+  plotSvg.removeAttribute('display');
+  plotSvg.innerHTML = p.body;
+  drawn = { layers: l, width };
+}
+
+// Why the Angles panel has no plot, in words (an empty box says nothing).
+function plotMessage(r) {
+  if (!r || r.layers) return null;
+  if (r.refused) return `No angles: ${r.refused}.`;
+  if (r.modelError) return `No angles: the model is not valid (${r.modelError}).`;
+  const errors = r.check.diagnostics.filter((d) => d.severity === 'error');
+  if (errors.length) {
+    const d = errors[0];
+    const more = errors.length + r.check.omitted - 1;
+    return `No angles: rotlang cannot read this template (${d.message}, column ${d.column}${more > 0 ? `, and ${more} more` : ''}). Fix it, or choose "as OrcaSlicer reads it" to plot OrcaSlicer's angles.`;
+  }
+  return 'No angles for this template.';
+}
+
+function renderPlot() {
+  const l = analysis?.layers;
+  drawPlot();
+  const message = plotMessage(analysis);
+  $('plot-message').textContent = message ?? '';
+  $('plot-message').hidden = !message;
+  $('plot-message').classList.toggle('error', Boolean(message));
+  if (!l) {
+    $('preview').innerHTML = '';
+    $('layer-info').textContent = '';
+    $('chart-svg').innerHTML = '';
+    return;
+  }
   $('chart-svg').innerHTML = '';
   if ($('chart').open) renderChart();
   const slider = $('layer-slider');
@@ -243,7 +323,7 @@ function renderLayer() {
   const k = l.instructionIndex[i];
   const ins = k >= 0 ? l.instructions[k] : null;
   $('layer-info').textContent = `layer ${i}: ${deg(angle)}${fill !== 'sparse' ? ` (${fill})` : ''}${ins ? ` · ${ins.text}` : ' · holds'}`;
-  const cursor = $('plot').querySelector('.cursor');
+  const cursor = plotSvg.querySelector('.cursor');
   if (cursor) {
     const x = cursorX(i, l.angles.length, cursor.ownerSVGElement.viewBox.baseVal.width);
     cursor.setAttribute('x1', x);
@@ -255,28 +335,49 @@ function renderLayer() {
     : null);
 }
 
+// What the preview of `layer` draws: the template in rotlang's reading. In OrcaSlicer's,
+// rotlang::infill draws rotlang's angles only, so it is given the layer's angle as
+// OrcaSlicer computes it (the analysis's, base included) as a one-angle template: the
+// picture shows the angle the layer text and the plot give.
+function previewRequest(layer) {
+  const l = analysis?.layers;
+  if (analysedRequest?.dialect !== 'orcaslicer' || !l) return analysedRequest;
+  const angle = l.angles[Math.min(layer, l.angles.length - 1)];
+  return { ...analysedRequest, dialect: 'rotlang', text: String(Number(angle.toFixed(9))), base: 0 };
+}
+
 // The preview is drawn by rotlang in the worker; while the slider moves only the last
 // layer asked for is drawn.
 let previewSeq = 0;
 let previewTimer = null;
+let previewsInFlight = 0;
 function schedulePreview(layer) {
   clearTimeout(previewTimer);
   previewTimer = setTimeout(async () => {
+    previewTimer = null;
+    previewsInFlight++;
     const id = ++previewSeq;
     const density = Math.min(100, Math.max(1, num('density') ?? 20)) / 100;
     try {
       const svg = await engine.request('preview', {
-        ...analysedRequest, layer, pattern: $('pattern').value, density, shape: $('shape').value,
+        ...previewRequest(layer), layer, pattern: $('pattern').value, density, shape: $('shape').value,
       });
       if (id === previewSeq) $('preview').innerHTML = svg;
     } catch (e) {
       if (id === previewSeq) $('preview').textContent = `no preview: ${e.message}`;
+    } finally {
+      previewsInFlight--;
     }
   }, 30);
 }
 
 async function renderChart() {
   if (!analysedRequest || !analysis?.layers) return;
+  if (analysedRequest.dialect === 'orcaslicer') {
+    // rotlang::plot draws rotlang's reading only; the plot above is OrcaSlicer's.
+    $('chart-svg').textContent = 'This chart draws rotlang\'s reading only; the plot above shows the angles as OrcaSlicer reads them.';
+    return;
+  }
   try {
     // At the width it is shown at: rotlang draws its text at 12 px.
     const width = Math.max(300, Math.round($('chart-svg').clientWidth || 720));
@@ -299,21 +400,18 @@ $('layer-slider').addEventListener('input', renderLayer);
 for (const id of ['pattern', 'density', 'shape']) $(id).addEventListener('input', renderLayer);
 
 $('plot').addEventListener('mousemove', (e) => {
-  const svg = $('plot').querySelector('svg');
+  const svg = plotSvg;
   const l = analysis?.layers;
-  if (!svg || !l) return;
+  if (drawn.layers !== l || !l) return;
   const box = svg.getBoundingClientRect();
   const vb = svg.viewBox.baseVal;
   setLayer(layerAt(((e.clientX - box.left) / box.width) * vb.width, l.angles.length, vb.width));
 });
-// Both pictures are drawn at the width they are shown at: redrawn when it changes.
-let shownWidth = 0;
+// Both pictures are drawn at the width they are shown at: redrawn when it changes (a
+// scroll bar that comes with the first picture narrows the page).
 new ResizeObserver(() => {
-  const w = plotWidth($('plot').clientWidth);
-  if (w === shownWidth) return;
-  shownWidth = w;
-  if (!analysis?.layers) return;
-  $('plot').innerHTML = plotSvg(analysis.layers.angles, analysis.layers.fills, { width: w });
+  if (plotWidth($('plot').clientWidth) === drawn.width || !analysis?.layers) return;
+  drawPlot();
   renderLayer();
   if ($('chart').open) renderChart();
 }).observe($('plot'));
@@ -395,6 +493,11 @@ window.addEventListener('hashchange', () => {
   if (s) applyState(sharedState(s));
 });
 
+// The base a profile's template is evaluated with: the library's reading of a profile
+// (rotlang::profile::ProfileModel::options, both readings alike) turns an empty template
+// by the profile's infill direction (`readProfile`'s `base`) and no other.
+const profileBase = (p, text) => (text === '' ? p.base : 0);
+
 async function loadProfile(file) {
   try {
     const bytes = await file.arrayBuffer();
@@ -416,7 +519,7 @@ async function loadProfile(file) {
     const m = p.model;
     applyState({
       layers: m.layers, layerHeight: m.layerHeight, firstLayerHeight: m.firstLayerHeight ?? '',
-      bottomShells: m.bottomShells, topShells: m.topShells, base: p.base,
+      bottomShells: m.bottomShells, topShells: m.topShells, base: profileBase(p, first.text),
       pattern: PATTERN_NAMES.includes(p.pattern) ? p.pattern : undefined,
       density: Number.isFinite(p.density) ? p.density : undefined,
       target: first.target, text: first.text,
@@ -432,7 +535,7 @@ async function loadProfile(file) {
       b.type = 'button';
       b.textContent = `${named(t)}: ${t.text.length > 40 ? `${t.text.slice(0, 40)}…` : t.text || '(empty)'}`;
       if (fits(t)) {
-        b.addEventListener('click', () => applyState({ target: t.target, text: t.text }));
+        b.addEventListener('click', () => applyState({ target: t.target, text: t.text, base: profileBase(p, t.text) }));
       } else {
         b.disabled = true;
         b.textContent += ` (not loaded: ${chars(t.text.length)})`;
@@ -468,8 +571,11 @@ document.addEventListener('drop', async (e) => {
 });
 
 for (const id of ['target', 'dialect', 'layers', 'layer-height', 'first-layer', 'bottom-shells', 'top-shells', 'base', 'seed']) {
-  $(id).addEventListener('input', () => schedule());
+  $(id).addEventListener('input', () => { edited(); schedule(); });
 }
+for (const id of ['layer-slider', 'pattern', 'density', 'shape']) $(id).addEventListener('input', edited);
+// "In words" is open on a wide screen; on a phone it would push the plot far down.
+if (matchMedia('(min-width: 821px)').matches) $('words').open = true;
 $('layers').max = String(MAX_LAYERS * 50);
 
 // ---- start ------------------------------------------------------------------------
@@ -477,7 +583,7 @@ $('layers').max = String(MAX_LAYERS * 50);
 let view = null;
 const initial = sharedState(decodeState(location.hash));
 view = createEditor($('editor'), initial?.text ?? '+10L25%, -10l25%, -10L25%, +10l25%', {
-  onChange: () => schedule(),
+  onChange: () => { edited(); schedule(); },
   onRefused: (m) => status(m, true),
   format,
   hover,
@@ -487,5 +593,15 @@ if (initial) applyState(initial);
 schedule(0);
 engine.request('signs').then((s) => { signs = s; }).catch(() => {});
 engine.request('version').then((v) => { $('version').textContent = `rotlang ${v}`; }).catch(() => {});
+// Whether the page shows what its controls ask for: no analysis or preview waiting or
+// under way, the last answer is for the page as it is, and the plot is drawn from it at
+// the width it is shown at. The browser tests wait for this instead of for time.
+function idle() {
+  if (timer !== null || answered !== seq || previewTimer !== null || previewsInFlight > 0) return false;
+  if (JSON.stringify(answeredRequest) !== JSON.stringify(currentRequest())) return false;
+  const l = analysis?.layers;
+  return !l || (drawn.layers === l && drawn.width === plotWidth($('plot').clientWidth));
+}
+
 // For the browser tests and the curious: the editor view.
-window.rotlangPlayground = { view, engine, state: () => viewState(), analysis: () => analysis, analysedText: () => analysedText };
+window.rotlangPlayground = { view, engine, state: () => viewState(), analysis: () => analysis, analysedText: () => analysedText, idle };

@@ -28,7 +28,12 @@ export function angleAxis(min, max) {
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => `&#${c.charCodeAt(0)};`);
 const wrap = (a) => ((a % 360) + 360) % 360;
 
-export function plotSvg(angles, fills, { from = 0, width = 640 } = {}) {
+/**
+ * The plot's parts: the picture's `width` and `height` (SVG units = CSS pixels), its
+ * accessible `label` and its `body` (the SVG's children), so that the page can redraw one
+ * lasting <svg> element in place.
+ */
+export function plotParts(angles, fills, { from = 0, width = 640 } = {}) {
   const W = plotWidth(width);
   const H = height(W);
   const n = angles.length;
@@ -48,7 +53,6 @@ export function plotSvg(angles, fills, { from = 0, width = 640 } = {}) {
   const at = raw ? (a) => a : wrap;
   const y = (a) => PAD.top + ih - ((Math.min(at(a), hi - 1e-9) - lo) / (hi - lo)) * ih;
   const parts = [];
-  parts.push(`<svg xmlns="http://www.w3.org/2000/svg" class="plot" width="${W}" height="${H}" viewBox="0 0 ${W} ${H}" role="img" aria-label="Infill angle of each of ${n} layers">`);
   parts.push(`<g class="axes">`);
   for (let k = 0; lo + k * step <= hi + 1e-9; k++) {
     const a = Number((lo + k * step).toFixed(6));
@@ -88,8 +92,7 @@ export function plotSvg(angles, fills, { from = 0, width = 640 } = {}) {
     parts.push(`<path class="columns" d="${d}"/>`);
   }
   parts.push(`<line class="cursor" x1="-10" x2="-10" y1="${PAD.top}" y2="${PAD.top + ih}"/>`);
-  parts.push(`</svg>`);
-  return parts.join('');
+  return { width: W, height: H, label: `Infill angle of each of ${n} layers`, body: parts.join('') };
 }
 
 /** The layer under a horizontal position (in the SVG's own units) of a `w`-wide plot. */

@@ -18,15 +18,6 @@ function options(state) {
   return o;
 }
 
-// The layers in the chosen reading. The base stands for the profile's infill direction,
-// which OrcaSlicer uses only for an empty template (rotlang::dialect::orcaslicer::
-// profile_options; the compat lint says so as orcaslicer::direction-ignored).
-function readingOptions(state) {
-  const o = options(state);
-  if (o.dialect === 'orcaslicer' && state.text !== '') o.base = 0;
-  return o;
-}
-
 const ops = {
   async analyse(state) {
     const r = await rotlang;
@@ -40,7 +31,9 @@ const ops = {
       out.refused = `${Number(layers).toLocaleString('en')} layers asked for; the playground evaluates up to ${MAX_LAYERS.toLocaleString('en')} (the CLI up to 100,000,000)`;
     } else if (!check.hasErrors || (state.dialect && state.dialect !== 'rotlang')) {
       try {
-        const e = r.expand(state.text, readingOptions(state));
+        // The base is added in either reading, as the library adds an embedder's base; a
+        // profile's direction reaches it only for an empty template (main.js).
+        const e = r.expand(state.text, options(state));
         // Each instruction's layers: first, last and how many.
         const ranges = e.instructions.map(() => ({ first: -1, last: -1, count: 0 }));
         for (let i = 0; i < e.instructionIndex.length; i++) {

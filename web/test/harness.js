@@ -65,6 +65,9 @@ export async function launch() {
       '--disable-background-networking', '--disable-component-update', '--disable-sync',
     ],
   });
+  // Every wait is for an event (an element, the page's idle state); this bound only says
+  // when a wait has failed, and is wide enough for a machine under heavy load.
+  context.setDefaultTimeout(120_000);
   mkdirSync(artifacts, { recursive: true });
   return {
     context,

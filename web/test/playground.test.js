@@ -27,7 +27,7 @@ async function open(path = '', viewport) {
   page.on('pageerror', (e) => errors.push(e.message));
   page.errors = errors;
   await page.goto(base + path);
-  await page.waitForFunction(() => window.rotlangPlayground?.analysis() !== null);
+  await page.waitForFunction(() => window.rotlangPlayground?.analysis() && window.rotlangPlayground.idle());
   return page;
 }
 
@@ -43,17 +43,17 @@ async function type(page, text) {
   await settled(page, text);
 }
 
-// Waits until the analysis is of `text`.
+// Waits until the page shows the analysis of `text` with every control as it is now
+// (the page says when: nothing waiting or under way, the plot drawn from the answer at
+// its width). No time budget: under load this takes longer, and that is all.
 async function settled(page, text) {
   await page.waitForFunction((t) => {
     const p = window.rotlangPlayground;
-    return p.view.state.doc.toString() === t && p.analysedText() === t
-      && document.querySelector('#status').textContent !== 'checking…';
-  }, text, { timeout: 10_000 }).catch(async (e) => {
+    return p.view.state.doc.toString() === t && p.analysedText() === t && p.idle();
+  }, text).catch(async (e) => {
     const doc = await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString());
     throw new Error(`waiting for the analysis of ${JSON.stringify(text)}; the editor holds ${JSON.stringify(doc)}: ${e.message}`);
   });
-  await page.waitForTimeout(50);
 }
 
 async function setText(page, text) {
@@ -112,8 +112,12 @@ test('the quick fix works from the keyboard alone (lint panel)', async () => {
 // The angle plot as drawn: each dot's layer and angle read back from its position on the
 // screen against the axes' own labels (the gridline of each angle label, the x of each
 // layer label), not from attributes written from the angle array.
+// One synchronous read of the page once it is idle (a locator's evaluate resolves the
+// element first, and the picture may be redrawn in between).
 async function drawnPlot(page) {
-  return page.locator('#plot svg').evaluate((svg) => {
+  await page.waitForFunction(() => window.rotlangPlayground.idle());
+  return page.evaluate(() => {
+    const svg = document.querySelector('#plot svg');
     const box = (el) => el.getBoundingClientRect();
     const mid = (el) => { const b = box(el); return { x: (b.left + b.right) / 2, y: (b.top + b.bottom) / 2 }; };
     const grid = [...svg.querySelectorAll('.axes line.grid')].map((l) => mid(l).y);
@@ -126,7 +130,8 @@ async function drawnPlot(page) {
     const dots = [...svg.querySelectorAll('circle')].map((c) => {
       const p = mid(c);
       return {
-        layer: Math.round(l0.layer + ((p.x - l0.x) / (l1.x - l0.x)) * (l1.layer - l0.layer)),
+        // `+ 0`: a dot a hair left of label 0 rounds to -0.
+        layer: Math.round(l0.layer + ((p.x - l0.x) / (l1.x - l0.x)) * (l1.layer - l0.layer)) + 0,
         angle: a0 + ((p.y - y0) / (y1 - y0)) * (a1 - a0),
         y: p.y,
       };
@@ -160,6 +165,29 @@ test('the angle axis fits the data: a ±10° template fills the plot', async () 
   const ys = dots.map((d) => d.y);
   const spread = (Math.max(...ys) - Math.min(...ys)) / (bottom - top);
   assert.ok(spread > 0.7, `the curve spans ${Math.round(spread * 100)}% of the plot's height`);
+  await page.close();
+});
+
+// Issue 16: under load the plot was read as NaN: the page replaced its <svg> when a scroll
+// bar narrowed the panel, after the analysis had settled, and a reader holding the picture
+// held a detached one. The picture is one lasting element, redrawn in place, and the page
+// says when it is idle. A 6× slower CPU (Chromium's throttling) stands for the load.
+test('under a slow CPU the plot is redrawn in place and read as drawn', async () => {
+  const page = await open();
+  const cdp = await browser.context.newCDPSession(page);
+  await cdp.send('Emulation.setCPUThrottlingRate', { rate: 6 });
+  const held = await page.$('#plot svg');
+  await type(page, '+10L25%, -10l25%, -10L25%, +10l25%');
+  const angles = await page.evaluate(() => [...window.rotlangPlayground.analysis().layers.angles]);
+  const { dots } = await drawnPlot(page);
+  for (const d of dots) assert.ok(Math.abs(d.angle - angles[d.layer]) < 0.5, `layer ${d.layer}: ${d.angle}° drawn`);
+  // A narrower window: redrawn at the new width, in the same element.
+  await page.setViewportSize({ width: 900, height: 900 });
+  await page.waitForFunction(() => window.rotlangPlayground.idle());
+  assert.ok(await held.evaluate((svg) => svg.isConnected && svg.querySelectorAll('circle').length === 100), 'the held picture is the one shown');
+  const width = await page.evaluate(() => [document.querySelector('#plot svg').viewBox.baseVal.width, document.querySelector('#plot').clientWidth]);
+  assert.ok(Math.abs(width[0] - width[1]) <= 1, `drawn ${width[0]} wide in a ${width[1]} px panel`);
+  await cdp.send('Emulation.setCPUThrottlingRate', { rate: 1 });
   await page.close();
 });
 
@@ -295,6 +323,21 @@ test('a dropped profile fills the editor and the model; a non-JSON one is refuse
   await page.close();
 });
 
+// A profile's infill direction turns an empty template only, in both readings (the
+// library's reading of a profile, as OrcaSlicer's): the page adds no base of its own.
+test('a dropped profile\'s infill direction turns an empty template only', async () => {
+  const page = await open();
+  await drop(page, 'dir.json', JSON.stringify({ name: 'Dir', sparse_infill_direction: '30', sparse_infill_rotate_template: '0, 90', solid_infill_rotate_template: '' }));
+  await settled(page, '0, 90');
+  assert.equal(await page.inputValue('#base'), '0');
+  const angles = await page.evaluate(() => [...window.rotlangPlayground.analysis().layers.angles.slice(0, 2)]);
+  assert.deepEqual(angles, [0, 90]);
+  await page.click('#profile-templates button:has-text("solid_infill_rotate_template")');
+  await settled(page, '');
+  assert.equal(await page.inputValue('#base'), '30');
+  await page.close();
+});
+
 test('a profile whose template is too long: a lasting message naming it, nothing half-applied', async () => {
   const page = await open();
   await type(page, '+45');
@@ -340,7 +383,7 @@ test('hostile input: a 1 MB paste is refused, a million layers plot, ten million
   // Still responsive: typing works.
   await type(page, '+45');
   await page.fill('#layers', '1000000');
-  await page.waitForFunction(() => /1,000,000 layers/.test(document.querySelector('#status').textContent), null, { timeout: 30_000 });
+  await page.waitForFunction(() => /1,000,000 layers/.test(document.querySelector('#status').textContent));
   assert.equal(await page.locator('#plot svg path.columns').count(), 1);
   await page.fill('#layers', '10000000');
   await page.waitForFunction(() => /refused: 10,000,000 layers asked for/.test(document.querySelector('#status').textContent));
@@ -381,13 +424,11 @@ test('OrcaSlicer compat findings, and the OrcaSlicer reading in the plot', async
   const { dots } = await drawnPlot(page);
   assert.equal(dots.length, 100);
   assert.ok(dots.every((d) => Math.abs(d.angle) < 0.5), 'every layer drawn at 0°');
-  // The base is the slicer's infill direction: OrcaSlicer uses it for an empty template
-  // only, so its reading of `0 90` stays at 0° (rotlang's adds it).
+  // A base typed in is added in either reading, as the library adds an embedder's base.
   await page.fill('#base', '45');
-  await page.waitForFunction(() => /orcaslicer::direction-ignored/.test(document.querySelector('#compat-list').textContent));
   await settled(page, '0 90');
   const shifted = await drawnPlot(page);
-  assert.ok(shifted.dots.every((d) => Math.abs(d.angle) < 0.5), 'OrcaSlicer ignores the direction for a template');
+  assert.ok(shifted.dots.every((d) => Math.abs(d.angle - 45) < 0.5), 'OrcaSlicer\'s 0° turned by the base');
   await shot(page, 'compat');
   await page.close();
 });
@@ -404,9 +445,13 @@ test('completion offers the signs with their meaning; Format gives the canonical
   assert.ok(labels.some((l) => l.startsWith('%')), labels.join(' | '));
   // Pick `/` by keyboard: it is inserted after the angle.
   const index = labels.findIndex((l) => l.startsWith('/'));
-  // CodeMirror ignores keys within 75 ms of the list opening (interactionDelay).
-  await page.waitForTimeout(200);
-  for (let i = 0; i < index; i++) await page.keyboard.press('ArrowDown');
+  // CodeMirror ignores keys for a moment after the list opens (interactionDelay): a key
+  // press is repeated until the selection has moved, one step at a time.
+  const selected = () => page.locator('.cm-tooltip-autocomplete li').evaluateAll((lis) => lis.findIndex((li) => li.hasAttribute('aria-selected')));
+  for (let i = await selected(); i < index;) {
+    await page.keyboard.press('ArrowDown');
+    i = await selected();
+  }
   assert.match(await page.locator('.cm-tooltip-autocomplete li[aria-selected]').textContent(), /^\//);
   await page.keyboard.press('Enter');
   await page.keyboard.type('50%');
@@ -457,9 +502,10 @@ test('the npm package works in the browser with no bundler', async () => {
 
 // The smallest on-screen font size (CSS px) of the text in an SVG: its computed size times
 // the picture's scale.
-const smallestText = (page, selector) => page.locator(selector).evaluate((svg) => Math.min(
-  ...[...svg.querySelectorAll('text')].map((t) => Number.parseFloat(getComputedStyle(t).fontSize) * svg.getScreenCTM().a),
-));
+const smallestText = (page, selector) => page.evaluate((sel) => {
+  const svg = document.querySelector(sel);
+  return Math.min(...[...svg.querySelectorAll('text')].map((t) => Number.parseFloat(getComputedStyle(t).fontSize) * svg.getScreenCTM().a));
+}, selector);
 
 test('readable at phone width: no sideways scrolling, panels as wide as the screen, plot text readable', async () => {
   const page = await open('', { width: 390, height: 844 });
@@ -468,6 +514,10 @@ test('readable at phone width: no sideways scrolling, panels as wide as the scre
   assert.ok(overflow <= 0, `${overflow}px wider than the screen`);
   const widths = await page.locator('main section').evaluateAll((ss) => ss.map((s) => `${s.id} ${Math.round(s.getBoundingClientRect().width)}`));
   assert.equal(new Set(widths.map((w) => w.split(' ')[1])).size, 1, `panel widths: ${widths.join(', ')}`);
+  // "In words" starts closed: the plot is on the first screen.
+  assert.equal(await page.evaluate(() => document.querySelector('#words').open), false);
+  const plotTop = await page.evaluate(() => document.querySelector('#plot').getBoundingClientRect().top);
+  assert.ok(plotTop < 844, `the plot starts ${Math.round(plotTop)} px down`);
   const plotText = await smallestText(page, '#plot svg');
   assert.ok(plotText >= 11, `the angle plot's text is ${plotText.toFixed(1)} px`);
   await page.click('#chart summary');
@@ -480,7 +530,6 @@ test('readable at phone width: no sideways scrolling, panels as wide as the scre
 
 test('a share link with a template over the cap: refused at load with a lasting message, the rest applied', async () => {
   const long = '+1, '.repeat(17_500); // 70,000 characters
-  const started = Date.now();
   const page = await open(`#t=${encodeURIComponent(long)}&layers=40`);
   const doc = await page.evaluate(() => window.rotlangPlayground.view.state.doc.toString());
   assert.equal(doc, '+10L25%, -10l25%, -10L25%, +10l25%', 'the default template, not the link\'s');
@@ -497,9 +546,107 @@ test('a share link with a template over the cap: refused at load with a lasting 
   await page.close();
   // A 1 MB fragment: refused as fast.
   const huge = await open(`#t=${encodeURIComponent('+10L25%, '.repeat(120_000))}`);
+  // Refused before the editor is made: it never holds the long text. (How long the
+  // page takes to load with such a link is measured by bench/load.mjs, not here.)
   assert.match(await huge.textContent('#notice'), /it has 1,080,000 characters/);
-  assert.ok(Date.now() - started < 15_000, `${Date.now() - started} ms to load both`);
+  assert.equal(await huge.evaluate(() => window.rotlangPlayground.view.state.doc.length), 34);
   await huge.close();
+});
+
+// Issue 17, the playground's items.
+test('no request fails on load (the favicon is there) and nothing is logged as an error', async () => {
+  const page = await browser.context.newPage();
+  const failed = [];
+  const consoleErrors = [];
+  page.on('response', (r) => { if (r.status() >= 400) failed.push(`${r.status()} ${r.url()}`); });
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  await page.goto(base);
+  await page.waitForFunction(() => window.rotlangPlayground?.analysis() && window.rotlangPlayground.idle());
+  // Headless Chromium asks for no icon itself: the page names one, and it is served (a
+  // browser with no icon named asks for /favicon.ico, a 404 on a static host).
+  const icon = await page.evaluate(async () => {
+    const link = document.querySelector('link[rel~="icon"]');
+    if (!link) return null;
+    const r = await fetch(link.href);
+    return { status: r.status, type: r.headers.get('content-type'), svg: (await r.text()).startsWith('<svg') };
+  });
+  assert.deepEqual(icon, { status: 200, type: 'image/svg+xml', svg: true });
+  assert.deepEqual(failed, []);
+  assert.deepEqual(consoleErrors, []);
+  await page.close();
+});
+
+test('as OrcaSlicer reads it, the layer text, the preview and the chart follow that reading', async () => {
+  const page = await open();
+  await type(page, '0 90');
+  await page.selectOption('#dialect', 'orcaslicer');
+  await page.waitForFunction(() => window.rotlangPlayground.analysis()?.layers?.dialect === 'orcaslicer');
+  await settled(page, '0 90');
+  await page.focus('#layer-slider');
+  await page.keyboard.press('End');
+  for (let i = 0; i < 14; i++) await page.keyboard.press('ArrowLeft');
+  assert.equal(await page.inputValue('#layer-slider'), '85');
+  assert.match(await page.textContent('#layer-info'), /^layer 85: 0°/);
+  // rotlang reads `0 90` as 0, 90, …: layer 85 would be drawn at 90°.
+  const dirs = await lineDirections(page, 85);
+  assert.ok(dirs.length > 5, `${dirs.length} lines`);
+  for (const d of dirs) assert.ok(Math.min(d, 180 - d) < 0.5, `a line at ${d}°, OrcaSlicer reads 0°`);
+  await page.click('#chart summary');
+  await page.waitForFunction(() => /rotlang's reading only/.test(document.querySelector('#chart-svg').textContent));
+  assert.equal(await page.locator('#chart-svg svg').count(), 0, 'no chart of the other reading');
+  await page.close();
+});
+
+test('"In words" says the base direction: 0, 90 with base 45 is drawn at 45° and 135°', async () => {
+  const page = await open('#t=0%2C+90&base=45');
+  await settled(page, '0, 90');
+  const words = await page.textContent('#explain');
+  assert.match(words, /base direction, 45°.*added to every angle/);
+  const angles = await page.evaluate(() => [...window.rotlangPlayground.analysis().layers.angles.slice(0, 2)]);
+  assert.deepEqual(angles, [45, 135]);
+  await page.close();
+});
+
+test('an error: the tooltip is a readable box beside the squiggle; the Angles panel says why it is empty', async () => {
+  const page = await open();
+  await type(page, '+30X5');
+  const range = page.locator('.cm-lintRange-error');
+  await range.first().hover();
+  const tip = page.locator('.cm-tooltip-lint');
+  await tip.waitFor();
+  const box = await page.locator('.cm-tooltip-hover').boundingBox();
+  const font = await tip.evaluate((t) => getComputedStyle(t).fontFamily);
+  assert.ok(box.width <= 480, `the tooltip is ${box.width} px wide`);
+  assert.doesNotMatch(font, /mono/, font);
+  const heading = await page.locator('h1').boundingBox();
+  assert.ok(box.y >= heading.y + heading.height || box.x >= heading.x + heading.width, 'the heading stays visible');
+  await shot(page, 'error-tooltip');
+  const message = page.locator('#plot-message');
+  assert.ok(await message.isVisible());
+  assert.match(await message.textContent(), /No angles: rotlang cannot read this template \(unknown sign `X`, column 4\)/);
+  await type(page, '+30');
+  assert.ok(await message.isHidden());
+  await page.close();
+});
+
+test('the share link goes when the state changes after it; no stray full stop by the file button', async () => {
+  const page = await open();
+  await type(page, '0, 90');
+  await page.click('#share');
+  const link = page.locator('#share-link');
+  await link.waitFor();
+  assert.match(await link.inputValue(), /#t=0%2C\+90/);
+  await type(page, '0, 45');
+  assert.ok(await link.isHidden(), 'the old link is not offered for the new state');
+  assert.equal(await page.evaluate(() => location.hash), '');
+  const after = await page.evaluate(() => {
+    const input = document.querySelector('#profile');
+    let text = '';
+    for (let n = input.nextSibling; n; n = n.nextSibling) text += n.textContent;
+    return text.trim();
+  });
+  assert.equal(after, '', 'nothing follows the file button ("No file chosen.")');
+  await page.close();
 });
 
 test('a text over the cap can still shrink: Backspace works, growing is refused', async () => {

@@ -3,7 +3,9 @@
 # `vim.lsp.start_client` (the 0.7 API), opens a bad .rot file, waits for the
 # diagnostic, fixes the text, sees the diagnostics cleared, and hovers (e2e.lua).
 #
-# Usage: run.sh PATH/TO/rotlang-lsp RESULT.json
+# Usage: run.sh PATH/TO/rotlang-lsp RESULT.json [INIT.lua]
+# With INIT.lua (the README's snippet), Neovim starts with it as the user's init file and
+# rotlang-lsp on PATH, and readme.lua opens one file of each kind.
 # Installs Debian's `neovim` through scripts/ensure when `nvim` is missing; exits 77
 # ("skipped") with a message saying why when it cannot.
 set -euo pipefail
@@ -26,6 +28,16 @@ fi
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+
+if [ -n "${3:-}" ]; then
+    mkdir -p "$work/bin"
+    ln -s "$(cd "$(dirname "$server")" && pwd)/$(basename "$server")" "$work/bin/rotlang-lsp"
+    # -u INIT: the snippet is the whole configuration (filetype detection on, as for a
+    # user); -i NONE -n: no shada, no swap.
+    PATH="$work/bin:$PATH" ROTLANG_OUT="$out" ROTLANG_DIR="$work" \
+        timeout 120 nvim --headless -u "$3" -i NONE -n -c "luafile $here/readme.lua" </dev/null
+    exit
+fi
 
 # -u NONE -i NONE -n: no user config, no shada, no swap: the run sees only e2e.lua.
 # The timeout is a last resort: e2e.lua bounds each wait itself and always quits.

@@ -15,9 +15,11 @@ extern crate alloc;
 pub mod diagnostic;
 pub mod dialect;
 pub mod eval;
+pub mod export;
 pub mod explain;
 pub mod fix;
 pub mod format;
+pub mod gcode;
 #[cfg(feature = "infill")]
 pub mod infill;
 pub mod ir;

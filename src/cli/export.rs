@@ -42,7 +42,11 @@ pub struct ExportArgs {
     #[arg(long, value_enum)]
     pub to: SlicerArg,
     /// The template, e.g. '0, 90'. Put `--` before one that begins with `-`.
-    #[arg(value_name = "TEMPLATE", allow_negative_numbers = true, conflicts_with = "file")]
+    #[arg(
+        value_name = "TEMPLATE",
+        allow_negative_numbers = true,
+        conflicts_with = "file"
+    )]
     pub template: Option<String>,
     /// Read the template from a file; `-` is stdin.
     #[arg(long, short = 'f', value_name = "PATH")]
@@ -114,17 +118,23 @@ fn io(e: std::io::Error) -> UsageError {
 pub fn run(args: &ExportArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     let slicer: Slicer = args.to.into();
     if args.mesh.is_some() && slicer != Slicer::PrusaSlicer {
-        return Err(UsageError("--mesh is for --to prusaslicer (its 3MF project)".into()));
+        return Err(UsageError(
+            "--mesh is for --to prusaslicer (its 3MF project)".into(),
+        ));
     }
     let three_mf = args
         .out
         .as_deref()
         .is_some_and(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("3mf")));
     if three_mf && slicer != Slicer::PrusaSlicer {
-        return Err(UsageError("a .3mf project is written for --to prusaslicer only".into()));
+        return Err(UsageError(
+            "a .3mf project is written for --to prusaslicer only".into(),
+        ));
     }
     if three_mf && args.mesh.is_none() {
-        return Err(UsageError("a .3mf project needs the part: --mesh PART.stl".into()));
+        return Err(UsageError(
+            "a .3mf project needs the part: --mesh PART.stl".into(),
+        ));
     }
     let mut resolved = args.model.resolve()?;
     let mut base = args.base;

@@ -135,11 +135,16 @@ pub fn run(args: &GcodeArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
                 notes.extend(more);
                 (Some(e), source)
             }
-            None => (None, "nothing to compare (no settings; pass --template)".to_owned()),
+            None => (
+                None,
+                "nothing to compare (no settings; pass --template)".to_owned(),
+            ),
         },
     };
     let comparison = match &expected {
-        Some(e) => gcode::compare(&scanned.layers, &model, e, args.tolerance).map_err(UsageError)?,
+        Some(e) => {
+            gcode::compare(&scanned.layers, &model, e, args.tolerance).map_err(UsageError)?
+        }
         None => unchecked(&scanned.layers, args.tolerance),
     };
     let written = match args.format {
@@ -258,7 +263,10 @@ fn table(
 }
 
 fn csv(c: &Comparison, out: &mut dyn Write) -> std::io::Result<()> {
-    writeln!(out, "index,z,height,sparse,straightness,expected,difference,solid,match")?;
+    writeln!(
+        out,
+        "index,z,height,sparse,straightness,expected,difference,solid,match"
+    )?;
     let f = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.4}"));
     for r in &c.rows {
         writeln!(
@@ -363,7 +371,11 @@ fn plot(c: &Comparison, model: &crate::eval::Model, source: &str) -> String {
             );
         }
         if let Some(d) = r.sparse {
-            let colour = if r.matches == Some(false) { "#d02020" } else { "#202020" };
+            let colour = if r.matches == Some(false) {
+                "#d02020"
+            } else {
+                "#202020"
+            };
             let _ = writeln!(
                 s,
                 "<circle class=\"sparse\" cx=\"{:.2}\" cy=\"{:.2}\" r=\"2.5\" fill=\"{colour}\"/>",

@@ -139,7 +139,8 @@ pub fn export(
 fn shells(out: &mut Export, model: &Model, bottom: &str, top: &str) {
     out.settings
         .push((bottom.into(), model.bottom_shells().to_string()));
-    out.settings.push((top.into(), model.top_shells().to_string()));
+    out.settings
+        .push((top.into(), model.top_shells().to_string()));
 }
 
 fn per_layer_note(out: &mut Export, count: usize) {
@@ -207,7 +208,8 @@ fn superslicer(layers: &Layers, model: &Model, out: &mut Export) {
     if let Some(k) = ramp(d, &layers.angles) {
         out.settings.push(("fill_angle".into(), text(d[0])));
         out.settings.push(("fill_angle_increment".into(), text(k)));
-        out.settings.push(("fill_angle_template".into(), String::new()));
+        out.settings
+            .push(("fill_angle_template".into(), String::new()));
     } else {
         let list: &[f64] = match period(d) {
             Some(p) => &d[..p],
@@ -259,7 +261,9 @@ fn prusaslicer(layers: &Layers, model: &Model, out: &mut Export) {
         "layer_height".into(),
         number::height(model.layer_height()).as_str().to_owned(),
     ));
-    let first = model.layer_bounds(0).map_or(model.layer_height(), |(b, t)| t - b);
+    let first = model
+        .layer_bounds(0)
+        .map_or(model.layer_height(), |(b, t)| t - b);
     out.settings.push((
         "first_layer_height".into(),
         number::height(first).as_str().to_owned(),
@@ -303,12 +307,19 @@ fn orcaslicer(
     // OrcaSlicer's reading must give rotlang's angle on every layer (modulo 360: the
     // direction of the infill, and of anything that turns with it).
     let reads_the_same = |candidate: &str| {
-        let ours = crate::dialect::orcaslicer::layers(candidate, model, Options { base: 0.0, ..options });
+        let ours = crate::dialect::orcaslicer::layers(
+            candidate,
+            model,
+            Options {
+                base: 0.0,
+                ..options
+            },
+        );
         let mut theirs = ours.map(|l| l.angle);
         let all = layers.angles.iter().all(|&a| {
-            theirs
-                .next()
-                .is_some_and(|b| ((a - b).rem_euclid(360.0) < SAME) || ((b - a).rem_euclid(360.0) < SAME))
+            theirs.next().is_some_and(|b| {
+                ((a - b).rem_euclid(360.0) < SAME) || ((b - a).rem_euclid(360.0) < SAME)
+            })
         });
         all
     };
@@ -350,7 +361,11 @@ fn orcaslicer(
                     message: format!(
                         "OrcaSlicer reads the template differently: exported as {what}, which it \
                          reads as rotlang does{}",
-                        if per_layer { " (for this model only)" } else { "" }
+                        if per_layer {
+                            " (for this model only)"
+                        } else {
+                            ""
+                        }
                     ),
                 });
             }
@@ -380,8 +395,13 @@ mod tests {
         assert_eq!(e.max_error, 0.0);
         let e = export("0, 15, 30", Slicer::Cura, &cube(), Options::default()).expect("export");
         assert_eq!(e.setting("infill_angles"), Some("[90,75,60]"));
-        let e = export("+10L25%, -10l25%", Slicer::Cura, &cube(), Options::default())
-            .expect("export");
+        let e = export(
+            "+10L25%, -10l25%",
+            Slicer::Cura,
+            &cube(),
+            Options::default(),
+        )
+        .expect("export");
         let list = e.setting("infill_angles").expect("list");
         assert_eq!(list.split(',').count(), 100);
         assert!(e.max_error > 0.0 && e.max_error <= 0.5, "{}", e.max_error);
@@ -422,8 +442,13 @@ mod tests {
         let e = export("0 90", Slicer::OrcaSlicer, &cube(), Options::default()).expect("export");
         assert_eq!(e.setting("sparse_infill_rotate_template"), Some("0, 90"));
         assert!(e.notes.iter().any(|n| n.code == "slicer::rewritten"));
-        let err = export("+30M3, +30", Slicer::OrcaSlicer, &cube(), Options::default())
-            .expect_err("solid signs");
+        let err = export(
+            "+30M3, +30",
+            Slicer::OrcaSlicer,
+            &cube(),
+            Options::default(),
+        )
+        .expect_err("solid signs");
         assert!(err.to_string().contains("solid"), "{err}");
     }
 }

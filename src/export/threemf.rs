@@ -61,8 +61,10 @@ pub fn read_stl(bytes: &[u8]) -> Result<Mesh, String> {
             mesh.triangles.push(tri);
         }
     } else {
-        let text = std::str::from_utf8(bytes)
-            .map_err(|_| "neither a binary STL (its size does not match its triangle count) nor ASCII".to_string())?;
+        let text = std::str::from_utf8(bytes).map_err(|_| {
+            "neither a binary STL (its size does not match its triangle count) nor ASCII"
+                .to_string()
+        })?;
         let mut corners = Vec::with_capacity(3);
         for (line_no, line) in text.lines().enumerate() {
             let mut words = line.split_whitespace();
@@ -104,11 +106,19 @@ pub fn project(export: &Export, mesh: &Mesh, name: &str) -> Result<Vec<u8>, Stri
          <object id=\"1\" type=\"model\">\n   <mesh>\n    <vertices>\n",
     );
     for v in &mesh.vertices {
-        let _ = writeln!(model, "     <vertex x=\"{}\" y=\"{}\" z=\"{}\"/>", v[0], v[1], v[2]);
+        let _ = writeln!(
+            model,
+            "     <vertex x=\"{}\" y=\"{}\" z=\"{}\"/>",
+            v[0], v[1], v[2]
+        );
     }
     model.push_str("    </vertices>\n    <triangles>\n");
     for t in &mesh.triangles {
-        let _ = writeln!(model, "     <triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>", t[0], t[1], t[2]);
+        let _ = writeln!(
+            model,
+            "     <triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>",
+            t[0], t[1], t[2]
+        );
     }
     model.push_str(
         "    </triangles>\n   </mesh>\n  </object>\n </resources>\n <build>\n  \
@@ -135,7 +145,8 @@ pub fn project(export: &Export, mesh: &Mesh, name: &str) -> Result<Vec<u8>, Stri
         escape(name)
     );
 
-    let mut ranges = String::from("<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<objects>\n <object id=\"1\">\n");
+    let mut ranges =
+        String::from("<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<objects>\n <object id=\"1\">\n");
     // PrusaSlicer 2.5 reads every range's `layer_height` when it plans the layers (it
     // crashes on a range without one): the export's layer height.
     let layer_height = export.setting("layer_height").unwrap_or("0.2");
@@ -194,7 +205,10 @@ mod tests {
         assert_eq!((a.vertices.len(), a.triangles.len()), (4, 2));
         let mut bin = vec![0u8; 80];
         bin.extend_from_slice(&2u32.to_le_bytes());
-        for tri in [[[0f32, 0., 0.], [1., 0., 0.], [0., 1., 0.]], [[1., 0., 0.], [1., 1., 0.], [0., 1., 0.]]] {
+        for tri in [
+            [[0f32, 0., 0.], [1., 0., 0.], [0., 1., 0.]],
+            [[1., 0., 0.], [1., 1., 0.], [0., 1., 0.]],
+        ] {
             bin.extend_from_slice(&[0u8; 12]);
             for v in tri {
                 for c in v {

@@ -75,7 +75,14 @@ pub fn model(layers: &[Layer], settings: &Settings) -> Result<Model, String> {
             .filter(|v| *v >= 0.0 && *v <= f64::from(u32::MAX))
             .map_or(default, |v| v as u32)
     };
-    let bottom = count(&["bottom_shell_layers", "bottom_solid_layers", "bottom_layers"], 3);
+    let bottom = count(
+        &[
+            "bottom_shell_layers",
+            "bottom_solid_layers",
+            "bottom_layers",
+        ],
+        3,
+    );
     let top = count(&["top_shell_layers", "top_solid_layers", "top_layers"], 4);
     Model::from_heights(heights, standard)
         .map(|m| m.with_shells(bottom, top))
@@ -128,7 +135,9 @@ pub fn expected_from_settings(
             let angle = settings.number("fill_angle").unwrap_or(45.0);
             let pattern = settings.get("fill_pattern").unwrap_or("");
             if flavor == Flavor::SuperSlicer
-                && let Some(list) = settings.get("fill_angle_template").filter(|t| !t.is_empty())
+                && let Some(list) = settings
+                    .get("fill_angle_template")
+                    .filter(|t| !t.is_empty())
             {
                 let angles = numbers(list);
                 if !angles.is_empty() {
@@ -247,7 +256,9 @@ pub fn expected_directions(expected: &Expected, model: &Model) -> Result<Vec<f64
     let wrap = |a: f64| a.rem_euclid(180.0);
     Ok(match expected {
         Expected::Cycle(list) if list.is_empty() => return Err("an empty list of angles".into()),
-        Expected::Cycle(list) => (0..model.len()).map(|i| wrap(list[i % list.len()])).collect(),
+        Expected::Cycle(list) => (0..model.len())
+            .map(|i| wrap(list[i % list.len()]))
+            .collect(),
         Expected::Ramp { start, increment } => (0..model.len())
             .map(|i| wrap(start + increment * i as f64))
             .collect(),
@@ -310,8 +321,14 @@ mod tests {
             &model,
         );
         assert!(e.is_err());
-        let ok = expected_directions(&Expected::Ramp { start: 170.0, increment: 20.0 }, &model)
-            .expect("ramp");
+        let ok = expected_directions(
+            &Expected::Ramp {
+                start: 170.0,
+                increment: 20.0,
+            },
+            &model,
+        )
+        .expect("ramp");
         assert_eq!(&ok[..2], &[170.0, 10.0]);
     }
 }

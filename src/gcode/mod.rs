@@ -24,10 +24,10 @@ mod read;
 mod settings;
 
 pub use compare::{
-    Comparison, Expected, Row, compare, cura_to_direction, expected_directions, expected_from_settings,
-    model,
+    Comparison, Expected, Row, compare, cura_to_direction, expected_directions,
+    expected_from_settings, model,
 };
-pub use measure::difference;
 pub use measure::Direction;
+pub use measure::difference;
 pub use read::{Flavor, Layer, Scan, ScanOptions, scan, scan_all};
 pub use settings::Settings;

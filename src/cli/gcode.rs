@@ -101,7 +101,8 @@ pub fn run(args: &GcodeArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
     if scanned.layers.is_empty() {
         return Err(UsageError(format!(
             "{name}: no layers found: no layer-change comments (;LAYER_CHANGE, ; CHANGE_LAYER, \
-             ;LAYER:n) [slicer::no-layers]"
+             ;LAYER:n) [{}]",
+            "slicer::no-layers"
         )));
     }
     if scanned.flavor == Flavor::Unknown {

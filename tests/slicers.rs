@@ -296,8 +296,7 @@ fn prusa_slicer_prints_every_template_from_its_3mf_project() {
                 out.status,
                 String::from_utf8_lossy(&out.stderr)
                     .lines()
-                    .filter(|l| !l.contains("[trace]"))
-                    .last()
+                    .rfind(|l| !l.contains("[trace]"))
                     .unwrap_or("")
             );
             read_back(

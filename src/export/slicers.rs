@@ -316,12 +316,11 @@ fn orcaslicer(
             },
         );
         let mut theirs = ours.map(|l| l.angle);
-        let all = layers.angles.iter().all(|&a| {
+        layers.angles.iter().all(|&a| {
             theirs.next().is_some_and(|b| {
                 ((a - b).rem_euclid(360.0) < SAME) || ((b - a).rem_euclid(360.0) < SAME)
             })
-        });
-        all
+        })
     };
     let mut candidates: Vec<(String, &'static str)> = Vec::new();
     if options.base == 0.0 {

@@ -45,7 +45,8 @@ impl Accumulator {
     #[inline]
     pub(crate) fn add(&mut self, dx: f64, dy: f64) {
         let sq = dx * dx + dy * dy;
-        if !(sq > 1e-12) || !sq.is_finite() {
+        // NaN fails `is_finite` and every comparison: it is skipped here.
+        if !sq.is_finite() || sq <= 1e-12 {
             return;
         }
         let len = sq.sqrt();

@@ -394,6 +394,7 @@ mod tests {
         assert_eq!(e.max_error, 0.0);
         let e = export("0, 15, 30", Slicer::Cura, &cube(), Options::default()).expect("export");
         assert_eq!(e.setting("infill_angles"), Some("[90,75,60]"));
+        // `+10L25%, -10l25%` repeats every half of the height (50 layers); `+30/50%` never.
         let e = export(
             "+10L25%, -10l25%",
             Slicer::Cura,
@@ -401,6 +402,11 @@ mod tests {
             Options::default(),
         )
         .expect("export");
+        assert_eq!(
+            e.setting("infill_angles").map(|l| l.split(',').count()),
+            Some(50)
+        );
+        let e = export("+30/50%", Slicer::Cura, &cube(), Options::default()).expect("export");
         let list = e.setting("infill_angles").expect("list");
         assert_eq!(list.split(',').count(), 100);
         assert!(e.max_error > 0.0 && e.max_error <= 0.5, "{}", e.max_error);
@@ -413,8 +419,17 @@ mod tests {
         let e = export("+30", Slicer::SuperSlicer, &cube(), Options::default()).expect("export");
         assert_eq!(e.setting("fill_angle_increment"), Some("30"));
         assert_eq!(e.setting("fill_angle_template"), Some(""));
+        // `0, 90` is a turn of 90° a layer: shorter than a list.
         let e = export("0, 90", Slicer::SuperSlicer, &cube(), Options::default()).expect("export");
-        assert_eq!(e.setting("fill_angle_template"), Some("0,90"));
+        assert_eq!(e.setting("fill_angle_increment"), Some("90"));
+        let e = export(
+            "0, 15, 30",
+            Slicer::SuperSlicer,
+            &cube(),
+            Options::default(),
+        )
+        .expect("export");
+        assert_eq!(e.setting("fill_angle_template"), Some("0,15,30"));
         let e = export("45", Slicer::SuperSlicer, &cube(), Options::default()).expect("export");
         assert_eq!(e.setting("fill_angle"), Some("45"));
         assert_eq!(e.setting("fill_angle_increment"), Some("0"));

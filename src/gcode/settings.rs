@@ -92,7 +92,11 @@ impl Settings {
             return;
         }
         let cura = std::mem::take(&mut self.cura);
-        let Ok(value) = serde_json::from_slice::<serde_json::Value>(&cura) else {
+        // Cura escapes the JSON once more for a comment (a backslash doubled, newlines as
+        // `\n`): undone first; JSON that is not escaped is read as it is.
+        let value = serde_json::from_slice::<serde_json::Value>(&unescape(&cura))
+            .or_else(|_| serde_json::from_slice::<serde_json::Value>(&cura));
+        let Ok(value) = value else {
             return;
         };
         let mut texts = Vec::new();
@@ -109,6 +113,33 @@ impl Settings {
             }
         }
     }
+}
+
+/// Undoes Cura's escaping of its settings for G-code comments.
+fn unescape(b: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        match (b[i], b.get(i + 1)) {
+            (b'\\', Some(b'\\')) => {
+                out.push(b'\\');
+                i += 2;
+            }
+            (b'\\', Some(b'n')) => {
+                out.push(b'\n');
+                i += 2;
+            }
+            (b'\\', Some(b'r')) => {
+                out.push(b'\r');
+                i += 2;
+            }
+            (c, _) => {
+                out.push(c);
+                i += 1;
+            }
+        }
+    }
+    out
 }
 
 fn collect_strings<'a>(v: &'a serde_json::Value, out: &mut Vec<&'a str>) {
@@ -144,6 +175,19 @@ mod tests {
         s.finish();
         assert_eq!(s.get("infill_angles"), Some("[0, 90]"));
         assert_eq!(s.number("layer_height"), Some(0.2));
+    }
+
+    #[test]
+    fn cura_settings_as_cura_writes_them() {
+        // What Cura 4's G-code writer puts after `;SETTING_3 `: JSON, escaped once more.
+        let mut s = Settings::default();
+        let line = r#"{"global_quality": "[general]\\nversion = 4\\n[values]\\nlayer_height = 0.15\\n", "extruder_quality": ["[general]\\n[values]\\ninfill_angles = [30,120]\\n"]}"#;
+        for chunk in line.as_bytes().chunks(80) {
+            s.cura_chunk(chunk);
+        }
+        s.finish();
+        assert_eq!(s.get("infill_angles"), Some("[30,120]"));
+        assert_eq!(s.number("layer_height"), Some(0.15));
     }
 
     #[test]

@@ -181,11 +181,20 @@ fn read_back(gcode: &Path, template: &str, tolerance: &str, what: &str) -> (u64,
         })
         .collect();
     assert!(off.is_empty(), "{what}: layers off the template: {off:?}");
-    // Every layer between the shells has sparse infill (a bridge or two near the top may not).
-    assert!(
-        compared >= (LAYERS - 2 - 2 - 2) as u64,
+    // Every layer between the shells has sparse infill, and the 2 + 2 shell layers are
+    // solid: the export kept the slicer's shells whole.
+    assert_eq!(
+        compared,
+        (LAYERS - 2 - 2) as u64,
         "{what}: {compared} sparse layers"
     );
+    for i in [0, 1, LAYERS - 2, LAYERS - 1] {
+        let l = &layers[i];
+        assert!(
+            l["sparse"].is_null() && !l["solid"].is_null(),
+            "{what}: layer {i} is a shell: {l}"
+        );
+    }
     assert_eq!(code, 0, "{what}: {err}");
     eprintln!("{what}: {matched} of {compared} sparse layers match");
     (matched, compared)

@@ -235,10 +235,31 @@ fn superslicer(layers: &Layers, model: &Model, out: &mut Export) {
 
 fn prusaslicer(layers: &Layers, model: &Model, out: &mut Export) {
     let d = &layers.directions;
+    // PrusaSlicer finds the shells of each region apart: a range boundary among the shell
+    // layers thins the shells (measured: per-layer ranges for `0, 90` left 1 bottom and 1
+    // top solid layer of 2). The bottom and top shell layers are one range each; their
+    // solid infill is not what the template turns.
+    let n = d.len();
+    let bottom = (model.bottom_shells() as usize).min(n);
+    let top = (model.top_shells() as usize).min(n - bottom);
+    let group = |i: usize| -> (u8, usize) {
+        if i < bottom {
+            (0, 0)
+        } else if i >= n - top {
+            (2, 0)
+        } else {
+            (1, i)
+        }
+    };
     let mut i = 0;
     while i < d.len() {
         let start = i;
-        while i < d.len() && same(d[i], d[start]) {
+        while i < d.len()
+            && match (group(start), group(i)) {
+                ((1, _), (1, _)) => same(d[i], d[start]),
+                (a, b) => a == b,
+            }
+        {
             i += 1;
         }
         let (min_z, _) = model.layer_bounds(start).unwrap_or((0.0, 0.0));
@@ -440,7 +461,9 @@ mod tests {
         let e = export("+45#3", Slicer::PrusaSlicer, &cube(), Options::default()).expect("export");
         let r = &e.ranges;
         assert!(r.len() > 10, "{r:?}");
-        assert_eq!((r[0].first, r[0].min_z), (0, 0.0));
+        // The 3 bottom and 4 top shell layers are one range each.
+        assert_eq!((r[0].first, r[0].last, r[0].min_z), (0, 2, 0.0));
+        assert_eq!(r.last().map(|r| (r.first, r.min_z)), Some((96, 19.2)));
         assert_eq!(r.last().map(|r| (r.last, r.max_z)), Some((99, 20.0)));
         for w in r.windows(2) {
             assert_eq!(w[0].max_z, w[1].min_z);

@@ -54,9 +54,11 @@ pub fn model(layers: &[Layer], settings: &Settings) -> Result<Model, String> {
     let mut heights = Vec::with_capacity(layers.len());
     let mut last = 0.0;
     for l in layers {
-        let h = match (l.height, l.z) {
-            (Some(h), _) if h > 0.0 => h,
-            (_, Some(z)) if z > last => z - last,
+        // The rise of Z first: PrusaSlicer's `;HEIGHT:` is the height of what it extrudes,
+        // which can differ from the layer's (0.4 on a 0.2 mm layer under a top shell).
+        let h = match (l.z, l.height) {
+            (Some(z), _) if z > last + 1e-9 => z - last,
+            (_, Some(h)) if h > 0.0 => h,
             _ => settings.number("layer_height").unwrap_or(0.2),
         };
         if let Some(z) = l.z {

@@ -46,11 +46,13 @@ pub struct Layer {
     pub index: usize,
     /// The layer's print height (mm) from its comment, or from its first Z move.
     pub z: Option<f64>,
-    /// The layer's height (mm) from its comment, or the rise from the layer below.
+    /// The layer's height (mm) from its comment (`;HEIGHT:`, `; LAYER_HEIGHT:`), or the rise
+    /// from the layer below.
     pub height: Option<f64>,
     /// The sparse infill's direction, when the layer has sparse infill.
     pub sparse: Option<Direction>,
-    /// The solid infill's direction (internal solid, top and bottom surfaces; not bridges).
+    /// The solid infill's direction (internal solid, top and bottom surfaces, bridges: a
+    /// shell's first layer over sparse infill is a bridge, run as the slicer finds best).
     pub solid: Option<Direction>,
 }
 
@@ -93,7 +95,11 @@ fn feature(name: &[u8]) -> Feature {
         | b"Bottom surface"
         | b"Top solid infill"
         | b"Bottom solid infill"
-        | b"SKIN" => Feature::Solid,
+        | b"SKIN"
+        | b"Bridge infill"
+        | b"Internal bridge infill"
+        | b"Bridge"
+        | b"Internal Bridge" => Feature::Solid,
         _ => Feature::Other,
     }
 }

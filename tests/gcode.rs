@@ -215,3 +215,46 @@ fn the_library_reads_a_stream() {
     );
     assert_eq!(scan.bytes, bytes.len() as u64);
 }
+
+#[test]
+fn hostile_input_is_read_without_panic_and_within_bounds() {
+    // Bytes from a small generator: markers, moves, numbers out of range, no newlines.
+    let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut bytes = Vec::new();
+    let pieces: [&[u8]; 12] = [
+        b";LAYER_CHANGE\n",
+        b"; CHANGE_LAYER\n",
+        b";LAYER:-3\n",
+        b";TYPE:FILL\n",
+        b"; FEATURE: Sparse infill\n",
+        b"G1 X1e308 Y-1e308 E1\n",
+        b"G1 X.5 Y NaN E-\n",
+        b"G91\nG1 X3 Y4 E1\n",
+        b"M83\n",
+        b";Z:-inf\n",
+        b"\xff\xfe\x00",
+        b"G92 E99999999999999999999999\n",
+    ];
+    for _ in 0..20_000 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        bytes.extend_from_slice(pieces[(x % 12) as usize]);
+    }
+    bytes.extend(std::iter::repeat_n(b'9', 3 << 20)); // a last line of 3 MB
+    let scan = rotlang::gcode::scan_all(&bytes[..], &Default::default()).expect("scan");
+    for l in &scan.layers {
+        for d in [l.sparse, l.solid].into_iter().flatten() {
+            assert!(
+                d.direction.is_finite() && (0.0..180.0).contains(&d.direction),
+                "{d:?}"
+            );
+            assert!(d.straightness.is_finite());
+        }
+    }
+    // Too many layers is an error, not a heap of them.
+    let mut many = b"M83\n".to_vec();
+    many.extend(b";LAYER_CHANGE\nG1 X1 E1\n".repeat(rotlang::gcode::MAX_LAYERS + 1));
+    let err = rotlang::gcode::scan_all(&many[..], &Default::default()).expect_err("too many");
+    assert!(err.to_string().contains("layers"), "{err}");
+}

@@ -29,5 +29,5 @@ pub use compare::{
 };
 pub use measure::Direction;
 pub use measure::difference;
-pub use read::{Flavor, Layer, Scan, ScanOptions, scan, scan_all};
+pub use read::{Flavor, Layer, MAX_LAYERS, Scan, ScanOptions, scan, scan_all};
 pub use settings::Settings;

@@ -215,10 +215,28 @@ pub fn scan(
     })
 }
 
-/// [`scan`], keeping every layer in [`Scan::layers`].
+/// The most layers [`scan_all`] keeps: 20 m of 0.1 mm layers, a few tens of MB. A file
+/// with more (a hostile one: a layer marker and a move repeated) is refused.
+pub const MAX_LAYERS: usize = 200_000;
+
+/// [`scan`], keeping every layer in [`Scan::layers`] (at most [`MAX_LAYERS`]: an
+/// `InvalidData` error beyond).
 pub fn scan_all(reader: impl Read, options: &ScanOptions) -> io::Result<Scan> {
     let mut layers = Vec::new();
-    let mut scan = scan(reader, options, |l| layers.push(l))?;
+    let mut over = false;
+    let mut scan = scan(reader, options, |l| {
+        if layers.len() < MAX_LAYERS {
+            layers.push(l);
+        } else {
+            over = true;
+        }
+    })?;
+    if over {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidData,
+            format!("more than {MAX_LAYERS} layers: not a print"),
+        ));
+    }
     scan.layers = layers;
     Ok(scan)
 }

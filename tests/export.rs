@@ -82,7 +82,19 @@ fn superslicer_and_orcaslicer() {
 
 #[test]
 fn prusaslicer_ranges_and_its_project() {
-    let (code, out, err) = rotlang(&["export", "--to", "prusaslicer", "0, 90", "--layers", "3"]);
+    // No shells: one range per layer (shell layers would be one range).
+    let (code, out, err) = rotlang(&[
+        "export",
+        "--to",
+        "prusaslicer",
+        "0, 90",
+        "--layers",
+        "3",
+        "--bottom-shell-layers",
+        "0",
+        "--top-shell-layers",
+        "0",
+    ]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("fill_pattern = alignedrectilinear"), "{out}");
     assert!(
@@ -103,6 +115,10 @@ fn prusaslicer_ranges_and_its_project() {
         "0, 90",
         "--layers",
         "3",
+        "--bottom-shell-layers",
+        "0",
+        "--top-shell-layers",
+        "0",
         "--mesh",
         stl.to_str().expect("utf-8"),
         "--out",
@@ -206,4 +222,30 @@ fn shell_words(s: &str) -> Vec<String> {
         out.push(cur);
     }
     out
+}
+
+#[test]
+fn solid_templates_go_where_a_slicer_has_a_setting() {
+    let (code, out, _) = rotlang(&["export", "--to", "cura", "0, 90", "--solid", "+30"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("skin_angles = [60,30,0,150,120,90]\n"),
+        "{out}"
+    );
+    let (code, out, err) = rotlang(&["export", "--to", "orcaslicer", "0, 90", "--solid", "0 90"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("solid_infill_rotate_template = 0, 90\n"),
+        "{out}"
+    );
+    let (code, _, err) = rotlang(&["export", "--to", "prusaslicer", "0", "--solid", "+30"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("slicer::inexpressible"), "{err}");
+    // Solid signs are errors in a solid template, reported against its own text.
+    let (code, _, err) = rotlang(&["export", "--to", "cura", "0", "--solid", "+30M"]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("<solid template>") && err.contains("solid-sign-in-solid-template"),
+        "{err}"
+    );
 }

@@ -150,7 +150,7 @@ const MODEL: [&str; 8] = [
 ];
 
 /// Reads a sliced file back: (matched, compared) with the template, asserting all match.
-fn read_back(gcode: &Path, template: &str, tolerance: &str, what: &str) -> (u64, u64) {
+fn read_back(gcode: &Path, template: &str, tolerance: &str, what: &str) -> serde_json::Value {
     let (code, out, err) = rotlang(&[
         "gcode",
         gcode.to_str().expect("utf-8"),
@@ -197,7 +197,7 @@ fn read_back(gcode: &Path, template: &str, tolerance: &str, what: &str) -> (u64,
     }
     assert_eq!(code, 0, "{what}: {err}");
     eprintln!("{what}: {matched} of {compared} sparse layers match");
-    (matched, compared)
+    v
 }
 
 #[test]
@@ -210,7 +210,10 @@ fn cura_engine_prints_every_template_as_exported() {
         .join("usr/share/cura/resources/definitions");
     for (mesh_name, mesh) in meshes() {
         for template in TEMPLATES {
-            let mut args = vec!["export", "--to", "cura", "--format", "json", template];
+            // The shells get a solid template of their own: Cura's skin_angles.
+            let mut args = vec![
+                "export", "--to", "cura", "--format", "json", template, "--solid", "+30",
+            ];
             args.extend(MODEL);
             let (code, out, err) = rotlang(&args);
             assert_eq!(code, 0, "{err}");
@@ -218,6 +221,7 @@ fn cura_engine_prints_every_template_as_exported() {
             let angles = v["settings"]["infill_angles"]
                 .as_str()
                 .expect("infill_angles");
+            let skin = v["settings"]["skin_angles"].as_str().expect("skin_angles");
             let max_error = v["max_error"].as_f64().expect("max_error");
             assert!(max_error <= 0.5, "{template}: rounded by {max_error}");
             let gcode = work().join(format!("cura-{mesh_name}-{}.gcode", slug(template)));
@@ -229,6 +233,7 @@ fn cura_engine_prints_every_template_as_exported() {
             for (k, val) in [
                 ("infill_pattern", "lines"),
                 ("infill_angles", angles),
+                ("skin_angles", skin),
                 ("infill_sparse_density", "20"),
                 ("infill_line_distance", "2"),
                 ("layer_height", "0.2"),
@@ -260,12 +265,20 @@ fn cura_engine_prints_every_template_as_exported() {
                     .join("\n")
             );
             // Whole degrees: up to 0.5° of rounding, plus the measurement's 1°.
-            read_back(
-                &gcode,
-                template,
-                "1.5",
-                &format!("cura {mesh_name} `{template}`"),
-            );
+            let what = format!("cura {mesh_name} `{template}`");
+            let v = read_back(&gcode, template, "1.5", &what);
+            // `+30` turns the solid layers too: 30° × (layer + 1).
+            for i in [0, 1, LAYERS - 2, LAYERS - 1] {
+                let solid = v["layers"][i]["solid"]["direction"]
+                    .as_f64()
+                    .expect("solid");
+                let want = (30.0 * (i + 1) as f64).rem_euclid(180.0);
+                let off = (solid - want + 90.0).rem_euclid(180.0) - 90.0;
+                assert!(
+                    off.abs() <= 1.0,
+                    "{what}: solid layer {i} at {solid}°, not {want}°"
+                );
+            }
         }
     }
 }

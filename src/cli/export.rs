@@ -16,6 +16,7 @@ Examples:
   rotlang export --to superslicer '+30'                 fill_angle_increment = 30
   rotlang export --to cura '+10L25%, -10l25%' --layers 150 --layer-height 0.2
   rotlang export --to orcaslicer '0 90'                 a template OrcaSlicer reads as rotlang does
+  rotlang export --to cura '+30/50%' --solid '0, 90'    skin_angles for the solid layers too
   rotlang export --to prusaslicer '+45#3' --height 20 --mesh part.stl --out part.3mf
   rotlang export --to cura --profile 'process/0.20mm Standard.json' --format json
 
@@ -56,6 +57,10 @@ pub struct ExportArgs {
     pub profile: Option<PathBuf>,
     #[command(flatten)]
     pub model: ModelArgs,
+    /// A solid_infill_rotate_template for the solid layers: Cura's skin_angles,
+    /// OrcaSlicer's solid_infill_rotate_template (SuperSlicer and PrusaSlicer have none).
+    #[arg(long, value_name = "TEMPLATE", allow_hyphen_values = true)]
+    pub solid: Option<String>,
     /// The base infill direction in degrees, added to every angle.
     #[arg(long, value_name = "DEG", default_value_t = 0.0, value_parser = args::finite,
           allow_negative_numbers = true)]
@@ -170,7 +175,24 @@ pub fn run(args: &ExportArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         base,
         seed: args.seed,
     };
-    let exported = match export::export(&input.text, slicer, model, options) {
+    let result = export::export(&input.text, slicer, model, options);
+    // The solid template's errors are reported against its own text.
+    let solid_input = args.solid.as_ref().map(|t| Input {
+        name: "<solid template>".into(),
+        text: t.clone(),
+        path: None,
+    });
+    let (input, result) = match (result, &solid_input) {
+        (Ok(mut e), Some(solid)) => {
+            let r = export::export_solid(&mut e, &solid.text, model, options).map(|()| e);
+            match r {
+                Err(ExportError::Template(p)) => (solid.clone(), Err(ExportError::Template(p))),
+                other => (input, other),
+            }
+        }
+        (r, _) => (input, r),
+    };
+    let exported = match result {
         Ok(e) => e,
         Err(ExportError::Template(parse)) => {
             if args.format == Format::Json {

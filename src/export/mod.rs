@@ -27,7 +27,7 @@ mod slicers;
 #[cfg(feature = "3mf")]
 pub mod threemf;
 
-pub use slicers::{Range, export};
+pub use slicers::{Range, export, export_solid};
 
 use crate::Parse;
 

@@ -30,8 +30,13 @@ struct Layers {
     fills: Vec<Fill>,
 }
 
-fn evaluate(text: &str, model: &Model, options: Options) -> Result<Layers, ExportError> {
-    let (parse, layers) = eval::parse_layers(text, crate::Target::Sparse, model, options);
+fn evaluate(
+    text: &str,
+    target: crate::Target,
+    model: &Model,
+    options: Options,
+) -> Result<Layers, ExportError> {
+    let (parse, layers) = eval::parse_layers(text, target, model, options);
     if parse.has_errors() {
         return Err(ExportError::Template(Box::new(parse)));
     }
@@ -118,7 +123,7 @@ pub fn export(
     model: &Model,
     options: Options,
 ) -> Result<Export, ExportError> {
-    let layers = evaluate(text, model, options)?;
+    let layers = evaluate(text, crate::Target::Sparse, model, options)?;
     let mut out = Export {
         slicer,
         settings: Vec::new(),
@@ -153,8 +158,9 @@ fn per_layer_note(out: &mut Export, count: usize) {
     });
 }
 
-fn cura(layers: &Layers, model: &Model, out: &mut Export) {
-    let d = &layers.directions;
+/// Cura's list of the directions `d` (its period, or every layer): the text and the
+/// largest rounding.
+fn cura_list(d: &[f64], out: &mut Export) -> (String, f64) {
     let list: &[f64] = match period(d) {
         Some(p) => &d[..p],
         None => {
@@ -172,8 +178,12 @@ fn cura(layers: &Layers, model: &Model, out: &mut Export) {
             format!("{}", rounded as i64)
         })
         .collect();
-    out.settings
-        .push(("infill_angles".into(), format!("[{}]", cura.join(","))));
+    (format!("[{}]", cura.join(",")), max_error)
+}
+
+fn cura(layers: &Layers, model: &Model, out: &mut Export) {
+    let (list, max_error) = cura_list(&layers.directions, out);
+    out.settings.push(("infill_angles".into(), list));
     // Cura combines sparse layers when the infill layer thickness is above the layer
     // height; the list is cycled per infill layer, so they must be one.
     out.settings.push((
@@ -195,12 +205,79 @@ fn cura(layers: &Layers, model: &Model, out: &mut Export) {
         code: "slicer::axis",
         message: "Cura measures from the Y axis, clockwise: rotlang's 0° (along X) is Cura's 90°; \
                   set infill_pattern to lines or zigzag (grid and others add directions of \
-                  their own); solid layers keep Cura's skin_angles"
+                  their own); solid layers keep Cura's skin_angles unless --solid gives a \
+                  template for them"
             .into(),
     });
     if let Some(n) = solid_note(&layers.fills, "Cura") {
         out.notes.push(n);
     }
+}
+
+/// Adds the setting of the solid infill's directions (a `solid_infill_rotate_template`,
+/// read as a solid template) to `out`: Cura's `skin_angles`, OrcaSlicer's
+/// `solid_infill_rotate_template`. SuperSlicer and PrusaSlicer turn solid infill with
+/// the sparse infill's angle: an error.
+pub fn export_solid(
+    out: &mut Export,
+    text: &str,
+    model: &Model,
+    options: Options,
+) -> Result<(), ExportError> {
+    let layers = evaluate(text, crate::Target::Solid, model, options)?;
+    match out.slicer {
+        Slicer::Cura => {
+            let (list, max_error) = cura_list(&layers.directions, out);
+            out.settings.push(("skin_angles".into(), list));
+            if max_error > SAME {
+                out.max_error = out.max_error.max(number::round_angle(max_error));
+                out.notes.push(Note {
+                    code: "slicer::rounded",
+                    message: format!(
+                        "Cura keeps whole degrees: the skin angles are rounded, by up to {}°",
+                        text_of(number::round_angle(max_error))
+                    ),
+                });
+            }
+            Ok(())
+        }
+        Slicer::OrcaSlicer => {
+            let mut solid = Export {
+                settings: Vec::new(),
+                notes: Vec::new(),
+                ..out.clone()
+            };
+            orcaslicer_key(
+                text,
+                &layers,
+                model,
+                options,
+                &mut solid,
+                "solid_infill_rotate_template",
+                crate::Target::Solid,
+            )?;
+            out.settings.extend(
+                solid
+                    .settings
+                    .into_iter()
+                    .filter(|(k, _)| k == "solid_infill_rotate_template"),
+            );
+            out.notes.extend(solid.notes);
+            Ok(())
+        }
+        Slicer::SuperSlicer | Slicer::PrusaSlicer => Err(ExportError::Inexpressible {
+            code: "slicer::inexpressible",
+            message: format!(
+                "{} turns solid infill with the sparse infill's angle: it has no setting for \
+                 a solid template",
+                out.slicer.name()
+            ),
+        }),
+    }
+}
+
+fn text_of(a: f64) -> String {
+    text(a)
 }
 
 fn superslicer(layers: &Layers, model: &Model, out: &mut Export) {
@@ -313,6 +390,26 @@ fn orcaslicer(
     options: Options,
     out: &mut Export,
 ) -> Result<(), ExportError> {
+    orcaslicer_key(
+        text_in,
+        layers,
+        model,
+        options,
+        out,
+        "sparse_infill_rotate_template",
+        crate::Target::Sparse,
+    )
+}
+
+fn orcaslicer_key(
+    text_in: &str,
+    layers: &Layers,
+    model: &Model,
+    options: Options,
+    out: &mut Export,
+    key: &str,
+    target: crate::Target,
+) -> Result<(), ExportError> {
     if let Some(n) = solid_note(&layers.fills, "OrcaSlicer") {
         return Err(ExportError::Inexpressible {
             code: "slicer::inexpressible",
@@ -346,8 +443,8 @@ fn orcaslicer(
     let mut candidates: Vec<(String, &'static str)> = Vec::new();
     if options.base == 0.0 {
         candidates.push((text_in.trim().to_owned(), "the template itself"));
-        let fixed = crate::fix::apply_all_with(text_in, crate::Target::Sparse, |t| {
-            crate::dialect::compat(t, crate::Target::Sparse, model, options)
+        let fixed = crate::fix::apply_all_with(text_in, target, |t| {
+            crate::dialect::compat(t, target, model, options)
         });
         if !fixed.parse.has_errors() {
             candidates.push((fixed.text, "the template with the compat fixes"));
@@ -367,8 +464,7 @@ fn orcaslicer(
     candidates.push((list(&full), "a plain list of every layer"));
     for (candidate, what) in candidates {
         if reads_the_same(&candidate) {
-            out.settings
-                .push(("sparse_infill_rotate_template".into(), candidate.clone()));
+            out.settings.push((key.into(), candidate.clone()));
             shells(out, model, "bottom_shell_layers", "top_shell_layers");
             if candidate != text_in.trim() {
                 let per_layer = what.ends_with("every layer");

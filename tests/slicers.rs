@@ -267,6 +267,9 @@ fn cura_engine_prints_every_template_as_exported() {
             // Whole degrees: up to 0.5° of rounding, plus the measurement's 1°.
             let what = format!("cura {mesh_name} `{template}`");
             let v = read_back(&gcode, template, "1.5", &what);
+            if template == "0, 15, 30" {
+                settings_as_cura_writes_them(&gcode, angles);
+            }
             // `+30` turns the solid layers too: 30° × (layer + 1).
             for i in [0, 1, LAYERS - 2, LAYERS - 1] {
                 let solid = v["layers"][i]["solid"]["direction"]
@@ -369,6 +372,38 @@ fn prusa_slicer_settings_are_read_from_its_gcode() {
     let (code, out, _) = rotlang(&["gcode", gcode.to_str().expect("utf-8"), "--template", "30"]);
     assert_eq!(code, 1, "{out}");
     assert!(out.contains("OFF"), "{out}");
+}
+
+/// Cura's own front end (not CuraEngine) ends its G-code with its profile in `;SETTING_3`
+/// lines: JSON of INI text, escaped once more, in pieces of 80 characters. Written here
+/// as Cura 4 writes them, `rotlang gcode` reads `infill_angles` from them.
+fn settings_as_cura_writes_them(gcode: &Path, angles: &str) {
+    let profile = serde_json::json!({
+        "global_quality": "[general]\nversion = 4\nname = test\n\n[values]\nlayer_height = 0.2\n",
+        "extruder_quality": [format!(
+            "[general]\nversion = 4\n\n[values]\ninfill_angles = {angles}\ninfill_pattern = lines\n"
+        )],
+    })
+    .to_string();
+    let escaped = profile.replace('\\', "\\\\").replace('\n', "\\n");
+    let mut text = std::fs::read_to_string(gcode).expect("the G-code");
+    for chunk in escaped.as_bytes().chunks(80) {
+        text.push_str(";SETTING_3 ");
+        text.push_str(std::str::from_utf8(chunk).expect("ASCII"));
+        text.push('\n');
+    }
+    let with = gcode.with_extension("settings.gcode");
+    std::fs::write(&with, text).expect("write");
+    let (code, out, err) = rotlang(&["gcode", with.to_str().expect("utf-8")]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(
+        out.contains(&format!("expected: infill_angles = {angles}")),
+        "{out}"
+    );
+    assert!(
+        out.contains("matched 26 of 26 sparse layers within 1°"),
+        "{out}"
+    );
 }
 
 fn slug(t: &str) -> String {

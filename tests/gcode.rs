@@ -258,3 +258,53 @@ fn hostile_input_is_read_without_panic_and_within_bounds() {
     let err = rotlang::gcode::scan_all(&many[..], &Default::default()).expect_err("too many");
     assert!(err.to_string().contains("layers"), "{err}");
 }
+
+#[test]
+fn help_examples_run() {
+    let file = orca_file("help.gcode", "0, 90", 12);
+    let f = file.to_str().expect("utf-8");
+    let svg = file.with_extension("svg");
+    let (_, help, _) = rotlang(&["help", "gcode"]);
+    let mut ran = 0;
+    for line in help
+        .lines()
+        .map(str::trim_start)
+        .filter(|l| l.starts_with("rotlang gcode part.gcode"))
+    {
+        // The example, without its comment and shell redirection, on the fixture.
+        let cmd = line
+            .split("  ")
+            .next()
+            .expect("command")
+            .split('>')
+            .next()
+            .expect("command");
+        let argv: Vec<String> = cmd
+            .split_whitespace()
+            .skip(1)
+            .map(|w| w.trim_matches('\''))
+            .map(|w| match w {
+                "part.gcode" => f.to_owned(),
+                "layers.svg" => svg.display().to_string(),
+                _ => w.to_owned(),
+            })
+            .collect();
+        // `--template '0, 90'` was split at its space: join the pieces back.
+        let mut joined: Vec<String> = Vec::new();
+        for w in argv {
+            match joined.last_mut() {
+                Some(last) if last.ends_with(',') => {
+                    last.push(' ');
+                    last.push_str(&w);
+                }
+                _ => joined.push(w),
+            }
+        }
+        let args: Vec<&str> = joined.iter().map(String::as_str).collect();
+        let (code, _, err) = rotlang(&args);
+        assert_eq!(code, 0, "{line}: {err}");
+        ran += 1;
+    }
+    assert_eq!(ran, 4, "{help}");
+    assert!(svg.exists());
+}

@@ -16,8 +16,10 @@ pub mod diagnostic;
 pub mod dialect;
 pub mod eval;
 pub mod explain;
+pub mod export;
 pub mod fix;
 pub mod format;
+pub mod gcode;
 #[cfg(feature = "infill")]
 pub mod infill;
 pub mod ir;

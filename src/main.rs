@@ -47,6 +47,10 @@ enum Command {
     Preview(cli::preview::PreviewArgs),
     /// Explain a template in plain words, or a diagnostic code.
     Explain(cli::explain::ExplainArgs),
+    /// Print a template as the settings of Cura, SuperSlicer, PrusaSlicer or OrcaSlicer.
+    Export(cli::export::ExportArgs),
+    /// Measure the infill direction of every layer of a G-code file, against the template.
+    Gcode(cli::gcode::GcodeArgs),
     /// Print a shell completion script (bash, zsh, fish, powershell, elvish).
     Completions(cli::completions::CompletionsArgs),
     /// Print the manual page (roff), of rotlang or of one command.
@@ -91,6 +95,8 @@ fn main() -> ExitCode {
         Command::Plot(args) => cli::plot::run(args, &mut out, &mut err),
         Command::Preview(args) => cli::preview::run(args, &mut out, &mut err),
         Command::Explain(args) => cli::explain::run(args, &mut out),
+        Command::Export(args) => cli::export::run(args, &mut out, &mut err),
+        Command::Gcode(args) => cli::gcode::run(args, &mut out, &mut err),
         Command::Completions(args) => cli::completions::completions(args, Cli::command(), &mut out),
         Command::Man(args) => cli::completions::man(args, Cli::command(), &mut out),
     };

@@ -24,6 +24,7 @@ fn emitted_codes() -> BTreeSet<String> {
                 "\"orcaslicer::",
                 "\"rotlang-lsp::",
                 "\"profile::",
+                "\"slicer::",
             ] {
                 for (at, _) in text.match_indices(prefix) {
                     let rest = &text[at + 1..];

@@ -51,6 +51,9 @@ struct Unit {
 
 #[derive(Default)]
 struct Run {
+    /// Whether the JSON reports are wanted (`--format json`): built only then, since a
+    /// file of 200,000 templates would otherwise hold 200,000 JSON objects for nothing.
+    json: bool,
     units: Vec<Unit>,
     file_errors: Vec<ProfileError>,
     /// Information for the human report (`note: ...` lines).
@@ -64,7 +67,10 @@ struct Run {
 pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     let target: Target = args.target.into();
     let compat = args.compat.is_some();
-    let mut run = Run::default();
+    let mut run = Run {
+        json: args.format == Format::Json,
+        ..Run::default()
+    };
     let many = args.templates.len() > 1;
     for (i, arg) in args.templates.iter().enumerate() {
         let path = Path::new(arg);
@@ -123,7 +129,7 @@ impl Run {
         target: Target,
         compat: bool,
     ) {
-        let mut diagnostics = crate::parse(&text, target).diagnostics;
+        let mut diagnostics = crate::check(&text, target).diagnostics;
         if compat {
             diagnostics.extend(compat::compat(
                 &text,
@@ -135,17 +141,17 @@ impl Run {
         self.count(&diagnostics);
         self.templates += 1;
         let index = LineIndex::new(&text);
-        let report = serde_json::json!({
+        let report = self.json.then(|| serde_json::json!({
             "input": text, "name": name, "file": path.as_ref().map(|p| p.display().to_string()),
             "key": null, "object": null,
             "diagnostics": diagnostics.iter().map(|d| diagnostic_json(&index, d)).collect::<Vec<_>>(),
             "errors": diagnostics.iter().filter(|d| d.is_error()).count(),
             "warnings": diagnostics.iter().filter(|d| !d.is_error()).count(),
-        });
+        }));
         self.units.push(Unit {
             input: Input { name, text, path },
             diagnostics,
-            reports: vec![report],
+            reports: report.into_iter().collect(),
         });
     }
 
@@ -196,8 +202,14 @@ impl Run {
                 .push(format!("{file}: no infill rotation template in this file"));
         }
         let mut model_notes: BTreeMap<String, ()> = BTreeMap::new();
+        // One line index per text, not per template: a file of many templates stays linear.
+        let indexes: Vec<LineIndex> = profile
+            .sources
+            .iter()
+            .map(|s| LineIndex::new(&s.text))
+            .collect();
         for found in &profile.templates {
-            let parse = crate::parse(&found.text, found.target);
+            let parse = crate::check(&found.text, found.target);
             let mut diagnostics = parse.diagnostics;
             if compat {
                 let pm =
@@ -214,15 +226,17 @@ impl Run {
                 .into_iter()
                 .map(|d| into_file(d, found))
                 .collect();
-            let index = LineIndex::new(&unit.input.text);
-            unit.reports.push(serde_json::json!({
+            let index = &indexes[found.source];
+            if self.json {
+                unit.reports.push(serde_json::json!({
                 "input": found.text, "name": format!("{}: {}", unit.input.name, found.label()),
                 "file": file, "source": unit.input.name, "key": found.key, "object": found.object,
                 "target": match found.target { Target::Sparse => "sparse", Target::Solid => "solid" },
-                "diagnostics": moved.iter().map(|d| diagnostic_json(&index, d)).collect::<Vec<_>>(),
+                "diagnostics": moved.iter().map(|d| diagnostic_json(index, d)).collect::<Vec<_>>(),
                 "errors": moved.iter().filter(|d| d.is_error()).count(),
                 "warnings": moved.iter().filter(|d| !d.is_error()).count(),
             }));
+            }
             unit.diagnostics.extend(moved);
         }
         for note in &profile.notes {
@@ -234,13 +248,15 @@ impl Run {
             .with_primary(note.span, "here");
             self.count(std::slice::from_ref(&d));
             let unit = &mut units[note.source];
-            let index = LineIndex::new(&unit.input.text);
-            unit.reports.push(serde_json::json!({
-                "name": unit.input.name, "file": file, "source": unit.input.name,
-                "key": null, "object": null,
-                "diagnostics": [diagnostic_json(&index, &d)],
-                "errors": usize::from(note.error), "warnings": usize::from(!note.error),
-            }));
+            let index = &indexes[note.source];
+            if self.json {
+                unit.reports.push(serde_json::json!({
+                    "name": unit.input.name, "file": file, "source": unit.input.name,
+                    "key": null, "object": null,
+                    "diagnostics": [diagnostic_json(index, &d)],
+                    "errors": usize::from(note.error), "warnings": usize::from(!note.error),
+                }));
+            }
             unit.diagnostics.push(d);
         }
         self.notes.extend(model_notes.into_keys());

@@ -334,7 +334,7 @@ impl Run {
 
 /// A template's diagnostic moved into the file it came from: spans through the offset
 /// map, and the message naming the key (and object).
-fn into_file(mut d: Diagnostic, found: &Found) -> Diagnostic {
+pub(crate) fn into_file(mut d: Diagnostic, found: &Found) -> Diagnostic {
     for l in &mut d.labels {
         l.span = found.span_in_source(l.span);
     }

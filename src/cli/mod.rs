@@ -10,11 +10,13 @@ mod dialect;
 pub mod expand;
 pub mod explain;
 pub mod files;
+mod fix_files;
 pub mod fmt;
 pub mod model;
 pub mod plot;
 pub mod preview;
 mod sources;
+mod write;
 
 use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};

@@ -284,19 +284,17 @@ impl Run {
             let unit = &mut units[note.source];
             let index = &indexes[note.source];
             let mut one = vec![d];
-            if unit.keep(&mut one) > 0 {
-                continue;
-            }
-            let d = one.remove(0);
+            let omitted = unit.keep(&mut one);
             if self.json {
                 unit.reports.push(serde_json::json!({
                     "name": unit.input.name, "file": file, "source": unit.input.name,
-                    "key": null, "object": null,
-                    "diagnostics": [diagnostic_json(index, &d)],
+                    "key": note.key, "object": null,
+                    "diagnostics": one.iter().map(|d| diagnostic_json(index, d)).collect::<Vec<_>>(),
                     "errors": usize::from(note.error), "warnings": usize::from(!note.error),
+                    "omitted": omitted,
                 }));
             }
-            unit.diagnostics.push(d);
+            unit.diagnostics.extend(one);
         }
         self.notes.extend(model_notes.into_keys());
         self.units.extend(units);

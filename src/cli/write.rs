@@ -134,3 +134,32 @@ fn in_place(file: &mut File, new: &[u8]) -> io::Result<()> {
     file.set_len(new.len() as u64)?;
     file.sync_all()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::write_file;
+
+    fn scratch(name: &str, text: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("rotlang-write-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+
+    /// A file that changed between the read and the write is left alone.
+    #[test]
+    fn a_file_changed_since_it_was_read_is_not_written() {
+        let path = scratch("changed.rot", "0, 90, 45\n");
+        let why = write_file(&path, b"0,90\n", b"0, 90\n").unwrap_err();
+        assert!(why.contains("changed since it was read"), "{why}");
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "0, 90, 45\n");
+        // The same file, unchanged since the read, is written.
+        write_file(&path, b"0, 90, 45\n", b"0, 90\n").unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "0, 90\n");
+        // A longer file whose start is what was read has changed too.
+        std::fs::write(&path, "0, 90\n, 5").unwrap();
+        assert!(write_file(&path, b"0, 90\n", b"x").is_err());
+        let _ = std::fs::remove_file(&path);
+    }
+}

@@ -33,7 +33,7 @@ fn file(name: &str, text: &str) -> PathBuf {
     path
 }
 
-fn check(path: &PathBuf, format: &str) -> usize {
+fn check(path: &std::path::Path, format: &str) -> usize {
     let path = path.display().to_string();
     let args = Cli::parse_from(["check", "--format", format, "--color", "never", &path]).args;
     let mut out = Vec::new();

@@ -24,6 +24,8 @@ fn zip_of(entries: &[(&str, &[u8])]) -> Vec<u8> {
 }
 
 /// Peak resident memory of `rotlang ARGS` (stdin from `stdin`, if any), from `wait4`.
+// Reaped by `wait4` below, which also gives the rusage `Child::wait` does not.
+#[allow(clippy::zombie_processes)]
 fn peak_rss(args: &[&str], stdin: Option<&Path>) -> u64 {
     use std::process::Stdio;
     let input = match stdin {

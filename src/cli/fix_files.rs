@@ -50,16 +50,23 @@ pub(crate) fn run(
         }
     }
     paths.extend(args.files.iter().cloned());
-    for text in &templates {
+    // `-` is stdin, as everywhere a template goes.
+    let inputs = if templates.is_empty() {
+        Vec::new()
+    } else {
+        super::gather(&templates, &[])?
+    };
+    for input in &inputs {
+        let text = &input.text;
         let (text, why) = fix_text(args, text, crate::Target::from(args.target), None);
         match why {
             Ok(n) => totals.applied += n,
             Err(why) => {
-                writeln!(err, "<template>: not fixed: {why}").map_err(io)?;
+                writeln!(err, "{}: not fixed: {why}", input.name).map_err(io)?;
                 totals.code = 1;
             }
         }
-        writeln!(out, "{text}").map_err(io)?;
+        writeln!(out, "{}", text.strip_suffix('\n').unwrap_or(&text)).map_err(io)?;
     }
     for path in &paths {
         file(args, path, &mut totals, out, err).map_err(io)?;

@@ -5,6 +5,11 @@
 //! reads each child's peak resident set size from `wait4`'s rusage. Target: at most 16×
 //! the text. Prints one line per run and exits 1 when a run is over the target.
 //!
+//! Every way `check` reads a template is measured (issue 22 item 1): `--file`, the file
+//! named as a path, stdin, and the template as the value of a JSON preset, a jsonc preset,
+//! an `.ini` line and a `.3mf` project's settings (a 16 MiB template is more than a 3mf
+//! entry may inflate to: that run measures the refusal).
+//!
 //! `ROTLANG_MEMORY_SIZES=1,4` picks sizes (MiB); `ROTLANG_MEMORY_KINDS=templates,minimal`
 //! picks inputs.
 
@@ -33,9 +38,13 @@ const KINDS: [(&str, &str); 5] = [
 ];
 
 #[cfg(unix)]
-fn peak_rss_bytes(cmd: &mut Command) -> Option<u64> {
+fn peak_rss_bytes(cmd: &mut Command, stdin: Option<&std::path::Path>) -> Option<u64> {
+    let input = match stdin {
+        Some(path) => Stdio::from(std::fs::File::open(path).ok()?),
+        None => Stdio::null(),
+    };
     let child = cmd
-        .stdin(Stdio::null())
+        .stdin(input)
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .spawn()
@@ -50,7 +59,7 @@ fn peak_rss_bytes(cmd: &mut Command) -> Option<u64> {
 }
 
 #[cfg(not(unix))]
-fn peak_rss_bytes(_: &mut Command) -> Option<u64> {
+fn peak_rss_bytes(_: &mut Command, _: Option<&std::path::Path>) -> Option<u64> {
     None
 }
 
@@ -69,6 +78,84 @@ fn write_input(path: &std::path::Path, unit: &str, len: usize) {
         left -= n;
     }
     file.flush().expect("write the input");
+}
+
+/// `prefix`, then `unit` repeated to `len` bytes, then `suffix`, written to `path`.
+fn write_wrapped(path: &std::path::Path, prefix: &str, unit: &str, len: usize, suffix: &str) {
+    use std::io::Write;
+    let body = path.with_extension("body");
+    write_input(&body, unit, len);
+    let mut out = std::io::BufWriter::new(std::fs::File::create(path).expect("create the input"));
+    out.write_all(prefix.as_bytes()).expect("write the input");
+    std::io::copy(&mut std::fs::File::open(&body).expect("the body"), &mut out)
+        .expect("write the input");
+    out.write_all(suffix.as_bytes()).expect("write the input");
+    out.flush().expect("write the input");
+    let _ = std::fs::remove_file(body);
+}
+
+/// A `.3mf` project whose `project_settings.config` holds the template, streamed into the
+/// archive a block at a time.
+#[cfg(feature = "3mf")]
+fn write_project(path: &std::path::Path, unit: &str, len: usize) {
+    use std::io::Write;
+    let file = std::fs::File::create(path).expect("create the input");
+    let mut zip = zip::ZipWriter::new(file);
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    zip.start_file("Metadata/project_settings.config", options)
+        .expect("write the input");
+    zip.write_all(b"{\"sparse_infill_rotate_template\": \"")
+        .expect("write the input");
+    let block = unit.repeat(65_536 / unit.len() + 1);
+    let mut left = len;
+    while left > 0 {
+        let n = left.min(block.len());
+        zip.write_all(&block.as_bytes()[..n])
+            .expect("write the input");
+        left -= n;
+    }
+    zip.write_all(b"\"}").expect("write the input");
+    zip.finish().expect("write the input");
+}
+
+/// The profile files of a template: name, and how `check` is run on it.
+fn profile_runs(
+    dir: &std::path::Path,
+    name: &str,
+    mib: usize,
+    unit: &str,
+) -> Vec<(String, PathBuf)> {
+    let len = mib * MIB;
+    let mut runs = Vec::new();
+    let json = dir.join(format!("{name}-{mib}.json"));
+    write_wrapped(
+        &json,
+        "{\"sparse_infill_rotate_template\": \"",
+        unit,
+        len,
+        "\"}",
+    );
+    runs.push(("check .json".to_owned(), json));
+    let jsonc = dir.join(format!("{name}-{mib}.jsonc"));
+    write_wrapped(
+        &jsonc,
+        "// a preset\n{\"sparse_infill_rotate_template\": \"",
+        unit,
+        len,
+        "\",}",
+    );
+    runs.push(("check .jsonc".to_owned(), jsonc));
+    let ini = dir.join(format!("{name}-{mib}.ini"));
+    write_wrapped(&ini, "sparse_infill_rotate_template = ", unit, len, "\n");
+    runs.push(("check .ini".to_owned(), ini));
+    #[cfg(feature = "3mf")]
+    {
+        let project = dir.join(format!("{name}-{mib}.3mf"));
+        write_project(&project, unit, len);
+        runs.push(("check .3mf".to_owned(), project));
+    }
+    runs
 }
 
 fn list(var: &str) -> Option<Vec<String>> {
@@ -93,7 +180,7 @@ fn main() {
     let binary = env!("CARGO_BIN_EXE_rotlang");
     let mut over = 0;
     println!(
-        "{:<10} {:>5} {:<7} {:>10} {:>7}",
+        "{:<10} {:>5} {:<13} {:>10} {:>7}",
         "input", "MiB", "command", "peak RSS", "ratio"
     );
     for (name, unit) in &kinds {
@@ -101,11 +188,27 @@ fn main() {
             let len = mib * MIB;
             let path: PathBuf = dir.join(format!("{name}-{mib}.rot"));
             write_input(&path, unit, len);
+            let mut runs: Vec<(String, Command, Option<&std::path::Path>)> = Vec::new();
             for command in ["check", "expand", "fmt"] {
                 let mut cmd = Command::new(binary);
                 cmd.arg(command).arg("--file").arg(&path);
-                let Some(peak) = peak_rss_bytes(&mut cmd) else {
-                    println!("{name:<10} {mib:>5} {command:<7} (not measured on this platform)");
+                runs.push((format!("{command} -f"), cmd, None));
+            }
+            let mut cmd = Command::new(binary);
+            cmd.arg("check").arg(&path);
+            runs.push(("check .rot".to_owned(), cmd, None));
+            let mut cmd = Command::new(binary);
+            cmd.arg("check");
+            runs.push(("check stdin".to_owned(), cmd, Some(&path)));
+            let profiles = profile_runs(&dir, name, mib, unit);
+            for (label, file) in &profiles {
+                let mut cmd = Command::new(binary);
+                cmd.arg("check").arg(file);
+                runs.push((label.clone(), cmd, None));
+            }
+            for (command, mut cmd, stdin) in runs {
+                let Some(peak) = peak_rss_bytes(&mut cmd, stdin) else {
+                    println!("{name:<10} {mib:>5} {command:<13} (not measured on this platform)");
                     continue;
                 };
                 let ratio = peak as f64 / len as f64;
@@ -116,11 +219,14 @@ fn main() {
                     ""
                 };
                 println!(
-                    "{name:<10} {mib:>5} {command:<7} {:>7.1} MB {ratio:>6.1}x{flag}",
+                    "{name:<10} {mib:>5} {command:<13} {:>7.1} MB {ratio:>6.1}x{flag}",
                     peak as f64 / 1e6
                 );
             }
             let _ = std::fs::remove_file(&path);
+            for (_, file) in profiles {
+                let _ = std::fs::remove_file(file);
+            }
         }
     }
     let _ = std::fs::remove_dir(&dir);

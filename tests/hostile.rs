@@ -359,3 +359,247 @@ fn huge_numbers_and_counts() {
         assert!(!parse.has_errors(), "{t}: {:?}", codes(&parse));
     }
 }
+
+/// Hostile profiles, presets and projects (issue 22, "what held"): each is an error for
+/// the file or a profile whose spans stay in its text, never a panic, a hang or an
+/// unbounded allocation. The archive cases that need a zip writer are in
+/// `tests/profiles.rs` too (bombs, 10,001 entries, lying sizes, truncated archives).
+#[cfg(feature = "3mf")]
+mod profiles {
+    use std::io::Write;
+    use std::path::{Path, PathBuf};
+
+    use rotlang::Target;
+    use rotlang::profile::{self, Profile};
+
+    /// Parsed, and every template and note span inside its source.
+    fn read(name: &str, bytes: &[u8]) -> Result<Profile, String> {
+        let p = profile::parse(Path::new(name), bytes).map_err(|e| e.message)?;
+        for f in &p.templates {
+            let text = &p.sources[f.source].text;
+            let span = f.span_in_source(rotlang::Span::new(0, f.text.len()));
+            assert!(text.get(span.range()).is_some(), "{name}: {span:?}");
+        }
+        for n in &p.notes {
+            assert!(
+                p.sources[n.source].text.get(n.span.range()).is_some(),
+                "{name}"
+            );
+        }
+        let m = p.model(Target::Sparse, None, 20.0);
+        assert!(!m.model.is_empty() && m.options.base.is_finite(), "{name}");
+        Ok(p)
+    }
+
+    /// A zip of `entries`; `encrypted` marks every entry encrypted (the flag bit in the
+    /// local and central headers: what a reader goes by).
+    fn zip_of(entries: &[(&str, &[u8])], encrypted: bool) -> Vec<u8> {
+        let mut out = std::io::Cursor::new(Vec::new());
+        {
+            let mut z = zip::ZipWriter::new(&mut out);
+            let options = zip::write::SimpleFileOptions::default()
+                .compression_method(zip::CompressionMethod::Stored);
+            for (name, bytes) in entries {
+                z.start_file(*name, options).unwrap();
+                z.write_all(bytes).unwrap();
+            }
+            z.finish().unwrap();
+        }
+        let mut bytes = out.into_inner();
+        if encrypted {
+            for (sig, flags) in [(b"PK\x03\x04", 6), (b"PK\x01\x02", 8)] {
+                let at = bytes.windows(4).position(|w| w == sig).unwrap();
+                bytes[at + flags] |= 1;
+            }
+        }
+        bytes
+    }
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("rotlang-hostile-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn json_a_million_deep_and_a_million_keys() {
+        let deep = format!(
+            "{{\"a\": {}{}, \"sparse_infill_rotate_template\": \"0, 90\"}}",
+            "[".repeat(1_000_000),
+            "]".repeat(1_000_000)
+        );
+        let p = read("deep.json", deep.as_bytes()).unwrap();
+        // Valid JSON, read without recursion (no stack overflow): the template after it
+        // is the preset's.
+        assert_eq!(p.templates.len(), 1);
+        let keys: String = (0..1_000_000).map(|i| format!("\"k{i}\": {i}, ")).collect();
+        let many = format!("{{{keys}\"layer_height\": \"0.1\"}}");
+        let p = read("keys.json", many.as_bytes()).unwrap();
+        assert_eq!(p.settings.values["layer_height"].value, "0.1");
+    }
+
+    #[test]
+    fn files_over_the_limit_are_refused_unread() {
+        let dir = scratch("big");
+        let huge = dir.join("line.json");
+        std::fs::File::create(&huge)
+            .unwrap()
+            .set_len(100 << 20)
+            .unwrap();
+        let e = profile::read(&huge).unwrap_err();
+        assert!(e.message.contains("larger than 64 MiB"), "{e}");
+        // An endless device is read only to the limit.
+        let e = profile::read(Path::new("/dev/zero")).unwrap_err();
+        assert!(e.message.contains("larger than 64 MiB"), "{e}");
+        let _ = std::fs::remove_dir_all(dir);
+    }
+
+    #[test]
+    fn bad_text_and_bad_numbers() {
+        assert!(read("latin1.json", b"{\"layer_height\": \"\xb0\"}").is_err());
+        let p = read(
+            "nul.json",
+            b"{\"sparse_infill_rotate_template\": \"0\x00, \\u0000, \\ud800, \\udfff\\ud800x\"}",
+        )
+        .unwrap();
+        assert_eq!(p.templates[0].text, "0\0, \0, \u{fffd}, \u{fffd}\u{fffd}x");
+        for value in ["1e99999", "-1e99999", "NaN", "1e-320", "0", "-0.2"] {
+            let doc = format!(
+                "{{\"layer_height\": \"{value}\", \"initial_layer_print_height\": {value}, \"sparse_infill_direction\": \"{value}\", \"sparse_infill_rotate_template\": \"0\"}}"
+            );
+            let p = read("n.json", doc.as_bytes()).unwrap();
+            let m = p.model(Target::Sparse, None, 20.0);
+            assert!(m.model.layer_height().is_finite() && m.model.layer_height() > 0.0);
+            assert!(!m.notes.is_empty(), "{value}");
+        }
+    }
+
+    #[test]
+    fn inherits_cycles_and_paths_outside_the_folder() {
+        let dir = scratch("inherits");
+        let write = |name: &str, text: &str| std::fs::write(dir.join(name), text).unwrap();
+        write(
+            "a.json",
+            r#"{"inherits": "b", "sparse_infill_rotate_template": "0"}"#,
+        );
+        write("b.json", r#"{"inherits": "a", "layer_height": "0.1"}"#);
+        write("self.json", r#"{"inherits": "self"}"#);
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        write("secret.json", r#"{"layer_height": "0.3"}"#);
+        write(
+            "sub/out.json",
+            r#"{"inherits": "../secret", "sparse_infill_rotate_template": "0"}"#,
+        );
+        let a = profile::read(&dir.join("a.json")).unwrap();
+        assert_eq!(a.settings.values["layer_height"].value, "0.1");
+        assert!(profile::read(&dir.join("self.json")).is_ok());
+        let out = profile::read(&dir.join("sub/out.json")).unwrap();
+        assert!(!out.settings.values.contains_key("layer_height"));
+        let _ = std::fs::remove_dir_all(dir);
+    }
+
+    #[test]
+    fn encrypted_entries_and_zips_in_zips() {
+        let settings = br#"{"sparse_infill_rotate_template": "0"}"#;
+        let locked = zip_of(
+            &[("Metadata/project_settings.config", settings.as_slice())],
+            true,
+        );
+        let e = read("locked.3mf", &locked).unwrap_err();
+        assert!(e.contains("Metadata/project_settings.config"), "{e}");
+        let inner = zip_of(
+            &[("Metadata/project_settings.config", settings.as_slice())],
+            false,
+        );
+        let nested = zip_of(
+            &[("Metadata/project_settings.config", inner.as_slice())],
+            false,
+        );
+        let e = read("nested.3mf", &nested).unwrap_err();
+        assert!(e.contains("not UTF-8"), "{e}");
+        // A project inside a project is one entry among others, not opened.
+        let outer = zip_of(
+            &[
+                ("inner.3mf", inner.as_slice()),
+                ("Metadata/project_settings.config", b"{}".as_slice()),
+            ],
+            false,
+        );
+        assert!(read("outer.3mf", &outer).unwrap().templates.is_empty());
+    }
+
+    fn model(xml: &str) -> Result<Profile, String> {
+        read(
+            "m.3mf",
+            &zip_of(&[("Metadata/model_settings.config", xml.as_bytes())], false),
+        )
+    }
+
+    #[test]
+    fn entities_are_never_expanded() {
+        let mut laughs =
+            String::from("<?xml version=\"1.0\"?><!DOCTYPE config [<!ENTITY lol \"lol\">");
+        for i in 1..10 {
+            let prev = if i == 1 {
+                "lol".to_owned()
+            } else {
+                format!("lol{}", i - 1)
+            };
+            laughs.push_str(&format!(
+                "<!ENTITY lol{i} \"{}\">",
+                format!("&{prev};").repeat(10)
+            ));
+        }
+        laughs.push_str(
+            "<!ENTITY xxe SYSTEM \"file:///etc/passwd\">]><config><object id=\"1\">\
+             <metadata key=\"sparse_infill_rotate_template\" value=\"&lol9;&xxe;\"/>\
+             </object></config>",
+        );
+        // An entity the reader does not know stays as written: no expansion, no file read.
+        match model(&laughs) {
+            Ok(p) => assert_eq!(p.templates[0].text, "&lol9;&xxe;"),
+            Err(e) => assert!(e.contains("XML"), "{e}"),
+        }
+    }
+
+    #[test]
+    fn a_million_nested_elements() {
+        let n = 1_000_000;
+        let closed = format!("<config>{}{}</config>", "<a>".repeat(n), "</a>".repeat(n));
+        assert!(model(&closed).unwrap().templates.is_empty());
+        let open = format!("<config>{}", "<a>".repeat(n));
+        let e = model(&open).unwrap_err();
+        assert!(e.contains("truncated"), "{e}");
+    }
+
+    /// A folder with a symbolic link to itself and a FIFO named like a preset: read, not
+    /// followed round the loop, the FIFO never opened (it would block).
+    #[cfg(unix)]
+    #[test]
+    fn symlink_loops_and_fifos_in_folders() {
+        let dir = scratch("folder");
+        std::os::unix::fs::symlink(&dir, dir.join("loop")).unwrap();
+        std::os::unix::fs::symlink(dir.join("nowhere"), dir.join("dangling.json")).unwrap();
+        let fifo = std::ffi::CString::new(dir.join("fifo.json").to_str().unwrap()).unwrap();
+        // SAFETY: a valid C string; mkfifo only creates the node.
+        assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o644) }, 0);
+        std::os::unix::fs::symlink(dir.join("fifo.json"), dir.join("to-fifo.json")).unwrap();
+        std::fs::write(
+            dir.join("p.json"),
+            r#"{"sparse_infill_rotate_template": "0"}"#,
+        )
+        .unwrap();
+        let (files, errors) = profile::files_under(&dir);
+        assert_eq!(files, [dir.join("p.json")]);
+        assert!(errors.is_empty(), "{errors:?}");
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .arg("check")
+            .arg(&dir)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(0));
+        let _ = std::fs::remove_dir_all(dir);
+    }
+}

@@ -677,3 +677,328 @@ fn explained_profile_examples_report_their_code() {
         );
     }
 }
+
+/// Issue 22 item 2: many templates in one file take linear time (one line index per text,
+/// not per template; a capped listing). Quadratic, these took hours.
+#[test]
+fn many_templates_in_one_file_are_read_in_one_pass() {
+    let dir = Scratch::new("many");
+    let keys = vec![r#""sparse_infill_rotate_template": "0, 90""#; 100_000].join(",");
+    let dup = dir.file("dup.json", format!("{{{keys}}}").as_bytes());
+    let values = vec![r#""0, 90""#; 100_000].join(", ");
+    let array = dir.file(
+        "array.json",
+        format!("{{\"sparse_infill_rotate_template\": [{values}]}}").as_bytes(),
+    );
+    let ini = dir.file(
+        "many.ini",
+        "sparse_infill_rotate_template = X\n"
+            .repeat(200_000)
+            .as_bytes(),
+    );
+    let (code, out, _) = rotlang(&["check", "--color", "never", &dup.display().to_string()]);
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.ends_with("ok: 1 template in 1 file, 99999 warnings (99899 not shown)\n"),
+        "{}",
+        &out[out.len().saturating_sub(300)..]
+    );
+    let (code, out, _) = rotlang(&["check", &array.display().to_string()]);
+    assert_eq!(code, 0);
+    assert!(
+        out.ends_with("ok: 100000 templates in 1 file, no problems\n"),
+        "{out}"
+    );
+    // The JSON report goes to a file, read line by line: the test stays small.
+    let report = dir.0.join("report.jsonl");
+    let status = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(["check", "--format", "json", &ini.display().to_string()])
+        .stdout(std::fs::File::create(&report).unwrap())
+        .status()
+        .unwrap();
+    assert_eq!(status.code(), Some(1));
+    // One report per kept template and per duplicate note (past the first 100 listed,
+    // a note's report lists no diagnostic and counts it as omitted); exact counts.
+    let (mut lines, mut errors, mut warnings, mut listed) = (0, 0, 0, 0);
+    for line in std::io::BufRead::lines(std::io::BufReader::new(
+        std::fs::File::open(&report).unwrap(),
+    )) {
+        let r: serde_json::Value = serde_json::from_str(&line.unwrap()).unwrap();
+        lines += 1;
+        errors += r["errors"].as_u64().unwrap();
+        warnings += r["warnings"].as_u64().unwrap();
+        listed += r["diagnostics"].as_array().unwrap().len();
+    }
+    assert_eq!(
+        (lines, errors, warnings, listed),
+        (200_000, 1, 199_999, 100)
+    );
+}
+
+/// The fixture project's entries, with `model_settings.config` replaced.
+fn project_with_model(model: &[u8]) -> Vec<u8> {
+    let bytes = std::fs::read(fixture("project.3mf")).unwrap();
+    let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes)).unwrap();
+    let mut entries: Vec<(String, Vec<u8>)> = Vec::new();
+    for i in 0..archive.len() {
+        let mut f = archive.by_index(i).unwrap();
+        let mut content = Vec::new();
+        std::io::Read::read_to_end(&mut f, &mut content).unwrap();
+        if f.name() == "Metadata/model_settings.config" {
+            content = model.to_vec();
+        }
+        entries.push((f.name().to_owned(), content));
+    }
+    let refs: Vec<(&str, &[u8])> = entries
+        .iter()
+        .map(|(n, c)| (n.as_str(), c.as_slice()))
+        .collect();
+    zip_of(&refs)
+}
+
+/// Issue 22 item 4: a project whose model settings were cut after a complete line (the
+/// `<object>` and `<config>` never closed) is an error naming the entry and what is lost,
+/// not a smaller project.
+#[test]
+fn a_truncated_project_is_an_error() {
+    let dir = Scratch::new("cut");
+    let bytes = std::fs::read(fixture("project.3mf")).unwrap();
+    let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes)).unwrap();
+    let mut model = String::new();
+    std::io::Read::read_to_string(
+        &mut archive.by_name("Metadata/model_settings.config").unwrap(),
+        &mut model,
+    )
+    .unwrap();
+    let cut = model.find("    <metadata key=\"layer_height\"").unwrap();
+    let project = dir.file("cut.3mf", &project_with_model(&model.as_bytes()[..cut]));
+    let e = profile::read(&project).unwrap_err();
+    assert!(
+        e.message
+            .contains("Metadata/model_settings.config: truncated")
+            && e.message.contains("`<object>` opened at 11:3")
+            && e.message.contains("</object>, </config>")
+            && e.message.contains("object Lid & hinge"),
+        "{e}"
+    );
+    let (code, out, _) = rotlang(&["check", "--color", "never", &project.display().to_string()]);
+    assert_eq!(code, 1);
+    assert!(
+        out.contains("error: ") && out.contains("truncated"),
+        "{out}"
+    );
+    assert!(!out.contains("ok: "), "{out}");
+    // The intact project still reads.
+    let whole = dir.file("whole.3mf", &project_with_model(model.as_bytes()));
+    assert_eq!(profile::read(&whole).unwrap().templates.len(), 4);
+}
+
+/// Issue 22 item 6: a key given twice keeps its last value, as OrcaSlicer's JSON reader
+/// (nlohmann::json assigns a repeated key over the one before) and its 3mf reader (each
+/// `<metadata>` set in turn) do; the earlier value is a warning, in check and expand alike.
+#[test]
+fn a_repeated_key_keeps_its_last_value_everywhere() {
+    let dir = Scratch::new("dup");
+    let json = dir.file(
+        "dup.json",
+        b"{\n\"sparse_infill_rotate_template\": \"X\",\n\"layer_height\": \"0.1\",\n\"sparse_infill_rotate_template\": \"5, 10\",\n\"layer_height\": \"0.25\"\n}",
+    );
+    let ini = dir.file(
+        "dup.ini",
+        b"sparse_infill_rotate_template = X\nsparse_infill_rotate_template = 5, 10\nlayer_height = 0.1\nlayer_height = 0.25\n",
+    );
+    let xml = br#"<config><object id="1"><metadata key="sparse_infill_rotate_template" value="X"/><metadata key="sparse_infill_rotate_template" value="5, 10"/><metadata key="layer_height" value="0.1"/><metadata key="layer_height" value="0.25"/></object></config>"#;
+    let project = dir.file(
+        "dup.3mf",
+        &zip_of(&[("Metadata/model_settings.config", xml.as_slice())]),
+    );
+    for file in [&json, &ini, &project] {
+        let p = profile::read(file).unwrap();
+        let texts: Vec<&str> = p.templates.iter().map(|f| f.text.as_str()).collect();
+        assert_eq!(texts, ["5, 10"], "{file:?}");
+        let m = p.model(Target::Sparse, p.templates[0].object.as_deref(), 20.0);
+        assert_eq!(m.model.layer_height(), 0.25, "{file:?}");
+        let notes: Vec<&str> = p.notes.iter().map(|n| n.message.as_str()).collect();
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert!(
+            notes
+                .iter()
+                .all(|n| n.contains("OrcaSlicer keeps the last value"))
+        );
+        let path = file.display().to_string();
+        let (code, out, _) = rotlang(&["check", "--color", "never", &path]);
+        assert_eq!(code, 0, "{out}");
+        assert!(
+            out.contains("2 warnings") && !out.contains("unknown"),
+            "{out}"
+        );
+        let (code, out, _) = rotlang(&["expand", "--profile", &path, "--format", "csv"]);
+        assert_eq!(code, 0);
+        assert!(out.lines().nth(2).unwrap().contains(",10"), "{out}");
+    }
+}
+
+/// Issue 22 item 6: numbers far from 1 are printed in exponent form, control characters of
+/// the file are escaped in notes.
+#[test]
+fn odd_values_are_printed_legibly() {
+    let dir = Scratch::new("odd");
+    let file = dir.file(
+        "odd.json",
+        br#"{"layer_height": "1e-320", "inherits": "a\u0000b\u001b[31m", "sparse_infill_rotate_template": "0, 90"}"#,
+    );
+    let path = file.display().to_string();
+    let (_, out, err) = rotlang(&["check", "--compat", "orcaslicer", "--color", "never", &path]);
+    let (_, _, err2) = rotlang(&["expand", "--profile", &path, "--range", "0..1"]);
+    for text in [&out, &err2] {
+        assert!(text.contains("the layer height is 1e-320"), "{text}{err}");
+        assert!(!text.contains("00000000"), "{text}");
+        assert!(text.contains(r"a\u{0}b\u{1b}[31m"), "{text}");
+        assert!(!text.contains('\0') && !text.contains('\u{1b}'), "{text}");
+    }
+}
+
+/// Issue 16 item 4: `check --fix --write` on presets and `.ini` exports changes only the
+/// template's value (JSON-escaped in JSON, as read in `.ini`); every other byte stays.
+#[test]
+fn fix_write_changes_only_the_values() {
+    let dir = Scratch::new("fixw");
+    let cases: [(&str, &str, &str, &str); 3] = [
+        (
+            "p.json",
+            "\u{feff}{\r\n  \"name\": \"x\",\t\"sparse_infill_rotate_template\": ",
+            "\"+30/ 50%,\\t0\"",
+            ",\r\n  \"layer_height\" : 0.2 }\r\n",
+        ),
+        (
+            "p.jsonc",
+            "// mine\n{\n  /* a */ \"solid_infill_rotate_template\": ",
+            "\"+30/ 50%, \\u0030\"",
+            ", // b\n  \"layer_height\": \"0.2\",\n}",
+        ),
+        (
+            "p.ini",
+            "; exported\nlayer_height = 0.2\nsparse_infill_rotate_template =  ",
+            "+30/ 50%, 0",
+            "  \r\n[x]\n",
+        ),
+    ];
+    let want = [r#""+30/50%,\t0""#, r#""+30/50%, 0""#, "+30/50%, 0"];
+    for ((name, before, value, after), want) in cases.iter().zip(want) {
+        let file = dir.file(name, format!("{before}{value}{after}").as_bytes());
+        let path = file.display().to_string();
+        let (code, out, err) = rotlang(&["check", "--fix", "--write", &path]);
+        assert_eq!(code, 0, "{out}{err}");
+        assert!(err.contains("1 file rewritten"), "{err}");
+        let now = std::fs::read(&file).unwrap();
+        assert!(now.starts_with(before.as_bytes()), "{name}");
+        assert!(now.ends_with(after.as_bytes()), "{name}");
+        let middle = &now[before.len()..now.len() - after.len()];
+        assert_eq!(String::from_utf8_lossy(middle), want, "{name}");
+        // Clean now: a second run changes nothing.
+        let (code, _, err) = rotlang(&["check", "--fix", "--write", &path]);
+        assert_eq!(code, 0);
+        assert!(err.contains("0 files rewritten"), "{err}");
+    }
+    // Without --write the fixed file is printed, the file kept.
+    let file = dir.file(
+        "q.json",
+        br#"{"sparse_infill_rotate_template": "+30/ 50%"}"#,
+    );
+    let (code, out, _) = rotlang(&["check", "--fix", &file.display().to_string()]);
+    assert_eq!(
+        (code, out.as_str()),
+        (0, "{\"sparse_infill_rotate_template\": \"+30/50%\"}\n")
+    );
+    assert_eq!(
+        std::fs::read(&file).unwrap(),
+        br#"{"sparse_infill_rotate_template": "+30/ 50%"}"#
+    );
+    // A project: a clear refusal, the file untouched.
+    let project = fixture("project.3mf");
+    let (code, _, err) = rotlang(&["check", "--fix", "--write", &project.display().to_string()]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("--fix does not rewrite .3mf projects"),
+        "{err}"
+    );
+}
+
+/// Issue 22 item 5: `fmt --write` and `check --fix --write` write through a symbolic link
+/// to its target, keep a hard-linked file one file (same inode), keep the mode and the
+/// owner, and refuse a read-only file with a clear error (the file untouched).
+#[cfg(unix)]
+#[test]
+fn writes_keep_links_mode_and_owner_and_refuse_read_only_files() {
+    use std::os::unix::fs::{MetadataExt, PermissionsExt};
+    let dir = Scratch::new("links");
+    let commands: [(&str, &[&str], &str, &str); 2] = [
+        ("t.rot", &["fmt", "--write", "-f"], "0,90\n", "0, 90\n"),
+        (
+            "p.json",
+            &["check", "--fix", "--write"],
+            r#"{"sparse_infill_rotate_template": "+30/ 50%"}"#,
+            r#"{"sparse_infill_rotate_template": "+30/50%"}"#,
+        ),
+    ];
+    for (name, command, old, new) in commands {
+        let run = |path: &Path| {
+            let mut args = command.to_vec();
+            let p = path.display().to_string();
+            args.push(&p);
+            rotlang(&args)
+        };
+        // A symbolic link: the target is fixed, the link stays a link.
+        let target = dir.file(&format!("target-{name}"), old.as_bytes());
+        let link = dir.0.join(format!("link-{name}"));
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        let (code, _, err) = run(&link);
+        assert_eq!(code, 0, "{err}");
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), new, "{name}");
+        // A hard link: both names see the new text (one inode).
+        let first = dir.file(&format!("first-{name}"), old.as_bytes());
+        let second = dir.0.join(format!("second-{name}"));
+        std::fs::hard_link(&first, &second).unwrap();
+        let inode = std::fs::metadata(&first).unwrap().ino();
+        let (code, _, err) = run(&first);
+        assert_eq!(code, 0, "{err}");
+        assert_eq!(std::fs::read_to_string(&second).unwrap(), new, "{name}");
+        assert_eq!(std::fs::metadata(&first).unwrap().ino(), inode);
+        // The mode stays (0640), and the owner (when we may give files away: root).
+        let owned = dir.file(&format!("owned-{name}"), old.as_bytes());
+        std::fs::set_permissions(&owned, std::fs::Permissions::from_mode(0o640)).unwrap();
+        // SAFETY: geteuid has no preconditions.
+        let root = unsafe { libc::geteuid() } == 0;
+        if root {
+            std::os::unix::fs::chown(&owned, Some(65534), Some(65534)).unwrap();
+        }
+        let (code, _, err) = run(&owned);
+        assert_eq!(code, 0, "{err}");
+        let meta = std::fs::metadata(&owned).unwrap();
+        assert_eq!(meta.mode() & 0o7777, 0o640);
+        if root {
+            assert_eq!((meta.uid(), meta.gid()), (65534, 65534));
+        }
+        assert_eq!(std::fs::read_to_string(&owned).unwrap(), new, "{name}");
+        // Read-only: refused, named, untouched (even for root, who could write it).
+        let locked = dir.file(&format!("locked-{name}"), old.as_bytes());
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o444)).unwrap();
+        let (code, _, err) = run(&locked);
+        assert_eq!(code, 1, "{err}");
+        assert!(err.contains("is read-only: not written"), "{err}");
+        assert_eq!(std::fs::read_to_string(&locked).unwrap(), old);
+        // No temporary file is left behind.
+        let stray: Vec<_> = std::fs::read_dir(&dir.0)
+            .unwrap()
+            .flatten()
+            .filter(|e| e.file_name().to_string_lossy().starts_with('.'))
+            .collect();
+        assert!(stray.is_empty(), "{stray:?}");
+    }
+}

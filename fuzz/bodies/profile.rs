@@ -1,7 +1,8 @@
 //! Fuzz target `profile`: any bytes as a profile (`rotlang::profile::parse`) under one of
 //! the names the first byte chooses (`.json`, `.jsonc`, `.ini`, `.3mf`, `.rot`, none): an
 //! error or a profile whose templates map inside their source texts, and whose model can
-//! always be built.
+//! always be built; a repeated key keeps one value (the others are warnings, not errors),
+//! and the template a command takes is one of the templates found.
 
 use std::path::Path;
 
@@ -38,4 +39,28 @@ pub fn run(data: &[u8]) {
         assert!(text.get(note.span.range()).is_some(), "{note:?}");
     }
     let _ = profile.model(Target::Solid, None, 20.0);
+    for note in profile
+        .notes
+        .iter()
+        .filter(|n| n.message.contains("is set again"))
+    {
+        assert!(!note.error, "{note:?}");
+    }
+    // Outside a per-extruder array, one value per key: the last (as OrcaSlicer keeps).
+    if profile.kind == Some(rotlang::profile::Kind::Ini) {
+        let mut keys: Vec<&str> = profile
+            .templates
+            .iter()
+            .filter_map(|f| f.key.as_deref())
+            .collect();
+        let all = keys.len();
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), all, "a repeated .ini key kept twice");
+    }
+    for target in [Target::Sparse, Target::Solid] {
+        if let Ok(found) = profile.template(target) {
+            assert!(profile.templates.iter().any(|f| std::ptr::eq(f, found)));
+        }
+    }
 }

@@ -18,6 +18,7 @@ Examples:
   rotlang check --compat orcaslicer process.json   where OrcaSlicer reads it differently
   rotlang check --fix '+30°, 10,,20'      print the template with every fix applied
   rotlang check --fix --write -f a.rot    apply the fixes to a.rot in place
+  rotlang check --fix --write process.json   fix the templates of a preset in place
   rotlang check -f - < a.rot              `-` is stdin, as a template or a file
 
 `--fix` applies the fix of every diagnostic that has one (the `fix:` lines of the
@@ -27,7 +28,8 @@ its name and the reason on stderr) when errors remain that have no fix, or, with
 --force, when OrcaSlicer would read the fixed template differently (`10,,20`).
 With --compat orcaslicer the compat findings' fixes are applied too: they make
 OrcaSlicer read what rotlang reads, so that guard is not applied.
-It works on templates and --file (not on profiles or folders).
+On presets (.json, .jsonc), .ini exports and folders it fixes each template's value
+in place and keeps every other byte of the file (.3mf projects are not rewritten).
 
 Exit status: 0 when every input is clean or has only warnings, 1 when any has an
 error or a file cannot be read (the other files are still checked), 2 on a usage error.")]
@@ -83,9 +85,7 @@ pub enum Format {
 pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     // Files, folders (an argument naming an existing path is one) and the compat lint.
     if args.fix && super::files::has_paths(args) {
-        return Err(UsageError(
-            "--fix works on templates and --file PATH, not on profiles or folders".into(),
-        ));
+        return super::fix_files::run(args, out, err);
     }
     if !args.fix && super::files::wanted(args) {
         return super::files::check(args, out);
@@ -217,9 +217,14 @@ fn fix(
         match (&input.path, args.write) {
             (Some(path), true) => {
                 if fixed.text != input.text {
-                    super::fmt::write_atomically(path, &fixed.text)
-                        .map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
-                    written += 1;
+                    let (read, new) = (input.text.as_bytes(), fixed.text.as_bytes());
+                    match super::write::write_file(path, read, new) {
+                        Ok(()) => written += 1,
+                        Err(why) => {
+                            writeln!(err, "{why}").map_err(io)?;
+                            code = 1;
+                        }
+                    }
                 }
             }
             _ => {
@@ -251,7 +256,7 @@ fn fix(
 /// Whether rotlang reads `fixed` differently from `text`, which has no errors (on the 20 mm
 /// cube and a model of other shell counts and heights). A text with errors has no reading
 /// to keep: `false`, so that the OrcaSlicer guard applies to its fixes.
-fn rotlang_change(text: &str, fixed: &str, target: crate::Target) -> bool {
+pub(crate) fn rotlang_change(text: &str, fixed: &str, target: crate::Target) -> bool {
     let options = crate::eval::Options::default();
     let mut models = vec![crate::eval::Model::cube20()];
     models.extend(crate::eval::Model::uniform(75, 0.2, Some(0.3)).map(|m| m.with_shells(4, 5)));

@@ -47,10 +47,16 @@ struct Unit {
     diagnostics: Vec<Diagnostic>,
     /// Per template in this text: its JSON report (for `--format json`).
     reports: Vec<serde_json::Value>,
+    /// Diagnostics found beyond the [`crate::MAX_DIAGNOSTICS`] shown per text (counted in
+    /// the summary, not listed): a file of 100,000 faulty values reports as `-f` does.
+    omitted: usize,
 }
 
 #[derive(Default)]
 struct Run {
+    /// Whether the JSON reports are wanted (`--format json`): built only then, since a
+    /// file of 200,000 templates would otherwise hold 200,000 JSON objects for nothing.
+    json: bool,
     units: Vec<Unit>,
     file_errors: Vec<ProfileError>,
     /// Information for the human report (`note: ...` lines).
@@ -64,7 +70,10 @@ struct Run {
 pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     let target: Target = args.target.into();
     let compat = args.compat.is_some();
-    let mut run = Run::default();
+    let mut run = Run {
+        json: args.format == Format::Json,
+        ..Run::default()
+    };
     let many = args.templates.len() > 1;
     for (i, arg) in args.templates.iter().enumerate() {
         let path = Path::new(arg);
@@ -114,6 +123,22 @@ fn looks_like_a_file(arg: &str) -> bool {
     !arg.contains([' ', ',']) && Kind::from_extension(Path::new(arg)).is_some()
 }
 
+impl Unit {
+    /// Keeps of `diagnostics` what the text's listing has room for; the number dropped.
+    fn keep(&mut self, diagnostics: &mut Vec<Diagnostic>) -> usize {
+        let room = crate::MAX_DIAGNOSTICS.saturating_sub(self.diagnostics.len());
+        // A parse's own "N not shown" entry is counted in its `omitted` already.
+        let dropped = diagnostics
+            .iter()
+            .skip(room)
+            .filter(|d| d.code != "rotlang::too-many-diagnostics")
+            .count();
+        diagnostics.truncate(room);
+        self.omitted += dropped;
+        dropped
+    }
+}
+
 impl Run {
     fn template(
         &mut self,
@@ -123,30 +148,41 @@ impl Run {
         target: Target,
         compat: bool,
     ) {
-        let mut diagnostics = crate::parse(&text, target).diagnostics;
-        if compat {
-            diagnostics.extend(compat::compat(
-                &text,
-                target,
-                &Model::cube20(),
-                Options::default(),
-            ));
-        }
-        self.count(&diagnostics);
+        let parse = crate::check(&text, target);
+        let omitted = parse.omitted;
+        let extra = if compat {
+            compat::compat(&text, target, &Model::cube20(), Options::default())
+        } else {
+            Vec::new()
+        };
+        let (errors, warnings) = self.count_parse(&parse, &extra);
+        let mut diagnostics = parse.diagnostics;
+        diagnostics.extend(extra);
         self.templates += 1;
         let index = LineIndex::new(&text);
-        let report = serde_json::json!({
+        let report = self.json.then(|| serde_json::json!({
             "input": text, "name": name, "file": path.as_ref().map(|p| p.display().to_string()),
             "key": null, "object": null,
             "diagnostics": diagnostics.iter().map(|d| diagnostic_json(&index, d)).collect::<Vec<_>>(),
-            "errors": diagnostics.iter().filter(|d| d.is_error()).count(),
-            "warnings": diagnostics.iter().filter(|d| !d.is_error()).count(),
-        });
+            "errors": errors, "warnings": warnings, "omitted": omitted,
+        }));
         self.units.push(Unit {
             input: Input { name, text, path },
             diagnostics,
-            reports: vec![report],
+            reports: report.into_iter().collect(),
+            omitted,
         });
+    }
+
+    /// Counts a template's diagnostics: the parse's exact counts (whatever its cap on the
+    /// list) and `extra` (the compat lint's); returns the template's errors and warnings.
+    fn count_parse(&mut self, parse: &crate::Parse, extra: &[Diagnostic]) -> (usize, usize) {
+        let extra_errors = extra.iter().filter(|d| d.is_error()).count();
+        let errors = parse.errors + extra_errors;
+        let warnings = parse.warnings + extra.len() - extra_errors;
+        self.errors += errors;
+        self.warnings += warnings;
+        (errors, warnings)
     }
 
     fn count(&mut self, diagnostics: &[Diagnostic]) {
@@ -188,6 +224,7 @@ impl Run {
                 },
                 diagnostics: Vec::new(),
                 reports: Vec::new(),
+                omitted: 0,
             })
             .collect();
         let file = profile.path.display().to_string();
@@ -196,33 +233,44 @@ impl Run {
                 .push(format!("{file}: no infill rotation template in this file"));
         }
         let mut model_notes: BTreeMap<String, ()> = BTreeMap::new();
+        // One line index per text, not per template: a file of many templates stays linear.
+        let indexes: Vec<LineIndex> = profile
+            .sources
+            .iter()
+            .map(|s| LineIndex::new(&s.text))
+            .collect();
         for found in &profile.templates {
-            let parse = crate::parse(&found.text, found.target);
-            let mut diagnostics = parse.diagnostics;
+            let parse = crate::check(&found.text, found.target);
+            let mut extra = Vec::new();
             if compat {
                 let pm =
                     profile.model(found.target, found.object.as_deref(), DEFAULT_OBJECT_HEIGHT);
                 for n in &pm.notes {
-                    model_notes.insert(format!("{file}: {n}"), ());
+                    model_notes.insert(printable(&format!("{file}: {n}")), ());
                 }
-                diagnostics.extend(pm.compat(&found.text, found.target));
+                extra = pm.compat(&found.text, found.target);
             }
             self.templates += 1;
-            self.count(&diagnostics);
+            let (errors, warnings) = self.count_parse(&parse, &extra);
             let unit = &mut units[found.source];
+            unit.omitted += parse.omitted;
+            let mut diagnostics = parse.diagnostics;
+            diagnostics.extend(extra);
+            let omitted = unit.keep(&mut diagnostics) + parse.omitted;
             let moved: Vec<Diagnostic> = diagnostics
                 .into_iter()
                 .map(|d| into_file(d, found))
                 .collect();
-            let index = LineIndex::new(&unit.input.text);
-            unit.reports.push(serde_json::json!({
+            let index = &indexes[found.source];
+            if self.json {
+                unit.reports.push(serde_json::json!({
                 "input": found.text, "name": format!("{}: {}", unit.input.name, found.label()),
                 "file": file, "source": unit.input.name, "key": found.key, "object": found.object,
                 "target": match found.target { Target::Sparse => "sparse", Target::Solid => "solid" },
-                "diagnostics": moved.iter().map(|d| diagnostic_json(&index, d)).collect::<Vec<_>>(),
-                "errors": moved.iter().filter(|d| d.is_error()).count(),
-                "warnings": moved.iter().filter(|d| !d.is_error()).count(),
+                "diagnostics": moved.iter().map(|d| diagnostic_json(index, d)).collect::<Vec<_>>(),
+                "errors": errors, "warnings": warnings, "omitted": omitted,
             }));
+            }
             unit.diagnostics.extend(moved);
         }
         for note in &profile.notes {
@@ -234,17 +282,27 @@ impl Run {
             .with_primary(note.span, "here");
             self.count(std::slice::from_ref(&d));
             let unit = &mut units[note.source];
-            let index = LineIndex::new(&unit.input.text);
-            unit.reports.push(serde_json::json!({
-                "name": unit.input.name, "file": file, "source": unit.input.name,
-                "key": null, "object": null,
-                "diagnostics": [diagnostic_json(&index, &d)],
-                "errors": usize::from(note.error), "warnings": usize::from(!note.error),
-            }));
-            unit.diagnostics.push(d);
+            let index = &indexes[note.source];
+            let mut one = vec![d];
+            let omitted = unit.keep(&mut one);
+            if self.json {
+                unit.reports.push(serde_json::json!({
+                    "name": unit.input.name, "file": file, "source": unit.input.name,
+                    "key": note.key, "object": null,
+                    "diagnostics": one.iter().map(|d| diagnostic_json(index, d)).collect::<Vec<_>>(),
+                    "errors": usize::from(note.error), "warnings": usize::from(!note.error),
+                    "omitted": omitted,
+                }));
+            }
+            unit.diagnostics.extend(one);
         }
         self.notes.extend(model_notes.into_keys());
         self.units.extend(units);
+    }
+
+    /// How many diagnostics were found and not listed, in every text.
+    fn omitted_total(&self) -> usize {
+        self.units.iter().map(|u| u.omitted).sum()
     }
 
     fn report(&self, args: &CheckArgs, out: &mut dyn Write) -> Result<(), UsageError> {
@@ -275,6 +333,16 @@ impl Run {
                 }
                 for n in &self.notes {
                     writeln!(out, "note: {n}").map_err(io)?;
+                }
+                for u in self.units.iter().filter(|u| u.omitted > 0) {
+                    writeln!(
+                        out,
+                        "note: {}: {} more diagnostics not shown (the first {} are)",
+                        u.input.name,
+                        u.omitted,
+                        crate::MAX_DIAGNOSTICS
+                    )
+                    .map_err(io)?;
                 }
                 writeln!(out, "{}", self.summary()).map_err(io)?;
             }
@@ -312,13 +380,19 @@ impl Run {
         if parts.len() == 1 {
             parts.push("no problems".to_owned());
         }
-        format!("{head}: {}", parts.join(", "))
+        let omitted = self.omitted_total();
+        let tail = if omitted > 0 {
+            format!(" ({omitted} not shown)")
+        } else {
+            String::new()
+        };
+        format!("{head}: {}{tail}", parts.join(", "))
     }
 }
 
 /// A template's diagnostic moved into the file it came from: spans through the offset
 /// map, and the message naming the key (and object).
-fn into_file(mut d: Diagnostic, found: &Found) -> Diagnostic {
+pub(crate) fn into_file(mut d: Diagnostic, found: &Found) -> Diagnostic {
     for l in &mut d.labels {
         l.span = found.span_in_source(l.span);
     }
@@ -360,7 +434,7 @@ pub(crate) fn profile_template(
         found.object.as_deref(),
         height.unwrap_or(DEFAULT_OBJECT_HEIGHT),
     );
-    let mut notes = pm.notes;
+    let mut notes: Vec<String> = pm.notes.iter().map(|n| printable(n)).collect();
     notes.insert(
         0,
         format!(
@@ -375,10 +449,29 @@ pub(crate) fn profile_template(
             pm.model.top_shells()
         ),
     );
+    notes[0] = printable(&notes[0]);
     Ok(ProfileTemplate {
         text: found.text.clone(),
         model: pm.model,
         base: pm.options.base,
         notes,
     })
+}
+
+/// A note as printed on a terminal: control characters from the file (a NUL in `inherits`,
+/// an escape sequence) written as escapes (`\u{0}`), so they neither vanish nor drive the
+/// terminal.
+pub(crate) fn printable(note: &str) -> String {
+    if !note.contains(char::is_control) {
+        return note.to_owned();
+    }
+    note.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }

@@ -159,31 +159,17 @@ pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i
                 code = 1;
             }
         } else if let (true, Some(path)) = (args.write, &input.path) {
-            if current != formatted {
-                write_atomically(path, &format!("{formatted}\n"))
-                    .map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
+            let new = format!("{formatted}\n");
+            if current != formatted
+                && let Err(why) =
+                    super::write::write_file(path, input.text.as_bytes(), new.as_bytes())
+            {
+                writeln!(err, "{why}").map_err(io)?;
+                code = 1;
             }
         } else {
             writeln!(out, "{formatted}").map_err(io)?;
         }
     }
     Ok(code)
-}
-
-/// Writes through a temporary file beside `path` and renames it over `path`, so an
-/// interrupted write never leaves a half-written template behind.
-pub(crate) fn write_atomically(path: &std::path::Path, text: &str) -> std::io::Result<()> {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}.rotlang-fmt-{}", std::process::id()));
-    std::fs::write(&tmp, text)?;
-    // Keep the file's permissions.
-    if let Ok(meta) = std::fs::metadata(path) {
-        let _ = std::fs::set_permissions(&tmp, meta.permissions());
-    }
-    std::fs::rename(&tmp, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })
 }

@@ -11,12 +11,14 @@ pub mod expand;
 pub mod explain;
 pub mod export;
 pub mod files;
+mod fix_files;
 pub mod fmt;
 pub mod gcode;
 pub mod model;
 pub mod plot;
 pub mod preview;
 mod sources;
+mod write;
 
 use std::io::{IsTerminal, Read};
 use std::path::{Path, PathBuf};

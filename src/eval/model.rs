@@ -41,28 +41,45 @@ impl fmt::Display for ModelError {
             ModelError::LayerHeight { index, value } => {
                 write!(
                     f,
-                    "layer {index} has height {value}; a layer height must be {range}"
+                    "layer {index} has height {}; a layer height must be {range}",
+                    short(*value)
                 )
             }
             ModelError::StandardLayerHeight(v) => {
-                write!(f, "the layer height is {v}; it must be {range}")
+                write!(f, "the layer height is {}; it must be {range}", short(*v))
             }
             ModelError::FirstLayerHeight(v) => {
-                write!(f, "the first layer height is {v}; it must be {range}")
+                write!(
+                    f,
+                    "the first layer height is {}; it must be {range}",
+                    short(*v)
+                )
             }
             ModelError::ObjectHeight(v) => {
                 write!(
                     f,
-                    "the object height is {v}; it must be a positive number of mm"
+                    "the object height is {}; it must be a positive number of mm",
+                    short(*v)
                 )
             }
             ModelError::TooManyLayers(n) => {
                 write!(
                     f,
-                    "the model would have {n} layers; at most {MAX_LAYERS} are supported"
+                    "the model would have {} layers; at most {MAX_LAYERS} are supported",
+                    short(*n)
                 )
             }
         }
+    }
+}
+
+/// A number as written in messages: plain when near 1, in exponent form when far from it
+/// (`1e-320`, not 320 zeros after the point; `1e300`, not 301 digits).
+fn short(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-6..1e15).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
     }
 }
 

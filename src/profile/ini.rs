@@ -83,7 +83,22 @@ pub fn find_templates(doc: &str) -> Vec<JsonTemplate> {
 pub(super) fn read(profile: &mut Profile) {
     let text = profile.sources[0].text.clone();
     let mut settings_found = Settings::default();
-    for l in settings(&text) {
+    // Only the keys looked for: a long export's other lines need no duplicate check.
+    let lines: Vec<Line<'_>> = settings(&text)
+        .filter(|l| {
+            TEMPLATE_KEYS.iter().any(|(k, _)| *k == l.key)
+                || MODEL_KEYS.contains(&l.key)
+                || l.key == "inherits"
+        })
+        .collect();
+    let later = super::superseded(lines.iter().map(|l| (l.key, l.key_span)));
+    let mut duplicates = super::Duplicates::new(&text);
+    for (l, later) in lines.into_iter().zip(later) {
+        if let Some(used) = later {
+            let note = duplicates.note(0, l.key, l.key_span, used);
+            profile.notes.push(note);
+            continue;
+        }
         if let Some(&(_, target)) = TEMPLATE_KEYS.iter().find(|(k, _)| *k == l.key) {
             profile.templates.push(Found {
                 key: Some(l.key.to_owned()),

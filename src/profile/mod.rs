@@ -252,10 +252,16 @@ fn error(path: &Path, message: impl Into<String>) -> ProfileError {
 /// `inherits`, missing model keys are looked up in the parent preset beside it
 /// (`<inherits>.json` in the same folder), recursively.
 pub fn read(path: &Path) -> Result<Profile, ProfileError> {
+    read_with_bytes(path).map(|(profile, _)| profile)
+}
+
+/// [`read`], with the bytes read (what a rewrite of the file edits, and compares the file
+/// with before writing).
+pub fn read_with_bytes(path: &Path) -> Result<(Profile, Vec<u8>), ProfileError> {
     let bytes = read_bounded(path)?;
     let mut profile = parse(path, &bytes)?;
     profile.resolve_inherits();
-    Ok(profile)
+    Ok((profile, bytes))
 }
 
 fn read_bounded(path: &Path) -> Result<Vec<u8>, ProfileError> {
@@ -374,7 +380,16 @@ pub(crate) fn json_file(profile: &mut Profile, source: usize, object: Option<&st
     keys.extend(MODEL_KEYS);
     keys.push("inherits");
     let mut settings = Settings::default();
-    for kv in json::find_values(&doc, &keys) {
+    let found = json::find_values(&doc, &keys);
+    let later = superseded(found.iter().map(|kv| (kv.key.as_str(), kv.key_span)));
+    let mut duplicates = Duplicates::new(&doc);
+    for (kv, later) in found.iter().zip(later) {
+        if let Some(used) = later {
+            profile
+                .notes
+                .push(duplicates.note(source, &kv.key, kv.key_span, used));
+            continue;
+        }
         let template = TEMPLATE_KEYS.iter().find(|(k, _)| *k == kv.key);
         for value in &kv.values {
             match (value, template) {
@@ -422,6 +437,55 @@ pub(crate) fn json_file(profile: &mut Profile, source: usize, object: Option<&st
     match object {
         None => profile.settings.merge_missing(settings),
         Some(o) => profile.objects.push((o.to_owned(), settings)),
+    }
+}
+
+/// For each key in document order, the span of the later occurrence of the same key that
+/// replaces it, if any: OrcaSlicer keeps the last value of a key (nlohmann::json, which
+/// OrcaSlicer reads presets with, assigns each repeated key over the one before; a 3mf's
+/// `<metadata>` are set one after the other), so rotlang does too, everywhere. Linear.
+pub(crate) fn superseded<'a>(keys: impl Iterator<Item = (&'a str, Span)>) -> Vec<Option<Span>> {
+    let keys: Vec<(&str, Span)> = keys.collect();
+    let mut last: std::collections::HashMap<&str, Span> = std::collections::HashMap::new();
+    for &(k, span) in &keys {
+        last.insert(k, span);
+    }
+    keys.iter()
+        .map(|&(k, span)| last.get(k).copied().filter(|&l| l != span))
+        .collect()
+}
+
+/// The warnings on values that a later one of the same key replaces; the line index is
+/// built on the first (most files have none).
+pub(crate) struct Duplicates<'a> {
+    doc: &'a str,
+    index: Option<crate::diagnostic::LineIndex<'a>>,
+}
+
+impl<'a> Duplicates<'a> {
+    pub(crate) fn new(doc: &'a str) -> Self {
+        Duplicates { doc, index: None }
+    }
+
+    /// The note on the value of `key` at `span`, replaced by the one at `used`.
+    pub(crate) fn note(&mut self, source: usize, key: &str, span: Span, used: Span) -> Note {
+        let doc = self.doc;
+        let index = self
+            .index
+            .get_or_insert_with(|| crate::diagnostic::LineIndex::new(doc));
+        // The line only: a column costs the length of its line, and one-line files of
+        // 100,000 repeated keys must stay linear.
+        let line = index.line(used.start.min(doc.len())) + 1;
+        Note {
+            source,
+            span,
+            message: format!(
+                "`{key}` is set again later (line {line}): OrcaSlicer keeps the \
+                 last value, so this one is ignored (remove one of them)"
+            ),
+            error: false,
+            key: Some(key.to_owned()),
+        }
     }
 }
 

@@ -146,6 +146,9 @@ fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
     let mut object: Option<Scope> = None;
     let mut part: Option<Scope> = None;
     let mut object_name = String::new();
+    // Elements opened and not yet closed, with where they start: at the end of the text
+    // there must be none, or the file was cut short and what followed is lost.
+    let mut open: Vec<(String, usize)> = Vec::new();
     loop {
         let start = reader.buffer_position() as usize;
         let event = reader.read_event().map_err(|e| {
@@ -154,6 +157,13 @@ fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
             format!("{MODEL}: invalid XML at {line}:{col}: {e}")
         })?;
         let end = (reader.buffer_position() as usize).min(text.len());
+        if let Event::Start(e) = &event {
+            let name = e.name();
+            let name: &str = name.as_ref();
+            open.push((name.to_owned(), start));
+        } else if let Event::End(_) = &event {
+            open.pop();
+        }
         match event {
             Event::Eof => break,
             Event::Start(e) | Event::Empty(e) => {
@@ -223,7 +233,44 @@ fn model_settings(profile: &mut Profile, source: usize) -> Result<(), String> {
             _ => {}
         }
     }
+    if let Some((name, at)) = open.last() {
+        return Err(truncated(
+            &text,
+            &open,
+            name,
+            *at,
+            object.as_ref(),
+            &object_name,
+        ));
+    }
     Ok(())
+}
+
+/// The error for a model settings text that ends inside elements: which element is cut
+/// off, where it began, and what its loss means (an object's overrides are not read).
+fn truncated(
+    text: &str,
+    open: &[(String, usize)],
+    name: &str,
+    at: usize,
+    object: Option<&Scope>,
+    object_name: &str,
+) -> String {
+    let index = crate::diagnostic::LineIndex::new(text);
+    let (line, column) = index.line_col(at.min(text.len()));
+    let unclosed: Vec<String> = open.iter().rev().map(|(n, _)| format!("</{n}>")).collect();
+    let lost = match object {
+        Some(o) => format!(
+            "the settings of object {} (and of every object after it) are lost",
+            object_label(Some(o), object_name)
+        ),
+        None => "what followed it is lost".to_owned(),
+    };
+    format!(
+        "{MODEL}: truncated: the text ends before {} (`<{name}>` opened at {line}:{column} is \
+         never closed); {lost}: the project cannot be read as it was saved",
+        unclosed.join(", ")
+    )
 }
 
 fn object_label(object: Option<&Scope>, name: &str) -> String {
@@ -256,7 +303,25 @@ fn finish_object(profile: &mut Profile, source: usize, object: Option<Scope>, na
 /// The templates and model settings of one object (or part); the settings are returned.
 fn collect(profile: &mut Profile, source: usize, scope: Scope, label: &str) -> Settings {
     let mut settings = Settings::default();
-    for (key, value, span, map) in scope.entries {
+    let later = super::superseded(
+        scope
+            .entries
+            .iter()
+            .map(|(k, _, span, _)| (k.as_str(), *span)),
+    );
+    // The text is needed (for line numbers) only when a key repeats: not copied per object.
+    let text = if later.iter().any(Option::is_some) {
+        profile.sources[source].text.clone()
+    } else {
+        String::new()
+    };
+    let mut duplicates = super::Duplicates::new(&text);
+    for ((key, value, span, map), later) in scope.entries.into_iter().zip(later) {
+        if let Some(used) = later {
+            let note = duplicates.note(source, &key, span, used);
+            profile.notes.push(note);
+            continue;
+        }
         if let Some(&(_, target)) = TEMPLATE_KEYS.iter().find(|(k, _)| *k == key) {
             profile.templates.push(Found {
                 key: Some(key),

@@ -542,12 +542,7 @@ fn explained_compat_examples_report_their_code() {
         .collect();
     assert_eq!(docs.len(), rotlang::dialect::compat::CODES.len());
     for doc in docs {
-        // The direction finding needs a profile's direction: OrcaSlicer's default 45°.
-        let base = if doc.code == rotlang::dialect::compat::DIRECTION_IGNORED {
-            45.0
-        } else {
-            0.0
-        };
+        let base = 0.0;
         let found = rotlang::dialect::compat(
             doc.example,
             Target::Sparse,

@@ -52,11 +52,12 @@ pub struct ExpandArgs {
     /// Read the template from a file (newlines separate instructions); `-` is stdin.
     #[arg(long, short = 'f', value_name = "PATH")]
     pub file: Option<PathBuf>,
-    /// Take the template (of --target), the model and the base direction from a profile:
-    /// an OrcaSlicer preset (.json), an exported .ini or a .3mf project. Layer heights,
-    /// shell counts and infill direction come from the profile (notes on stderr name every
-    /// default used); the object is 20 mm tall unless --height, --layers or --model; a
-    /// --base other than 0 replaces the profile's direction.
+    /// Take the template (of --target) and the model from a profile: an OrcaSlicer preset
+    /// (.json), an exported .ini or a .3mf project. Layer heights and shell counts come
+    /// from the profile (notes on stderr name every default used); its infill direction
+    /// is the angle of an empty template only, as in OrcaSlicer; the object is 20 mm tall
+    /// unless --height, --layers or --model; a --base other than 0 is added to every angle
+    /// instead.
     #[arg(long, value_name = "PATH", conflicts_with_all = ["template", "file"])]
     pub profile: Option<PathBuf>,
     /// Which setting the template is for (solid signs are errors in a solid template).
@@ -216,8 +217,6 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         };
         writeln!(err, "{note}").map_err(|e| UsageError(e.to_string()))?;
     }
-    // The base is the profile's direction (not --base): OrcaSlicer drops it for a template.
-    let mut direction = false;
     let input = match &profile {
         Some(path) => {
             let p = super::files::profile_template(path, args.target.into(), args.model.height)?;
@@ -230,9 +229,9 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
                     source: path.display().to_string(),
                 };
             }
+            // The profile's direction (for an empty template), unless --base replaces it.
             if base == 0.0 {
                 base = p.base;
-                direction = true;
             }
             Input {
                 name: path.display().to_string(),
@@ -276,20 +275,6 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         end,
     };
     if args.dialect == eval::Dialect::OrcaSlicer {
-        let options = if direction {
-            let theirs = crate::dialect::orcaslicer::profile_options(&input.text, options);
-            if theirs.base != options.base {
-                writeln!(
-                    err,
-                    "note: OrcaSlicer ignores the profile's direction ({}°) when a template is set",
-                    options.base
-                )
-                .map_err(|e| UsageError(e.to_string()))?;
-            }
-            theirs
-        } else {
-            options
-        };
         // No grammar, so no syntax diagnostics: the JSON's are the dialect's findings (a
         // hang, undefined behaviour, NaN layers), known once the layers are written.
         return super::dialect::expand(&input.text, &resolved.model, options, err, |layers| {

@@ -202,7 +202,7 @@ impl Run {
             if compat {
                 let pm =
                     profile.model(found.target, found.object.as_deref(), DEFAULT_OBJECT_HEIGHT);
-                for n in &pm.notes {
+                for n in &pm.notes_for(&found.text) {
                     model_notes.insert(format!("{file}: {n}"), ());
                 }
                 diagnostics.extend(pm.compat(&found.text, found.target));
@@ -338,10 +338,12 @@ fn into_file(mut d: Diagnostic, found: &Found) -> Diagnostic {
 }
 
 /// `rotlang expand --profile PATH`: the template of `target` in the file (the project's
-/// own for a 3mf), on the profile's model unless the command line gives one.
+/// own for a 3mf), on the profile's model unless the command line gives one, with the
+/// profile's direction where it applies (an empty template).
 pub(crate) struct ProfileTemplate {
     pub text: String,
     pub model: Model,
+    /// The base of this template in either reading ([`profile::ProfileModel::options`]).
     pub base: f64,
     pub notes: Vec<String>,
 }
@@ -360,15 +362,25 @@ pub(crate) fn profile_template(
         found.object.as_deref(),
         height.unwrap_or(DEFAULT_OBJECT_HEIGHT),
     );
-    let mut notes = pm.notes;
+    let base = pm.options(&found.text).base;
+    let mut notes = pm.notes_for(&found.text);
+    let direction = match (&pm.direction.key, found.text.is_empty()) {
+        (Some(key), true) => format!(", {key} {}°", pm.direction.degrees),
+        (None, true) => format!(", OrcaSlicer's default direction {}°", pm.direction.degrees),
+        // The direction turns an empty template only: name it where the file sets it.
+        (Some(key), false) => format!(
+            ", {key} {}° not applied (it turns an empty template only)",
+            pm.direction.degrees
+        ),
+        (None, false) => String::new(),
+    };
     notes.insert(
         0,
         format!(
-            "{}: {} `{}`, base {}° ({} layers of {} mm, B = {}, T = {})",
+            "{}: {} `{}` ({} layers of {} mm, B = {}, T = {}{direction})",
             path.display(),
             found.label(),
             found.text,
-            pm.options.base,
             pm.model.len(),
             pm.model.layer_height(),
             pm.model.bottom_shells(),
@@ -378,7 +390,7 @@ pub(crate) fn profile_template(
     Ok(ProfileTemplate {
         text: found.text.clone(),
         model: pm.model,
-        base: pm.options.base,
+        base,
         notes,
     })
 }

@@ -1130,7 +1130,34 @@ fn check_fix_with_compat_and_the_orcaslicer_guard() {
         0,
         ["check", "--compat", "orcaslicer", "--fix", "0 90"]
     );
-    golden!("fix_orcaslicer_guard", 1, ["check", "--fix", "10,,20"]);
+    // Issue 16.4: a fix is applied when afterwards OrcaSlicer reads the template as rotlang
+    // does (these were all left unchanged, "pass --force").
+    golden!(
+        "fix_readings_meet",
+        0,
+        [
+            "check",
+            "--fix",
+            "0; 90",
+            "b!, +30",
+            "+30/50 %",
+            "+45/10 layers",
+            "10,,20"
+        ]
+    );
+    let (golden, _) = run(
+        &["check", "--fix", "0; 90", "b!, +30", "+30/50 %", "10,,20"],
+        None,
+    );
+    assert_eq!(
+        stdout_of(&golden),
+        "0, 90\nB!, +30\n+30/50%\n10,20\n",
+        "{golden}"
+    );
+    // An OrcaSlicer error that no fix removes leaves the template as it is (exit 1).
+    let (golden, code) = run(&["check", "--fix", "10!, 5*"], None);
+    assert_eq!((stdout_of(&golden), code), ("10!, 5*\n", 1), "{golden}");
+    assert!(golden.contains("error[orcaslicer::hangs]"), "{golden}");
     golden!(
         "fix_orcaslicer_force",
         0,
@@ -1169,4 +1196,48 @@ fn a_file_named_as_the_template() {
     let (_, code) = run_in(&dir, &["fmt", "--write", file.to_str().unwrap()]);
     assert_eq!(code, 0);
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "0, 90\n");
+}
+
+/// Issue 16.4: `check` tells an OrcaSlicer user what OrcaSlicer does, by default: a hang is
+/// an error, a difference a warning; `--compat none` turns the lint off.
+#[test]
+fn check_lints_for_orcaslicer_by_default() {
+    golden!("check_default_hang", 1, ["check", "10!, 5*"]);
+    let (golden, code) = run(&["check", "0 90", "1:4"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("warning[orcaslicer::space-separated-list]")
+            && golden.contains("warning[orcaslicer::fraction]"),
+        "{golden}"
+    );
+    for args in [
+        &["check", "--compat", "none", "10!, 5*", "0 90", "1:4"][..],
+        &["check", "--compat", "none", "--format", "json", "10!, 5*"][..],
+    ] {
+        let (golden, code) = run(args, None);
+        assert_eq!(code, 0, "{golden}");
+        assert!(!golden.contains("orcaslicer::"), "{golden}");
+    }
+    // A folder of presets too.
+    let (golden, code) = run(&["check", "tests/fixtures/profiles/orca/process"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(golden.contains("warning[orcaslicer::"), "{golden}");
+    let (golden, _) = run(&["check", "--format", "json", "10!, 5*"], None);
+    assert!(golden.contains(r#""code":"orcaslicer::hangs""#), "{golden}");
+}
+
+/// Issue 16.4: the command `fmt` suggests for a profile is one a shell runs.
+#[test]
+fn fmt_quotes_the_path_it_suggests() {
+    let dir = TempDir::new("fmt-quote");
+    let file = dir.file(
+        "0.20mm Rotating Gyroid.json",
+        r#"{"sparse_infill_rotate_template": "0, 90"}"#,
+    );
+    let (golden, code) = run_in(&dir, &["fmt", file.to_str().unwrap()]);
+    assert_eq!(code, 2, "{golden}");
+    assert!(
+        golden.contains("`rotlang check '[TMP]/0.20mm Rotating Gyroid.json'` checks"),
+        "{golden}"
+    );
 }

@@ -17,16 +17,37 @@ use crate::dialect::compat;
 use crate::eval::{Model, Options};
 use crate::profile::{self, DEFAULT_OBJECT_HEIGHT, Found, Kind, Profile, ProfileError};
 
-/// `--compat`: which slicer to compare with.
+/// `--compat`: which slicer to compare with (OrcaSlicer unless `none`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum CompatArg {
-    /// OrcaSlicer's own reading (SEMANTICS section 10)
+    /// OrcaSlicer's own reading (SEMANTICS section 10): the default
     Orcaslicer,
+    /// rotlang's reading alone
+    None,
 }
 
-/// Whether `check` has files or the compat lint to run (else the plain template path).
-pub(crate) fn wanted(args: &CheckArgs) -> bool {
-    args.compat.is_some() || has_paths(args)
+/// The OrcaSlicer lint runs by default on inputs up to this size; a larger one (no
+/// template is that long) gets it only with an explicit `--compat orcaslicer`, so that
+/// `check` on a pasted megabyte keeps its streaming memory.
+pub const DEFAULT_COMPAT_MAX_BYTES: usize = 64 * 1024;
+
+/// Whether the OrcaSlicer lint runs on a text of `len` bytes.
+pub(crate) fn compat_on(compat: Option<CompatArg>, len: usize) -> bool {
+    match compat {
+        Some(CompatArg::Orcaslicer) => true,
+        Some(CompatArg::None) => false,
+        None => len <= DEFAULT_COMPAT_MAX_BYTES,
+    }
+}
+
+/// The note for an input the default lint skips, if it does.
+pub(crate) fn compat_skipped(compat: Option<CompatArg>, name: &str, len: usize) -> Option<String> {
+    (compat.is_none() && !compat_on(compat, len)).then(|| {
+        format!(
+            "{name}: larger than {} KiB: the OrcaSlicer lint is skipped (--compat orcaslicer runs it)",
+            DEFAULT_COMPAT_MAX_BYTES / 1024
+        )
+    })
 }
 
 /// Whether `check` names profiles or folders (an existing path, a file name of a profile,
@@ -63,7 +84,7 @@ struct Run {
 
 pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     let target: Target = args.target.into();
-    let compat = args.compat.is_some();
+    let compat = args.compat;
     let mut run = Run::default();
     let many = args.templates.len() > 1;
     for (i, arg) in args.templates.iter().enumerate() {
@@ -121,10 +142,16 @@ impl Run {
         text: String,
         path: Option<PathBuf>,
         target: Target,
-        compat: bool,
+        compat: Option<CompatArg>,
     ) {
-        let mut diagnostics = crate::parse(&text, target).diagnostics;
-        if compat {
+        let parse = crate::check(&text, target);
+        let errors = parse.has_errors();
+        let mut diagnostics = parse.diagnostics;
+        if let Some(note) = compat_skipped(compat, &name, text.len()) {
+            self.notes.push(note);
+        }
+        // A template with errors gets those alone (as in the language server).
+        if compat_on(compat, text.len()) && !errors {
             diagnostics.extend(compat::compat(
                 &text,
                 target,
@@ -158,7 +185,7 @@ impl Run {
         }
     }
 
-    fn file(&mut self, path: &Path, target: Target, compat: bool) {
+    fn file(&mut self, path: &Path, target: Target, compat: Option<CompatArg>) {
         self.files += 1;
         let profile = match profile::read(path) {
             Ok(p) => p,
@@ -176,7 +203,7 @@ impl Run {
         self.profile(profile, compat);
     }
 
-    fn profile(&mut self, profile: Profile, compat: bool) {
+    fn profile(&mut self, profile: Profile, compat: Option<CompatArg>) {
         let mut units: Vec<Unit> = profile
             .sources
             .iter()
@@ -197,9 +224,10 @@ impl Run {
         }
         let mut model_notes: BTreeMap<String, ()> = BTreeMap::new();
         for found in &profile.templates {
-            let parse = crate::parse(&found.text, found.target);
+            let parse = crate::check(&found.text, found.target);
+            let errors = parse.has_errors();
             let mut diagnostics = parse.diagnostics;
-            if compat {
+            if compat_on(compat, found.text.len()) && !errors {
                 let pm =
                     profile.model(found.target, found.object.as_deref(), DEFAULT_OBJECT_HEIGHT);
                 for n in &pm.notes_for(&found.text) {

@@ -75,8 +75,9 @@ pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i
             Some(kind) => {
                 return Err(UsageError(format!(
                     "`{t}` is a profile ({}): fmt formats templates and template files; \
-                     `rotlang check {t}` checks the templates in it",
-                    kind.name()
+                     `rotlang check {}` checks the templates in it",
+                    kind.name(),
+                    super::shell_quote(t)
                 )));
             }
         }

@@ -21,6 +21,8 @@
 //! text on reference models) and removes what OrcaSlicer misreads.
 
 mod rules;
+
+use rules::MAX_FIXED_TEXT;
 #[cfg(test)]
 mod tests;
 
@@ -242,6 +244,24 @@ fn reference_models() -> [Model; 3] {
         uniform(75, 0.2, Some(0.3)).with_shells(4, 5),
         uniform(167, 0.12, None).with_shells(2, 3),
     ]
+}
+
+/// Whether OrcaSlicer reads `text` as rotlang does: no errors, and on reference models
+/// the same angles, sparse fills and no hang, crash or NaN. `check --fix` applies a fix
+/// that gets there whatever it changes in OrcaSlicer's reading.
+pub fn readings_agree(text: &str, target: Target) -> bool {
+    let parse = crate::parse(text, target);
+    if parse.has_errors() || text.len() > MAX_FIXED_TEXT {
+        return false;
+    }
+    reference_models().iter().all(|model| {
+        let options = Options::default();
+        let mut theirs = orcaslicer::layers(text, model, options);
+        let agree = eval::layers(&parse.template, model, options)
+            .zip(theirs.by_ref())
+            .all(|(r, o)| r.fill == Fill::Sparse && same_angle(r.angle, o.angle));
+        agree && theirs.findings().is_empty()
+    })
 }
 
 /// What OrcaSlicer does differently after `text` becomes `changed` (on reference models),

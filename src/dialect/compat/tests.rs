@@ -326,3 +326,26 @@ fn orcaslicer_options_in_a_profile_keep_the_direction_for_empty_text_only() {
     assert_eq!((empty.base, empty.seed), (45.0, 7));
     assert_eq!((set.base, set.seed), (0.0, 7));
 }
+
+#[test]
+fn a_solid_template_is_not_said_to_become_sparse() {
+    // Issue 17: the lint said OrcaSlicer "fills these layers as sparse infill" of a solid
+    // template, whose layers are solid whatever the sign.
+    let solid = compat("+15R", Target::Solid, &Model::cube20(), Options::default());
+    let d = solid
+        .iter()
+        .find(|d| d.code == SOLID_SIGN)
+        .expect("solid-sign");
+    assert!(
+        d.message.ends_with("with its own solid pattern"),
+        "{}",
+        d.message
+    );
+    assert!(!format!("{d:?}").contains("sparse"), "{d:?}");
+    let sparse = compat("+15R", Target::Sparse, &Model::cube20(), Options::default());
+    let d = sparse
+        .iter()
+        .find(|d| d.code == SOLID_SIGN)
+        .expect("solid-sign");
+    assert!(d.message.ends_with("as sparse infill"), "{}", d.message);
+}

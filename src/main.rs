@@ -90,7 +90,7 @@ fn main() -> ExitCode {
         Command::Expand(args) => cli::expand::run(args, &mut out, &mut err),
         Command::Plot(args) => cli::plot::run(args, &mut out, &mut err),
         Command::Preview(args) => cli::preview::run(args, &mut out, &mut err),
-        Command::Explain(args) => cli::explain::run(args, &mut out),
+        Command::Explain(args) => cli::explain::run(args, &mut out, &mut err),
         Command::Completions(args) => cli::completions::completions(args, Cli::command(), &mut out),
         Command::Man(args) => cli::completions::man(args, Cli::command(), &mut out),
     };

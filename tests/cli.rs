@@ -1241,3 +1241,146 @@ fn fmt_quotes_the_path_it_suggests() {
         "{golden}"
     );
 }
+
+/// Issue 16.5: one path rule for every command; a missing path is "no such file" first; `/`
+/// alone is a template; a broken profile is an error in every command that reads it.
+#[test]
+fn one_path_rule_for_every_command() {
+    for command in ["check", "fmt", "expand", "plot", "preview", "explain"] {
+        let (golden, code) = run(&[command, "nosuch.json"], None);
+        assert!(
+            golden.contains("nosuch.json: no such file or folder"),
+            "{command}: {golden}"
+        );
+        assert!(!golden.contains("unknown sign"), "{command}: {golden}");
+        assert_ne!(code, 0, "{command}: {golden}");
+        let (golden, _) = run(&[command, "process/0.20mm Rotating Gyroid.json"], None);
+        assert!(
+            golden.contains("no such file") && !golden.contains("unknown sign"),
+            "{command}: {golden}"
+        );
+    }
+    // `/` alone is a template (the filesystem is not scanned).
+    let (golden, code) = run(&["check", "--compat", "none", "/"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(golden.contains("ok: 1 template, no problems"), "{golden}");
+    // A file named where the template goes is read, by every command.
+    let preset = "tests/fixtures/profiles/export.ini";
+    for args in [
+        &["expand", preset, "--layers", "2"][..],
+        &["plot", preset][..],
+        &["preview", preset, "--layers", "0..1", "--format", "json"][..],
+        &["explain", preset][..],
+    ] {
+        let (golden, code) = run(args, None);
+        assert_eq!(code, 0, "{golden}");
+        assert!(golden.contains("5, 10!, +20"), "{golden}");
+    }
+}
+
+#[test]
+fn a_broken_profile_fails_every_command_alike() {
+    let dir = TempDir::new("broken");
+    let broken = dir.file(
+        "broken.json",
+        r#"{"layer_height": "0.2" "sparse_infill_rotate_template": "0, 90"}"#,
+    );
+    let path = broken.to_str().unwrap();
+    let (golden, code) = run_in(&dir, &["expand", "--profile", path]);
+    insta::assert_snapshot!("expand_broken_profile", golden);
+    assert_eq!(code, 1);
+    for args in [
+        &["check", path][..],
+        &["expand", path][..],
+        &["plot", "--profile", path][..],
+        &["preview", "--profile", path][..],
+        &["explain", "--profile", path][..],
+    ] {
+        let (golden, code) = run(args, None);
+        assert_eq!(code, 1, "{golden}");
+        assert!(golden.contains("error[profile::invalid]: "), "{golden}");
+        assert!(
+            !golden.contains("\n    0   "),
+            "no layers printed: {golden}"
+        );
+    }
+}
+
+/// Issue 16.5: `plot`, `preview` and `explain` take `--profile`; a project lists its objects
+/// and takes `--object`.
+#[test]
+fn profiles_and_objects_in_every_command() {
+    let project = "tests/fixtures/profiles/project.3mf";
+    let (golden, code) = run(&["expand", "--profile", project, "--layers", "1"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("objects Lid & hinge / part Hinge, Lid & hinge (--object NAME"),
+        "{golden}"
+    );
+    let (golden, code) = run(
+        &[
+            "expand",
+            "--profile",
+            project,
+            "--object",
+            "Lid & hinge",
+            "--layers",
+            "2",
+            "--format",
+            "csv",
+        ],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("(object Lid & hinge) `0, 1:4` (125 layers of 0.16 mm"),
+        "{golden}"
+    );
+    let (golden, code) = run(&["plot", "--profile", project, "--object", "Nope"], None);
+    assert_eq!(code, 2, "{golden}");
+    assert!(
+        golden.contains("no object `Nope`; its objects: "),
+        "{golden}"
+    );
+    let (golden, code) = run(
+        &["explain", "--profile", project, "--object", "Lid & hinge"],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("`0, 1:4`") && golden.contains("125 layers"),
+        "{golden}"
+    );
+    let (golden, code) = run(
+        &["plot", "--profile", "tests/fixtures/profiles/export.ini"],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("<svg") && golden.contains("84 layers of 0.24 mm"),
+        "{golden}"
+    );
+}
+
+/// Issue 17: `explain` of a template with errors shows them; a word near a code names it.
+#[test]
+fn explain_errors_and_near_codes() {
+    let (golden, code) = run(&["explain", "+30X5"], None);
+    assert_eq!(code, 1, "{golden}");
+    assert!(golden.contains("The template has errors:"), "{golden}");
+    assert!(golden.contains("unknown sign `X`"), "{golden}");
+    assert!(!golden.contains("The template is empty"), "{golden}");
+    let (golden, code) = run(&["explain", "hangs"], None);
+    assert_eq!(code, 2, "{golden}");
+    assert!(
+        golden.contains("no diagnostic code `hangs`; did you mean `orcaslicer::hangs`?"),
+        "{golden}"
+    );
+    let (golden, code) = run(&["explain", "nosuchcode"], None);
+    assert_eq!(code, 1, "{golden}");
+    assert!(
+        golden.contains("The template has errors:")
+            && golden.contains("Nor is `nosuchcode` a diagnostic code"),
+        "{golden}"
+    );
+}

@@ -194,7 +194,7 @@ fn presets_inherit_from_their_parents() {
 
 #[test]
 fn check_runs_over_the_fixture_folder() {
-    let (code, out, err) = rotlang(&["check", "--color", "never", FIXTURES]);
+    let (code, out, err) = rotlang(&["check", "--compat", "none", "--color", "never", FIXTURES]);
     assert_eq!(code, 0, "{out}{err}");
     assert!(
         out.ends_with("ok: 15 templates in 8 files, no problems\n"),
@@ -299,15 +299,14 @@ fn an_argument_naming_a_file_is_a_file() {
         "{out}"
     );
     assert!(out.contains("p.json:1:39"), "{out}");
-    // Not a file: a template, with a note.
+    // A path that is not there: no such file (issue 16.5), not a template.
     let (code, out, _) = rotlang(&["check", "--color", "never", "missing.json"]);
     assert_eq!(code, 1);
     assert!(
-        out.contains(
-            "note: <template>: `missing.json` is read as a template: there is no such file"
-        ),
+        out.contains("error: missing.json: no such file or folder"),
         "{out}"
     );
+    assert!(!out.contains("unknown sign"), "{out}");
 }
 
 #[test]
@@ -449,12 +448,14 @@ fn the_direction_turns_an_empty_template_only() {
 fn expand_names_a_template_of_the_wrong_type() {
     let dir = Scratch::new("types");
     let types = dir.file("types.json", br#"{"sparse_infill_rotate_template": 5}"#);
+    // Reported as `check` reports it, exit 1 (issue 16.5).
     let (code, _, err) = rotlang(&["expand", "--profile", &types.display().to_string()]);
-    assert_eq!(code, 2);
+    assert_eq!(code, 1);
     assert!(
-        err.contains("types.json: `sparse_infill_rotate_template` should be a template (a string), not `5` (line 1, column 35)"),
+        err.contains("error[profile::invalid]: `sparse_infill_rotate_template` should be a template (a string), not `5`"),
         "{err}"
     );
+    assert!(err.contains("types.json:1:35"), "{err}");
     let (_, out, _) = rotlang(&["check", "--color", "never", &types.display().to_string()]);
     assert!(
         out.contains("`sparse_infill_rotate_template` should be a template (a string), not `5`"),

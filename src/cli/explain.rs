@@ -3,7 +3,7 @@
 use std::io::Write;
 
 use super::model::ModelArgs;
-use super::{Input, TargetArg, UsageError, gather, render_human};
+use super::{Input, TargetArg, UsageError, render_human};
 
 #[derive(clap::Args, Debug)]
 #[command(after_long_help = "\
@@ -15,6 +15,7 @@ Examples:
   rotlang explain 'B!, +30' --layers 50      ... on a model of 50 layers of 0.2 mm
   rotlang explain -- -30/50%                 a template that begins with '-'
   rotlang explain - < profile.rot            `-` is stdin
+  rotlang explain --profile process.json     the template of a preset, on its model
 
 Exit status: 0 when explained, 1 when a template has errors (what parses is still
 explained), 2 on a usage error (such as an unknown code).")]
@@ -31,9 +32,15 @@ pub struct ExplainArgs {
     pub target: TargetArg,
     #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub profile: super::paths::ProfileArgs,
 }
 
-pub fn run(args: &ExplainArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
+pub fn run(
+    args: &ExplainArgs,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> Result<i32, UsageError> {
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     if args.list {
         let width = crate::explain::codes()
@@ -56,30 +63,112 @@ pub fn run(args: &ExplainArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
             || (w.len() > 3
                 && w.contains('-')
                 && w.bytes().all(|b| b.is_ascii_lowercase() || b == b'-'));
-        if code_like {
+        let near = nearest_code(w);
+        if code_like || near.is_some() {
+            let hint = match near {
+                Some(code) => format!("did you mean `{code}`? "),
+                None => String::new(),
+            };
             return Err(UsageError(format!(
-                "no diagnostic code `{w}`; `rotlang explain --list` lists them"
+                "no diagnostic code `{w}`; {hint}`rotlang explain --list` lists them"
             )));
         }
     }
-    let model = args.model.resolve()?.model;
-    let templates: Vec<String> = args.what.iter().cloned().collect();
-    let input = gather(&templates, &[])?
-        .into_iter()
-        .next()
-        .ok_or_else(|| UsageError("no template given".into()))?;
     let target = args.target.into();
+    // The model first: a usage error should not wait for stdin.
+    let mut model = args.model.resolve()?.model;
+    let source = match super::paths::source(
+        args.what.as_ref(),
+        None,
+        &args.profile,
+        target,
+        args.model.height,
+        err,
+    )? {
+        Ok(s) => s,
+        Err(code) => return Ok(code),
+    };
+    if let Some(p) = source.profile
+        && args.model.model.is_none()
+        && args.model.layers.is_none()
+        && args.model.height.is_none()
+    {
+        model = p.model;
+    }
+    let input = source.input;
+    let parse = crate::parse(&input.text, target);
+    if parse.has_errors() {
+        // The errors first; then what parses, if anything does.
+        writeln!(out, "The template has errors:\n").map_err(io)?;
+        out.write_all(render_human(&[(&input, &parse.diagnostics)], false).as_bytes())
+            .map_err(io)?;
+        let word = input.text.trim();
+        if !word.is_empty() && word.bytes().all(|b| b.is_ascii_lowercase() || b == b'-') {
+            writeln!(
+                out,
+                "(Nor is `{word}` a diagnostic code: `rotlang explain --list` lists them.)"
+            )
+            .map_err(io)?;
+        }
+        if !parse.template.instructions.is_empty() {
+            writeln!(out).map_err(io)?;
+            let text = crate::explain::template(&input.text, target, &model);
+            out.write_all(text.as_bytes()).map_err(io)?;
+        }
+        return Ok(1);
+    }
     let text = crate::explain::template(&input.text, target, &model);
     out.write_all(text.as_bytes()).map_err(io)?;
-    let errors = crate::parse(&input.text, target).has_errors();
-    if errors {
-        writeln!(
-            out,
-            "\n`rotlang check` shows the errors, with the characters at fault."
-        )
-        .map_err(io)?;
+    Ok(0)
+}
+
+/// The documented code `w` most likely means: the code whose name after `::` is `w`, or
+/// one within two edits of it (a typo).
+fn nearest_code(w: &str) -> Option<&'static str> {
+    if w.len() < 4
+        || !w
+            .bytes()
+            .all(|b| b.is_ascii_lowercase() || b == b'-' || b == b':')
+    {
+        return None;
     }
-    Ok(i32::from(errors))
+    let name = w.rsplit("::").next().unwrap_or(w);
+    let codes = crate::explain::codes();
+    codes
+        .iter()
+        .map(|d| d.code)
+        .find(|c| c.rsplit("::").next() == Some(name))
+        .or_else(|| {
+            codes
+                .iter()
+                .map(|d| {
+                    (
+                        edits(name, d.code.rsplit("::").next().unwrap_or(d.code)),
+                        d.code,
+                    )
+                })
+                .filter(|(n, _)| *n <= 2)
+                .min()
+                .map(|(_, c)| c)
+        })
+}
+
+/// The edit distance of two short words (Levenshtein).
+fn edits(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let next = (prev + usize::from(ca != cb))
+                .min(row[j] + 1)
+                .min(row[j + 1] + 1);
+            prev = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
 }
 
 /// A code's page: summary, explanation, the example as `rotlang check` reports it, fix.

@@ -50,12 +50,13 @@ pub(crate) fn compat_skipped(compat: Option<CompatArg>, name: &str, len: usize) 
     })
 }
 
-/// Whether `check` names profiles or folders (an existing path, a file name of a profile,
-/// a --file that is not a template): what `--fix` does not work on.
+/// Whether `check` names files or folders (by the one path rule of
+/// [`super::paths::looks_like_path`]) or a --file that is not a template: what `--fix`
+/// does not work on.
 pub(crate) fn has_paths(args: &CheckArgs) -> bool {
     args.templates
         .iter()
-        .any(|t| Path::new(t).exists() || looks_like_a_file(t))
+        .any(|t| super::paths::looks_like_path(t))
         || args
             .files
             .iter()
@@ -89,7 +90,14 @@ pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageE
     let many = args.templates.len() > 1;
     for (i, arg) in args.templates.iter().enumerate() {
         let path = Path::new(arg);
-        if path.is_dir() {
+        if !super::paths::looks_like_path(arg) {
+            let name = if many {
+                format!("<template {}>", i + 1)
+            } else {
+                "<template>".to_owned()
+            };
+            run.template(name, arg.clone(), None, target, compat);
+        } else if path.is_dir() {
             let (files, errors) = profile::files_under(path);
             if files.is_empty() && errors.is_empty() {
                 run.notes.push(format!(
@@ -104,17 +112,12 @@ pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageE
         } else if path.exists() {
             run.file(path, target, compat);
         } else {
-            let name = if many {
-                format!("<template {}>", i + 1)
-            } else {
-                "<template>".to_owned()
-            };
-            if looks_like_a_file(arg) {
-                run.notes.push(format!(
-                    "{name}: `{arg}` is read as a template: there is no such file"
-                ));
-            }
-            run.template(name, arg.clone(), None, target, compat);
+            // A path that is not there: said as such, not read as a template.
+            run.files += 1;
+            run.file_errors.push(ProfileError {
+                path: path.to_owned(),
+                message: "no such file or folder".into(),
+            });
         }
     }
     for path in &args.files {
@@ -128,11 +131,6 @@ pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageE
     let failed =
         run.errors > 0 || !run.file_errors.is_empty() || (args.deny_warnings && run.warnings > 0);
     Ok(i32::from(failed))
-}
-
-/// `profile.json`, `presets/a.ini`: a name with a known extension, no spaces or commas.
-fn looks_like_a_file(arg: &str) -> bool {
-    !arg.contains([' ', ',']) && Kind::from_extension(Path::new(arg)).is_some()
 }
 
 impl Run {
@@ -230,10 +228,15 @@ impl Run {
             if compat_on(compat, found.text.len()) && !errors {
                 let pm =
                     profile.model(found.target, found.object.as_deref(), DEFAULT_OBJECT_HEIGHT);
-                for n in &pm.notes_for(&found.text) {
-                    model_notes.insert(format!("{file}: {n}"), ());
+                let found_here = pm.compat(&found.text, found.target);
+                // The model's defaults explain the findings' layers and angles: said where
+                // there are findings, not for every clean preset.
+                if !found_here.is_empty() {
+                    for n in &pm.notes_for(&found.text) {
+                        model_notes.insert(format!("{file}: {n}"), ());
+                    }
                 }
-                diagnostics.extend(pm.compat(&found.text, found.target));
+                diagnostics.extend(found_here);
             }
             self.templates += 1;
             self.count(&diagnostics);
@@ -365,29 +368,71 @@ fn into_file(mut d: Diagnostic, found: &Found) -> Diagnostic {
     d
 }
 
-/// `rotlang expand --profile PATH`: the template of `target` in the file (the project's
-/// own for a 3mf), on the profile's model unless the command line gives one, with the
-/// profile's direction where it applies (an empty template).
+/// `rotlang expand --profile PATH` (and `plot`, `preview`, `explain`): the template of
+/// `target` in the file (the project's own for a 3mf, or `object`'s), on the profile's
+/// model unless the command line gives one, with the profile's direction where it applies
+/// (an empty template).
 pub(crate) struct ProfileTemplate {
     pub text: String,
     pub model: Model,
     /// The base of this template in either reading ([`profile::ProfileModel::options`]).
     pub base: f64,
     pub notes: Vec<String>,
+    /// The file's errors as `check` reports them (`profile::invalid`): the command stops
+    /// with exit 1 after printing them.
+    pub errors: Option<String>,
 }
 
 pub(crate) fn profile_template(
     path: &Path,
     target: Target,
+    object: Option<&str>,
     height: Option<f64>,
 ) -> Result<ProfileTemplate, UsageError> {
     let profile = profile::read(path).map_err(|e| UsageError(e.to_string()))?;
-    let found = profile
-        .template(target)
-        .map_err(|why| UsageError(format!("{}: {why}", path.display())))?;
+    let names: Vec<&str> = profile.objects.iter().map(|(n, _)| n.as_str()).collect();
+    let found = match object {
+        Some(o) => {
+            if !names.contains(&o) {
+                let known = if names.is_empty() {
+                    "it has no per-object settings".to_owned()
+                } else {
+                    format!("its objects: {}", names.join(", "))
+                };
+                return Err(UsageError(format!(
+                    "{}: no object `{o}`; {known}",
+                    path.display()
+                )));
+            }
+            // The object's own template, else the project's.
+            match profile
+                .templates
+                .iter()
+                .find(|f| f.target == target && f.object.as_deref() == Some(o))
+            {
+                Some(f) => Ok(f),
+                None => profile.template(target),
+            }
+        }
+        None => profile.template(target),
+    };
+    let found = match found {
+        Ok(f) => f,
+        Err(why) if profile.has_errors() => {
+            let _ = why;
+            return Ok(ProfileTemplate {
+                text: String::new(),
+                model: Model::cube20(),
+                base: 0.0,
+                notes: Vec::new(),
+                errors: Some(errors_report(&profile)),
+            });
+        }
+        Err(why) => return Err(UsageError(format!("{}: {why}", path.display()))),
+    };
     let pm = profile.model(
         target,
-        found.object.as_deref(),
+        object.or(found.object.as_deref()),
         height.unwrap_or(DEFAULT_OBJECT_HEIGHT),
     );
     let base = pm.options(&found.text).base;
@@ -402,12 +447,15 @@ pub(crate) fn profile_template(
         ),
         (None, false) => String::new(),
     };
+    let label = match (object, &found.object) {
+        (Some(o), None) => format!("{} (for object {o})", found.label()),
+        _ => found.label(),
+    };
     notes.insert(
         0,
         format!(
-            "{}: {} `{}` ({} layers of {} mm, B = {}, T = {}{direction})",
+            "{}: {label} `{}` ({} layers of {} mm, B = {}, T = {}{direction})",
             path.display(),
-            found.label(),
             found.text,
             pm.model.len(),
             pm.model.layer_height(),
@@ -415,10 +463,52 @@ pub(crate) fn profile_template(
             pm.model.top_shells()
         ),
     );
+    if object.is_none() && !names.is_empty() {
+        notes.push(format!(
+            "{}: objects {} (--object NAME applies an object's overrides)",
+            path.display(),
+            names.join(", ")
+        ));
+    }
     Ok(ProfileTemplate {
         text: found.text.clone(),
         model: pm.model,
         base,
         notes,
+        errors: profile.has_errors().then(|| errors_report(&profile)),
     })
+}
+
+/// A profile's errors as `check` reports them (`error[profile::invalid]`, with the line).
+fn errors_report(profile: &Profile) -> String {
+    let mut units: Vec<(Input, Vec<Diagnostic>)> = profile
+        .sources
+        .iter()
+        .map(|s| {
+            let input = Input {
+                name: s.name.clone(),
+                text: s.text.clone(),
+                path: Some(profile.path.clone()),
+            };
+            (input, Vec::new())
+        })
+        .collect();
+    for note in profile.notes.iter().filter(|n| n.error) {
+        if let Some((_, ds)) = units.get_mut(note.source) {
+            ds.push(
+                Diagnostic::error("profile::invalid", note.message.clone())
+                    .with_primary(note.span, "here"),
+            );
+        }
+    }
+    let reports: Vec<(&Input, &[Diagnostic])> = units
+        .iter()
+        .filter(|(_, ds)| !ds.is_empty())
+        .map(|(i, ds)| (i, ds.as_slice()))
+        .collect();
+    format!(
+        "{}{}: not read: fix the errors first (`rotlang check` reports the same)\n",
+        render_human(&reports, false),
+        profile.path.display()
+    )
 }

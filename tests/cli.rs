@@ -1384,3 +1384,166 @@ fn explain_errors_and_near_codes() {
         "{golden}"
     );
 }
+
+/// Issue 17: every command that writes stdout ends quietly when its reader has gone
+/// (`rotlang completions bash | head -1` panicked with a backtrace, exit 101).
+#[test]
+fn a_closed_stdout_ends_every_command_quietly() {
+    let commands: [&[&str]; 9] = [
+        &["check", "+30X5", "0 90"],
+        &["fmt", "0 90"],
+        &["expand", "+30", "--layers", "5000"],
+        &["plot", "+30"],
+        &["preview", "+30", "--layers", "0..2"],
+        &["explain", "+10L25%, -10l25%"],
+        &["explain", "--list"],
+        &["completions", "bash"],
+        &["man"],
+    ];
+    for args in commands {
+        // The reading end is closed before the command starts: its first write fails.
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(args)
+            .current_dir(root())
+            .env_remove("RUST_BACKTRACE")
+            .stdin(Stdio::null())
+            .stdout(writer)
+            .stderr(Stdio::piped())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !stderr.contains("panicked") && !stderr.contains("cannot write output"),
+            "{args:?}: {stderr}"
+        );
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {stderr}");
+    }
+}
+
+/// Issue 17: `man --dir` writes every page rotlang(1) refers to, each with the version; the
+/// NAME line does not repeat the name.
+#[test]
+fn man_dir_writes_every_page() {
+    let dir = TempDir::new("man");
+    let (golden, code) = run_in(&dir, &["man", "--dir", dir.0.to_str().unwrap()]);
+    assert_eq!(code, 0, "{golden}");
+    let root = std::fs::read_to_string(dir.0.join("rotlang.1")).unwrap();
+    assert!(
+        root.contains("rotlang \\- check, format and expand infill rotation templates"),
+        "{root}"
+    );
+    let version = env!("CARGO_PKG_VERSION");
+    for command in [
+        "check",
+        "fmt",
+        "expand",
+        "plot",
+        "preview",
+        "explain",
+        "completions",
+        "man",
+    ] {
+        let name = format!("rotlang-{command}");
+        let roff = name.replace('-', "\\-");
+        assert!(
+            root.contains(&format!("{roff}(1)")),
+            "rotlang(1) refers to {name}(1)"
+        );
+        let page = std::fs::read_to_string(dir.0.join(format!("{name}.1")))
+            .unwrap_or_else(|e| panic!("{name}.1: {e}"));
+        assert!(page.contains(&format!("\"{name} {version}\"")), "{page}");
+    }
+}
+
+/// Issue 17: `º` (U+00BA) and `˚` (U+02DA), typed for `°`, get the degree-sign diagnostic
+/// and its fix.
+#[test]
+fn look_alike_degree_signs() {
+    for sign in ["º", "˚"] {
+        let template = format!("+30{sign}, 90");
+        let (golden, code) = run(&["check", "--compat", "none", &template], None);
+        assert_eq!(code, 1, "{golden}");
+        assert!(golden.contains("error[rotlang::degree-sign]"), "{golden}");
+        assert!(
+            golden.contains(&format!("fix: remove the `{sign}`")),
+            "{golden}"
+        );
+        let (golden, code) = run(&["check", "--fix", &template], None);
+        assert_eq!((stdout_of(&golden), code), ("+30, 90\n", 0), "{golden}");
+    }
+}
+
+/// Issue 17: lengths on the command line take the language's units; a template where the
+/// command goes gets the command to run; profile reports in JSON carry `omitted` and the
+/// notes.
+#[test]
+fn cli_polish() {
+    let (golden, code) = run(
+        &[
+            "expand",
+            "+30",
+            "--layers",
+            "2",
+            "--layer-height",
+            "0.2mm",
+            "--format",
+            "csv",
+        ],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(golden.contains("\n1,0.2,0.4,60,"), "{golden}");
+    let (golden, code) = run(
+        &[
+            "expand",
+            "+30",
+            "--height",
+            "1cm",
+            "--layer-height",
+            "0.5mm",
+        ],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(golden.contains("   19         9.5          10"), "{golden}");
+    let (golden, code) = run(
+        &["plot", "+30", "--height", "2cm", "--layer-height", "0.2mm"],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    let (golden, code) = run(&["+30"], None);
+    assert_eq!(code, 2, "{golden}");
+    assert!(
+        golden.contains("tip: to check a template or a file, run: rotlang check +30"),
+        "{golden}"
+    );
+    let (golden, code) = run(
+        &[
+            "check",
+            "--format",
+            "json",
+            "tests/fixtures/profiles/user-overrides.jsonc",
+        ],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    let lines: Vec<serde_json::Value> = stdout_of(&golden)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert!(
+        lines
+            .iter()
+            .filter(|l| l.get("input").is_some())
+            .all(|l| l["omitted"] == 0),
+        "{golden}"
+    );
+    assert!(
+        lines.iter().any(|l| l["note"]
+            .as_str()
+            .is_some_and(|n| n.contains("OrcaSlicer's default 3 is used"))),
+        "{golden}"
+    );
+}

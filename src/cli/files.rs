@@ -133,6 +133,25 @@ pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageE
     Ok(i32::from(failed))
 }
 
+/// Exact counts of one template's diagnostics, whatever the cap on those listed.
+#[derive(Clone, Copy)]
+struct Counts {
+    errors: usize,
+    warnings: usize,
+    omitted: usize,
+}
+
+impl Counts {
+    fn of(parse: &crate::Parse, lint: &[Diagnostic]) -> Counts {
+        let lint_errors = lint.iter().filter(|d| d.is_error()).count();
+        Counts {
+            errors: parse.errors + lint_errors,
+            warnings: parse.warnings + lint.len() - lint_errors,
+            omitted: parse.omitted,
+        }
+    }
+}
+
 impl Run {
     fn template(
         &mut self,
@@ -143,35 +162,37 @@ impl Run {
         compat: Option<CompatArg>,
     ) {
         let parse = crate::check(&text, target);
-        let errors = parse.has_errors();
-        let mut diagnostics = parse.diagnostics;
         if let Some(note) = compat_skipped(compat, &name, text.len()) {
             self.notes.push(note);
         }
         // A template with errors gets those alone (as in the language server).
-        if compat_on(compat, text.len()) && !errors {
-            diagnostics.extend(compat::compat(
-                &text,
-                target,
-                &Model::cube20(),
-                Options::default(),
-            ));
-        }
-        self.count(&diagnostics);
+        let found = if compat_on(compat, text.len()) && !parse.has_errors() {
+            compat::compat(&text, target, &Model::cube20(), Options::default())
+        } else {
+            Vec::new()
+        };
+        let counts = Counts::of(&parse, &found);
+        let mut diagnostics = parse.diagnostics;
+        diagnostics.extend(found);
+        self.add(counts);
         self.templates += 1;
         let index = LineIndex::new(&text);
         let report = serde_json::json!({
             "input": text, "name": name, "file": path.as_ref().map(|p| p.display().to_string()),
             "key": null, "object": null,
             "diagnostics": diagnostics.iter().map(|d| diagnostic_json(&index, d)).collect::<Vec<_>>(),
-            "errors": diagnostics.iter().filter(|d| d.is_error()).count(),
-            "warnings": diagnostics.iter().filter(|d| !d.is_error()).count(),
+            "errors": counts.errors, "warnings": counts.warnings, "omitted": counts.omitted,
         });
         self.units.push(Unit {
             input: Input { name, text, path },
             diagnostics,
             reports: vec![report],
         });
+    }
+
+    fn add(&mut self, counts: Counts) {
+        self.errors += counts.errors;
+        self.warnings += counts.warnings;
     }
 
     fn count(&mut self, diagnostics: &[Diagnostic]) {
@@ -223,9 +244,8 @@ impl Run {
         let mut model_notes: BTreeMap<String, ()> = BTreeMap::new();
         for found in &profile.templates {
             let parse = crate::check(&found.text, found.target);
-            let errors = parse.has_errors();
-            let mut diagnostics = parse.diagnostics;
-            if compat_on(compat, found.text.len()) && !errors {
+            let mut lint = Vec::new();
+            if compat_on(compat, found.text.len()) && !parse.has_errors() {
                 let pm =
                     profile.model(found.target, found.object.as_deref(), DEFAULT_OBJECT_HEIGHT);
                 let found_here = pm.compat(&found.text, found.target);
@@ -236,10 +256,13 @@ impl Run {
                         model_notes.insert(format!("{file}: {n}"), ());
                     }
                 }
-                diagnostics.extend(found_here);
+                lint = found_here;
             }
+            let counts = Counts::of(&parse, &lint);
+            let mut diagnostics = parse.diagnostics;
+            diagnostics.extend(lint);
             self.templates += 1;
-            self.count(&diagnostics);
+            self.add(counts);
             let unit = &mut units[found.source];
             let moved: Vec<Diagnostic> = diagnostics
                 .into_iter()
@@ -251,8 +274,7 @@ impl Run {
                 "file": file, "source": unit.input.name, "key": found.key, "object": found.object,
                 "target": match found.target { Target::Sparse => "sparse", Target::Solid => "solid" },
                 "diagnostics": moved.iter().map(|d| diagnostic_json(&index, d)).collect::<Vec<_>>(),
-                "errors": moved.iter().filter(|d| d.is_error()).count(),
-                "warnings": moved.iter().filter(|d| !d.is_error()).count(),
+                "errors": counts.errors, "warnings": counts.warnings, "omitted": counts.omitted,
             }));
             unit.diagnostics.extend(moved);
         }
@@ -271,6 +293,7 @@ impl Run {
                 "key": null, "object": null,
                 "diagnostics": [diagnostic_json(&index, &d)],
                 "errors": usize::from(note.error), "warnings": usize::from(!note.error),
+                "omitted": 0,
             }));
             unit.diagnostics.push(d);
         }
@@ -290,6 +313,11 @@ impl Run {
                 for e in &self.file_errors {
                     let obj = serde_json::json!({"file": e.path.display().to_string(), "error": e.message});
                     writeln!(out, "{obj}").map_err(io)?;
+                }
+                // The notes the human report ends with (defaults used, files without a
+                // template), one object each.
+                for n in &self.notes {
+                    writeln!(out, "{}", serde_json::json!({ "note": n })).map_err(io)?;
                 }
             }
             Format::Human => {

@@ -67,6 +67,7 @@ pub struct ModelArgs {
     #[arg(
         long,
         value_name = "MM",
+        value_parser = super::args::millimetres,
         help_heading = "Model",
         conflicts_with = "model",
         allow_negative_numbers = true
@@ -76,6 +77,7 @@ pub struct ModelArgs {
     #[arg(
         long,
         value_name = "MM",
+        value_parser = super::args::millimetres,
         help_heading = "Model",
         conflicts_with = "model",
         allow_negative_numbers = true
@@ -85,6 +87,7 @@ pub struct ModelArgs {
     #[arg(
         long,
         value_name = "MM",
+        value_parser = super::args::millimetres,
         help_heading = "Model",
         conflicts_with = "model",
         allow_negative_numbers = true

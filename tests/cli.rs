@@ -1547,3 +1547,37 @@ fn cli_polish() {
         "{golden}"
     );
 }
+
+/// Issue 16.5: `plot --dialect orcaslicer` draws OrcaSlicer's angles for any text, as
+/// `expand --dialect` prints them; where the readings agree the pictures are the same.
+#[test]
+fn plot_in_the_orcaslicer_dialect() {
+    let svg = |args: &[&str]| {
+        let (golden, code) = run(args, None);
+        assert_eq!(code, 0, "{golden}");
+        golden
+    };
+    for text in ["0, 90", "+10L25%, -10l25%", "B!, +30"] {
+        assert_eq!(
+            stdout_of(&svg(&["plot", "--dialect", "orcaslicer", text])),
+            stdout_of(&svg(&["plot", text])),
+            "{text}"
+        );
+    }
+    assert_ne!(
+        stdout_of(&svg(&["plot", "--dialect", "orcaslicer", "0 90"])),
+        stdout_of(&svg(&["plot", "0 90"]))
+    );
+    let golden = svg(&[
+        "plot",
+        "--dialect",
+        "orcaslicer",
+        "10!, 5*",
+        "--layers",
+        "5",
+    ]);
+    assert!(golden.contains("warning[orcaslicer::hangs]"), "{golden}");
+    // Text rotlang rejects is drawn as OrcaSlicer reads it.
+    let golden = svg(&["plot", "--dialect", "orcaslicer", "+30X5"]);
+    assert!(golden.contains("<svg"), "{golden}");
+}

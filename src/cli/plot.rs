@@ -46,6 +46,11 @@ pub struct PlotArgs {
     pub model: ModelArgs,
     #[command(flatten)]
     pub profile: super::paths::ProfileArgs,
+    /// `rotlang`: the language as documented; `orcaslicer`: exactly the angles OrcaSlicer
+    /// computes, for any text (as `expand --dialect`); where it hangs, crashes or yields
+    /// NaN the layers are reported on stderr and the angles stay finite.
+    #[arg(long, value_name = "DIALECT", default_value_t)]
+    pub dialect: eval::Dialect,
     /// Write the SVG to this file instead of stdout.
     #[arg(long, short = 'o', value_name = "FILE.svg")]
     pub out: Option<PathBuf>,
@@ -191,7 +196,7 @@ pub(super) fn template(
     text: &Option<String>,
     file: &Option<PathBuf>,
     profile: &super::paths::ProfileArgs,
-    target: TargetArg,
+    (target, dialect): (TargetArg, eval::Dialect),
     color: ColorArg,
     model: (&ModelArgs, Option<usize>),
     err: &mut dyn Write,
@@ -230,6 +235,15 @@ pub(super) fn template(
     }
     let input = source.input;
     let parse = crate::parse(&input.text, target.into());
+    // OrcaSlicer has no grammar: any text is drawn as it reads it.
+    if dialect == eval::Dialect::OrcaSlicer {
+        return Ok(Ok(Drawn {
+            input,
+            parse,
+            model,
+            options,
+        }));
+    }
     if !parse.diagnostics.is_empty() {
         let report = super::render_diagnostics(&input, &parse.diagnostics, color.enabled(false));
         err.write_all(report.as_bytes())
@@ -266,7 +280,7 @@ pub fn run(args: &PlotArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<
         &args.template,
         &args.file,
         &args.profile,
-        args.target,
+        (args.target, args.dialect),
         args.color,
         (&args.model, args.layers),
         err,
@@ -279,13 +293,33 @@ pub fn run(args: &PlotArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<
         height: args.size.1,
         title: args.title.clone(),
     };
-    let svg = crate::plot::svg(
-        &drawn.parse.template,
-        &drawn.model,
-        drawn.options,
-        &drawn.input.text,
-        &options,
-    );
+    let svg = match args.dialect {
+        eval::Dialect::Rotlang => crate::plot::svg(
+            &drawn.parse.template,
+            &drawn.model,
+            drawn.options,
+            &drawn.input.text,
+            &options,
+        ),
+        eval::Dialect::OrcaSlicer => {
+            let (svg, findings) = crate::plot::svg_orcaslicer(
+                &drawn.parse.template,
+                &drawn.model,
+                drawn.options,
+                &drawn.input.text,
+                &options,
+            );
+            for f in findings {
+                writeln!(
+                    err,
+                    "warning[{}]: {} ({} layers from layer {}; drawn with finite angles)",
+                    f.code, f.message, f.layers, f.first_layer
+                )
+                .map_err(|e| UsageError(format!("cannot write to stderr: {e}")))?;
+            }
+            svg
+        }
+    };
     emit(&svg, args.out.as_deref(), out)?;
     Ok(0)
 }

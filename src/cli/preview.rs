@@ -411,7 +411,7 @@ pub fn run(
         &args.template,
         &args.file,
         &args.profile,
-        args.target,
+        (args.target, crate::eval::Dialect::Rotlang),
         args.color,
         (&args.model, None),
         err,

@@ -21,13 +21,13 @@ Examples:
   rotlang check -f - < a.rot              `-` is stdin, as a template or a file
 
 `--fix` applies the fix of every diagnostic that has one (the `fix:` lines of the
-report), again and again until none is left, and prints one line (or file text) per
-input, in order. An input is left as it is (printed unchanged, not written, exit 1,
-its name and the reason on stderr) when errors remain that have no fix, or, without
---force, when OrcaSlicer would read the fixed template differently (`10,,20`).
-With --compat orcaslicer the compat findings' fixes are applied too: they make
-OrcaSlicer read what rotlang reads, so that guard is not applied.
-It works on templates and --file (not on profiles or folders).
+report, the OrcaSlicer lint's included), again and again until none is left, and
+prints one line (or file text) per input, in order. A fix is applied when afterwards
+OrcaSlicer reads the template as rotlang does, or as it read it before (`0; 90`,
+`b!, +30`, `+30/50 %`, `10,,20`). An input is left as it is (printed unchanged, not
+written, exit 1, its name and the reason on stderr) when errors remain that have no
+fix (an OrcaSlicer hang included), or, without --force, when the fixes would make two
+agreeing readings part. It works on templates and --file (not on profiles or folders).
 
 OrcaSlicer's reading is compared by default (`--compat none` turns it off): `0 90`
 is a warning (OrcaSlicer reads `0`), `10!, 5*` an error (OrcaSlicer never finishes
@@ -58,15 +58,15 @@ pub struct CheckArgs {
     #[arg(long)]
     pub deny_warnings: bool,
     /// Apply every fix and print the fixed templates, one per input in order (diagnostics
-    /// go to stderr). With --compat orcaslicer, the compat findings' fixes too.
+    /// go to stderr). The OrcaSlicer lint's fixes too, unless --compat none.
     #[arg(long, conflicts_with = "format")]
     pub fix: bool,
     /// With --fix: rewrite files in place instead of printing them.
     #[arg(long, requires = "fix")]
     pub write: bool,
-    /// With --fix: fix even where OrcaSlicer would read the result differently (`10,,20`
-    /// is 10, 0, 20 for OrcaSlicer, `10, 20` is 10, 20); without it such a template is
-    /// left as it is (printed unchanged) and the exit status is 1.
+    /// With --fix: fix even where the fixes would make OrcaSlicer's reading part from
+    /// rotlang's where the two agreed; without it such a template is left as it is
+    /// (printed unchanged) and the exit status is 1.
     #[arg(long, requires = "fix")]
     pub force: bool,
     /// Compare with a slicer's own reading, by default OrcaSlicer's: where its angles

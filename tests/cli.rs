@@ -1581,3 +1581,35 @@ fn plot_in_the_orcaslicer_dialect() {
     let golden = svg(&["plot", "--dialect", "orcaslicer", "+30X5"]);
     assert!(golden.contains("<svg"), "{golden}");
 }
+
+/// Issue 16.5: `explain --dialect orcaslicer` says how OrcaSlicer reads the template.
+#[test]
+fn explain_in_the_orcaslicer_dialect() {
+    let (golden, code) = run(&["explain", "--dialect", "orcaslicer", "0 90"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("In OrcaSlicer (`--dialect orcaslicer`): layers from 0 at 0°, 0°, 0°"),
+        "{golden}"
+    );
+    assert!(
+        golden.contains("OrcaSlicer turns layer 1 to 0°, rotlang to 90° [orcaslicer::differs]"),
+        "{golden}"
+    );
+    let (golden, _) = run(
+        &[
+            "explain",
+            "--dialect",
+            "orcaslicer",
+            "0, 90",
+            "--layers",
+            "4",
+        ],
+        None,
+    );
+    assert!(
+        golden.contains("at 0°, 90°, 0°, 90°.\nIt reads the template as rotlang does"),
+        "{golden}"
+    );
+    let (golden, _) = run(&["explain", "0 90"], None);
+    assert!(!golden.contains("In OrcaSlicer"), "{golden}");
+}

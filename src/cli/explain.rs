@@ -16,6 +16,7 @@ Examples:
   rotlang explain -- -30/50%                 a template that begins with '-'
   rotlang explain - < profile.rot            `-` is stdin
   rotlang explain --profile process.json     the template of a preset, on its model
+  rotlang explain --dialect orcaslicer '0 90'  ... and how OrcaSlicer reads it
 
 Exit status: 0 when explained, 1 when a template has errors (what parses is still
 explained), 2 on a usage error (such as an unknown code).")]
@@ -34,6 +35,10 @@ pub struct ExplainArgs {
     pub model: ModelArgs,
     #[command(flatten)]
     pub profile: super::paths::ProfileArgs,
+    /// `orcaslicer`: also say how OrcaSlicer reads the template on the model: its first
+    /// angles, and where it parts from rotlang's reading (the compat lint), for any text.
+    #[arg(long, value_name = "DIALECT", default_value_t)]
+    pub dialect: crate::eval::Dialect,
 }
 
 pub fn run(
@@ -88,15 +93,20 @@ pub fn run(
         Ok(s) => s,
         Err(code) => return Ok(code),
     };
-    if let Some(p) = source.profile
-        && args.model.model.is_none()
-        && args.model.layers.is_none()
-        && args.model.height.is_none()
-    {
-        model = p.model;
+    let mut options = crate::eval::Options::default();
+    if let Some(p) = source.profile {
+        options.base = p.base;
+        if args.model.model.is_none() && args.model.layers.is_none() && args.model.height.is_none()
+        {
+            model = p.model;
+        }
     }
     let input = source.input;
     let parse = crate::parse(&input.text, target);
+    let orcaslicer = match args.dialect {
+        crate::eval::Dialect::OrcaSlicer => orcaslicer_words(&input.text, target, &model, options),
+        crate::eval::Dialect::Rotlang => String::new(),
+    };
     if parse.has_errors() {
         // The errors first; then what parses, if anything does.
         writeln!(out, "The template has errors:\n").map_err(io)?;
@@ -115,11 +125,42 @@ pub fn run(
             let text = crate::explain::template(&input.text, target, &model);
             out.write_all(text.as_bytes()).map_err(io)?;
         }
+        out.write_all(orcaslicer.as_bytes()).map_err(io)?;
         return Ok(1);
     }
     let text = crate::explain::template(&input.text, target, &model);
     out.write_all(text.as_bytes()).map_err(io)?;
+    out.write_all(orcaslicer.as_bytes()).map_err(io)?;
     Ok(0)
+}
+
+/// How OrcaSlicer reads `text` on `model`: its first angles, and the compat findings.
+fn orcaslicer_words(
+    text: &str,
+    target: crate::Target,
+    model: &crate::eval::Model,
+    options: crate::eval::Options,
+) -> String {
+    const SHOWN: usize = 8;
+    let angles: Vec<String> = crate::dialect::orcaslicer::layers(text, model, options)
+        .take(SHOWN)
+        .map(|l| format!("{}°", crate::number::round_angle(l.angle)))
+        .collect();
+    let end = if model.len() > SHOWN { ", ..." } else { "." };
+    let mut s = format!(
+        "\nIn OrcaSlicer (`--dialect orcaslicer`): layers from 0 at {}{end}\n",
+        angles.join(", ")
+    );
+    let found = crate::dialect::compat::compat(text, target, model, options);
+    if found.is_empty() {
+        s.push_str("It reads the template as rotlang does on this model.\n");
+    } else {
+        s.push_str("Where it parts from rotlang's reading:\n");
+        for d in found {
+            s.push_str(&format!("- {} [{}]\n", d.message, d.code));
+        }
+    }
+    s
 }
 
 /// The documented code `w` most likely means: the code whose name after `::` is `w`, or

@@ -1613,3 +1613,15 @@ fn explain_in_the_orcaslicer_dialect() {
     let (golden, _) = run(&["explain", "0 90"], None);
     assert!(!golden.contains("In OrcaSlicer"), "{golden}");
 }
+
+/// Issue 16.3: the retired `orcaslicer::direction-ignored` is explained as retired.
+#[test]
+fn the_retired_direction_code_is_explained() {
+    let code = ["orcaslicer::", "direction-ignored"].concat();
+    let (golden, status) = run(&["explain", &code], None);
+    assert_eq!(status, 0, "{golden}");
+    assert!(
+        golden.contains("(retired)") && golden.contains("empty template only"),
+        "{golden}"
+    );
+}

@@ -68,6 +68,10 @@ pub fn run(
             || (w.len() > 3
                 && w.contains('-')
                 && w.bytes().all(|b| b.is_ascii_lowercase() || b == b'-'));
+        if let Some(why) = retired(w) {
+            writeln!(out, "{why}").map_err(io)?;
+            return Ok(0);
+        }
         let near = nearest_code(w);
         if code_like || near.is_some() {
             let hint = match near {
@@ -161,6 +165,19 @@ fn orcaslicer_words(
         }
     }
     s
+}
+
+/// A code rotlang no longer reports, and why (old reports and scripts still name it).
+fn retired(w: &str) -> Option<&'static str> {
+    let direction = concat!("orcaslicer::", "direction-ignored");
+    (w == direction || w == "direction-ignored").then_some(concat!(
+        "orcaslicer::",
+        "direction-ignored (retired): it said that OrcaSlicer ignores a ",
+        "profile's infill direction when a template is set while rotlang added it to every ",
+        "angle. rotlang now reads a profile as OrcaSlicer does, in every tool: the direction ",
+        "(sparse_infill_direction, infill_direction, solid_infill_direction) is the angle of ",
+        "an empty template only, so the two readings never part on it."
+    ))
 }
 
 /// The documented code `w` most likely means: the code whose name after `::` is `w`, or

@@ -57,6 +57,35 @@ enum Command {
     Man(cli::completions::ManArgs),
 }
 
+/// stdout, remembering whether its reader went away (a write failed with a broken pipe).
+struct PipeWatch<W> {
+    inner: W,
+    closed: bool,
+}
+
+impl<W: Write> PipeWatch<W> {
+    fn watch<T>(&mut self, r: std::io::Result<T>) -> std::io::Result<T> {
+        if let Err(e) = &r
+            && e.kind() == std::io::ErrorKind::BrokenPipe
+        {
+            self.closed = true;
+        }
+        r
+    }
+}
+
+impl<W: Write> Write for PipeWatch<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let r = self.inner.write(buf);
+        self.watch(r)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        let r = self.inner.flush();
+        self.watch(r)
+    }
+}
+
 fn main() -> ExitCode {
     let argv: Vec<String> = std::env::args_os()
         .map(|a| a.to_string_lossy().into_owned())
@@ -76,6 +105,19 @@ fn main() -> ExitCode {
                     let _ = write!(std::io::stderr(), "{message}");
                     return ExitCode::from(2);
                 }
+                // `rotlang '+30'`: a template (or a file) where the command goes.
+                if e.kind() == clap::error::ErrorKind::InvalidSubcommand
+                    && let Some(arg) = argv.get(1)
+                    && !arg.chars().all(|c| c.is_ascii_alphabetic())
+                {
+                    let _ = write!(
+                        std::io::stderr(),
+                        "{}\n  tip: to check a template or a file, run: rotlang check {}\n",
+                        e.render(),
+                        cli::shell_quote(arg)
+                    );
+                    return ExitCode::from(2);
+                }
                 // `expand 0, 90`: pieces of one template, split by the shell.
                 if let Some(note) = cli::args::pieces_of_one_template(&e, &Cli::command(), &argv) {
                     let _ = write!(std::io::stderr(), "{}\n{note}", e.render());
@@ -86,7 +128,10 @@ fn main() -> ExitCode {
         }
     };
     let stdout = std::io::stdout();
-    let mut out = std::io::BufWriter::new(stdout.lock());
+    let mut out = std::io::BufWriter::new(PipeWatch {
+        inner: stdout.lock(),
+        closed: false,
+    });
     let mut err = std::io::stderr();
     let result = match &cli.command {
         Command::Check(args) => cli::check::run(args, &mut out, &mut err),
@@ -94,13 +139,18 @@ fn main() -> ExitCode {
         Command::Expand(args) => cli::expand::run(args, &mut out, &mut err),
         Command::Plot(args) => cli::plot::run(args, &mut out, &mut err),
         Command::Preview(args) => cli::preview::run(args, &mut out, &mut err),
-        Command::Explain(args) => cli::explain::run(args, &mut out),
+        Command::Explain(args) => cli::explain::run(args, &mut out, &mut err),
         Command::Export(args) => cli::export::run(args, &mut out, &mut err),
         Command::Gcode(args) => cli::gcode::run(args, &mut out, &mut err),
         Command::Completions(args) => cli::completions::completions(args, Cli::command(), &mut out),
         Command::Man(args) => cli::completions::man(args, Cli::command(), &mut out),
     };
     let flushed = out.flush();
+    // `rotlang completions bash | head -1`: a reader that stops reading is not an error.
+    // End quietly, as `cat` would (rust ignores SIGPIPE, so writes fail instead).
+    if out.get_ref().closed {
+        return ExitCode::SUCCESS;
+    }
     match result {
         Ok(code) => {
             if let Err(e) = flushed

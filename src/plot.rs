@@ -154,7 +154,12 @@ fn frame(options: &PlotOptions) -> (Rect, Rect) {
     (angles, directions)
 }
 
-fn gather(template: &Template, model: &Model, options: eval::Options, plot: &PlotOptions) -> Data {
+fn gather(
+    template: &Template,
+    layers_of: impl Iterator<Item = eval::Layer>,
+    model: &Model,
+    plot: &PlotOptions,
+) -> Data {
     let (angles, directions) = frame(plot);
     let n = angles.w.ceil() as usize;
     let z_max = model.object_height().max(1e-9);
@@ -163,7 +168,7 @@ fn gather(template: &Template, model: &Model, options: eval::Options, plot: &Plo
     let index_of = |span: crate::Span| template.instructions.iter().position(|i| i.span == span);
     let mut layers = 0;
     let (mut near_0, mut near_90) = (0, 0);
-    for layer in eval::layers(template, model, options) {
+    for layer in layers_of {
         layers += 1;
         let z = (layer.bottom + layer.top) / 2.0;
         let c = ((z / z_max * angles.w) as usize).min(n - 1);
@@ -227,7 +232,12 @@ pub fn layout(
     options: eval::Options,
     plot: &PlotOptions,
 ) -> Layout {
-    let data = gather(template, model, options, plot);
+    let data = gather(
+        template,
+        eval::layers(template, model, options),
+        model,
+        plot,
+    );
     layout_of(&data, plot)
 }
 
@@ -324,7 +334,42 @@ pub fn svg(
     source: &str,
     plot: &PlotOptions,
 ) -> String {
-    let data = gather(template, model, options, plot);
+    let data = gather(
+        template,
+        eval::layers(template, model, options),
+        model,
+        plot,
+    );
+    draw(template, data, (model, options), source, plot)
+}
+
+/// The chart of OrcaSlicer's angles for `source` (`rotlang plot --dialect orcaslicer`):
+/// its reading of any text, valid or not, with the finite angles the dialect gives where
+/// OrcaSlicer hangs, crashes or computes NaN; `template` (rotlang's parse of the text, as
+/// far as it goes) labels the instructions. The findings are returned with the picture.
+pub fn svg_orcaslicer(
+    template: &Template,
+    model: &Model,
+    options: eval::Options,
+    source: &str,
+    plot: &PlotOptions,
+) -> (String, Vec<crate::dialect::Finding>) {
+    let mut layers = crate::dialect::orcaslicer::layers(source, model, options);
+    let data = gather(template, layers.by_ref(), model, plot);
+    let findings = layers.findings().to_vec();
+    (
+        draw(template, data, (model, options), source, plot),
+        findings,
+    )
+}
+
+fn draw(
+    template: &Template,
+    data: Data,
+    (model, options): (&Model, eval::Options),
+    source: &str,
+    plot: &PlotOptions,
+) -> String {
     let layout = layout_of(&data, plot);
     let (a, d) = (layout.angles, layout.directions);
     let mut s = String::new();

@@ -1130,7 +1130,34 @@ fn check_fix_with_compat_and_the_orcaslicer_guard() {
         0,
         ["check", "--compat", "orcaslicer", "--fix", "0 90"]
     );
-    golden!("fix_orcaslicer_guard", 1, ["check", "--fix", "10,,20"]);
+    // Issue 16.4: a fix is applied when afterwards OrcaSlicer reads the template as rotlang
+    // does (these were all left unchanged, "pass --force").
+    golden!(
+        "fix_readings_meet",
+        0,
+        [
+            "check",
+            "--fix",
+            "0; 90",
+            "b!, +30",
+            "+30/50 %",
+            "+45/10 layers",
+            "10,,20"
+        ]
+    );
+    let (golden, _) = run(
+        &["check", "--fix", "0; 90", "b!, +30", "+30/50 %", "10,,20"],
+        None,
+    );
+    assert_eq!(
+        stdout_of(&golden),
+        "0, 90\nB!, +30\n+30/50%\n10,20\n",
+        "{golden}"
+    );
+    // An OrcaSlicer error that no fix removes leaves the template as it is (exit 1).
+    let (golden, code) = run(&["check", "--fix", "10!, 5*"], None);
+    assert_eq!((stdout_of(&golden), code), ("10!, 5*\n", 1), "{golden}");
+    assert!(golden.contains("error[orcaslicer::hangs]"), "{golden}");
     golden!(
         "fix_orcaslicer_force",
         0,
@@ -1169,4 +1196,432 @@ fn a_file_named_as_the_template() {
     let (_, code) = run_in(&dir, &["fmt", "--write", file.to_str().unwrap()]);
     assert_eq!(code, 0);
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "0, 90\n");
+}
+
+/// Issue 16.4: `check` tells an OrcaSlicer user what OrcaSlicer does, by default: a hang is
+/// an error, a difference a warning; `--compat none` turns the lint off.
+#[test]
+fn check_lints_for_orcaslicer_by_default() {
+    golden!("check_default_hang", 1, ["check", "10!, 5*"]);
+    let (golden, code) = run(&["check", "0 90", "1:4"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("warning[orcaslicer::space-separated-list]")
+            && golden.contains("warning[orcaslicer::fraction]"),
+        "{golden}"
+    );
+    for args in [
+        &["check", "--compat", "none", "10!, 5*", "0 90", "1:4"][..],
+        &["check", "--compat", "none", "--format", "json", "10!, 5*"][..],
+    ] {
+        let (golden, code) = run(args, None);
+        assert_eq!(code, 0, "{golden}");
+        assert!(!golden.contains("orcaslicer::"), "{golden}");
+    }
+    // A folder of presets too.
+    let (golden, code) = run(&["check", "tests/fixtures/profiles/orca/process"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(golden.contains("warning[orcaslicer::"), "{golden}");
+    let (golden, _) = run(&["check", "--format", "json", "10!, 5*"], None);
+    assert!(golden.contains(r#""code":"orcaslicer::hangs""#), "{golden}");
+}
+
+/// Issue 16.4: the command `fmt` suggests for a profile is one a shell runs.
+#[test]
+fn fmt_quotes_the_path_it_suggests() {
+    let dir = TempDir::new("fmt-quote");
+    let file = dir.file(
+        "0.20mm Rotating Gyroid.json",
+        r#"{"sparse_infill_rotate_template": "0, 90"}"#,
+    );
+    let (golden, code) = run_in(&dir, &["fmt", file.to_str().unwrap()]);
+    assert_eq!(code, 2, "{golden}");
+    assert!(
+        golden.contains("`rotlang check '[TMP]/0.20mm Rotating Gyroid.json'` checks"),
+        "{golden}"
+    );
+}
+
+/// Issue 16.5: one path rule for every command; a missing path is "no such file" first; `/`
+/// alone is a template; a broken profile is an error in every command that reads it.
+#[test]
+fn one_path_rule_for_every_command() {
+    for command in ["check", "fmt", "expand", "plot", "preview", "explain"] {
+        let (golden, code) = run(&[command, "nosuch.json"], None);
+        assert!(
+            golden.contains("nosuch.json: no such file or folder"),
+            "{command}: {golden}"
+        );
+        assert!(!golden.contains("unknown sign"), "{command}: {golden}");
+        assert_ne!(code, 0, "{command}: {golden}");
+        let (golden, _) = run(&[command, "process/0.20mm Rotating Gyroid.json"], None);
+        assert!(
+            golden.contains("no such file") && !golden.contains("unknown sign"),
+            "{command}: {golden}"
+        );
+    }
+    // `/` alone is a template (the filesystem is not scanned).
+    let (golden, code) = run(&["check", "--compat", "none", "/"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(golden.contains("ok: 1 template, no problems"), "{golden}");
+    // A file named where the template goes is read, by every command.
+    let preset = "tests/fixtures/profiles/export.ini";
+    for args in [
+        &["expand", preset, "--layers", "2"][..],
+        &["plot", preset][..],
+        &["preview", preset, "--layers", "0..1", "--format", "json"][..],
+        &["explain", preset][..],
+    ] {
+        let (golden, code) = run(args, None);
+        assert_eq!(code, 0, "{golden}");
+        assert!(golden.contains("5, 10!, +20"), "{golden}");
+    }
+}
+
+#[test]
+fn a_broken_profile_fails_every_command_alike() {
+    let dir = TempDir::new("broken");
+    let broken = dir.file(
+        "broken.json",
+        r#"{"layer_height": "0.2" "sparse_infill_rotate_template": "0, 90"}"#,
+    );
+    let path = broken.to_str().unwrap();
+    let (golden, code) = run_in(&dir, &["expand", "--profile", path]);
+    insta::assert_snapshot!("expand_broken_profile", golden);
+    assert_eq!(code, 1);
+    for args in [
+        &["check", path][..],
+        &["expand", path][..],
+        &["plot", "--profile", path][..],
+        &["preview", "--profile", path][..],
+        &["explain", "--profile", path][..],
+    ] {
+        let (golden, code) = run(args, None);
+        assert_eq!(code, 1, "{golden}");
+        assert!(golden.contains("error[profile::invalid]: "), "{golden}");
+        assert!(
+            !golden.contains("\n    0   "),
+            "no layers printed: {golden}"
+        );
+    }
+}
+
+/// Issue 16.5: `plot`, `preview` and `explain` take `--profile`; a project lists its objects
+/// and takes `--object`.
+#[test]
+fn profiles_and_objects_in_every_command() {
+    let project = "tests/fixtures/profiles/project.3mf";
+    let (golden, code) = run(&["expand", "--profile", project, "--layers", "1"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("objects Lid & hinge / part Hinge, Lid & hinge (--object NAME"),
+        "{golden}"
+    );
+    let (golden, code) = run(
+        &[
+            "expand",
+            "--profile",
+            project,
+            "--object",
+            "Lid & hinge",
+            "--layers",
+            "2",
+            "--format",
+            "csv",
+        ],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("(object Lid & hinge) `0, 1:4` (125 layers of 0.16 mm"),
+        "{golden}"
+    );
+    let (golden, code) = run(&["plot", "--profile", project, "--object", "Nope"], None);
+    assert_eq!(code, 2, "{golden}");
+    assert!(
+        golden.contains("no object `Nope`; its objects: "),
+        "{golden}"
+    );
+    let (golden, code) = run(
+        &["explain", "--profile", project, "--object", "Lid & hinge"],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("`0, 1:4`") && golden.contains("125 layers"),
+        "{golden}"
+    );
+    let (golden, code) = run(
+        &["plot", "--profile", "tests/fixtures/profiles/export.ini"],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("<svg") && golden.contains("84 layers of 0.24 mm"),
+        "{golden}"
+    );
+}
+
+/// Issue 17: `explain` of a template with errors shows them; a word near a code names it.
+#[test]
+fn explain_errors_and_near_codes() {
+    let (golden, code) = run(&["explain", "+30X5"], None);
+    assert_eq!(code, 1, "{golden}");
+    assert!(golden.contains("The template has errors:"), "{golden}");
+    assert!(golden.contains("unknown sign `X`"), "{golden}");
+    assert!(!golden.contains("The template is empty"), "{golden}");
+    let (golden, code) = run(&["explain", "hangs"], None);
+    assert_eq!(code, 2, "{golden}");
+    assert!(
+        golden.contains("no diagnostic code `hangs`; did you mean `orcaslicer::hangs`?"),
+        "{golden}"
+    );
+    let (golden, code) = run(&["explain", "nosuchcode"], None);
+    assert_eq!(code, 1, "{golden}");
+    assert!(
+        golden.contains("The template has errors:")
+            && golden.contains("Nor is `nosuchcode` a diagnostic code"),
+        "{golden}"
+    );
+}
+
+/// Issue 17: every command that writes stdout ends quietly when its reader has gone
+/// (`rotlang completions bash | head -1` panicked with a backtrace, exit 101).
+#[test]
+fn a_closed_stdout_ends_every_command_quietly() {
+    let commands: [&[&str]; 9] = [
+        &["check", "+30X5", "0 90"],
+        &["fmt", "0 90"],
+        &["expand", "+30", "--layers", "5000"],
+        &["plot", "+30"],
+        &["preview", "+30", "--layers", "0..2"],
+        &["explain", "+10L25%, -10l25%"],
+        &["explain", "--list"],
+        &["completions", "bash"],
+        &["man"],
+    ];
+    for args in commands {
+        // The reading end is closed before the command starts: its first write fails.
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(args)
+            .current_dir(root())
+            .env_remove("RUST_BACKTRACE")
+            .stdin(Stdio::null())
+            .stdout(writer)
+            .stderr(Stdio::piped())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !stderr.contains("panicked") && !stderr.contains("cannot write output"),
+            "{args:?}: {stderr}"
+        );
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {stderr}");
+    }
+}
+
+/// Issue 17: `man --dir` writes every page rotlang(1) refers to, each with the version; the
+/// NAME line does not repeat the name.
+#[test]
+fn man_dir_writes_every_page() {
+    let dir = TempDir::new("man");
+    let (golden, code) = run_in(&dir, &["man", "--dir", dir.0.to_str().unwrap()]);
+    assert_eq!(code, 0, "{golden}");
+    let root = std::fs::read_to_string(dir.0.join("rotlang.1")).unwrap();
+    assert!(
+        root.contains("rotlang \\- check, format and expand infill rotation templates"),
+        "{root}"
+    );
+    let version = env!("CARGO_PKG_VERSION");
+    for command in [
+        "check",
+        "fmt",
+        "expand",
+        "plot",
+        "preview",
+        "explain",
+        "completions",
+        "man",
+    ] {
+        let name = format!("rotlang-{command}");
+        let roff = name.replace('-', "\\-");
+        assert!(
+            root.contains(&format!("{roff}(1)")),
+            "rotlang(1) refers to {name}(1)"
+        );
+        let page = std::fs::read_to_string(dir.0.join(format!("{name}.1")))
+            .unwrap_or_else(|e| panic!("{name}.1: {e}"));
+        assert!(page.contains(&format!("\"{name} {version}\"")), "{page}");
+    }
+}
+
+/// Issue 17: `º` (U+00BA) and `˚` (U+02DA), typed for `°`, get the degree-sign diagnostic
+/// and its fix.
+#[test]
+fn look_alike_degree_signs() {
+    for sign in ["º", "˚"] {
+        let template = format!("+30{sign}, 90");
+        let (golden, code) = run(&["check", "--compat", "none", &template], None);
+        assert_eq!(code, 1, "{golden}");
+        assert!(golden.contains("error[rotlang::degree-sign]"), "{golden}");
+        assert!(
+            golden.contains(&format!("fix: remove the `{sign}`")),
+            "{golden}"
+        );
+        let (golden, code) = run(&["check", "--fix", &template], None);
+        assert_eq!((stdout_of(&golden), code), ("+30, 90\n", 0), "{golden}");
+    }
+}
+
+/// Issue 17: lengths on the command line take the language's units; a template where the
+/// command goes gets the command to run; profile reports in JSON carry `omitted` and the
+/// notes.
+#[test]
+fn cli_polish() {
+    let (golden, code) = run(
+        &[
+            "expand",
+            "+30",
+            "--layers",
+            "2",
+            "--layer-height",
+            "0.2mm",
+            "--format",
+            "csv",
+        ],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(golden.contains("\n1,0.2,0.4,60,"), "{golden}");
+    let (golden, code) = run(
+        &[
+            "expand",
+            "+30",
+            "--height",
+            "1cm",
+            "--layer-height",
+            "0.5mm",
+        ],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    assert!(golden.contains("   19         9.5          10"), "{golden}");
+    let (golden, code) = run(
+        &["plot", "+30", "--height", "2cm", "--layer-height", "0.2mm"],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    let (golden, code) = run(&["+30"], None);
+    assert_eq!(code, 2, "{golden}");
+    assert!(
+        golden.contains("tip: to check a template or a file, run: rotlang check +30"),
+        "{golden}"
+    );
+    let (golden, code) = run(
+        &[
+            "check",
+            "--format",
+            "json",
+            "tests/fixtures/profiles/user-overrides.jsonc",
+        ],
+        None,
+    );
+    assert_eq!(code, 0, "{golden}");
+    let lines: Vec<serde_json::Value> = stdout_of(&golden)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert!(
+        lines
+            .iter()
+            .filter(|l| l.get("input").is_some())
+            .all(|l| l["omitted"] == 0),
+        "{golden}"
+    );
+    assert!(
+        lines.iter().any(|l| l["note"]
+            .as_str()
+            .is_some_and(|n| n.contains("OrcaSlicer's default 3 is used"))),
+        "{golden}"
+    );
+}
+
+/// Issue 16.5: `plot --dialect orcaslicer` draws OrcaSlicer's angles for any text, as
+/// `expand --dialect` prints them; where the readings agree the pictures are the same.
+#[test]
+fn plot_in_the_orcaslicer_dialect() {
+    let svg = |args: &[&str]| {
+        let (golden, code) = run(args, None);
+        assert_eq!(code, 0, "{golden}");
+        golden
+    };
+    for text in ["0, 90", "+10L25%, -10l25%", "B!, +30"] {
+        assert_eq!(
+            stdout_of(&svg(&["plot", "--dialect", "orcaslicer", text])),
+            stdout_of(&svg(&["plot", text])),
+            "{text}"
+        );
+    }
+    assert_ne!(
+        stdout_of(&svg(&["plot", "--dialect", "orcaslicer", "0 90"])),
+        stdout_of(&svg(&["plot", "0 90"]))
+    );
+    let golden = svg(&[
+        "plot",
+        "--dialect",
+        "orcaslicer",
+        "10!, 5*",
+        "--layers",
+        "5",
+    ]);
+    assert!(golden.contains("warning[orcaslicer::hangs]"), "{golden}");
+    // Text rotlang rejects is drawn as OrcaSlicer reads it.
+    let golden = svg(&["plot", "--dialect", "orcaslicer", "+30X5"]);
+    assert!(golden.contains("<svg"), "{golden}");
+}
+
+/// Issue 16.5: `explain --dialect orcaslicer` says how OrcaSlicer reads the template.
+#[test]
+fn explain_in_the_orcaslicer_dialect() {
+    let (golden, code) = run(&["explain", "--dialect", "orcaslicer", "0 90"], None);
+    assert_eq!(code, 0, "{golden}");
+    assert!(
+        golden.contains("In OrcaSlicer (`--dialect orcaslicer`): layers from 0 at 0°, 0°, 0°"),
+        "{golden}"
+    );
+    assert!(
+        golden.contains("OrcaSlicer turns layer 1 to 0°, rotlang to 90° [orcaslicer::differs]"),
+        "{golden}"
+    );
+    let (golden, _) = run(
+        &[
+            "explain",
+            "--dialect",
+            "orcaslicer",
+            "0, 90",
+            "--layers",
+            "4",
+        ],
+        None,
+    );
+    assert!(
+        golden.contains("at 0°, 90°, 0°, 90°.\nIt reads the template as rotlang does"),
+        "{golden}"
+    );
+    let (golden, _) = run(&["explain", "0 90"], None);
+    assert!(!golden.contains("In OrcaSlicer"), "{golden}");
+}
+
+/// Issue 16.3: the retired `orcaslicer::direction-ignored` is explained as retired.
+#[test]
+fn the_retired_direction_code_is_explained() {
+    let code = ["orcaslicer::", "direction-ignored"].concat();
+    let (golden, status) = run(&["explain", &code], None);
+    assert_eq!(status, 0, "{golden}");
+    assert!(
+        golden.contains("(retired)") && golden.contains("empty template only"),
+        "{golden}"
+    );
 }

@@ -542,12 +542,7 @@ fn explained_compat_examples_report_their_code() {
         .collect();
     assert_eq!(docs.len(), rotlang::dialect::compat::CODES.len());
     for doc in docs {
-        // The direction finding needs a profile's direction: OrcaSlicer's default 45°.
-        let base = if doc.code == rotlang::dialect::compat::DIRECTION_IGNORED {
-            45.0
-        } else {
-            0.0
-        };
+        let base = 0.0;
         let found = rotlang::dialect::compat(
             doc.example,
             Target::Sparse,
@@ -567,4 +562,77 @@ fn explained_compat_examples_report_their_code() {
             });
         assert_eq!(d.severity.as_str(), doc.severity, "{}", doc.code);
     }
+}
+
+/// Every help text of a `rotlang::` diagnostic that says what OrcaSlicer does with the
+/// characters its fix removes is checked against the dialect: OrcaSlicer's angles on the
+/// cube with and without them (issue 16.4: the trailing `0 , 90 ,` was said to be read
+/// as 0, where OrcaSlicer gives 0, 90, 0, 90).
+#[test]
+fn help_texts_about_orcaslicer_agree_with_the_dialect() {
+    use rotlang::Target;
+    let mut texts: Vec<String> = [
+        "0 , 90 ,",
+        "0, 90,",
+        "0, 90,,",
+        "10,,20",
+        ", +10",
+        "+10, , +20",
+        "0 ,, 90",
+        ",",
+        "0,\n90,\n",
+        "+30, 0,,",
+    ]
+    .map(str::to_owned)
+    .to_vec();
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus");
+    for dir in ["valid", "warn", "invalid"] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap().flatten() {
+            if entry.path().extension().is_some_and(|e| e == "rot")
+                && let Ok(text) = std::fs::read_to_string(entry.path())
+            {
+                texts.push(text);
+            }
+        }
+    }
+    let model = Model::cube20();
+    // In a profile whose direction is 45°: an empty template is 45°, anything else not.
+    let angles = |t: &str| -> Vec<u64> {
+        let options = orcaslicer::profile_options(
+            t,
+            Options {
+                base: 45.0,
+                seed: 0,
+            },
+        );
+        orcaslicer::layers(t, &model, options)
+            .map(|l| (l.angle * 1e6).round().to_bits())
+            .collect()
+    };
+    let mut checked = 0;
+    for text in &texts {
+        for d in rotlang::parse(text, Target::Sparse).diagnostics {
+            let Some(help) = d.help.as_deref().filter(|h| h.contains("OrcaSlicer")) else {
+                continue;
+            };
+            let Some(fix) = &d.fix else { continue };
+            let fixed = format!(
+                "{}{}{}",
+                &text[..fix.span.start],
+                fix.replacement,
+                &text[fix.span.end..]
+            );
+            let same = angles(text) == angles(&fixed);
+            let says_same =
+                help.contains("so does OrcaSlicer") || help.contains("as OrcaSlicer does");
+            let says_differs = help.contains("OrcaSlicer reads this empty instruction");
+            assert!(
+                says_same || says_differs,
+                "a help about OrcaSlicer this test does not know: {help:?}"
+            );
+            assert_eq!(same, says_same, "{text:?}: {help}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 8, "{checked} helps checked");
 }

@@ -149,7 +149,7 @@ fn parts_inherit_from_their_object_then_the_project() {
     // The object's 0.12 mm (set after its parts), the project's top shells and direction.
     assert_eq!(plain.model.layer_height(), 0.12);
     assert_eq!(plain.model.top_shells(), 6);
-    assert_eq!(plain.options.base, 10.0);
+    assert_eq!(plain.direction.degrees, 10.0);
     let own = p.model(Target::Sparse, Some(&object(&p.templates[1])), 20.0);
     assert_eq!(own.model.layer_height(), 0.12);
     assert_eq!((own.model.bottom_shells(), own.model.top_shells()), (7, 6));
@@ -168,7 +168,7 @@ fn presets_inherit_from_their_parents() {
         3,
         "from fdm_process_rotlang_common.json"
     );
-    assert_eq!(m.options.base, 30.0, "a number, not a string");
+    assert_eq!(m.direction.degrees, 30.0, "a number, not a string");
     assert!(m.notes.is_empty(), "{:?}", m.notes);
     let inherited = &p.settings.values["bottom_shell_layers"];
     assert!(
@@ -182,7 +182,11 @@ fn presets_inherit_from_their_parents() {
     let p = profile::read(&fixture("user-overrides.jsonc")).unwrap();
     let m = p.model(Target::Sparse, None, 20.0);
     assert_eq!(m.model.layer_height(), 0.16);
-    assert_eq!(m.notes.len(), 4, "{:?}", m.notes);
+    assert_eq!(m.notes.len(), 3, "{:?}", m.notes);
+    assert!(
+        m.direction.note.is_some(),
+        "the direction's default, for an empty template"
+    );
     assert!(
         m.notes[0].contains("parent preset `0.20mm Standard @Rotlang` (inherits) was not found")
     );
@@ -190,7 +194,7 @@ fn presets_inherit_from_their_parents() {
 
 #[test]
 fn check_runs_over_the_fixture_folder() {
-    let (code, out, err) = rotlang(&["check", "--color", "never", FIXTURES]);
+    let (code, out, err) = rotlang(&["check", "--compat", "none", "--color", "never", FIXTURES]);
     assert_eq!(code, 0, "{out}{err}");
     assert!(
         out.ends_with("ok: 15 templates in 8 files, no problems\n"),
@@ -222,19 +226,16 @@ fn check_runs_over_the_fixture_folder() {
     );
     assert!(out.contains("user-overrides.jsonc:8:49"), "{out}");
     assert!(
-        out.contains("note: ") && out.contains("OrcaSlicer's default 45° is used"),
+        out.contains("note: ") && out.contains("OrcaSlicer's default 3 is used"),
         "{out}"
     );
-    // 9 findings on the templates, and 9 templates whose profile sets a direction (45° or
-    // 30°) OrcaSlicer ignores; the 3 whose profile sets none are not told about a default.
-    assert_eq!(
-        out.matches("warning[orcaslicer::direction-ignored]")
-            .count(),
-        9,
-        "{out}"
-    );
+    // OrcaSlicer's default direction turns no template here: no note about it.
+    assert!(!out.contains("default 45° is used"), "{out}");
+    // 9 findings on the templates; a profile's direction turns an empty template only, in
+    // both readings, so the two never part on it.
+    assert!(!out.contains("direction-ignored"), "{out}");
     assert!(
-        out.ends_with("ok: 15 templates in 8 files, 18 warnings\n"),
+        out.ends_with("ok: 15 templates in 8 files, 9 warnings\n"),
         "{out}"
     );
 }
@@ -298,15 +299,14 @@ fn an_argument_naming_a_file_is_a_file() {
         "{out}"
     );
     assert!(out.contains("p.json:1:39"), "{out}");
-    // Not a file: a template, with a note.
+    // A path that is not there: no such file (issue 16.5), not a template.
     let (code, out, _) = rotlang(&["check", "--color", "never", "missing.json"]);
     assert_eq!(code, 1);
     assert!(
-        out.contains(
-            "note: <template>: `missing.json` is read as a template: there is no such file"
-        ),
+        out.contains("error: missing.json: no such file or folder"),
         "{out}"
     );
+    assert!(!out.contains("unknown sign"), "{out}");
 }
 
 #[test]
@@ -314,18 +314,19 @@ fn expand_with_a_profile() {
     let ini = fixture("export.ini").display().to_string();
     let (code, out, err) = rotlang(&["expand", "--profile", &ini, "--format", "csv"]);
     assert_eq!(code, 0, "{err}");
-    // `5, 10!, +20` on 0.3 + 0.24 mm layers, base 45 (sparse_infill_direction).
+    // `5, 10!, +20` on 0.3 + 0.24 mm layers; sparse_infill_direction 45 turns an empty
+    // template only, as in OrcaSlicer.
     let rows: Vec<&str> = out.lines().skip(1).take(3).collect();
     assert_eq!(
         rows,
         [
-            "0,0,0.3,50,sparse,0,1,5",
-            "1,0.3,0.54,55,sparse,3,6,10!",
-            "2,0.54,0.78,75,sparse,8,11,+20"
+            "0,0,0.3,5,sparse,0,1,5",
+            "1,0.3,0.54,10,sparse,3,6,10!",
+            "2,0.54,0.78,30,sparse,8,11,+20"
         ]
     );
     assert!(
-        err.contains("base 45° (84 layers of 0.24 mm, B = 4, T = 5)"),
+        err.contains("(84 layers of 0.24 mm, B = 4, T = 5, sparse_infill_direction 45° not applied (it turns an empty template only))"),
         "{err}"
     );
     // The profile's model unless the command line gives one; --base replaces the direction.
@@ -356,10 +357,11 @@ fn expand_with_a_profile() {
     );
 }
 
-/// OrcaSlicer uses the infill direction only for an empty template; rotlang adds it to
-/// every angle. `expand --dialect orcaslicer` and the compat lint follow that.
+/// OrcaSlicer uses the infill direction only for an empty template, and so does rotlang's
+/// reading of a profile (issue 16.3): `expand` in both dialects and the compat lint give
+/// the same angles, and name the key as the file spells it.
 #[test]
-fn the_direction_is_orcaslicers_only_for_an_empty_template() {
+fn the_direction_turns_an_empty_template_only() {
     let dir = Scratch::new("direction");
     let dir45 = dir.file(
         "dir45.json",
@@ -367,7 +369,15 @@ fn the_direction_is_orcaslicers_only_for_an_empty_template() {
     );
     let empty = dir.file(
         "empty.json",
-        br#"{"sparse_infill_rotate_template": "", "sparse_infill_direction": "45"}"#,
+        br#"{"sparse_infill_rotate_template": "", "infill_direction": "30"}"#,
+    );
+    let spaced = dir.file(
+        "spaced.json",
+        br#"{"sparse_infill_rotate_template": "0 90", "infill_direction": "45"}"#,
+    );
+    let unset = dir.file(
+        "unset.json",
+        br#"{"sparse_infill_rotate_template": "0, 90"}"#,
     );
     let angles = |path: &Path, dialect: &str| {
         let (code, out, err) = rotlang(&[
@@ -386,37 +396,51 @@ fn the_direction_is_orcaslicers_only_for_an_empty_template() {
             .map(|row| row.split(',').nth(3).unwrap().to_owned())
             .collect::<Vec<_>>()
     };
-    assert_eq!(angles(&dir45, "orcaslicer"), ["0", "90"]);
-    let (_, _, err) = rotlang(&[
-        "expand",
-        "--profile",
-        &dir45.display().to_string(),
-        "--dialect",
-        "orcaslicer",
-    ]);
+    for dialect in ["orcaslicer", "rotlang"] {
+        assert_eq!(angles(&dir45, dialect), ["0", "90"], "{dialect}");
+        assert_eq!(
+            angles(&unset, dialect),
+            ["0", "90"],
+            "{dialect}: no default 45°"
+        );
+        assert_eq!(angles(&empty, dialect), ["30", "30"], "{dialect}");
+        assert_eq!(angles(&spaced, dialect)[0], "0", "{dialect}");
+    }
+    let (_, _, err) = rotlang(&["expand", "--profile", &dir45.display().to_string()]);
     assert!(
-        err.contains(
-            "note: OrcaSlicer ignores the profile's direction (45°) when a template is set"
-        ),
+        err.contains("sparse_infill_direction 45° not applied (it turns an empty template only)"),
         "{err}"
     );
-    assert_eq!(angles(&dir45, "rotlang"), ["45", "135"]);
-    assert_eq!(angles(&empty, "orcaslicer"), ["45", "45"]);
-    assert_eq!(angles(&empty, "rotlang"), ["45", "45"]);
-    let (code, out, _) = rotlang(&[
-        "check",
-        "--compat",
-        "orcaslicer",
-        "--color",
-        "never",
-        &dir45.display().to_string(),
-    ]);
+    let (_, _, err) = rotlang(&["expand", "--profile", &empty.display().to_string()]);
+    assert!(err.contains(", infill_direction 30°)"), "{err}");
+    let (_, _, err) = rotlang(&["expand", "--profile", &unset.display().to_string()]);
+    assert!(!err.contains("45°"), "a default that turns nothing: {err}");
+    let check = |path: &Path| {
+        rotlang(&[
+            "check",
+            "--compat",
+            "orcaslicer",
+            "--color",
+            "never",
+            &path.display().to_string(),
+        ])
+    };
+    let (code, out, _) = check(&dir45);
     assert_eq!(code, 0, "{out}");
     assert!(
-        out.contains("warning[orcaslicer::direction-ignored]: sparse_infill_rotate_template: OrcaSlicer ignores sparse_infill_direction = 45° when a template is set; rotlang adds it to every angle"),
+        out.ends_with("ok: 1 template in 1 file, no problems\n"),
         "{out}"
     );
-    assert!(!out.contains("orcaslicer::differs"), "{out}");
+    // `0 90`: OrcaSlicer 0, 0; rotlang 0, 90. Layer 0 agrees; layer 1 is 90° apart.
+    let (_, out, _) = check(&spaced);
+    assert!(
+        out.contains("OrcaSlicer turns layer 1 to 0°, rotlang to 90°"),
+        "{out}"
+    );
+    assert!(
+        !out.contains("direction-ignored") && !out.contains("45°"),
+        "{out}"
+    );
 }
 
 /// A template key holding another type: `expand` says what `check` says, not "no key".
@@ -424,12 +448,14 @@ fn the_direction_is_orcaslicers_only_for_an_empty_template() {
 fn expand_names_a_template_of_the_wrong_type() {
     let dir = Scratch::new("types");
     let types = dir.file("types.json", br#"{"sparse_infill_rotate_template": 5}"#);
+    // Reported as `check` reports it, exit 1 (issue 16.5).
     let (code, _, err) = rotlang(&["expand", "--profile", &types.display().to_string()]);
-    assert_eq!(code, 2);
+    assert_eq!(code, 1);
     assert!(
-        err.contains("types.json: `sparse_infill_rotate_template` should be a template (a string), not `5` (line 1, column 35)"),
+        err.contains("error[profile::invalid]: `sparse_infill_rotate_template` should be a template (a string), not `5`"),
         "{err}"
     );
+    assert!(err.contains("types.json:1:35"), "{err}");
     let (_, out, _) = rotlang(&["check", "--color", "never", &types.display().to_string()]);
     assert!(
         out.contains("`sparse_infill_rotate_template` should be a template (a string), not `5`"),

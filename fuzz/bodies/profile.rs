@@ -32,7 +32,7 @@ pub fn run(data: &[u8]) {
             );
         }
         let m = profile.model(found.target, found.object.as_deref(), 20.0);
-        assert!(!m.model.is_empty() && m.options.base.is_finite());
+        assert!(!m.model.is_empty() && m.options(&found.text).base.is_finite());
     }
     for note in &profile.notes {
         let text = &profile.sources[note.source].text;

@@ -46,6 +46,28 @@ pub fn finite(text: &str) -> Result<f64, String> {
     }
 }
 
+/// A length in millimetres (`--layer-height`, `--height`): a number, or a number with a
+/// length unit of the language (`0.2mm`, `2cm`, `0.02m`, `0.01"`, `1'`).
+pub fn millimetres(text: &str) -> Result<f64, String> {
+    let t = text.trim();
+    let (number, scale) = [
+        ("mm", 1.0),
+        ("cm", 10.0),
+        ("m", 1000.0),
+        ("\"", 25.4),
+        ("'", 304.8),
+    ]
+    .iter()
+    .find_map(|(unit, scale)| t.strip_suffix(unit).map(|n| (n.trim_end(), *scale)))
+    .unwrap_or((t, 1.0));
+    match number.parse::<f64>() {
+        Ok(v) if (v * scale).is_finite() => Ok(v * scale),
+        _ => Err(format!(
+            "must be a length in millimetres (`0.2`, or with a unit: `0.2mm`, `2cm`); `{t}` is not"
+        )),
+    }
+}
+
 /// A usage error that clap words for options, but which is about a template: an argument
 /// that begins with `-` and is not an option (`check -50%Z1cm`) is a template that belongs
 /// after `--`. Returns the message to print instead of clap's, if this is such a case.

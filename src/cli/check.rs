@@ -15,21 +15,26 @@ Examples:
   rotlang check --target solid 'S/, +10'  as a solid_infill_rotate_template
   rotlang check --format json '+30X5'     one JSON object per input, one per line
   rotlang check profiles/ project.3mf     every template in presets, exports, projects
-  rotlang check --compat orcaslicer process.json   where OrcaSlicer reads it differently
+  rotlang check --compat none '0 90'      rotlang's reading alone, no OrcaSlicer lint
   rotlang check --fix '+30°, 10,,20'      print the template with every fix applied
   rotlang check --fix --write -f a.rot    apply the fixes to a.rot in place
   rotlang check --fix --write process.json   fix the templates of a preset in place
   rotlang check -f - < a.rot              `-` is stdin, as a template or a file
 
 `--fix` applies the fix of every diagnostic that has one (the `fix:` lines of the
-report), again and again until none is left, and prints one line (or file text) per
-input, in order. An input is left as it is (printed unchanged, not written, exit 1,
-its name and the reason on stderr) when errors remain that have no fix, or, without
---force, when OrcaSlicer would read the fixed template differently (`10,,20`).
-With --compat orcaslicer the compat findings' fixes are applied too: they make
-OrcaSlicer read what rotlang reads, so that guard is not applied.
+report, the OrcaSlicer lint's included), again and again until none is left, and
+prints one line (or file text) per input, in order. A fix is applied when afterwards
+OrcaSlicer reads the template as rotlang does, or as it read it before (`0; 90`,
+`b!, +30`, `+30/50 %`, `10,,20`). An input is left as it is (printed unchanged, not
+written, exit 1, its name and the reason on stderr) when errors remain that have no
+fix (an OrcaSlicer hang included), or, without --force, when the fixes would make two
+agreeing readings part.
 On presets (.json, .jsonc), .ini exports and folders it fixes each template's value
 in place and keeps every other byte of the file (.3mf projects are not rewritten).
+
+OrcaSlicer's reading is compared by default (`--compat none` turns it off): `0 90`
+is a warning (OrcaSlicer reads `0`), `10!, 5*` an error (OrcaSlicer never finishes
+slicing). An input over 64 KiB gets the OrcaSlicer lint only with --compat orcaslicer.
 
 Exit status: 0 when every input is clean or has only warnings, 1 when any has an
 error or a file cannot be read (the other files are still checked), 2 on a usage error.")]
@@ -56,20 +61,21 @@ pub struct CheckArgs {
     #[arg(long)]
     pub deny_warnings: bool,
     /// Apply every fix and print the fixed templates, one per input in order (diagnostics
-    /// go to stderr). With --compat orcaslicer, the compat findings' fixes too.
+    /// go to stderr). The OrcaSlicer lint's fixes too, unless --compat none.
     #[arg(long, conflicts_with = "format")]
     pub fix: bool,
     /// With --fix: rewrite files in place instead of printing them.
     #[arg(long, requires = "fix")]
     pub write: bool,
-    /// With --fix: fix even where OrcaSlicer would read the result differently (`10,,20`
-    /// is 10, 0, 20 for OrcaSlicer, `10, 20` is 10, 20); without it such a template is
-    /// left as it is (printed unchanged) and the exit status is 1.
+    /// With --fix: fix even where the fixes would make OrcaSlicer's reading part from
+    /// rotlang's where the two agreed; without it such a template is left as it is
+    /// (printed unchanged) and the exit status is 1.
     #[arg(long, requires = "fix")]
     pub force: bool,
-    /// Also compare with a slicer's own reading (`orcaslicer`): where its angles part from
-    /// rotlang's on the model (the profile's own, or the 20 mm cube), where it hangs or
-    /// computes NaN angles, and constructs it reads differently.
+    /// Compare with a slicer's own reading, by default OrcaSlicer's: where its angles
+    /// part from rotlang's on the model (the profile's own, or the 20 mm cube) is a
+    /// warning, where it hangs, crashes or computes NaN angles an error, and constructs it
+    /// reads differently are warnings. `none` checks rotlang's reading alone.
     #[arg(long, value_enum, value_name = "SLICER")]
     pub compat: Option<super::files::CompatArg>,
 }
@@ -87,7 +93,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
     if args.fix && super::files::has_paths(args) {
         return super::fix_files::run(args, out, err);
     }
-    if !args.fix && super::files::wanted(args) {
+    if !args.fix && super::files::has_paths(args) {
         return super::files::check(args, out);
     }
     let inputs = gather(&args.templates, &args.files)?;
@@ -98,10 +104,42 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
     if args.fix {
         return fix(args, &inputs, out, err);
     }
-    let parses: Vec<_> = inputs
+    let target = args.target.into();
+    let mut parses: Vec<_> = inputs
         .iter()
-        .map(|i| crate::check(&i.text, args.target.into()))
+        .map(|i| crate::check(&i.text, target))
         .collect();
+    // The OrcaSlicer lint (by default): its findings join each input's diagnostics. A
+    // template with errors gets those alone (as in the language server): OrcaSlicer's view
+    // of text rotlang rejects would only add noise until it is fixed.
+    for (input, parse) in inputs.iter().zip(&mut parses) {
+        if parse.has_errors() {
+            continue;
+        }
+        if let Some(note) = super::files::compat_skipped(args.compat, &input.name, input.text.len())
+        {
+            writeln!(err, "note: {note}").map_err(io)?;
+        }
+        if super::files::compat_on(args.compat, input.text.len()) {
+            let found = crate::dialect::compat::compat(
+                &input.text,
+                target,
+                &crate::eval::Model::cube20(),
+                crate::eval::Options::default(),
+            );
+            for d in found {
+                match d.severity {
+                    crate::Severity::Error => parse.errors += 1,
+                    crate::Severity::Warning => parse.warnings += 1,
+                }
+                parse.diagnostics.push(d);
+            }
+            // The "N more not shown" entry stays last.
+            parse
+                .diagnostics
+                .sort_by_key(|d| (d.code == "rotlang::too-many-diagnostics", d.primary_span()));
+        }
+    }
     let failed =
         |p: &crate::Parse| p.has_errors() || (args.deny_warnings && !p.diagnostics.is_empty());
     let code = i32::from(parses.iter().any(failed));
@@ -146,14 +184,17 @@ fn fix(
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     let target = args.target.into();
     // The compat lint on the model `check --compat` uses for templates.
-    let compat = |text: &str| match args.compat {
-        Some(_) => crate::dialect::compat::compat(
-            text,
-            target,
-            &crate::eval::Model::cube20(),
-            crate::eval::Options::default(),
-        ),
-        None => Vec::new(),
+    let compat = |text: &str| {
+        if super::files::compat_on(args.compat, text.len()) {
+            crate::dialect::compat::compat(
+                text,
+                target,
+                &crate::eval::Model::cube20(),
+                crate::eval::Options::default(),
+            )
+        } else {
+            Vec::new()
+        }
     };
     let mut code = 0;
     let (mut applied, mut written) = (0, 0);
@@ -163,31 +204,7 @@ fn fix(
             text: fixed.text.clone(),
             ..input.clone()
         };
-        // Why the input is left as it is, if it is.
-        let refused = if fixed.parse.has_errors() {
-            Some("errors remain that have no automatic fix".to_owned())
-        } else if args.compat.is_none()
-            && !args.force
-            && fixed.text != input.text
-            && !rotlang_change(&input.text, &fixed.text, target)
-        {
-            // Fixes that keep rotlang's reading may change OrcaSlicer's: `10,,20` becomes
-            // `10, 20`, which OrcaSlicer reads as 10, 20 instead of 10, 0, 20. The same
-            // guard as `fmt`'s. (A fix that repairs what rotlang reads, `+30/ 50%` into
-            // `+30/50%`, is the change the warning asked for, in both readings.)
-            let trim = |t: &str| t.strip_suffix('\n').unwrap_or(t).to_owned();
-            crate::dialect::compat::orcaslicer_change(&trim(&input.text), &trim(&fixed.text)).map(
-                |why| {
-                    format!(
-                        "`{}` would change what OrcaSlicer does ({why}); pass --force to fix \
-                         anyway, or --compat orcaslicer to see where the two readings part",
-                        trim(&fixed.text)
-                    )
-                },
-            )
-        } else {
-            None
-        };
+        let refused = refusal(args, &input.text, &fixed, target, &compat);
         // The report is of the text printed: the input when it is left as it is, else
         // what is left of the fixed text.
         let (shown, mut diagnostics) = match refused {
@@ -251,6 +268,42 @@ fn fix(
     }
     writeln!(err, "{line}").map_err(io)?;
     Ok(code)
+}
+
+/// Why `check --fix` leaves `text` as it is, if it does: errors remain (an OrcaSlicer hang
+/// included), or, without --force, the fixes would make two agreeing readings part. One
+/// rule for templates, `--file` and the values in profiles.
+pub(crate) fn refusal(
+    args: &CheckArgs,
+    text: &str,
+    fixed: &crate::fix::Fixed,
+    target: crate::Target,
+    compat: &dyn Fn(&str) -> Vec<crate::Diagnostic>,
+) -> Option<String> {
+    let trim = |t: &str| t.strip_suffix('\n').unwrap_or(t).to_owned();
+    let (before, after) = (trim(text), trim(&fixed.text));
+    if fixed.parse.has_errors() || compat(&fixed.text).iter().any(|d| d.is_error()) {
+        Some("errors remain that have no automatic fix".to_owned())
+    } else if !args.force
+        && fixed.text != text
+        && !rotlang_change(text, &fixed.text, target)
+        && crate::dialect::compat::readings_agree(&before, target)
+        && !crate::dialect::compat::readings_agree(&after, target)
+    {
+        // A fix is what the user asked for when, afterwards, OrcaSlicer reads the
+        // template as rotlang does, or as it read it before: only a fix that makes
+        // two agreeing readings part needs --force. (Fixes that repair what rotlang
+        // reads, `+30/ 50%` into `+30/50%`, or what OrcaSlicer misreads, `10,,20`
+        // into `10, 20`, are what the warnings asked for.)
+        Some(format!(
+            "`{after}` would make OrcaSlicer read it differently from rotlang ({}); \
+             pass --force to fix anyway",
+            crate::dialect::compat::orcaslicer_change(&before, &after)
+                .unwrap_or_else(|| "on some layer".to_owned())
+        ))
+    } else {
+        None
+    }
 }
 
 /// Whether rotlang reads `fixed` differently from `text`, which has no errors (on the 20 mm

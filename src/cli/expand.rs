@@ -1,10 +1,10 @@
 //! `rotlang expand`: the angle and fill of every layer of a model, streamed.
 
 use std::io::{BufWriter, ErrorKind, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use super::model::{ModelArgs, Resolved};
-use super::{ColorArg, Input, TargetArg, UsageError, args, diagnostic_json, gather};
+use super::{ColorArg, Input, TargetArg, UsageError, args, diagnostic_json};
 use crate::diagnostic::LineIndex;
 use crate::eval::{self, Layer, Options};
 use crate::number;
@@ -52,13 +52,18 @@ pub struct ExpandArgs {
     /// Read the template from a file (newlines separate instructions); `-` is stdin.
     #[arg(long, short = 'f', value_name = "PATH")]
     pub file: Option<PathBuf>,
-    /// Take the template (of --target), the model and the base direction from a profile:
-    /// an OrcaSlicer preset (.json), an exported .ini or a .3mf project. Layer heights,
-    /// shell counts and infill direction come from the profile (notes on stderr name every
-    /// default used); the object is 20 mm tall unless --height, --layers or --model; a
-    /// --base other than 0 replaces the profile's direction.
+    /// Take the template (of --target) and the model from a profile: an OrcaSlicer preset
+    /// (.json), an exported .ini or a .3mf project. Layer heights and shell counts come
+    /// from the profile (notes on stderr name every default used); its infill direction
+    /// is the angle of an empty template only, as in OrcaSlicer; the object is 20 mm tall
+    /// unless --height, --layers or --model; a --base other than 0 is added to every angle
+    /// instead.
     #[arg(long, value_name = "PATH", conflicts_with_all = ["template", "file"])]
     pub profile: Option<PathBuf>,
+    /// With a .3mf project: the object whose overrides apply (its template, layer height,
+    /// shells); `--profile project.3mf` alone lists the objects.
+    #[arg(long, value_name = "NAME")]
+    pub object: Option<String>,
     /// Which setting the template is for (solid signs are errors in a solid template).
     #[arg(long, value_enum, default_value_t)]
     pub target: TargetArg,
@@ -189,66 +194,36 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     // The model first: a usage error should not wait for stdin.
     let mut resolved = args.model.resolve()?;
     let mut base = args.base;
-    // `expand profile.json`: a file named where the template goes is read as the option
-    // meant (as `check` reads it), and a note names the option.
-    let (mut profile, mut file, mut template) = (
-        args.profile.clone(),
-        args.file.clone(),
-        args.template.clone(),
-    );
-    if let Some(t) = &args.template
-        && Path::new(t).is_file()
-    {
-        let kind = crate::profile::Kind::from_extension(Path::new(t));
-        let note = match kind {
-            Some(crate::profile::Kind::Template) => {
-                file = template.take().map(PathBuf::from);
-                format!("note: `{t}` is a file: read as --file {t}")
-            }
-            Some(_) => {
-                profile = template.take().map(PathBuf::from);
-                format!("note: `{t}` is a file: read as --profile {t}")
-            }
-            None => format!(
-                "note: `{t}` is read as a template, but it is also a file: to read the file, \
-                 pass --file {t} (a template) or --profile {t} (a profile)"
-            ),
-        };
-        writeln!(err, "{note}").map_err(|e| UsageError(e.to_string()))?;
-    }
-    // The base is the profile's direction (not --base): OrcaSlicer drops it for a template.
-    let mut direction = false;
-    let input = match &profile {
-        Some(path) => {
-            let p = super::files::profile_template(path, args.target.into(), args.model.height)?;
-            for note in &p.notes {
-                writeln!(err, "note: {note}").map_err(|e| UsageError(e.to_string()))?;
-            }
-            if args.model.model.is_none() && args.model.layers.is_none() {
-                resolved = Resolved {
-                    model: p.model,
-                    source: path.display().to_string(),
-                };
-            }
-            if base == 0.0 {
-                base = p.base;
-                direction = true;
-            }
-            Input {
-                name: path.display().to_string(),
-                text: p.text,
-                path: Some(path.clone()),
-            }
-        }
-        None => {
-            let templates: Vec<String> = template.iter().cloned().collect();
-            let files: Vec<PathBuf> = file.iter().cloned().collect();
-            gather(&templates, &files)?
-                .into_iter()
-                .next()
-                .ok_or_else(|| UsageError("no template given".into()))?
-        }
+    // The template by the one rule of every command (`expand profile.json` reads the
+    // profile, `expand nosuch.json` is no such file).
+    let profile = super::paths::ProfileArgs {
+        profile: args.profile.clone(),
+        object: args.object.clone(),
     };
+    let source = match super::paths::source(
+        args.template.as_ref(),
+        args.file.as_ref(),
+        &profile,
+        args.target.into(),
+        args.model.height,
+        err,
+    )? {
+        Ok(s) => s,
+        Err(code) => return Ok(code),
+    };
+    if let Some(p) = source.profile {
+        if args.model.model.is_none() && args.model.layers.is_none() {
+            resolved = Resolved {
+                model: p.model,
+                source: source.input.name.clone(),
+            };
+        }
+        // The profile's direction (for an empty template), unless --base replaces it.
+        if base == 0.0 {
+            base = p.base;
+        }
+    }
+    let input = source.input;
     let len = resolved.model.len();
     let (start, end) = match args.range {
         None => (0, len),
@@ -276,20 +251,6 @@ pub fn run(args: &ExpandArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
         end,
     };
     if args.dialect == eval::Dialect::OrcaSlicer {
-        let options = if direction {
-            let theirs = crate::dialect::orcaslicer::profile_options(&input.text, options);
-            if theirs.base != options.base {
-                writeln!(
-                    err,
-                    "note: OrcaSlicer ignores the profile's direction ({}°) when a template is set",
-                    options.base
-                )
-                .map_err(|e| UsageError(e.to_string()))?;
-            }
-            theirs
-        } else {
-            options
-        };
         // No grammar, so no syntax diagnostics: the JSON's are the dialect's findings (a
         // hang, undefined behaviour, NaN layers), known once the layers are written.
         return super::dialect::expand(&input.text, &resolved.model, options, err, |layers| {

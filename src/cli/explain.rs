@@ -3,7 +3,7 @@
 use std::io::Write;
 
 use super::model::ModelArgs;
-use super::{Input, TargetArg, UsageError, gather, render_human};
+use super::{Input, TargetArg, UsageError, render_human};
 
 #[derive(clap::Args, Debug)]
 #[command(after_long_help = "\
@@ -15,6 +15,8 @@ Examples:
   rotlang explain 'B!, +30' --layers 50      ... on a model of 50 layers of 0.2 mm
   rotlang explain -- -30/50%                 a template that begins with '-'
   rotlang explain - < profile.rot            `-` is stdin
+  rotlang explain --profile process.json     the template of a preset, on its model
+  rotlang explain --dialect orcaslicer '0 90'  ... and how OrcaSlicer reads it
 
 Exit status: 0 when explained, 1 when a template has errors (what parses is still
 explained), 2 on a usage error (such as an unknown code).")]
@@ -31,9 +33,19 @@ pub struct ExplainArgs {
     pub target: TargetArg,
     #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub profile: super::paths::ProfileArgs,
+    /// `orcaslicer`: also say how OrcaSlicer reads the template on the model: its first
+    /// angles, and where it parts from rotlang's reading (the compat lint), for any text.
+    #[arg(long, value_name = "DIALECT", default_value_t)]
+    pub dialect: crate::eval::Dialect,
 }
 
-pub fn run(args: &ExplainArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
+pub fn run(
+    args: &ExplainArgs,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> Result<i32, UsageError> {
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
     if args.list {
         let width = crate::explain::codes()
@@ -56,30 +68,165 @@ pub fn run(args: &ExplainArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
             || (w.len() > 3
                 && w.contains('-')
                 && w.bytes().all(|b| b.is_ascii_lowercase() || b == b'-'));
-        if code_like {
+        if let Some(why) = retired(w) {
+            writeln!(out, "{why}").map_err(io)?;
+            return Ok(0);
+        }
+        let near = nearest_code(w);
+        if code_like || near.is_some() {
+            let hint = match near {
+                Some(code) => format!("did you mean `{code}`? "),
+                None => String::new(),
+            };
             return Err(UsageError(format!(
-                "no diagnostic code `{w}`; `rotlang explain --list` lists them"
+                "no diagnostic code `{w}`; {hint}`rotlang explain --list` lists them"
             )));
         }
     }
-    let model = args.model.resolve()?.model;
-    let templates: Vec<String> = args.what.iter().cloned().collect();
-    let input = gather(&templates, &[])?
-        .into_iter()
-        .next()
-        .ok_or_else(|| UsageError("no template given".into()))?;
     let target = args.target.into();
+    // The model first: a usage error should not wait for stdin.
+    let mut model = args.model.resolve()?.model;
+    let source = match super::paths::source(
+        args.what.as_ref(),
+        None,
+        &args.profile,
+        target,
+        args.model.height,
+        err,
+    )? {
+        Ok(s) => s,
+        Err(code) => return Ok(code),
+    };
+    let mut options = crate::eval::Options::default();
+    if let Some(p) = source.profile {
+        options.base = p.base;
+        if args.model.model.is_none() && args.model.layers.is_none() && args.model.height.is_none()
+        {
+            model = p.model;
+        }
+    }
+    let input = source.input;
+    let parse = crate::parse(&input.text, target);
+    let orcaslicer = match args.dialect {
+        crate::eval::Dialect::OrcaSlicer => orcaslicer_words(&input.text, target, &model, options),
+        crate::eval::Dialect::Rotlang => String::new(),
+    };
+    if parse.has_errors() {
+        // The errors first; then what parses, if anything does.
+        writeln!(out, "The template has errors:\n").map_err(io)?;
+        out.write_all(render_human(&[(&input, &parse.diagnostics)], false).as_bytes())
+            .map_err(io)?;
+        let word = input.text.trim();
+        if !word.is_empty() && word.bytes().all(|b| b.is_ascii_lowercase() || b == b'-') {
+            writeln!(
+                out,
+                "(Nor is `{word}` a diagnostic code: `rotlang explain --list` lists them.)"
+            )
+            .map_err(io)?;
+        }
+        if !parse.template.instructions.is_empty() {
+            writeln!(out).map_err(io)?;
+            let text = crate::explain::template(&input.text, target, &model);
+            out.write_all(text.as_bytes()).map_err(io)?;
+        }
+        out.write_all(orcaslicer.as_bytes()).map_err(io)?;
+        return Ok(1);
+    }
     let text = crate::explain::template(&input.text, target, &model);
     out.write_all(text.as_bytes()).map_err(io)?;
-    let errors = crate::parse(&input.text, target).has_errors();
-    if errors {
-        writeln!(
-            out,
-            "\n`rotlang check` shows the errors, with the characters at fault."
-        )
-        .map_err(io)?;
+    out.write_all(orcaslicer.as_bytes()).map_err(io)?;
+    Ok(0)
+}
+
+/// How OrcaSlicer reads `text` on `model`: its first angles, and the compat findings.
+fn orcaslicer_words(
+    text: &str,
+    target: crate::Target,
+    model: &crate::eval::Model,
+    options: crate::eval::Options,
+) -> String {
+    const SHOWN: usize = 8;
+    let angles: Vec<String> = crate::dialect::orcaslicer::layers(text, model, options)
+        .take(SHOWN)
+        .map(|l| format!("{}°", crate::number::round_angle(l.angle)))
+        .collect();
+    let end = if model.len() > SHOWN { ", ..." } else { "." };
+    let mut s = format!(
+        "\nIn OrcaSlicer (`--dialect orcaslicer`): layers from 0 at {}{end}\n",
+        angles.join(", ")
+    );
+    let found = crate::dialect::compat::compat(text, target, model, options);
+    if found.is_empty() {
+        s.push_str("It reads the template as rotlang does on this model.\n");
+    } else {
+        s.push_str("Where it parts from rotlang's reading:\n");
+        for d in found {
+            s.push_str(&format!("- {} [{}]\n", d.message, d.code));
+        }
     }
-    Ok(i32::from(errors))
+    s
+}
+
+/// A code rotlang no longer reports, and why (old reports and scripts still name it).
+fn retired(w: &str) -> Option<&'static str> {
+    let direction = concat!("orcaslicer::", "direction-ignored");
+    (w == direction || w == "direction-ignored").then_some(concat!(
+        "orcaslicer::",
+        "direction-ignored (retired): it said that OrcaSlicer ignores a ",
+        "profile's infill direction when a template is set while rotlang added it to every ",
+        "angle. rotlang now reads a profile as OrcaSlicer does, in every tool: the direction ",
+        "(sparse_infill_direction, infill_direction, solid_infill_direction) is the angle of ",
+        "an empty template only, so the two readings never part on it."
+    ))
+}
+
+/// The documented code `w` most likely means: the code whose name after `::` is `w`, or
+/// one within two edits of it (a typo).
+fn nearest_code(w: &str) -> Option<&'static str> {
+    if w.len() < 4
+        || !w
+            .bytes()
+            .all(|b| b.is_ascii_lowercase() || b == b'-' || b == b':')
+    {
+        return None;
+    }
+    let name = w.rsplit("::").next().unwrap_or(w);
+    let codes = crate::explain::codes();
+    codes
+        .iter()
+        .map(|d| d.code)
+        .find(|c| c.rsplit("::").next() == Some(name))
+        .or_else(|| {
+            codes
+                .iter()
+                .map(|d| {
+                    (
+                        edits(name, d.code.rsplit("::").next().unwrap_or(d.code)),
+                        d.code,
+                    )
+                })
+                .filter(|(n, _)| *n <= 2)
+                .min()
+                .map(|(_, c)| c)
+        })
+}
+
+/// The edit distance of two short words (Levenshtein).
+fn edits(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let next = (prev + usize::from(ca != cb))
+                .min(row[j] + 1)
+                .min(row[j + 1] + 1);
+            prev = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
 }
 
 /// A code's page: summary, explanation, the example as `rotlang check` reports it, fix.

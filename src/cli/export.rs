@@ -145,7 +145,17 @@ pub fn run(args: &ExportArgs, out: &mut dyn Write, err: &mut dyn Write) -> Resul
     let mut base = args.base;
     let input = match &args.profile {
         Some(path) => {
-            let p = super::files::profile_template(path, crate::Target::Sparse, args.model.height)?;
+            let p = super::files::profile_template(
+                path,
+                crate::Target::Sparse,
+                None,
+                args.model.height,
+            )?;
+            // A broken profile is reported as `check` reports it, and stops the command.
+            if let Some(report) = &p.errors {
+                err.write_all(report.as_bytes()).map_err(io)?;
+                return Ok(1);
+            }
             for note in &p.notes {
                 writeln!(err, "note: {note}").map_err(io)?;
             }

@@ -17,24 +17,46 @@ use crate::dialect::compat;
 use crate::eval::{Model, Options};
 use crate::profile::{self, DEFAULT_OBJECT_HEIGHT, Found, Kind, Profile, ProfileError};
 
-/// `--compat`: which slicer to compare with.
+/// `--compat`: which slicer to compare with (OrcaSlicer unless `none`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum CompatArg {
-    /// OrcaSlicer's own reading (SEMANTICS section 10)
+    /// OrcaSlicer's own reading (SEMANTICS section 10): the default
     Orcaslicer,
+    /// rotlang's reading alone
+    None,
 }
 
-/// Whether `check` has files or the compat lint to run (else the plain template path).
-pub(crate) fn wanted(args: &CheckArgs) -> bool {
-    args.compat.is_some() || has_paths(args)
+/// The OrcaSlicer lint runs by default on inputs up to this size; a larger one (no
+/// template is that long) gets it only with an explicit `--compat orcaslicer`, so that
+/// `check` on a pasted megabyte keeps its streaming memory.
+pub const DEFAULT_COMPAT_MAX_BYTES: usize = 64 * 1024;
+
+/// Whether the OrcaSlicer lint runs on a text of `len` bytes.
+pub(crate) fn compat_on(compat: Option<CompatArg>, len: usize) -> bool {
+    match compat {
+        Some(CompatArg::Orcaslicer) => true,
+        Some(CompatArg::None) => false,
+        None => len <= DEFAULT_COMPAT_MAX_BYTES,
+    }
 }
 
-/// Whether `check` names profiles or folders (an existing path, a file name of a profile,
-/// a --file that is not a template): what `--fix` does not work on.
+/// The note for an input the default lint skips, if it does.
+pub(crate) fn compat_skipped(compat: Option<CompatArg>, name: &str, len: usize) -> Option<String> {
+    (compat.is_none() && !compat_on(compat, len)).then(|| {
+        format!(
+            "{name}: larger than {} KiB: the OrcaSlicer lint is skipped (--compat orcaslicer runs it)",
+            DEFAULT_COMPAT_MAX_BYTES / 1024
+        )
+    })
+}
+
+/// Whether `check` names files or folders (by the one path rule of
+/// [`super::paths::looks_like_path`]) or a --file that is not a template: what `--fix`
+/// does not work on.
 pub(crate) fn has_paths(args: &CheckArgs) -> bool {
     args.templates
         .iter()
-        .any(|t| Path::new(t).exists() || looks_like_a_file(t))
+        .any(|t| super::paths::looks_like_path(t))
         || args
             .files
             .iter()
@@ -69,7 +91,7 @@ struct Run {
 
 pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageError> {
     let target: Target = args.target.into();
-    let compat = args.compat.is_some();
+    let compat = args.compat;
     let mut run = Run {
         json: args.format == Format::Json,
         ..Run::default()
@@ -77,7 +99,14 @@ pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageE
     let many = args.templates.len() > 1;
     for (i, arg) in args.templates.iter().enumerate() {
         let path = Path::new(arg);
-        if path.is_dir() {
+        if !super::paths::looks_like_path(arg) {
+            let name = if many {
+                format!("<template {}>", i + 1)
+            } else {
+                "<template>".to_owned()
+            };
+            run.template(name, arg.clone(), None, target, compat);
+        } else if path.is_dir() {
             let (files, errors) = profile::files_under(path);
             if files.is_empty() && errors.is_empty() {
                 run.notes.push(format!(
@@ -92,17 +121,12 @@ pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageE
         } else if path.exists() {
             run.file(path, target, compat);
         } else {
-            let name = if many {
-                format!("<template {}>", i + 1)
-            } else {
-                "<template>".to_owned()
-            };
-            if looks_like_a_file(arg) {
-                run.notes.push(format!(
-                    "{name}: `{arg}` is read as a template: there is no such file"
-                ));
-            }
-            run.template(name, arg.clone(), None, target, compat);
+            // A path that is not there: said as such, not read as a template.
+            run.files += 1;
+            run.file_errors.push(ProfileError {
+                path: path.to_owned(),
+                message: "no such file or folder".into(),
+            });
         }
     }
     for path in &args.files {
@@ -118,9 +142,23 @@ pub(crate) fn check(args: &CheckArgs, out: &mut dyn Write) -> Result<i32, UsageE
     Ok(i32::from(failed))
 }
 
-/// `profile.json`, `presets/a.ini`: a name with a known extension, no spaces or commas.
-fn looks_like_a_file(arg: &str) -> bool {
-    !arg.contains([' ', ',']) && Kind::from_extension(Path::new(arg)).is_some()
+/// Exact counts of one template's diagnostics, whatever the cap on those listed.
+#[derive(Clone, Copy)]
+struct Counts {
+    errors: usize,
+    warnings: usize,
+    omitted: usize,
+}
+
+impl Counts {
+    fn of(parse: &crate::Parse, lint: &[Diagnostic]) -> Counts {
+        let lint_errors = lint.iter().filter(|d| d.is_error()).count();
+        Counts {
+            errors: parse.errors + lint_errors,
+            warnings: parse.warnings + lint.len() - lint_errors,
+            omitted: parse.omitted,
+        }
+    }
 }
 
 impl Unit {
@@ -146,43 +184,41 @@ impl Run {
         text: String,
         path: Option<PathBuf>,
         target: Target,
-        compat: bool,
+        compat: Option<CompatArg>,
     ) {
         let parse = crate::check(&text, target);
-        let omitted = parse.omitted;
-        let extra = if compat {
+        if let Some(note) = compat_skipped(compat, &name, text.len()) {
+            self.notes.push(note);
+        }
+        // A template with errors gets those alone (as in the language server).
+        let found = if compat_on(compat, text.len()) && !parse.has_errors() {
             compat::compat(&text, target, &Model::cube20(), Options::default())
         } else {
             Vec::new()
         };
-        let (errors, warnings) = self.count_parse(&parse, &extra);
+        let counts = Counts::of(&parse, &found);
         let mut diagnostics = parse.diagnostics;
-        diagnostics.extend(extra);
+        diagnostics.extend(found);
+        self.add(counts);
         self.templates += 1;
         let index = LineIndex::new(&text);
         let report = self.json.then(|| serde_json::json!({
             "input": text, "name": name, "file": path.as_ref().map(|p| p.display().to_string()),
             "key": null, "object": null,
             "diagnostics": diagnostics.iter().map(|d| diagnostic_json(&index, d)).collect::<Vec<_>>(),
-            "errors": errors, "warnings": warnings, "omitted": omitted,
+            "errors": counts.errors, "warnings": counts.warnings, "omitted": counts.omitted,
         }));
         self.units.push(Unit {
             input: Input { name, text, path },
             diagnostics,
             reports: report.into_iter().collect(),
-            omitted,
+            omitted: counts.omitted,
         });
     }
 
-    /// Counts a template's diagnostics: the parse's exact counts (whatever its cap on the
-    /// list) and `extra` (the compat lint's); returns the template's errors and warnings.
-    fn count_parse(&mut self, parse: &crate::Parse, extra: &[Diagnostic]) -> (usize, usize) {
-        let extra_errors = extra.iter().filter(|d| d.is_error()).count();
-        let errors = parse.errors + extra_errors;
-        let warnings = parse.warnings + extra.len() - extra_errors;
-        self.errors += errors;
-        self.warnings += warnings;
-        (errors, warnings)
+    fn add(&mut self, counts: Counts) {
+        self.errors += counts.errors;
+        self.warnings += counts.warnings;
     }
 
     fn count(&mut self, diagnostics: &[Diagnostic]) {
@@ -194,7 +230,7 @@ impl Run {
         }
     }
 
-    fn file(&mut self, path: &Path, target: Target, compat: bool) {
+    fn file(&mut self, path: &Path, target: Target, compat: Option<CompatArg>) {
         self.files += 1;
         let profile = match profile::read(path) {
             Ok(p) => p,
@@ -212,7 +248,7 @@ impl Run {
         self.profile(profile, compat);
     }
 
-    fn profile(&mut self, profile: Profile, compat: bool) {
+    fn profile(&mut self, profile: Profile, compat: Option<CompatArg>) {
         let mut units: Vec<Unit> = profile
             .sources
             .iter()
@@ -241,21 +277,27 @@ impl Run {
             .collect();
         for found in &profile.templates {
             let parse = crate::check(&found.text, found.target);
-            let mut extra = Vec::new();
-            if compat {
+            let mut lint = Vec::new();
+            if compat_on(compat, found.text.len()) && !parse.has_errors() {
                 let pm =
                     profile.model(found.target, found.object.as_deref(), DEFAULT_OBJECT_HEIGHT);
-                for n in &pm.notes {
-                    model_notes.insert(printable(&format!("{file}: {n}")), ());
+                let found_here = pm.compat(&found.text, found.target);
+                // The model's defaults explain the findings' layers and angles: said where
+                // there are findings, not for every clean preset.
+                if !found_here.is_empty() {
+                    for n in &pm.notes_for(&found.text) {
+                        model_notes.insert(printable(&format!("{file}: {n}")), ());
+                    }
                 }
-                extra = pm.compat(&found.text, found.target);
+                lint = found_here;
             }
+            let counts = Counts::of(&parse, &lint);
             self.templates += 1;
-            let (errors, warnings) = self.count_parse(&parse, &extra);
+            self.add(counts);
             let unit = &mut units[found.source];
             unit.omitted += parse.omitted;
             let mut diagnostics = parse.diagnostics;
-            diagnostics.extend(extra);
+            diagnostics.extend(lint);
             let omitted = unit.keep(&mut diagnostics) + parse.omitted;
             let moved: Vec<Diagnostic> = diagnostics
                 .into_iter()
@@ -268,7 +310,7 @@ impl Run {
                 "file": file, "source": unit.input.name, "key": found.key, "object": found.object,
                 "target": match found.target { Target::Sparse => "sparse", Target::Solid => "solid" },
                 "diagnostics": moved.iter().map(|d| diagnostic_json(index, d)).collect::<Vec<_>>(),
-                "errors": errors, "warnings": warnings, "omitted": omitted,
+                "errors": counts.errors, "warnings": counts.warnings, "omitted": omitted,
             }));
             }
             unit.diagnostics.extend(moved);
@@ -317,6 +359,11 @@ impl Run {
                 for e in &self.file_errors {
                     let obj = serde_json::json!({"file": e.path.display().to_string(), "error": e.message});
                     writeln!(out, "{obj}").map_err(io)?;
+                }
+                // The notes the human report ends with (defaults used, files without a
+                // template), one object each.
+                for n in &self.notes {
+                    writeln!(out, "{}", serde_json::json!({ "note": n })).map_err(io)?;
                 }
             }
             Format::Human => {
@@ -411,38 +458,99 @@ pub(crate) fn into_file(mut d: Diagnostic, found: &Found) -> Diagnostic {
     d
 }
 
-/// `rotlang expand --profile PATH`: the template of `target` in the file (the project's
-/// own for a 3mf), on the profile's model unless the command line gives one.
+/// `rotlang expand --profile PATH` (and `plot`, `preview`, `explain`): the template of
+/// `target` in the file (the project's own for a 3mf, or `object`'s), on the profile's
+/// model unless the command line gives one, with the profile's direction where it applies
+/// (an empty template).
 pub(crate) struct ProfileTemplate {
     pub text: String,
     pub model: Model,
+    /// The base of this template in either reading ([`profile::ProfileModel::options`]).
     pub base: f64,
     pub notes: Vec<String>,
+    /// The file's errors as `check` reports them (`profile::invalid`): the command stops
+    /// with exit 1 after printing them.
+    pub errors: Option<String>,
 }
 
 pub(crate) fn profile_template(
     path: &Path,
     target: Target,
+    object: Option<&str>,
     height: Option<f64>,
 ) -> Result<ProfileTemplate, UsageError> {
     let profile = profile::read(path).map_err(|e| UsageError(e.to_string()))?;
-    let found = profile
-        .template(target)
-        .map_err(|why| UsageError(format!("{}: {why}", path.display())))?;
+    let names: Vec<&str> = profile.objects.iter().map(|(n, _)| n.as_str()).collect();
+    let found = match object {
+        Some(o) => {
+            if !names.contains(&o) {
+                let known = if names.is_empty() {
+                    "it has no per-object settings".to_owned()
+                } else {
+                    format!("its objects: {}", names.join(", "))
+                };
+                return Err(UsageError(format!(
+                    "{}: no object `{o}`; {known}",
+                    path.display()
+                )));
+            }
+            // The object's own template, else the project's.
+            match profile
+                .templates
+                .iter()
+                .find(|f| f.target == target && f.object.as_deref() == Some(o))
+            {
+                Some(f) => Ok(f),
+                None => profile.template(target),
+            }
+        }
+        None => profile.template(target),
+    };
+    let found = match found {
+        Ok(f) => f,
+        Err(why) if profile.has_errors() => {
+            let _ = why;
+            return Ok(ProfileTemplate {
+                text: String::new(),
+                model: Model::cube20(),
+                base: 0.0,
+                notes: Vec::new(),
+                errors: Some(errors_report(&profile)),
+            });
+        }
+        Err(why) => return Err(UsageError(format!("{}: {why}", path.display()))),
+    };
     let pm = profile.model(
         target,
-        found.object.as_deref(),
+        object.or(found.object.as_deref()),
         height.unwrap_or(DEFAULT_OBJECT_HEIGHT),
     );
-    let mut notes: Vec<String> = pm.notes.iter().map(|n| printable(n)).collect();
+    let base = pm.options(&found.text).base;
+    let mut notes: Vec<String> = pm
+        .notes_for(&found.text)
+        .iter()
+        .map(|n| printable(n))
+        .collect();
+    let direction = match (&pm.direction.key, found.text.is_empty()) {
+        (Some(key), true) => format!(", {key} {}°", pm.direction.degrees),
+        (None, true) => format!(", OrcaSlicer's default direction {}°", pm.direction.degrees),
+        // The direction turns an empty template only: name it where the file sets it.
+        (Some(key), false) => format!(
+            ", {key} {}° not applied (it turns an empty template only)",
+            pm.direction.degrees
+        ),
+        (None, false) => String::new(),
+    };
+    let label = match (object, &found.object) {
+        (Some(o), None) => format!("{} (for object {o})", found.label()),
+        _ => found.label(),
+    };
     notes.insert(
         0,
         format!(
-            "{}: {} `{}`, base {}° ({} layers of {} mm, B = {}, T = {})",
+            "{}: {label} `{}` ({} layers of {} mm, B = {}, T = {}{direction})",
             path.display(),
-            found.label(),
             found.text,
-            pm.options.base,
             pm.model.len(),
             pm.model.layer_height(),
             pm.model.bottom_shells(),
@@ -450,11 +558,19 @@ pub(crate) fn profile_template(
         ),
     );
     notes[0] = printable(&notes[0]);
+    if object.is_none() && !names.is_empty() {
+        notes.push(format!(
+            "{}: objects {} (--object NAME applies an object's overrides)",
+            path.display(),
+            names.join(", ")
+        ));
+    }
     Ok(ProfileTemplate {
         text: found.text.clone(),
         model: pm.model,
-        base: pm.options.base,
+        base,
         notes,
+        errors: profile.has_errors().then(|| errors_report(&profile)),
     })
 }
 
@@ -474,4 +590,38 @@ pub(crate) fn printable(note: &str) -> String {
             }
         })
         .collect()
+}
+
+/// A profile's errors as `check` reports them (`error[profile::invalid]`, with the line).
+fn errors_report(profile: &Profile) -> String {
+    let mut units: Vec<(Input, Vec<Diagnostic>)> = profile
+        .sources
+        .iter()
+        .map(|s| {
+            let input = Input {
+                name: s.name.clone(),
+                text: s.text.clone(),
+                path: Some(profile.path.clone()),
+            };
+            (input, Vec::new())
+        })
+        .collect();
+    for note in profile.notes.iter().filter(|n| n.error) {
+        if let Some((_, ds)) = units.get_mut(note.source) {
+            ds.push(
+                Diagnostic::error("profile::invalid", note.message.clone())
+                    .with_primary(note.span, "here"),
+            );
+        }
+    }
+    let reports: Vec<(&Input, &[Diagnostic])> = units
+        .iter()
+        .filter(|(_, ds)| !ds.is_empty())
+        .map(|(i, ds)| (i, ds.as_slice()))
+        .collect();
+    format!(
+        "{}{}: not read: fix the errors first (`rotlang check` reports the same)\n",
+        render_human(&reports, false),
+        profile.path.display()
+    )
 }

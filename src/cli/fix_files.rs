@@ -93,37 +93,23 @@ fn fix_text(
     target: crate::Target,
     model: Option<&profile::ProfileModel>,
 ) -> (String, Result<usize, String>) {
-    let compat = |t: &str| match (args.compat, model) {
-        (None, _) => Vec::new(),
-        (Some(_), Some(pm)) => pm.compat(t, target),
-        (Some(_), None) => crate::dialect::compat::compat(
-            t,
-            target,
-            &crate::eval::Model::cube20(),
-            crate::eval::Options::default(),
-        ),
+    let compat = |t: &str| {
+        if !super::files::compat_on(args.compat, t.len()) {
+            return Vec::new();
+        }
+        match model {
+            Some(pm) => pm.compat(t, target),
+            None => crate::dialect::compat::compat(
+                t,
+                target,
+                &crate::eval::Model::cube20(),
+                crate::eval::Options::default(),
+            ),
+        }
     };
     let fixed = crate::fix::apply_all_with(text, target, compat);
-    if fixed.parse.has_errors() {
-        return (
-            text.to_owned(),
-            Err("errors remain that have no automatic fix".to_owned()),
-        );
-    }
-    if args.compat.is_none()
-        && !args.force
-        && fixed.text != text
-        && !super::check::rotlang_change(text, &fixed.text, target)
-        && let Some(why) = crate::dialect::compat::orcaslicer_change(text, &fixed.text)
-    {
-        return (
-            text.to_owned(),
-            Err(format!(
-                "`{}` would change what OrcaSlicer does ({why}); pass --force to fix anyway, \
-                 or --compat orcaslicer to see where the two readings part",
-                fixed.text
-            )),
-        );
+    if let Some(why) = super::check::refusal(args, text, &fixed, target, &compat) {
+        return (text.to_owned(), Err(why));
     }
     (fixed.text, Ok(fixed.applied))
 }

@@ -56,27 +56,35 @@ const SPLIT_BY_SPACE: &str = "rotlang::space-splits-instruction";
 
 pub fn run(args: &FmtArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
     let io = |e: std::io::Error| UsageError(format!("cannot write output: {e}"));
-    // `fmt a.rot`: a file named where a template goes is formatted as `--file a.rot` would
-    // be (so `--write` rewrites it), as `check` reads such a name as its file; a note says
-    // so. A profile holds templates among other settings: not fmt's to rewrite.
+    // `fmt a.rot`: a path (by the one rule of every command) is formatted as `--file a.rot`
+    // would be (so `--write` rewrites it); a missing one is no such file. A profile holds
+    // templates among other settings: not fmt's to rewrite.
     let mut templates = Vec::new();
     let mut files = Vec::new();
     for t in &args.templates {
         let path = std::path::Path::new(t);
-        if t == "-" || !path.is_file() {
+        if !super::paths::looks_like_path(t) {
             templates.push(t.clone());
             continue;
         }
+        if let Some(e) = super::paths::missing(t) {
+            return Err(e);
+        }
+        if path.is_dir() {
+            return Err(UsageError(format!(
+                "{t} is a folder: fmt formats templates and template files (`rotlang check {}` \
+                 checks every template in it)",
+                super::shell_quote(t)
+            )));
+        }
         match crate::profile::Kind::from_extension(path) {
-            Some(crate::profile::Kind::Template) | None => {
-                writeln!(err, "note: `{t}` is a file: formatted as --file {t}").map_err(io)?;
-                files.push(PathBuf::from(t));
-            }
+            Some(crate::profile::Kind::Template) | None => files.push(PathBuf::from(t)),
             Some(kind) => {
                 return Err(UsageError(format!(
                     "`{t}` is a profile ({}): fmt formats templates and template files; \
-                     `rotlang check {t}` checks the templates in it",
-                    kind.name()
+                     `rotlang check {}` checks the templates in it",
+                    kind.name(),
+                    super::shell_quote(t)
                 )));
             }
         }

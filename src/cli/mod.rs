@@ -15,6 +15,7 @@ mod fix_files;
 pub mod fmt;
 pub mod gcode;
 pub mod model;
+pub mod paths;
 pub mod plot;
 pub mod preview;
 mod sources;
@@ -411,14 +412,24 @@ pub(crate) fn pieces_note_saying(
     if !templates.iter().enumerate().any(piece) {
         return None;
     }
-    let joined = templates.join(" ");
-    let quoted = format!("'{}'", joined.replace('\'', r"'\''"));
+    let quoted = shell_quote(&templates.join(" "));
     Some(format!(
         "note: the {} arguments look like the pieces of one template, split by the shell at \
          its spaces; {consequence}.\n      \
          To pass one template, quote it: rotlang {command} {quoted}\n",
         templates.len()
     ))
+}
+
+/// `arg` as a POSIX shell reads it back: as it is when it holds only characters no shell
+/// treats specially, else in single quotes (a `'` inside becomes `'\''`).
+pub fn shell_quote(arg: &str) -> String {
+    let plain = |b: u8| b.is_ascii_alphanumeric() || b"-_./=:@%+,".contains(&b);
+    if !arg.is_empty() && arg.bytes().all(plain) {
+        arg.to_owned()
+    } else {
+        format!("'{}'", arg.replace('\'', r"'\''"))
+    }
 }
 
 /// Plain one-line-per-diagnostic rendering, for places where a full report would be noise.

@@ -19,16 +19,16 @@ pub struct ModelArgs {
           conflicts_with_all = ["height", "model"])]
     pub layers: Option<usize>,
     /// A uniform model tall enough for an object of MM millimetres, e.g. --height 42.
-    #[arg(long, help_heading = "Model", value_name = "MM", value_parser = args::finite, allow_negative_numbers = true,
+    #[arg(long, help_heading = "Model", value_name = "MM", value_parser = args::millimetres, allow_negative_numbers = true,
           conflicts_with = "model")]
     pub height: Option<f64>,
     /// The standard layer height h in mm, with --layers or --height [default: 0.2].
     /// `#` lengths count it, and counts reaching past the top extend by it.
-    #[arg(long, help_heading = "Model", value_name = "MM", value_parser = args::finite, allow_negative_numbers = true,
+    #[arg(long, help_heading = "Model", value_name = "MM", value_parser = args::millimetres, allow_negative_numbers = true,
           conflicts_with = "model")]
     pub layer_height: Option<f64>,
     /// The first layer's height in mm, with --layers or --height [default: the layer height].
-    #[arg(long, help_heading = "Model", value_name = "MM", value_parser = args::finite, allow_negative_numbers = true,
+    #[arg(long, help_heading = "Model", value_name = "MM", value_parser = args::millimetres, allow_negative_numbers = true,
           conflicts_with = "model")]
     pub first_layer_height: Option<f64>,
     /// A model from a JSON file: {"layer_heights": [...], "layer_height": H,

@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use super::{ColorArg, Input, TargetArg, UsageError, gather};
+use super::{ColorArg, Input, TargetArg, UsageError};
 use crate::eval::{self, Model, Options};
 use crate::plot::PlotOptions;
 
@@ -44,6 +44,13 @@ pub struct PlotArgs {
     pub layers: Option<usize>,
     #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub profile: super::paths::ProfileArgs,
+    /// `rotlang`: the language as documented; `orcaslicer`: exactly the angles OrcaSlicer
+    /// computes, for any text (as `expand --dialect`); where it hangs, crashes or yields
+    /// NaN the layers are reported on stderr and the angles stay finite.
+    #[arg(long, value_name = "DIALECT", default_value_t)]
+    pub dialect: eval::Dialect,
     /// Write the SVG to this file instead of stdout.
     #[arg(long, short = 'o', value_name = "FILE.svg")]
     pub out: Option<PathBuf>,
@@ -65,6 +72,7 @@ pub struct ModelArgs {
     #[arg(
         long,
         value_name = "MM",
+        value_parser = super::args::millimetres,
         help_heading = "Model",
         conflicts_with = "model",
         allow_negative_numbers = true
@@ -74,6 +82,7 @@ pub struct ModelArgs {
     #[arg(
         long,
         value_name = "MM",
+        value_parser = super::args::millimetres,
         help_heading = "Model",
         conflicts_with = "model",
         allow_negative_numbers = true
@@ -83,6 +92,7 @@ pub struct ModelArgs {
     #[arg(
         long,
         value_name = "MM",
+        value_parser = super::args::millimetres,
         help_heading = "Model",
         conflicts_with = "model",
         allow_negative_numbers = true
@@ -171,21 +181,69 @@ fn parse_size(s: &str) -> Result<(f64, f64), String> {
     Ok((parse(w)?, parse(h)?))
 }
 
-/// The template to draw, its diagnostics printed; `Err(1)` when it has errors.
+/// What a picture is drawn from: the template, its parse, and its model and options
+/// (a profile's unless the command line gives them).
+pub(super) struct Drawn {
+    pub input: Input,
+    pub parse: crate::Parse,
+    pub model: Model,
+    pub options: Options,
+}
+
+/// The template to draw (by the one path rule, or from --profile), its diagnostics
+/// printed; `Err(1)` when it or its profile has errors.
 pub(super) fn template(
     text: &Option<String>,
     file: &Option<PathBuf>,
-    target: TargetArg,
+    profile: &super::paths::ProfileArgs,
+    (target, dialect): (TargetArg, eval::Dialect),
     color: ColorArg,
+    model: (&ModelArgs, Option<usize>),
     err: &mut dyn Write,
-) -> Result<Result<(Input, crate::Parse), i32>, UsageError> {
-    let templates: Vec<String> = text.iter().cloned().collect();
-    let files: Vec<PathBuf> = file.iter().cloned().collect();
-    let input = gather(&templates, &files)?
-        .into_iter()
-        .next()
-        .ok_or_else(|| UsageError("no template given".into()))?;
+) -> Result<Result<Drawn, i32>, UsageError> {
+    let (model_args, layers) = model;
+    // The model first: a usage error should not wait for stdin.
+    let built = model_args.build(layers)?;
+    let source = match super::paths::source(
+        text.as_ref(),
+        file.as_ref(),
+        profile,
+        target.into(),
+        model_args.height,
+        err,
+    )? {
+        Ok(s) => s,
+        Err(code) => return Ok(Err(code)),
+    };
+    let mut options = model_args.options();
+    let mut model = built;
+    if let Some(p) = source.profile {
+        let given = layers.is_some() || model_args.height.is_some() || model_args.model.is_some();
+        if !given {
+            let (b, t) = (
+                model_args
+                    .bottom_shell_layers
+                    .unwrap_or(p.model.bottom_shells()),
+                model_args.top_shell_layers.unwrap_or(p.model.top_shells()),
+            );
+            model = p.model.with_shells(b, t);
+        }
+        // The profile's direction (for an empty template), unless --base replaces it.
+        if options.base == 0.0 {
+            options.base = p.base;
+        }
+    }
+    let input = source.input;
     let parse = crate::parse(&input.text, target.into());
+    // OrcaSlicer has no grammar: any text is drawn as it reads it.
+    if dialect == eval::Dialect::OrcaSlicer {
+        return Ok(Ok(Drawn {
+            input,
+            parse,
+            model,
+            options,
+        }));
+    }
     if !parse.diagnostics.is_empty() {
         let report = super::render_diagnostics(&input, &parse.diagnostics, color.enabled(false));
         err.write_all(report.as_bytes())
@@ -194,7 +252,12 @@ pub(super) fn template(
     if parse.has_errors() {
         return Ok(Err(1));
     }
-    Ok(Ok((input, parse)))
+    Ok(Ok(Drawn {
+        input,
+        parse,
+        model,
+        options,
+    }))
 }
 
 /// Writes `text` to `path`, or to `out` when there is none.
@@ -213,8 +276,15 @@ pub(super) fn emit(text: &str, path: Option<&Path>, out: &mut dyn Write) -> Resu
 
 /// Runs `rotlang plot`; returns the exit code.
 pub fn run(args: &PlotArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<i32, UsageError> {
-    let model = args.model.build(args.layers)?;
-    let (input, parse) = match template(&args.template, &args.file, args.target, args.color, err)? {
+    let drawn = match template(
+        &args.template,
+        &args.file,
+        &args.profile,
+        (args.target, args.dialect),
+        args.color,
+        (&args.model, args.layers),
+        err,
+    )? {
         Ok(t) => t,
         Err(code) => return Ok(code),
     };
@@ -223,13 +293,33 @@ pub fn run(args: &PlotArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result<
         height: args.size.1,
         title: args.title.clone(),
     };
-    let svg = crate::plot::svg(
-        &parse.template,
-        &model,
-        args.model.options(),
-        &input.text,
-        &options,
-    );
+    let svg = match args.dialect {
+        eval::Dialect::Rotlang => crate::plot::svg(
+            &drawn.parse.template,
+            &drawn.model,
+            drawn.options,
+            &drawn.input.text,
+            &options,
+        ),
+        eval::Dialect::OrcaSlicer => {
+            let (svg, findings) = crate::plot::svg_orcaslicer(
+                &drawn.parse.template,
+                &drawn.model,
+                drawn.options,
+                &drawn.input.text,
+                &options,
+            );
+            for f in findings {
+                writeln!(
+                    err,
+                    "warning[{}]: {} ({} layers from layer {}; drawn with finite angles)",
+                    f.code, f.message, f.layers, f.first_layer
+                )
+                .map_err(|e| UsageError(format!("cannot write to stderr: {e}")))?;
+            }
+            svg
+        }
+    };
     emit(&svg, args.out.as_deref(), out)?;
     Ok(0)
 }

@@ -94,6 +94,8 @@ pub struct PreviewArgs {
     pub layers: Option<Range<usize>>,
     #[command(flatten)]
     pub model: ModelArgs,
+    #[command(flatten)]
+    pub profile: super::paths::ProfileArgs,
     /// `svg`: the picture; `json`: {"layers": [{"index", "angle", "fill", "pattern",
     /// "density", "length", "travel", "polylines": [[[x, y], ...], ...]}, ...]}.
     #[arg(long, value_enum, default_value_t)]
@@ -398,7 +400,6 @@ pub fn run(
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> Result<i32, UsageError> {
-    let model = args.model.build(None)?;
     let region = shape(&args.shape, args.size)?;
     if !(0.01..=10.0).contains(&args.nozzle) {
         return Err(UsageError(format!(
@@ -406,10 +407,19 @@ pub fn run(
             args.nozzle
         )));
     }
-    let (input, parse) = match template(&args.template, &args.file, args.target, args.color, err)? {
+    let drawn = match template(
+        &args.template,
+        &args.file,
+        &args.profile,
+        (args.target, crate::eval::Dialect::Rotlang),
+        args.color,
+        (&args.model, None),
+        err,
+    )? {
         Ok(t) => t,
         Err(code) => return Ok(code),
     };
+    let (input, parse, model) = (drawn.input, drawn.parse, drawn.model);
     let settings = Settings {
         pattern: args.pattern.into(),
         density: args.density,
@@ -429,7 +439,7 @@ pub fn run(
             model.len()
         )));
     }
-    let options = args.model.options();
+    let options = drawn.options;
     let fail = |e: crate::infill::Error| UsageError(e.to_string());
     let text = match args.format {
         Format::Svg => {

@@ -66,14 +66,6 @@ static CODES: &[CodeDoc] = &[
         "Rewrite the instruction so both read it alike (see the other `orcaslicer::` findings), or keep it if the profile is only for rotlang-based slicers.",
     ),
     doc(
-        "orcaslicer::direction-ignored",
-        W,
-        "OrcaSlicer ignores the profile's infill direction when a template is set; rotlang adds it to every angle",
-        "OrcaSlicer turns an empty template's layers to `sparse_infill_direction` (`solid_infill_direction` for solid infill), but any other template's angles are the template's alone. rotlang takes the profile's direction as its base and adds it to every angle: `0, 90` in a profile with `sparse_infill_direction` = 45 is 0°, 90° for OrcaSlicer and 45°, 135° for rotlang. Reported by `rotlang check --compat orcaslicer` on profiles that set the direction themselves (or inherit it from a preset they name), and by the language server; where a profile sets none, rotlang uses OrcaSlicer's default 45° as its base and says so in a note, and compares the angles without it.",
-        "0, 90",
-        "Set the direction to 0 in the profile and write it into the template's angles (`45, 135`), so both read the same; or keep it if the profile is only for rotlang-based slicers.",
-    ),
-    doc(
         "orcaslicer::empty-instruction",
         W,
         "OrcaSlicer reads an empty instruction as a 0° one",

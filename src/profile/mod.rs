@@ -2,8 +2,9 @@
 //! exported `.ini` configs, `.3mf` projects (feature `3mf`), and folders of them. Every
 //! template keeps a map from its text back to the file (through JSON and XML escapes), so
 //! diagnostics land on the file's own characters; and a profile's `layer_height`,
-//! `initial_layer_print_height`, shell counts and infill direction become the model and
-//! base its templates are evaluated on ([`Profile::model`]).
+//! `initial_layer_print_height`, shell counts and infill direction become the model its
+//! templates are evaluated on ([`Profile::model`]); the direction is the angle of an empty
+//! template only, as in OrcaSlicer ([`ProfileModel::options`]).
 //!
 //! Bad input (not UTF-8, corrupt or truncated archives, zip bombs, huge files, values of
 //! the wrong type) is an error for that file or a note on that value, never a panic.
@@ -18,6 +19,9 @@
 //! assert_eq!(p.templates[0].key.as_deref(), Some("sparse_infill_rotate_template"));
 //! let m = p.model(rotlang::Target::Sparse, None, 20.0);
 //! assert_eq!(m.model.layer_height(), 0.12);
+//! // OrcaSlicer's default direction (45°) turns an empty template only.
+//! assert_eq!(m.options("0 90").base, 0.0);
+//! assert_eq!(m.options("").base, 45.0);
 //! ```
 
 pub mod ini;
@@ -32,7 +36,7 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 
 pub use json::OffsetMap;
-pub use settings::{DEFAULT_OBJECT_HEIGHT, MODEL_KEYS, ProfileModel, Setting, Settings};
+pub use settings::{DEFAULT_OBJECT_HEIGHT, Direction, MODEL_KEYS, ProfileModel, Setting, Settings};
 #[cfg(feature = "3mf")]
 pub use threemf::{MAX_ENTRIES, MAX_ENTRY_BYTES};
 
@@ -169,7 +173,7 @@ pub struct Profile {
 }
 
 impl Profile {
-    /// The model and base for a template of `target` (of `object`, for a 3mf override),
+    /// The model and direction for a template of `target` (of `object`, for a 3mf override),
     /// for an object `height` mm tall: see [`Settings::model`].
     pub fn model(&self, target: Target, object: Option<&str>, height: f64) -> ProfileModel {
         let own = object.and_then(|o| self.objects.iter().find(|(n, _)| n == o).map(|(_, s)| s));

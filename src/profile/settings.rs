@@ -9,8 +9,9 @@ use crate::{Span, Target};
 
 /// The keys that make the model and base: `layer_height` (`h`, and the height of every
 /// layer above the first), `initial_layer_print_height`, `bottom_shell_layers` (`B`),
-/// `top_shell_layers` (`T`), and the base direction: `sparse_infill_direction` (or the
-/// older `infill_direction`) for sparse templates, `solid_infill_direction` for solid ones.
+/// `top_shell_layers` (`T`), and the infill direction (the angle of an empty template):
+/// `sparse_infill_direction` (or the older `infill_direction`) for sparse templates,
+/// `solid_infill_direction` for solid ones.
 pub const MODEL_KEYS: [&str; 7] = [
     "layer_height",
     "initial_layer_print_height",
@@ -52,28 +53,70 @@ pub struct Settings {
     pub values: BTreeMap<String, Setting>,
 }
 
-/// The model and options a profile gives its templates, and notes on every default used.
+/// The model a profile gives its templates, its infill direction, and notes on every
+/// default used.
+///
+/// One reading of a profile, the slicer's: the direction (`sparse_infill_direction`, the
+/// older `infill_direction`, or `solid_infill_direction`) is the angle of an **empty**
+/// template only; any other template's angles are the template's alone. Both readings,
+/// rotlang's and OrcaSlicer's, take their options from [`ProfileModel::options`], so a
+/// profile gives the same angles in every tool and the two readings never part on the
+/// direction.
 #[derive(Clone, Debug)]
 pub struct ProfileModel {
     pub model: Model,
-    pub options: Options,
+    /// The infill direction for the target, and the key it comes from.
+    pub direction: Direction,
+    /// Notes on the model's defaults (layer heights, shells). The direction's own note is
+    /// in [`Direction::note`]: it matters only for an empty template
+    /// ([`ProfileModel::notes_for`]).
     pub notes: Vec<String>,
-    /// Whether the direction in `options.base` is the profile's own (set in it, an object
-    /// of it, or a preset it inherits), not OrcaSlicer's default.
-    pub direction_set: bool,
+}
+
+/// A profile's infill direction for one target.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Direction {
+    /// In degrees: the profile's value, or OrcaSlicer's default 45°.
+    pub degrees: f64,
+    /// The key as the file (or a preset it inherits, or its 3mf object) spells it:
+    /// `sparse_infill_direction`, `infill_direction` or `solid_infill_direction`; `None`
+    /// when no usable value is set and OrcaSlicer's default is used.
+    pub key: Option<String>,
+    /// Why the default is used (not set, not a number), if it is.
+    pub note: Option<String>,
 }
 
 impl ProfileModel {
-    /// The OrcaSlicer compat lint of `text` on this model and base
-    /// ([`crate::dialect::compat::compat`]). `orcaslicer::direction-ignored` only where the
-    /// profile sets the direction itself: a default it never chose is nothing to act on,
-    /// and the angles are compared without it all the same.
-    pub fn compat(&self, text: &str, target: Target) -> Vec<crate::Diagnostic> {
-        let mut found = crate::dialect::compat::compat(text, target, &self.model, self.options);
-        if !self.direction_set {
-            found.retain(|d| d.code != crate::dialect::compat::DIRECTION_IGNORED);
+    /// The options of `text`, a template of this profile, in either reading: the direction
+    /// is the base of an empty template, and of no other
+    /// ([`crate::dialect::orcaslicer::profile_options`]).
+    pub fn options(&self, text: &str) -> Options {
+        crate::dialect::orcaslicer::profile_options(
+            text,
+            Options {
+                base: self.direction.degrees,
+                seed: 0,
+            },
+        )
+    }
+
+    /// The notes that bear on `text`: the model's, and the direction's only for an empty
+    /// template (the only one it turns).
+    pub fn notes_for(&self, text: &str) -> Vec<String> {
+        let mut notes = self.notes.clone();
+        if text.is_empty()
+            && let Some(n) = &self.direction.note
+        {
+            notes.push(n.clone());
         }
-        found
+        notes
+    }
+
+    /// The OrcaSlicer compat lint of `text` on this model, with the options of
+    /// [`ProfileModel::options`] in both readings
+    /// ([`crate::dialect::compat::compat`]).
+    pub fn compat(&self, text: &str, target: Target) -> Vec<crate::Diagnostic> {
+        crate::dialect::compat::compat(text, target, &self.model, self.options(text))
     }
 }
 
@@ -105,7 +148,8 @@ impl Settings {
     /// The model for a template of `target` on an object `height` mm tall (the profile
     /// does not know the object: [`DEFAULT_OBJECT_HEIGHT`] unless told): `own` (a 3mf
     /// object's settings) first, then these, then OrcaSlicer's defaults, each default or
-    /// unusable value noted. The base is the infill direction for the target.
+    /// unusable value noted. The direction is the target's ([`ProfileModel::options`]
+    /// decides where it applies).
     pub fn model(&self, own: Option<&Settings>, target: Target, height: f64) -> ProfileModel {
         let mut notes = Vec::new();
         let lookup = |key: &str| own.and_then(|o| o.values.get(key)).or(self.values.get(key));
@@ -157,28 +201,14 @@ impl Settings {
             "",
             &mut notes,
         );
-        let direction_keys: &[&str] = match target {
-            Target::Sparse => &["sparse_infill_direction", "infill_direction"],
-            Target::Solid => &["solid_infill_direction"],
-        };
-        let direction_set = direction_keys
-            .iter()
-            .find_map(|k| lookup(k))
-            .is_some_and(|s| parse_number(&s.value).is_some());
-        let base = match target {
-            Target::Sparse => number(
-                &["sparse_infill_direction", "infill_direction"],
-                DEFAULT_DIRECTION,
-                "°",
-                &mut notes,
-            ),
-            Target::Solid => number(
-                &["solid_infill_direction"],
-                DEFAULT_DIRECTION,
-                "°",
-                &mut notes,
-            ),
-        };
+        let direction = direction(
+            match target {
+                Target::Sparse => &["sparse_infill_direction", "infill_direction"],
+                Target::Solid => &["solid_infill_direction"],
+            },
+            &lookup,
+            &missing,
+        );
         let count = |v: f64, default: u32, key: &str, notes: &mut Vec<String>| {
             if (0.0..=1e6).contains(&v) && v.fract() == 0.0 {
                 v as u32
@@ -202,20 +232,44 @@ impl Settings {
                 Model::cube20()
             }
         };
-        let base = if base.is_finite() && base.abs() <= 1e6 {
-            base
-        } else {
-            notes.push(format!(
-                "the infill direction {base} is not usable: 0° is used"
-            ));
-            0.0
-        };
         ProfileModel {
             model: model.with_shells(bottom, top),
-            options: Options { base, seed: 0 },
+            direction,
             notes,
-            direction_set,
         }
+    }
+}
+
+/// The direction of the first of `keys` set (as the file spells it), or OrcaSlicer's
+/// default with a note saying why.
+fn direction<'a>(
+    keys: &[&str],
+    lookup: &dyn Fn(&str) -> Option<&'a Setting>,
+    missing: &dyn Fn(&str, String, &mut Vec<String>),
+) -> Direction {
+    let default = |note: String| Direction {
+        degrees: DEFAULT_DIRECTION,
+        key: None,
+        note: Some(note),
+    };
+    let Some((key, s)) = keys.iter().find_map(|k| lookup(k).map(|s| (*k, s))) else {
+        let mut notes = Vec::new();
+        missing(keys[0], format!("{DEFAULT_DIRECTION}°"), &mut notes);
+        return default(notes.remove(0));
+    };
+    match parse_number(&s.value) {
+        Some(v) if v.abs() <= 1e6 => Direction {
+            degrees: v,
+            key: Some(key.to_owned()),
+            note: None,
+        },
+        Some(v) => default(format!(
+            "`{key}` = {v} is not a usable direction: OrcaSlicer's default {DEFAULT_DIRECTION}° is used"
+        )),
+        None => default(format!(
+            "`{key}` = `{}` is not a number: OrcaSlicer's default {DEFAULT_DIRECTION}° is used",
+            s.value
+        )),
     }
 }
 

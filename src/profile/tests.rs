@@ -43,7 +43,7 @@ fn json_templates_with_escapes_and_settings() {
     assert_eq!(m.model.layer_height(), 0.12);
     assert_eq!(m.model.top_shells(), 6);
     assert_eq!(m.model.bottom_shells(), 2);
-    assert_eq!(m.options.base, 45.0);
+    assert_eq!(m.direction.degrees, 45.0);
     assert!(
         m.notes
             .iter()
@@ -52,9 +52,10 @@ fn json_templates_with_escapes_and_settings() {
         m.notes
     );
     assert!(
-        m.notes
-            .iter()
-            .any(|n| n.contains("sparse_infill_direction"))
+        m.direction
+            .note
+            .as_deref()
+            .is_some_and(|n| n.contains("sparse_infill_direction"))
     );
 }
 

@@ -471,10 +471,20 @@ impl Failure<'_> {
                 "some editors write it at the start of a file; save the file as UTF-8 without BOM",
             );
         }
-        if c == '°' {
-            return Diagnostic::error("rotlang::degree-sign", "angles are written without `°`")
+        // `°`, and what keyboards and fonts give for it: the masculine ordinal `º` (U+00BA)
+        // and the ring above `˚` (U+02DA).
+        if matches!(c, '°' | 'º' | '˚') {
+            let message = if c == '°' {
+                "angles are written without `°`".to_owned()
+            } else {
+                format!(
+                    "angles are written without a degree sign (`{c}` U+{:04X} is one)",
+                    u32::from(c)
+                )
+            };
+            return Diagnostic::error("rotlang::degree-sign", message)
                 .with_primary(here, "a degree sign")
-                .with_fix("remove the `°`", here, "")
+                .with_fix(format!("remove the `{c}`"), here, "")
                 .with_help(self.degrees_help(pos, c.len_utf8()));
         }
         if c.is_ascii_digit() {

@@ -346,19 +346,32 @@ fn empty_instruction(text: &str, span: Span, after_instruction: bool) -> Diagnos
         return warning
             .with_primary(span, "nothing follows this comma")
             .with_fix("remove the trailing comma", span, "")
-            .with_help(
-                "a comma separates instructions, and no instruction follows the last one; \
-                 rotlang ignores it, as OrcaSlicer does when the comma ends the text",
-            );
+            .with_help(format!(
+                "a comma separates instructions, and no instruction follows the last one; {}",
+                orcaslicer_on_empty(text, span, "")
+            ));
     }
+    let replacement = if after_instruction { ", " } else { "" };
     warning
         .with_primary(span, "nothing between these separators")
-        .with_fix(
-            "remove the extra separator",
-            span,
-            if after_instruction { ", " } else { "" },
-        )
-        .with_help("OrcaSlicer reads an empty instruction as `0`; rotlang ignores it")
+        .with_fix("remove the extra separator", span, replacement)
+        .with_help(orcaslicer_on_empty(text, span, replacement))
+}
+
+/// What OrcaSlicer makes of the empty instruction at `span`, asked of the dialect (a
+/// trailing `0 , 90 ,` is dropped, `10,,20` is a 0° layer); for long texts, where each
+/// question would read the whole text, the help says less.
+fn orcaslicer_on_empty(text: &str, span: Span, replacement: &str) -> &'static str {
+    if text.len() > 4096 {
+        return "rotlang ignores it (OrcaSlicer may read it as a layer of its own: `rotlang check` says where)";
+    }
+    let without = format!("{}{replacement}{}", &text[..span.start], &text[span.end..]);
+    // Left empty, the text would be a template OrcaSlicer reads as the profile's direction.
+    if without.is_empty() || crate::dialect::compat::orcaslicer_change(text, &without).is_some() {
+        "OrcaSlicer reads this empty instruction as a layer of its own; rotlang ignores it"
+    } else {
+        "rotlang ignores it, and so does OrcaSlicer here"
+    }
 }
 
 /// Whether `text` is one instruction the grammar accepts.

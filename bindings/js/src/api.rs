@@ -264,7 +264,7 @@ pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
             "bottomShells": m.bottom_shells(),
             "topShells": m.top_shells(),
         }),
-        "base": pm.options.base,
+        "base": pm.direction.degrees,
         "notes": notes,
         "hasErrors": p.has_errors(),
     }))

@@ -8,21 +8,21 @@
 //!   crashes or computes NaN angles, an error ([`HANGS`], [`UNDEFINED`], [`NAN`]).
 //! - **by rule** ([`RULES`]): constructs OrcaSlicer reads differently on every model: a
 //!   plain list separated by spaces, `α:β`/`ℍ:ℕ`, solid signs, `B`/`T` after a joint, text
-//!   after a `!`, empty instructions, `!`/`B`/`T` in a plain list, `~`/`^`; and a
-//!   profile's infill direction, which OrcaSlicer ignores when a template is set
-//!   ([`DIRECTION_IGNORED`]).
+//!   after a `!`, empty instructions, `!`/`B`/`T` in a plain list, `~`/`^`.
 //!
-//! `options.base` is the infill direction (a profile's `sparse_infill_direction`, or
-//! `solid_infill_direction` for a solid template): rotlang adds it to every angle,
-//! OrcaSlicer uses it only for an empty template ([`orcaslicer::profile_options`]). That
-//! difference has its own finding; the comparison on the model looks past it, so that
-//! [`DIFFERS`] points at where the template itself is read differently (its message gives
-//! both real angles).
+//! Both readings are evaluated with the same `options`: a base is added to every angle in
+//! both. A profile's infill direction is the base of an empty template only, in both
+//! readings, as OrcaSlicer decides it ([`crate::profile::ProfileModel::options`]), so the
+//! two never part on it and every angle a message names is one the slicer prints. (The
+//! finding `orcaslicer::direction-ignored`, which reported rotlang adding the direction to
+//! every angle, is retired with that reading.)
 //!
 //! A fix is attached only where it keeps rotlang's meaning (checked by evaluating the fixed
 //! text on reference models) and removes what OrcaSlicer misreads.
 
 mod rules;
+
+use rules::MAX_FIXED_TEXT;
 #[cfg(test)]
 mod tests;
 
@@ -51,13 +51,8 @@ pub const EMPTY_INSTRUCTION: &str = "orcaslicer::empty-instruction";
 pub const IGNORED_IN_LIST: &str = "orcaslicer::ignored-in-list";
 /// `~`, `^`: OrcaSlicer's random numbers differ from run to run.
 pub const RANDOM: &str = "orcaslicer::random";
-/// A profile's infill direction: OrcaSlicer ignores it when a template is set, rotlang
-/// adds it to every angle.
-pub const DIRECTION_IGNORED: &str = "orcaslicer::direction-ignored";
-
 /// The codes of the findings that hold on every model (the rule-based ones).
-pub const RULES: [&str; 9] = [
-    DIRECTION_IGNORED,
+pub const RULES: [&str; 8] = [
     SPACE_SEPARATED_LIST,
     FRACTION,
     SOLID_SIGN,
@@ -69,12 +64,11 @@ pub const RULES: [&str; 9] = [
 ];
 
 /// Every code the lint can report.
-pub const CODES: [&str; 13] = [
+pub const CODES: [&str; 12] = [
     DIFFERS,
     HANGS,
     UNDEFINED,
     NAN,
-    DIRECTION_IGNORED,
     SPACE_SEPARATED_LIST,
     FRACTION,
     SOLID_SIGN,
@@ -85,8 +79,8 @@ pub const CODES: [&str; 13] = [
     RANDOM,
 ];
 
-/// Compares rotlang's reading of `text` with OrcaSlicer's on `model` and by rule;
-/// `options.base` is the infill direction (see the module documentation).
+/// Compares rotlang's reading of `text` with OrcaSlicer's on `model` and by rule, both
+/// with `options` (for a profile's template: [`crate::profile::ProfileModel::compat`]).
 /// Diagnostics are sorted by position; none of them is a syntax error (run `parse` for
 /// those: where the template has errors, only OrcaSlicer's own problems and the rules are
 /// reported).
@@ -101,11 +95,7 @@ pub fn compat(text: &str, target: Target, model: &Model, options: Options) -> Ve
         target,
         &mut out,
     );
-    let theirs = orcaslicer::profile_options(text, options);
-    if !same_angle(theirs.base, options.base) {
-        out.push(direction_ignored(text, target, options.base));
-    }
-    on_model(text, &parse, model, options, theirs, &mut out);
+    on_model(text, &parse, model, options, &mut out);
     out.sort_by_key(|d| (d.primary_span(), d.code));
     out
 }
@@ -130,39 +120,14 @@ fn whole(text: &str) -> Span {
     Span::new(0, text.len())
 }
 
-/// The direction OrcaSlicer drops (`base`): the whole template is at fault.
-fn direction_ignored(text: &str, target: Target, base: f64) -> Diagnostic {
-    let key = match target {
-        Target::Sparse => "sparse_infill_direction",
-        Target::Solid => "solid_infill_direction",
-    };
-    let base = degrees(base);
-    Diagnostic::warning(
-        DIRECTION_IGNORED,
-        format!(
-            "OrcaSlicer ignores {key} = {base} when a template is set; rotlang adds it to every angle"
-        ),
-    )
-    .with_primary(
-        whole(text),
-        format!("OrcaSlicer: these angles alone; rotlang: these angles + {base}"),
-    )
-    .with_help(format!(
-        "for the same angles in both, set `{key}` to 0 and write the direction into the template's angles"
-    ))
-}
-
 fn on_model(
     text: &str,
     parse: &crate::Parse,
     model: &Model,
     options: Options,
-    their_options: Options,
     out: &mut Vec<Diagnostic>,
 ) {
-    // The direction only rotlang adds has its own finding: compare the angles without it.
-    let shift = options.base - their_options.base;
-    let mut theirs = orcaslicer::layers(text, model, their_options);
+    let mut theirs = orcaslicer::layers(text, model, options);
     let mut ours = (!parse.has_errors()).then(|| eval::layers(&parse.template, model, options));
     let mut first: Option<(Layer, Layer)> = None;
     let mut nan_seen = 0;
@@ -182,7 +147,7 @@ fn on_model(
             && first.is_none()
             && !halted
             && !nan_layer
-            && (!same_angle(r.angle - shift, o.angle) || r.fill != Fill::Sparse)
+            && (!same_angle(r.angle, o.angle) || r.fill != Fill::Sparse)
         {
             first = Some((r, o));
         }
@@ -225,7 +190,7 @@ fn on_model(
             .instruction
             .or(o.instruction)
             .unwrap_or_else(|| whole(text));
-        let message = if r.fill != Fill::Sparse && same_angle(r.angle - shift, o.angle) {
+        let message = if r.fill != Fill::Sparse && same_angle(r.angle, o.angle) {
             // `S` is plain "solid"; the other solid signs name their pattern.
             let solid = match r.fill {
                 Fill::Solid => "a solid layer".to_owned(),
@@ -279,6 +244,24 @@ fn reference_models() -> [Model; 3] {
         uniform(75, 0.2, Some(0.3)).with_shells(4, 5),
         uniform(167, 0.12, None).with_shells(2, 3),
     ]
+}
+
+/// Whether OrcaSlicer reads `text` as rotlang does: no errors, and on reference models
+/// the same angles, sparse fills and no hang, crash or NaN. `check --fix` applies a fix
+/// that gets there whatever it changes in OrcaSlicer's reading.
+pub fn readings_agree(text: &str, target: Target) -> bool {
+    let parse = crate::parse(text, target);
+    if parse.has_errors() || text.len() > MAX_FIXED_TEXT {
+        return false;
+    }
+    reference_models().iter().all(|model| {
+        let options = Options::default();
+        let mut theirs = orcaslicer::layers(text, model, options);
+        let agree = eval::layers(&parse.template, model, options)
+            .zip(theirs.by_ref())
+            .all(|(r, o)| r.fill == Fill::Sparse && same_angle(r.angle, o.angle));
+        agree && theirs.findings().is_empty()
+    })
 }
 
 /// What OrcaSlicer does differently after `text` becomes `changed` (on reference models),

@@ -76,7 +76,7 @@ pub(super) fn rules(
 /// A pasted megabyte of `+7!B` must not become a million findings (or fix checks).
 const MAX_RULE_FINDINGS: usize = 100;
 /// Fixes are checked by evaluating the fixed text: templates are lines, not megabytes.
-const MAX_FIXED_TEXT: usize = 4096;
+pub(super) const MAX_FIXED_TEXT: usize = 4096;
 
 /// The list reading (no `+ - % * @ ' " c m` and no joint sign): pieces between commas.
 fn list_rules(text: &str, fixable: bool, target: Target, out: &mut Vec<Diagnostic>) {
@@ -228,10 +228,17 @@ fn instruction_rules(
         out.push(
             Diagnostic::warning(
                 SOLID_SIGN,
-                format!("OrcaSlicer has no solid signs: it ignores `{}` and what follows it in the instruction, and fills these layers as sparse infill", solid.value.symbol()),
+                match target {
+                    Target::Sparse => format!("OrcaSlicer has no solid signs: it ignores `{}` and what follows it in the instruction, and fills these layers as sparse infill", solid.value.symbol()),
+                    // A solid template's layers are solid anyway: only the pattern is lost.
+                    Target::Solid => format!("OrcaSlicer has no solid signs: it ignores `{}` and what follows it in the instruction, and fills these layers with its own solid pattern", solid.value.symbol()),
+                },
             )
             .with_primary(solid.span, "rotlang: solid layers")
-            .with_help("OrcaSlicer prints sparse infill here; only rotlang-based slicers make these layers solid"),
+            .with_help(match target {
+                Target::Sparse => "OrcaSlicer prints sparse infill here; only rotlang-based slicers make these layers solid",
+                Target::Solid => "OrcaSlicer prints its solid_infill_pattern here; only rotlang-based slicers follow the sign's pattern",
+            }),
         );
     }
     if let (Some(joint), Some(count)) = (ins.joint, ins.count)

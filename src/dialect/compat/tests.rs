@@ -221,39 +221,96 @@ fn lint_on(text: &str, target: Target, base: f64) -> Vec<Diagnostic> {
     compat(text, target, &Model::cube20(), Options { base, seed: 0 })
 }
 
+fn preset(json: &str) -> crate::profile::Profile {
+    crate::profile::parse(std::path::Path::new("p.json"), json.as_bytes()).expect("a preset")
+}
+
 #[test]
-fn a_profile_direction_is_ignored_by_orcaslicer_when_a_template_is_set() {
-    // OrcaSlicer: 0, 90; rotlang: 45, 135. One rule-based finding, no shifted `differs`.
-    let found = lint_on("0, 90", Target::Sparse, 45.0);
+fn a_profile_direction_turns_an_empty_template_only_in_both_readings() {
+    // Issue 16.3: `0 90` with direction 45 once said "layer 1 to 0°, rotlang to 135°"
+    // (the real gap is 90°) and left layer 0 (0° against 45°) unflagged.
+    let p = preset(r#"{"sparse_infill_rotate_template": "0 90", "sparse_infill_direction": "45"}"#);
+    let pm = p.model(Target::Sparse, None, 20.0);
+    assert_eq!(pm.direction.degrees, 45.0);
+    assert_eq!(pm.direction.key.as_deref(), Some("sparse_infill_direction"));
+    assert_eq!(pm.options("0 90").base, 0.0);
+    assert_eq!(pm.options("").base, 45.0);
+    let found = pm.compat("0 90", Target::Sparse);
     assert_eq!(
         found.iter().map(|d| d.code).collect::<Vec<_>>(),
-        [DIRECTION_IGNORED]
+        [SPACE_SEPARATED_LIST, DIFFERS]
     );
     assert_eq!(
-        found[0].message,
-        "OrcaSlicer ignores sparse_infill_direction = 45° when a template is set; rotlang adds it to every angle"
+        found[1].message,
+        "OrcaSlicer turns layer 1 to 0°, rotlang to 90°"
     );
-    assert_eq!(found[0].severity, crate::Severity::Warning);
-    assert_eq!(found[0].primary_span(), Span::new(0, 5));
-    assert!(RULES.contains(&DIRECTION_IGNORED));
-    let solid = lint_on("+30/50%", Target::Solid, 30.0);
+    // The same angles as each reading prints on its own with these options.
+    let ours: Vec<f64> = crate::eval::layers(
+        &crate::parse("0 90", Target::Sparse).template,
+        &pm.model,
+        pm.options("0 90"),
+    )
+    .map(|l| l.angle)
+    .take(2)
+    .collect();
+    assert_eq!(ours, [0.0, 90.0]);
+    // An empty template is the direction in both: nothing to report.
+    assert!(pm.compat("", Target::Sparse).is_empty());
+    // A preset that never sets a direction: OrcaSlicer's default 45° does not turn a
+    // template, and its note bears on an empty template only.
+    let plain =
+        preset(r#"{"sparse_infill_rotate_template": "0, 90"}"#).model(Target::Sparse, None, 20.0);
+    assert_eq!(
+        (plain.direction.key.clone(), plain.options("0, 90").base),
+        (None, 0.0)
+    );
+    assert!(plain.compat("0, 90", Target::Sparse).is_empty());
     assert!(
-        solid[0]
-            .message
-            .starts_with("OrcaSlicer ignores solid_infill_direction = 30°"),
-        "{solid:?}"
+        plain
+            .notes_for("0, 90")
+            .iter()
+            .all(|n| !n.contains("direction")),
+        "{:?}",
+        plain.notes_for("0, 90")
     );
-    // Where the template itself is read differently, both real angles are named:
-    // OrcaSlicer reads `1:4` as 1°; rotlang turns it to 90° + 45°.
+    assert!(
+        plain
+            .notes_for("")
+            .iter()
+            .any(|n| n.contains("`sparse_infill_direction` not set"))
+    );
+}
+
+#[test]
+fn the_direction_key_is_named_as_the_file_spells_it() {
+    let p = preset(r#"{"sparse_infill_rotate_template": "", "infill_direction": "30"}"#);
+    let pm = p.model(Target::Sparse, None, 20.0);
+    assert_eq!(pm.direction.key.as_deref(), Some("infill_direction"));
+    assert_eq!(pm.options("").base, 30.0);
+    let bad = preset(r#"{"solid_infill_direction": "north"}"#).model(Target::Solid, None, 20.0);
+    assert_eq!(bad.direction.key, None);
+    assert_eq!(
+        bad.notes_for("").last().map(String::as_str),
+        Some(
+            "`solid_infill_direction` = `north` is not a number: OrcaSlicer's default 45° is used"
+        )
+    );
+}
+
+#[test]
+fn an_explicit_base_turns_both_readings_alike() {
+    // `--base` (an embedder's base) is added to every angle in both readings.
+    assert!(lint_on("0, 90", Target::Sparse, 45.0).is_empty());
     let d = lint_on("0, 1:4", Target::Sparse, 45.0)
         .into_iter()
         .find(|d| d.code == DIFFERS)
         .expect("differs");
-    assert_eq!(d.message, "OrcaSlicer turns layer 1 to 1°, rotlang to 135°");
-    // An empty template takes the direction in both readings; 0° and 360° are no direction.
-    assert!(lint_on("", Target::Sparse, 45.0).is_empty());
-    assert!(lint_on("0, 90", Target::Sparse, 0.0).is_empty());
-    assert!(lint_on("0, 90", Target::Sparse, 360.0).is_empty());
+    assert_eq!(
+        d.message,
+        "OrcaSlicer turns layer 1 to 46°, rotlang to 135°"
+    );
+    // Retired: the two readings never part on the direction.
+    assert!(!CODES.iter().any(|c| c.ends_with("::direction-ignored")));
 }
 
 #[test]
@@ -268,4 +325,27 @@ fn orcaslicer_options_in_a_profile_keep_the_direction_for_empty_text_only() {
     );
     assert_eq!((empty.base, empty.seed), (45.0, 7));
     assert_eq!((set.base, set.seed), (0.0, 7));
+}
+
+#[test]
+fn a_solid_template_is_not_said_to_become_sparse() {
+    // Issue 17: the lint said OrcaSlicer "fills these layers as sparse infill" of a solid
+    // template, whose layers are solid whatever the sign.
+    let solid = compat("+15R", Target::Solid, &Model::cube20(), Options::default());
+    let d = solid
+        .iter()
+        .find(|d| d.code == SOLID_SIGN)
+        .expect("solid-sign");
+    assert!(
+        d.message.ends_with("with its own solid pattern"),
+        "{}",
+        d.message
+    );
+    assert!(!format!("{d:?}").contains("sparse"), "{d:?}");
+    let sparse = compat("+15R", Target::Sparse, &Model::cube20(), Options::default());
+    let d = sparse
+        .iter()
+        .find(|d| d.code == SOLID_SIGN)
+        .expect("solid-sign");
+    assert!(d.message.ends_with("as sparse infill"), "{}", d.message);
 }

@@ -61,12 +61,13 @@ pub fn is_list(text: &str) -> bool {
     !text.bytes().any(|b| META.contains(&b) || is_joint(b))
 }
 
-/// The options of OrcaSlicer's reading of `text` in a profile whose infill direction
-/// (`sparse_infill_direction`, OrcaSlicer's `fixed_infill_angle`) is `options.base`.
-/// OrcaSlicer uses the direction only for an empty template: any other template's angles
-/// are the template's alone (SEMANTICS 10.2), so the base is dropped. rotlang's reading
-/// adds the direction to every angle; [`crate::dialect::compat`] reports the difference
-/// (`orcaslicer::direction-ignored`).
+/// The options of `text`, a template of a profile whose infill direction (OrcaSlicer's
+/// `sparse_infill_direction`, `infill_direction` or `solid_infill_direction`) is
+/// `options.base`, in either reading. OrcaSlicer uses the direction only for an empty
+/// template: any other template's angles are the template's alone (SEMANTICS 10.2), so
+/// the base is dropped. rotlang reads a profile the same way
+/// ([`crate::profile::ProfileModel::options`] calls this), so one profile gives one set
+/// of angles.
 ///
 /// [`layers`] itself adds `options.base` to every angle (a base chosen on the command line
 /// or by an embedder); pass its options through this function when the base is a

@@ -41,7 +41,7 @@ fn diagnostics_10kb(bencher: divan::Bencher) {
     assert!((10_000..11_000).contains(&text.len()), "{}", text.len());
     let uri = Uri::from_str("file:///tmp/profile.json").expect("uri");
     bencher.bench(|| {
-        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1, None);
         let pos = Positions::new(&doc.text, Encoding::Utf16);
         let diags = diagnostics::diagnostics(&doc, &uri, &pos);
         assert_eq!(diags.len(), 2);
@@ -55,7 +55,7 @@ fn hover_instruction_10kb(bencher: divan::Bencher) {
     let at = text.find("-10l25%").expect("instruction") + 2;
     let model = ModelSettings::default();
     bencher.bench(|| {
-        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1, None);
         let pos = Positions::new(&doc.text, Encoding::Utf16);
         hover::hover(&doc, at, &model, &pos).expect("a hover")
     });
@@ -67,7 +67,7 @@ fn hover_template_10kb(bencher: divan::Bencher) {
     let at = text.find(", B!").expect("separator") + 1;
     let model = ModelSettings::default();
     bencher.bench(|| {
-        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1, None);
         let pos = Positions::new(&doc.text, Encoding::Utf16);
         hover::hover(&doc, at, &model, &pos).expect("a hover")
     });
@@ -81,7 +81,7 @@ fn diagnostics_and_hover_10kb(bencher: divan::Bencher) {
     let uri = Uri::from_str("file:///tmp/profile.json").expect("uri");
     let model = ModelSettings::default();
     bencher.bench(|| {
-        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1, None);
         let pos = Positions::new(&doc.text, Encoding::Utf16);
         let diags = diagnostics::diagnostics(&doc, &uri, &pos);
         let hover = hover::hover(&doc, at, &model, &pos);

@@ -27,7 +27,8 @@ pub fn inlay_hints(
         if region.contents.end < range.start || region.contents.start > range.end {
             continue;
         }
-        let preview = Preview::compute(&region.parse.template, model);
+        let reading = region.reading(model);
+        let preview = Preview::compute(&region.parse.template, &reading);
         for (i, ins) in region.parse.template.instructions.iter().enumerate() {
             let end = region.doc_span(ins.span).end;
             if end < range.start || end > range.end || ins.is_dummy() {
@@ -36,7 +37,7 @@ pub fn inlay_hints(
             if hints.len() >= MAX_HINTS {
                 return hints;
             }
-            let run = first_run(&region.parse.template, i, model, &mut budget)
+            let run = first_run(&region.parse.template, i, &reading, &mut budget)
                 .or_else(|| preview.instructions.get(i).and_then(|p| p.first_block));
             let label = match run {
                 Some(run) => turn_words(ins, &run),
@@ -49,7 +50,7 @@ pub fn inlay_hints(
                 text_edits: None,
                 tooltip: Some(InlayHintTooltip::String(format!(
                     "first run on {}",
-                    model.describe()
+                    reading.describe
                 ))),
                 padding_left: Some(true),
                 padding_right: Some(false),

@@ -33,7 +33,12 @@ pub fn findings(doc: &Document, settings: &ModelSettings) -> Vec<(usize, Finding
             Some(profile) => profile.compat(&region.text, region.target),
             None => {
                 let reading = region.reading(settings);
-                rotlang::dialect::compat(&region.text, region.target, &reading.model, reading.options)
+                rotlang::dialect::compat(
+                    &region.text,
+                    region.target,
+                    &reading.model,
+                    reading.options,
+                )
             }
         };
         for d in found {

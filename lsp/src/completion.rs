@@ -49,8 +49,16 @@ const MARKS: [(&str, &str, &str); 6] = [
 
 /// The signs an angle may begin with, offered at the start of an instruction.
 const ANGLE_SIGNS: [(&str, &str, &str); 2] = [
-    ("+", "angle sign: a turn", "the angle is a turn added to the previous angle"),
-    ("-", "angle sign: a turn", "the angle is a turn subtracted from the previous angle"),
+    (
+        "+",
+        "angle sign: a turn",
+        "the angle is a turn added to the previous angle",
+    ),
+    (
+        "-",
+        "angle sign: a turn",
+        "the angle is a turn subtracted from the previous angle",
+    ),
 ];
 
 /// Whether `text`, an instruction that an item would make, is one the library accepts, or
@@ -91,7 +99,8 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
     // offered: what leaves the instruction valid, or valid once finished, as the library
     // reads it (`/+30` and `*+30` do not).
     let at_start = typed.is_empty();
-    let begins = |label: &str| !at_start || begins_instruction(&format!("{label}{after}"), region.target);
+    let begins =
+        |label: &str| !at_start || begins_instruction(&format!("{label}{after}"), region.target);
     let mut items = Vec::new();
     let typed_unit = unit_typed(typed);
     let mut push = |label: String, kind, detail: &str, doc_text: String, sort: usize| {

@@ -173,9 +173,9 @@ impl Document {
         if kind != Kind::Rot && !regions.is_empty() {
             let profile = profile_of(&text, kind, path);
             for region in &mut regions {
-                region.profile = profile.as_ref().map(|p| {
-                    p.model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT)
-                });
+                region.profile = profile
+                    .as_ref()
+                    .map(|p| p.model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT));
             }
         }
         // A JSON file that never names a template key is not a profile (an editor may hand

@@ -5,9 +5,9 @@ use std::collections::HashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::{Arc, Mutex, MutexGuard};
 
+use tokio::sync::watch;
 use tower_lsp_server::jsonrpc::{Error, Result};
 use tower_lsp_server::ls_types::*;
-use tokio::sync::watch;
 use tower_lsp_server::{Client, LanguageServer, LspService, Server};
 
 use crate::document::{Document, Kind};
@@ -231,15 +231,28 @@ impl Backend {
                 let Some(open) = state.documents.get_mut(&uri) else {
                     return; // closed meanwhile
                 };
-                let done = open.analysed.as_ref().is_some_and(|d| d.version == open.version);
+                let done = open
+                    .analysed
+                    .as_ref()
+                    .is_some_and(|d| d.version == open.version);
                 if done || open.out_of_sync.is_some() {
                     open.busy = false;
                     return;
                 }
-                (open.text.clone(), open.kind, open.version, open.path.clone(), limit)
+                // The analysis of an older text goes now: every request waits for the
+                // latest anyway, and memory is bounded by one analysed document.
+                let stale = open.analysed.take();
+                let job = (
+                    open.text.clone(),
+                    open.kind,
+                    open.version,
+                    open.path.clone(),
+                );
+                (job, limit, stale)
             };
-            let (text, kind, version, path, limit) = job;
+            let ((text, kind, version, path), limit, stale) = job;
             let analysis = tokio::task::spawn_blocking(move || {
+                drop(stale); // freed here, not on the thread that reads messages
                 guard(|| match text {
                     Some(text) if text.len() <= limit => {
                         // The text is shared with the store; the document owns a copy only
@@ -494,7 +507,11 @@ impl LanguageServer for Backend {
             let text = open.text.clone().filter(|_| open.out_of_sync.is_none());
             (text, state.encoding)
         };
-        match sync::apply(text.as_deref().map(String::as_str), params.content_changes, encoding) {
+        match sync::apply(
+            text.as_deref().map(String::as_str),
+            params.content_changes,
+            encoding,
+        ) {
             Applied::Text(text) => {
                 {
                     let mut state = self.state();

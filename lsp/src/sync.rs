@@ -130,8 +130,16 @@ pub fn edit_span(text: &str, range: Range, encoding: Encoding) -> Result<Span, S
     let after_last = |p: tower_lsp_server::ls_types::Position| {
         p.line as usize == pos.line_count() && p.character == 0
     };
-    let a = if after_last(start) { text.len() } else { offset(start)? };
-    let b = if after_last(end) { text.len() } else { offset(end)? };
+    let a = if after_last(start) {
+        text.len()
+    } else {
+        offset(start)?
+    };
+    let b = if after_last(end) {
+        text.len()
+    } else {
+        offset(end)?
+    };
     // Columns past their lines' ends can still meet in reverse order on one line.
     Ok(Span::new(a, b.max(a)))
 }
@@ -153,15 +161,28 @@ mod tests {
     fn ranged_edits_apply_in_order_and_bad_ones_are_rejected() {
         let e = Encoding::Utf16;
         assert_eq!(
-            apply(Some("0, 90"), vec![ranged(0, 3, 0, 5, "45"), ranged(0, 0, 0, 1, "10")], e),
+            apply(
+                Some("0, 90"),
+                vec![ranged(0, 3, 0, 5, "45"), ranged(0, 0, 0, 1, "10")],
+                e
+            ),
             Applied::Text("10, 45".into())
         );
         let reversed = apply(Some("0, 90"), vec![ranged(0, 4, 0, 1, "x")], e);
-        assert!(matches!(reversed, Applied::Rejected(ref why) if why.contains("before it starts")), "{reversed:?}");
+        assert!(
+            matches!(reversed, Applied::Rejected(ref why) if why.contains("before it starts")),
+            "{reversed:?}"
+        );
         let past = apply(Some("0, 90"), vec![ranged(3, 0, 3, 0, "x")], e);
-        assert!(matches!(past, Applied::Rejected(ref why) if why.contains("line 3")), "{past:?}");
+        assert!(
+            matches!(past, Applied::Rejected(ref why) if why.contains("line 3")),
+            "{past:?}"
+        );
         // Out of sync: ranged edits wait for the whole text.
-        assert_eq!(apply(None, vec![ranged(0, 0, 0, 0, "x")], e), Applied::Nothing);
+        assert_eq!(
+            apply(None, vec![ranged(0, 0, 0, 0, "x")], e),
+            Applied::Nothing
+        );
         let full = TextDocumentContentChangeEvent {
             range: None,
             range_length: None,

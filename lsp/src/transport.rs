@@ -246,10 +246,7 @@ where
                     let _ = replies.send(reply).await;
                     continue;
                 }
-                let body = request
-                    .as_ref()
-                    .and_then(unreadable_change)
-                    .unwrap_or(body);
+                let body = request.as_ref().and_then(unreadable_change).unwrap_or(body);
                 to_server.write_all(&frame(&body)).await?;
                 to_server.flush().await?;
             }

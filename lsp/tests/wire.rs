@@ -815,3 +815,93 @@ fn utf16_and_utf8_positions_with_wide_characters() {
         .expect("alpha");
     assert_eq!(d["range"], range(0, a, 0, a + 1));
 }
+
+/// One reading of a preset (issue 16 item 3, issue 17): a preset that sets a direction and
+/// has a non-empty template is read as OrcaSlicer reads it (the template's angles alone,
+/// on the preset's own layer heights), and the hover, the inlay hints and the compat
+/// diagnostic agree with the library on every layer they name.
+#[test]
+fn a_preset_reads_the_same_in_hover_inlay_hints_and_diagnostics() {
+    use rotlang::eval::Options;
+    use rotlang::explain::deg_and_lines;
+    let mut lsp = Lsp::start();
+    let uri = "file:///tmp/preset.json";
+    let doc = "{\n  \"layer_height\": \"0.12\",\n  \"sparse_infill_direction\": \"45\",\n  \"sparse_infill_rotate_template\": \"0 90\"\n}\n";
+    let diags = lsp.open(uri, "json", doc);
+    // The library's reading: the preset's model; no direction added to a non-empty template.
+    let profile =
+        rotlang::profile::parse(std::path::Path::new("preset.json"), doc.as_bytes()).unwrap();
+    let pm = profile.model(
+        rotlang::Target::Sparse,
+        None,
+        rotlang::profile::DEFAULT_OBJECT_HEIGHT,
+    );
+    let template = rotlang::parse("0 90", rotlang::Target::Sparse).template;
+    let angles: Vec<f64> = rotlang::eval::layers(&template, &pm.model, Options::default())
+        .map(|l| l.angle)
+        .collect();
+    assert_eq!(angles.len(), 166, "0.2 mm, then 0.12 mm layers to 20 mm");
+
+    // The hover on the key: the first 24 layers, and the model's layer count.
+    let h = hover_text(&mut lsp, uri, 3, 5);
+    let first: Vec<String> = angles[..24].iter().map(|&a| deg_and_lines(a)).collect();
+    assert!(
+        h.contains(&format!("First 24 layers: {}, …", first.join(", "))),
+        "{h}"
+    );
+    assert!(h.contains("over all 166 layers"), "{h}");
+
+    // The inlay hint of each instruction: the angle of the first layer it governs.
+    let hints = lsp.result(
+        "textDocument/inlayHint",
+        json!({"textDocument": {"uri": uri}, "range": range(0, 0, 5, 0)}),
+    );
+    let labels: Vec<&str> = hints
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| h["label"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            format!("{} for 1 layer", rotlang::explain::deg(angles[0])),
+            format!("{} for 1 layer", rotlang::explain::deg(angles[1])),
+        ]
+    );
+
+    // The compat diagnostic: rotlang's angle of the layer it names is the library's, and
+    // the hover on the same characters lists that layer with that angle.
+    let differs = diags
+        .iter()
+        .find(|d| d["code"] == "orcaslicer::differs")
+        .expect("OrcaSlicer reads `0 90` as `0`");
+    let message = differs["message"].as_str().unwrap();
+    let layer: usize = message
+        .split("layer ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .expect(message);
+    let start = &differs["range"]["start"];
+    let h = hover_text(
+        &mut lsp,
+        uri,
+        start["line"].as_u64().unwrap() as u32,
+        start["character"].as_u64().unwrap() as u32,
+    );
+    assert!(
+        h.contains(&format!("{layer}: {}", deg_and_lines(angles[layer]))),
+        "layer {layer} in the hover: {h}"
+    );
+    let ours: f64 = message
+        .rsplit("rotlang to ")
+        .next()
+        .and_then(|s| s.trim_end_matches('°').parse().ok())
+        .expect(message);
+    assert_eq!(
+        ours, angles[layer],
+        "the diagnostic's angle is the hover's (needs the library's one reading of a \
+         profile, issue 16 item 3): {message}"
+    );
+}

@@ -47,6 +47,9 @@ const MARKS: [(&str, &str, &str); 6] = [
     ("T", "top shells", "count: the number of top shell layers"),
 ];
 
+/// The runtime marks among `MARKS`.
+const RUNTIME_MARKS: [&str; 4] = ["*", "*2", "!", "*!"];
+
 /// The signs an angle may begin with, offered at the start of an instruction.
 const ANGLE_SIGNS: [(&str, &str, &str); 2] = [
     (
@@ -211,6 +214,11 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
         }
     }
     for (text, detail, meaning) in MARKS {
+        if at_start && RUNTIME_MARKS.contains(&text) {
+            // A runtime mark follows an angle (`+30*2`): it never begins an instruction,
+            // although the library reads a lone `!` as one on the angle 0.
+            continue;
+        }
         n += 1;
         push(
             text.to_string(),

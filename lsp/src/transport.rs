@@ -27,18 +27,28 @@ enum Frame {
     Eof,
 }
 
-/// A framed stream: the reader, and a header line already read while skipping input
-/// (`skip_to_header`), to be read first.
+/// What the next read starts with.
+enum Carry {
+    /// Reading the next header.
+    Nothing,
+    /// A refused message is to be skipped: input is discarded up to the next header
+    /// (`skip_to_header`). Done at the next read, so the refusal is answered first.
+    Skip,
+    /// A header line already read while skipping.
+    Line(Vec<u8>),
+}
+
+/// A framed stream: the reader, and where the next read starts.
 struct Framed<R> {
     reader: BufReader<R>,
-    carry: Option<Vec<u8>>,
+    carry: Carry,
 }
 
 impl<R: AsyncRead + Unpin> Framed<R> {
     fn new(input: R) -> Self {
         Framed {
             reader: BufReader::new(input),
-            carry: None,
+            carry: Carry::Nothing,
         }
     }
 
@@ -50,15 +60,21 @@ impl<R: AsyncRead + Unpin> Framed<R> {
 /// Read the next frame. Never fails on bad input: bad headers or sizes become `Refused`.
 async fn read_frame<R: AsyncRead + Unpin>(
     reader: &mut BufReader<R>,
-    carry: &mut Option<Vec<u8>>,
+    carry: &mut Carry,
 ) -> io::Result<Frame> {
+    if let Carry::Skip = carry {
+        *carry = match skip_to_header(reader).await? {
+            Some(line) => Carry::Line(line),
+            None => return Ok(Frame::Eof),
+        };
+    }
     let mut length: Option<usize> = None;
     let mut bad_length = false;
     let mut saw_header = false;
     loop {
-        let line = match carry.take() {
-            Some(line) => line,
-            None => {
+        let line = match std::mem::replace(carry, Carry::Nothing) {
+            Carry::Line(line) => line,
+            _ => {
                 let mut line = Vec::new();
                 let n = (&mut *reader)
                     .take(MAX_HEADER_LINE)
@@ -98,7 +114,7 @@ async fn read_frame<R: AsyncRead + Unpin>(
         // Not read past its declared length: a wrong length (a client's bug, or a garbled
         // header) would swallow every later message while the server looks alive. Skip to
         // the next header instead; a real message this large is skipped all the same.
-        *carry = skip_to_header(reader).await?;
+        *carry = Carry::Skip;
         return Ok(Frame::Refused("message too large"));
     }
     let mut body = vec![0; length];

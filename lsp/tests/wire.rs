@@ -905,3 +905,62 @@ fn a_preset_reads_the_same_in_hover_inlay_hints_and_diagnostics() {
          profile, issue 16 item 3): {message}"
     );
 }
+
+/// At the start of an instruction only what can begin one is offered (issue 17): at
+/// `0, ⎀+30` nothing that would make `/+30` or `*+30`; at `0, ⎀` the angle's signs, and no
+/// runtime mark or unit, which cannot begin an instruction.
+#[test]
+fn completion_at_the_start_of_an_instruction_offers_what_can_begin_one() {
+    let mut lsp = Lsp::start();
+    let labels = |lsp: &mut Lsp, fixture: &str| -> Vec<(String, String)> {
+        let (text, line, col, _) = cursor(fixture);
+        lsp.open(ROT, "rotlang", &text);
+        let items = lsp.result(
+            "textDocument/completion",
+            json!({"textDocument": {"uri": ROT}, "position": {"line": line, "character": col}}),
+        );
+        items
+            .as_array()
+            .expect("a list")
+            .iter()
+            .map(|i| {
+                let edit = i["textEdit"]["newText"].as_str().unwrap_or("").to_owned();
+                (i["label"].as_str().unwrap().to_owned(), edit)
+            })
+            .collect()
+    };
+    let before_turn = labels(&mut lsp, "0, $0+30");
+    for (label, new_text) in &before_turn {
+        let parse = rotlang::parse(new_text, rotlang::Target::Sparse);
+        assert!(
+            parse
+                .diagnostics
+                .iter()
+                .all(|d| d.code == "rotlang::incomplete"),
+            "`{label}` makes `{new_text}`: {:?}",
+            parse.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>()
+        );
+    }
+    assert!(
+        !before_turn
+            .iter()
+            .any(|(l, _)| ["/", "*", "*2", "!", "N"].contains(&l.as_str()))
+    );
+
+    let empty = labels(&mut lsp, "0, $0");
+    let offered: Vec<&str> = empty.iter().map(|(l, _)| l.as_str()).collect();
+    assert!(
+        offered.contains(&"+") && offered.contains(&"-"),
+        "{offered:?}"
+    );
+    for never in ["*", "*2", "!", "*!", "mm", "cm"] {
+        assert!(!offered.contains(&never), "`{never}` offered: {offered:?}");
+    }
+    // Within an instruction the signs are offered as before.
+    let within = labels(&mut lsp, "0, +30$0");
+    let offered: Vec<&str> = within.iter().map(|(l, _)| l.as_str()).collect();
+    for sign in ["/", "N", "*", "!"] {
+        assert!(offered.contains(&sign), "`{sign}` missing: {offered:?}");
+    }
+    assert!(!offered.contains(&"+"), "{offered:?}");
+}

@@ -11,7 +11,7 @@ use rotlang::Diagnostic as Finding;
 use tower_lsp_server::ls_types::{Diagnostic, Uri};
 
 use crate::diagnostics::convert;
-use crate::document::Document;
+use crate::document::{Document, Findings};
 use crate::position::Positions;
 use crate::settings::ModelSettings;
 
@@ -53,7 +53,7 @@ pub fn findings(doc: &Document, settings: &ModelSettings) -> Vec<(usize, Finding
 
 /// The findings of `findings`, computed once per document and settings: the diagnostics
 /// published and the code actions asked for later are the same findings.
-pub fn cached(doc: &Document, settings: &ModelSettings) -> Arc<Vec<(usize, Finding)>> {
+pub fn cached(doc: &Document, settings: &ModelSettings) -> Findings {
     let lock = |doc: &Document| doc.compat.lock().unwrap_or_else(|p| p.into_inner()).clone();
     if let Some((for_settings, found)) = lock(doc)
         && for_settings == *settings

@@ -109,6 +109,9 @@ impl Region {
     }
 }
 
+/// Compat findings, each with the index of its region.
+pub type Findings = Arc<Vec<(usize, rotlang::Diagnostic)>>;
+
 #[derive(Debug)]
 pub struct Document {
     pub text: String,
@@ -122,7 +125,7 @@ pub struct Document {
     pub too_large: Option<(usize, usize)>,
     /// The compat findings, computed once per settings for diagnostics and code actions
     /// alike (`crate::compat::cached`).
-    pub compat: Mutex<Option<(ModelSettings, Arc<Vec<(usize, rotlang::Diagnostic)>>)>>,
+    pub compat: Mutex<Option<(ModelSettings, Findings)>>,
 }
 
 impl Document {

@@ -7,6 +7,7 @@ use rotlang::profile::ProfileModel;
 use rotlang::{Instruction, Parse, Span, Target};
 
 use crate::json::{self, OffsetMap};
+use crate::preview::Preview;
 use crate::reading::Reading;
 use crate::settings::ModelSettings;
 use crate::{ini, jsonc};
@@ -126,6 +127,10 @@ pub struct Document {
     /// The compat findings, computed once per settings for diagnostics and code actions
     /// alike (`crate::compat::cached`).
     pub compat: Mutex<Option<(ModelSettings, Findings)>>,
+    /// Each region's preview (its layers summarised), computed once per settings: the
+    /// evaluator prepares the whole template first, which on a 3 MB template costs more
+    /// than a hover may take (`Document::preview`).
+    previews: Mutex<Vec<Option<(ModelSettings, Arc<Preview>)>>>,
 }
 
 impl Document {
@@ -195,6 +200,7 @@ impl Document {
             json_error,
             too_large: None,
             compat: Mutex::default(),
+            previews: Mutex::default(),
         }
     }
 
@@ -208,7 +214,36 @@ impl Document {
             json_error: None,
             too_large: Some((len, limit)),
             compat: Mutex::default(),
+            previews: Mutex::default(),
         }
+    }
+
+    /// The preview of region `index` in its reading, computed on first use for these
+    /// settings and kept (the analysis computes them in the background, so that a hover
+    /// finds them ready).
+    pub fn preview(&self, index: usize, settings: &ModelSettings) -> Option<Arc<Preview>> {
+        let region = self.regions.get(index)?;
+        let lock = || self.previews.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some(Some((for_settings, preview))) = lock().get(index)
+            && for_settings == settings
+        {
+            return Some(preview.clone());
+        }
+        let preview = Arc::new(Preview::compute(
+            &region.parse.template,
+            &region.reading(settings),
+        ));
+        let mut previews = lock();
+        if previews.len() < self.regions.len() {
+            previews.resize(self.regions.len(), None);
+        }
+        previews[index] = Some((*settings, preview.clone()));
+        Some(preview)
+    }
+
+    /// The index of a region of this document (found by address).
+    pub fn index_of(&self, region: &Region) -> Option<usize> {
+        self.regions.iter().position(|r| std::ptr::eq(r, region))
     }
 
     /// The template containing a document offset, and the offset inside it.

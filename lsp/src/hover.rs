@@ -33,7 +33,7 @@ pub fn hover(
     };
     let (region, at) = doc.region_at(offset).or_else(on_key)?;
     let reading = region.reading(model);
-    let preview = Preview::compute(&region.parse.template, &reading);
+    let preview = doc.preview(doc.index_of(region)?, model)?;
     let (markdown, span) = match region.instruction_at(at) {
         Some((i, ins)) => (
             instruction_hover(region, i, ins, &reading, &preview),
@@ -60,7 +60,7 @@ pub fn instruction_hover(
 ) -> String {
     let text = quote(region.text.get(ins.span.range()).unwrap_or(""));
     let mut out = format!("`{text}` {}.\n\n", describe(ins, reading));
-    match preview.instructions.get(index) {
+    match preview.instructions.get(&index) {
         Some(p) if p.layers > 0 => {
             out.push_str(&format!(
                 "Governs {} of the {} layers.",

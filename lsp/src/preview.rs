@@ -5,6 +5,8 @@
 //! Everything else is a bounded summary of the stream: memory is O(instructions), whatever
 //! the number of layers.
 
+use std::collections::BTreeMap;
+
 use rotlang::eval::{self, Model};
 use rotlang::{Fill, Span, Template};
 
@@ -110,14 +112,15 @@ pub struct Preview {
     pub ranges: Vec<(f64, f64)>,
     pub min: f64,
     pub max: f64,
-    /// Per instruction, in the template's order.
-    pub instructions: Vec<InstructionPreview>,
+    /// Per instruction that governs a layer, by its index in the template. (Not a vector
+    /// of every instruction: a 3 MB template has half a million, and a hover must not
+    /// allocate for all of them when a model's layers reach a few.)
+    pub instructions: BTreeMap<usize, InstructionPreview>,
 }
 
 impl Preview {
     pub fn compute(template: &Template, reading: &Reading) -> Preview {
-        let n = template.instructions.len();
-        let mut instructions = vec![InstructionPreview::default(); n];
+        let mut instructions: BTreeMap<usize, InstructionPreview> = BTreeMap::new();
         let mut first = Vec::new();
         let mut head = Vec::new();
         let mut ranges = Vec::new();
@@ -146,9 +149,8 @@ impl Preview {
             min = min.min(angle);
             max = max.max(angle);
             let which = layer.instruction.and_then(|span| index_of(template, span));
-            if let Some(i) = which
-                && let Some(p) = instructions.get_mut(i)
-            {
+            if let Some(i) = which {
+                let p = instructions.entry(i).or_default();
                 p.layers += 1;
                 if p.sample.len() < INSTRUCTION_SAMPLE {
                     p.sample.push((layer.index, angle, layer.fill));

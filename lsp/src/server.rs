@@ -248,9 +248,9 @@ impl Backend {
                     open.version,
                     open.path.clone(),
                 );
-                (job, limit, stale)
+                (job, limit, stale, state.model)
             };
-            let ((text, kind, version, path), limit, stale) = job;
+            let ((text, kind, version, path), limit, stale, settings) = job;
             let analysis = tokio::task::spawn_blocking(move || {
                 drop(stale); // freed here, not on the thread that reads messages
                 guard(|| match text {
@@ -261,6 +261,12 @@ impl Backend {
                     }
                     Some(text) => Document::too_large(text.len(), limit, kind, version),
                     None => Document::too_large(0, limit, kind, version),
+                })
+                .inspect(|doc| {
+                    // Ready for the hovers to come.
+                    for index in 0..doc.regions.len() {
+                        let _ = guard(|| doc.preview(index, &settings));
+                    }
                 })
             })
             .await;

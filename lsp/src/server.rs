@@ -3,6 +3,7 @@
 
 use std::collections::HashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use tokio::sync::watch;
@@ -227,7 +228,7 @@ impl Backend {
         loop {
             let job = {
                 let mut state = self.state();
-                let limit = state.model.max_document_bytes;
+                let (limit, settings) = (state.model.max_document_bytes, state.model);
                 let Some(open) = state.documents.get_mut(&uri) else {
                     return; // closed meanwhile
                 };
@@ -248,9 +249,9 @@ impl Backend {
                     open.version,
                     open.path.clone(),
                 );
-                (job, limit, stale, state.model)
+                (job, limit, stale, settings, open.latest.clone())
             };
-            let ((text, kind, version, path), limit, stale, settings) = job;
+            let ((text, kind, version, path), limit, stale, settings, latest) = job;
             let analysis = tokio::task::spawn_blocking(move || {
                 drop(stale); // freed here, not on the thread that reads messages
                 guard(|| match text {
@@ -263,7 +264,10 @@ impl Backend {
                     None => Document::too_large(0, limit, kind, version),
                 })
                 .inspect(|doc| {
-                    // Ready for the hovers to come.
+                    // Ready for the hovers to come, unless a newer text is waiting.
+                    if latest.load(Ordering::Relaxed) != version {
+                        return;
+                    }
                     for index in 0..doc.regions.len() {
                         let _ = guard(|| doc.preview(index, &settings));
                     }
@@ -526,6 +530,7 @@ impl LanguageServer for Backend {
                     };
                     open.text = Some(Arc::new(text));
                     open.version = params.text_document.version;
+                    open.latest.store(open.version, Ordering::Relaxed);
                     open.out_of_sync = None;
                 }
                 self.analysed.send_modify(|n| *n += 1);

@@ -12,6 +12,7 @@
 
 use std::path::PathBuf;
 use std::sync::Arc;
+use std::sync::atomic::AtomicI32;
 
 use rotlang::Span;
 use tower_lsp_server::ls_types::{Range, TextDocumentContentChangeEvent};
@@ -38,6 +39,9 @@ pub struct Open {
     pub busy: bool,
     /// Why the text is no longer the client's, if an edit could not be applied.
     pub out_of_sync: Option<String>,
+    /// `version`, readable by an analysis in progress without the server's lock: work for
+    /// the latest text only (previews) is skipped once a newer text has come.
+    pub latest: Arc<AtomicI32>,
 }
 
 impl Open {
@@ -50,6 +54,7 @@ impl Open {
             analysed: None,
             busy: false,
             out_of_sync: None,
+            latest: Arc::new(AtomicI32::new(version)),
         }
     }
 

@@ -118,7 +118,10 @@ fn inherited_settings_are_read_beside_the_file() {
     let mut lsp = Lsp::start();
     let diags = lsp.open(&format!("file://{}", child.display()), "json", text);
     let from_server = codes(&diags);
-    assert!(!from_server.is_empty(), "{diags:#?}");
+    // The hover reads the template on the parent's layers too (0.1 mm, 200 of them).
+    let at = text.find("0, +10").unwrap() as u32;
+    let h = hover_text(&mut lsp, &format!("file://{}", child.display()), 0, at);
+    assert!(h.contains("Model: 200 layers × 0.1 mm"), "{h}");
     // What `rotlang check --compat orcaslicer child.json` reports.
     let profile = rotlang::profile::read(&child).unwrap();
     let found = &profile.templates[0];

@@ -276,8 +276,9 @@ impl Backend {
             .await;
             let doc = match analysis {
                 Ok(Some(doc)) => Arc::new(doc),
-                // A panic (a bug): no analysis for this version; the next edit tries again.
-                _ => Arc::new(Document::too_large(0, usize::MAX, kind, version)),
+                // A panic (a bug, reported on stderr): this version shows no templates;
+                // the next edit tries again.
+                _ => Arc::new(Document::new(String::new(), kind, version, None)),
             };
             let latest = {
                 let mut state = self.state();
@@ -509,14 +510,20 @@ impl LanguageServer for Backend {
         let uri = params.text_document.uri;
         // Applying the edits is all that happens here: the analysis runs in its own task,
         // on the latest text only, so edits never queue up behind analyses.
-        let (text, encoding) = {
+        let (text, encoding, dropped) = {
             let state = self.state();
             let Some(open) = state.documents.get(&uri) else {
                 return; // a change to a document never opened: nothing to apply it to
             };
             let text = open.text.clone().filter(|_| open.out_of_sync.is_none());
-            (text, state.encoding)
+            // Over the size limit the text is not kept: a ranged edit has nothing to apply to.
+            let dropped = open.text.is_none() && open.out_of_sync.is_none();
+            (text, state.encoding, dropped)
         };
+        let ranged_first = params
+            .content_changes
+            .first()
+            .is_some_and(|c| c.range.is_some());
         match sync::apply(
             text.as_deref().map(String::as_str),
             params.content_changes,
@@ -537,6 +544,10 @@ impl LanguageServer for Backend {
                 self.analyse(uri);
             }
             Applied::Rejected(why) => self.out_of_sync(uri, why).await,
+            Applied::Nothing if dropped && ranged_first => {
+                let why = "the document was over the size limit, so its text was not kept";
+                self.out_of_sync(uri, why.into()).await;
+            }
             Applied::Nothing => {}
         }
     }

@@ -118,7 +118,16 @@ fn documents_over_the_limit_get_one_diagnostic_and_nothing_else() {
         json!({"textDocument": {"uri": ROT}, "position": {"line": 0, "character": 1}}),
     );
     assert!(hover.is_null());
-    // Shrunk below the limit, it is checked again.
+    // Its text was not kept: a ranged edit cannot be applied, and says so.
+    lsp.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": ROT, "version": 2},
+               "contentChanges": [{"range": {"start": {"line": 0, "character": 0},
+                                             "end": {"line": 0, "character": 1}}, "text": ""}]}),
+    );
+    let shown = lsp.diagnostics(ROT, Some(1));
+    assert_eq!(shown[0]["code"], "rotlang-lsp::out-of-sync", "{shown:?}");
+    // Shrunk below the limit (the whole text), it is checked again.
     lsp.change(ROT, 2, "+30X5");
     assert_eq!(
         errors(&lsp.diagnostics(ROT, Some(2))),

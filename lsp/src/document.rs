@@ -110,6 +110,9 @@ impl Region {
     }
 }
 
+/// A value computed for some settings.
+type Cached<T> = (ModelSettings, Arc<T>);
+
 /// Compat findings, each with the index of its region.
 pub type Findings = Arc<Vec<(usize, rotlang::Diagnostic)>>;
 
@@ -130,7 +133,7 @@ pub struct Document {
     /// Each region's preview (its layers summarised), computed once per settings: the
     /// evaluator prepares the whole template first, which on a 3 MB template costs more
     /// than a hover may take (`Document::preview`).
-    previews: Mutex<Vec<Option<(ModelSettings, Arc<Preview>)>>>,
+    previews: Mutex<Vec<Option<Cached<Preview>>>>,
 }
 
 impl Document {

@@ -253,7 +253,14 @@ impl Backend {
             };
             let ((text, kind, version, path), limit, stale, settings, latest) = job;
             let analysis = tokio::task::spawn_blocking(move || {
-                drop(stale); // freed here, not on the thread that reads messages
+                // Freed here, not on the thread that reads messages; and handed back to
+                // the system when large, or each worker thread's arena would keep its own
+                // document's worth.
+                let large = stale.as_ref().is_some_and(|d| d.text.len() > LARGE);
+                drop(stale);
+                if large {
+                    crate::memory::release();
+                }
                 guard(|| match text {
                     Some(text) if text.len() <= limit => {
                         // The text is shared with the store; the document owns a copy only

@@ -221,7 +221,7 @@ fn an_edit_storm_on_a_large_document_is_coalesced() {
         base.len() >> 20
     );
     // One 3 MB document analysed costs about 150 MB (the parsed instructions); the server
-    // holds one analysis at a time, and the texts in flight add little. (Measured: 230 MB
+    // holds one analysis at a time, and the texts in flight add little. (Measured: 200 MB
     // at the peak; without coalescing, 650 MB after 50 edits.)
     assert!(peak < 300_000, "peak RSS {peak} kB");
     lsp.shutdown();

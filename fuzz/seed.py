@@ -118,6 +118,34 @@ def main():
           "params": {"textDocument": {"uri": "file:///p.json"}}}]))
     write("lsp_framing", b"Content-Length: 5\r\n\r\n{nope" + b"Content-Length: x\r\n\r\n"
           + b"content-length: 2\r\n\r\n{}" + frame({"jsonrpc": "2.0", "id": 3, "method": "$/x"}))
+    for seed in lsp_sync_seeds():
+        write("lsp_framing", seed)
+
+
+def lsp_sync_seeds():
+    """Issue 22: an oversized Content-Length before real messages (the stream resyncs on
+    the next header), edits that cannot be applied (negative, reversed, past the end: the
+    document goes out of sync until a full text), and a request cancelled while it waits."""
+    uri = "file:///s.rot"
+    change = lambda v, changes: {"jsonrpc": "2.0", "method": "textDocument/didChange",
+                                 "params": {"textDocument": {"uri": uri, "version": v},
+                                            "contentChanges": changes}}
+    rng = lambda l0, c0, l1, c1: {"start": {"line": l0, "character": c0},
+                                  "end": {"line": l1, "character": c1}}
+    yield (b"Content-Length: 1000000000000\r\n\r\n{\"id\": 5}"
+           + session(uri, "rotlang", "+30/50%, 90"))
+    yield session(uri, "rotlang", "+30/50%, 90", [
+        change(2, [{"range": rng(0, -1, 0, 2), "text": "X"}]),
+        change(3, [{"range": rng(0, 4, 0, 1), "text": "X"}]),
+        change(4, [{"range": rng(7, 0, 7, 1), "text": "X"}]),
+        {"jsonrpc": "2.0", "id": 50, "method": "textDocument/hover",
+         "params": {"textDocument": {"uri": uri}, "position": {"line": 0, "character": 1}}},
+        change(5, [{"range": rng(0, 0, 0, 0), "text": "0, "}]),
+        change(6, [{"text": "+30X"}, {"range": rng(0, 4, 1, 0), "text": ", 5"}]),
+        {"jsonrpc": "2.0", "id": 51, "method": "textDocument/hover",
+         "params": {"textDocument": {"uri": uri}, "position": {"line": 0, "character": 1}}},
+        {"jsonrpc": "2.0", "method": "$/cancelRequest", "params": {"id": 51}},
+    ])
 
 
 if __name__ == "__main__":

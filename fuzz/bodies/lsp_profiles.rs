@@ -48,7 +48,7 @@ pub fn run(data: &[u8]) {
     }
 
     for kind in [Kind::Rot, Kind::Json, Kind::Jsonc, Kind::Ini] {
-        let d = Document::new(doc.clone(), kind, 1);
+        let d = Document::new(doc.clone(), kind, 1, None);
         for r in &d.regions {
             let c = r.contents;
             assert!(

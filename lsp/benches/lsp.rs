@@ -41,7 +41,7 @@ fn diagnostics_10kb(bencher: divan::Bencher) {
     assert!((10_000..11_000).contains(&text.len()), "{}", text.len());
     let uri = Uri::from_str("file:///tmp/profile.json").expect("uri");
     bencher.bench(|| {
-        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1, None);
         let pos = Positions::new(&doc.text, Encoding::Utf16);
         let diags = diagnostics::diagnostics(&doc, &uri, &pos);
         assert_eq!(diags.len(), 2);
@@ -55,7 +55,7 @@ fn hover_instruction_10kb(bencher: divan::Bencher) {
     let at = text.find("-10l25%").expect("instruction") + 2;
     let model = ModelSettings::default();
     bencher.bench(|| {
-        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1, None);
         let pos = Positions::new(&doc.text, Encoding::Utf16);
         hover::hover(&doc, at, &model, &pos).expect("a hover")
     });
@@ -67,7 +67,7 @@ fn hover_template_10kb(bencher: divan::Bencher) {
     let at = text.find(", B!").expect("separator") + 1;
     let model = ModelSettings::default();
     bencher.bench(|| {
-        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1, None);
         let pos = Positions::new(&doc.text, Encoding::Utf16);
         hover::hover(&doc, at, &model, &pos).expect("a hover")
     });
@@ -81,10 +81,40 @@ fn diagnostics_and_hover_10kb(bencher: divan::Bencher) {
     let uri = Uri::from_str("file:///tmp/profile.json").expect("uri");
     let model = ModelSettings::default();
     bencher.bench(|| {
-        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1);
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Json, 1, None);
         let pos = Positions::new(&doc.text, Encoding::Utf16);
         let diags = diagnostics::diagnostics(&doc, &uri, &pos);
         let hover = hover::hover(&doc, at, &model, &pos);
         (diags, hover)
+    });
+}
+
+/// What a hover after the last edit of a storm waits for on a 3 MB `.rot` document: the
+/// analysis of the latest text (parse, and the preview hovers read), then the hover
+/// itself. Issue 22's target: 100 ms; `cargo bench -p rotlang-lsp -- storm`.
+#[divan::bench(sample_count = 5)]
+fn storm_analysis_and_hover_3mb(bencher: divan::Bencher) {
+    let text = "+10L25%, -10l25%, 0, 90, ".repeat((3 << 20) / 25) + "+7";
+    let at = text.len() - 1;
+    let model = ModelSettings::default();
+    bencher.bench(|| {
+        let doc = Document::new(divan::black_box(text.clone()), Kind::Rot, 1, None);
+        let _ = doc.preview(0, &model);
+        let pos = Positions::new(&doc.text, Encoding::Utf16);
+        hover::hover(&doc, at, &model, &pos).expect("a hover")
+    });
+}
+
+/// The hover alone on an analysed 3 MB document (its preview ready).
+#[divan::bench(sample_count = 20)]
+fn hover_on_an_analysed_3mb(bencher: divan::Bencher) {
+    let text = "+10L25%, -10l25%, 0, 90, ".repeat((3 << 20) / 25) + "+7";
+    let at = text.len() - 1;
+    let model = ModelSettings::default();
+    let doc = Document::new(text, Kind::Rot, 1, None);
+    let _ = doc.preview(0, &model);
+    bencher.bench(|| {
+        let pos = Positions::new(&doc.text, Encoding::Utf16);
+        hover::hover(&doc, at, &model, &pos).expect("a hover")
     });
 }

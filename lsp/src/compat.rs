@@ -1,67 +1,78 @@
 //! The OrcaSlicer compat lint in diagnostics (setting `compat`): where OrcaSlicer reads a
 //! template differently, hangs or computes NaN angles (`rotlang::dialect::compat`). On by
-//! default for JSON and `.ini` profiles (OrcaSlicer's files), evaluated on the profile's own
-//! model; on request for `.rot` files, on the model of the settings.
+//! default for JSON and `.ini` profiles (OrcaSlicer's files), on request for `.rot` files.
+//! Each template is linted in its one reading (`Region::reading`): the profile's model and
+//! base in a profile, the settings' model in a `.rot` file; hover and inlay hints use the
+//! same.
 
-use std::path::Path;
+use std::sync::Arc;
 
-use rotlang::eval::Options;
+use rotlang::Diagnostic as Finding;
 use tower_lsp_server::ls_types::{Diagnostic, Uri};
 
 use crate::diagnostics::convert;
-use crate::document::{Document, Kind};
+use crate::document::{Document, Findings};
 use crate::position::Positions;
 use crate::settings::ModelSettings;
 
 /// Beside the document's own diagnostics (capped at their own limit).
-const MAX_FINDINGS: usize = 100;
+pub const MAX_FINDINGS: usize = 100;
 
-pub fn diagnostics(
-    doc: &Document,
-    uri: &Uri,
-    pos: &Positions,
-    settings: &ModelSettings,
-) -> Vec<Diagnostic> {
+/// The findings of every template, with the index of its region, in document order. As
+/// `rotlang check` reports them: a template with syntax errors gets them too (the library
+/// then reports only OrcaSlicer's own problems and the rules, which hold whatever rotlang
+/// makes of the text).
+pub fn findings(doc: &Document, settings: &ModelSettings) -> Vec<(usize, Finding)> {
     if !settings.compat.applies_to(doc.kind) {
         return Vec::new();
     }
-    // The profile's own layer heights, shells and direction (a name that says its kind).
-    let name = match doc.kind {
-        Kind::Rot => None,
-        Kind::Json => Some("profile.json"),
-        Kind::Jsonc => Some("profile.jsonc"),
-        Kind::Ini => Some("profile.ini"),
-    };
-    let profile = name.and_then(|n| {
-        let mut p = rotlang::profile::parse(Path::new(n), doc.text.as_bytes()).ok()?;
-        // A file on disk: its `inherits` parents are found beside it, as the CLI finds them.
-        if let Some(path) = uri.to_file_path() {
-            p.path = path.into_owned();
-            p.resolve_inherits();
-        }
-        Some(p)
-    });
     let mut out = Vec::new();
-    // A template with errors gets those first: OrcaSlicer's view of text rotlang rejects
-    // would only add noise until it is fixed.
-    for region in doc.regions.iter().filter(|r| !r.parse.has_errors()) {
-        let found = match &profile {
-            Some(p) => p
-                .model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT)
-                .compat(&region.text, region.target),
-            None => rotlang::dialect::compat(
-                &region.text,
-                region.target,
-                &crate::preview::model_of(settings),
-                Options::default(),
-            ),
+    for (index, region) in doc.regions.iter().enumerate() {
+        let found = match &region.profile {
+            // The library's lint on the profile's model, with the options it decides.
+            Some(profile) => profile.compat(&region.text, region.target),
+            None => {
+                let reading = region.reading(settings);
+                rotlang::dialect::compat(
+                    &region.text,
+                    region.target,
+                    &reading.model,
+                    reading.options,
+                )
+            }
         };
         for d in found {
             if out.len() >= MAX_FINDINGS {
                 return out;
             }
-            out.push(convert(&d, region, uri, pos));
+            out.push((index, d));
         }
     }
     out
+}
+
+/// The findings of `findings`, computed once per document and settings: the diagnostics
+/// published and the code actions asked for later are the same findings.
+pub fn cached(doc: &Document, settings: &ModelSettings) -> Findings {
+    let lock = |doc: &Document| doc.compat.lock().unwrap_or_else(|p| p.into_inner()).clone();
+    if let Some((for_settings, found)) = lock(doc)
+        && for_settings == *settings
+    {
+        return found;
+    }
+    let found = Arc::new(findings(doc, settings));
+    *doc.compat.lock().unwrap_or_else(|p| p.into_inner()) = Some((*settings, found.clone()));
+    found
+}
+
+pub fn diagnostics(
+    doc: &Document,
+    findings: &[(usize, Finding)],
+    uri: &Uri,
+    pos: &Positions,
+) -> Vec<Diagnostic> {
+    findings
+        .iter()
+        .filter_map(|(i, d)| Some(convert(d, doc.regions.get(*i)?, uri, pos)))
+        .collect()
 }

@@ -47,6 +47,32 @@ const MARKS: [(&str, &str, &str); 6] = [
     ("T", "top shells", "count: the number of top shell layers"),
 ];
 
+/// The runtime marks among `MARKS`.
+const RUNTIME_MARKS: [&str; 4] = ["*", "*2", "!", "*!"];
+
+/// The signs an angle may begin with, offered at the start of an instruction.
+const ANGLE_SIGNS: [(&str, &str, &str); 2] = [
+    (
+        "+",
+        "angle sign: a turn",
+        "the angle is a turn added to the previous angle",
+    ),
+    (
+        "-",
+        "angle sign: a turn",
+        "the angle is a turn subtracted from the previous angle",
+    ),
+];
+
+/// Whether `text`, an instruction that an item would make, is one the library accepts, or
+/// would accept once finished (its only diagnostic says it ends too early).
+fn begins_instruction(text: &str, target: Target) -> bool {
+    rotlang::parse(text, target)
+        .diagnostics
+        .iter()
+        .all(|d| d.code == "rotlang::incomplete")
+}
+
 /// Longer "instructions" (a paste without separators) are not copied into the items.
 const MAX_INSTRUCTION: usize = 256;
 
@@ -72,9 +98,18 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
         pos.position(region.map.to_doc(end)),
     );
     let (joint_fits, layers_unit_fits) = hash_roles(&region.text, at);
+    // At the start of an instruction (`0, ⎀+30`, `0, ⎀`) only what can begin one is
+    // offered: what leaves the instruction valid, or valid once finished, as the library
+    // reads it (`/+30` and `*+30` do not).
+    let at_start = typed.is_empty();
+    let begins =
+        |label: &str| !at_start || begins_instruction(&format!("{label}{after}"), region.target);
     let mut items = Vec::new();
     let typed_unit = unit_typed(typed);
     let mut push = |label: String, kind, detail: &str, doc_text: String, sort: usize| {
+        if !begins(&label) {
+            return;
+        }
         let partial = if kind == CompletionItemKind::UNIT {
             // The unit typed so far, whichever it begins: the item's unit replaces it.
             typed_unit
@@ -112,6 +147,18 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
         });
     };
     let mut n = 0;
+    if at_start {
+        for (sign, detail, meaning) in ANGLE_SIGNS {
+            n += 1;
+            push(
+                sign.to_string(),
+                CompletionItemKind::OPERATOR,
+                detail,
+                format!("`{sign}` before the angle: {meaning} (e.g. `{sign}30`)."),
+                n,
+            );
+        }
+    }
     for joint in Joint::ALL {
         if joint == Joint::Step && !joint_fits {
             continue;
@@ -167,6 +214,11 @@ pub fn completion(doc: &Document, offset: usize, pos: &Positions) -> Option<Vec<
         }
     }
     for (text, detail, meaning) in MARKS {
+        if at_start && RUNTIME_MARKS.contains(&text) {
+            // A runtime mark follows an angle (`+30*2`): it never begins an instruction,
+            // although the library reads a lone `!` as one on the angle 0.
+            continue;
+        }
         n += 1;
         push(
             text.to_string(),
@@ -217,6 +269,18 @@ fn hash_roles(text: &str, at: usize) -> (bool, bool) {
 #[cfg(test)]
 mod tests {
     use super::hash_roles;
+
+    #[test]
+    fn what_begins_an_instruction() {
+        use super::begins_instruction;
+        use rotlang::Target;
+        for ok in ["+", "-", "+30", "-30", "#14", "/50%", "B!"] {
+            assert!(begins_instruction(ok, Target::Sparse), "{ok}");
+        }
+        for bad in ["/+30", "*+30", "++30", "S+30", "*", "mm"] {
+            assert!(!begins_instruction(bad, Target::Sparse), "{bad}");
+        }
+    }
 
     #[test]
     fn the_unit_typed_so_far() {

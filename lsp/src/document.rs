@@ -1,8 +1,15 @@
 //! An open document: its text, kind, and the templates in it, parsed once per change.
 
+use std::path::Path;
+use std::sync::{Arc, Mutex};
+
+use rotlang::profile::ProfileModel;
 use rotlang::{Instruction, Parse, Span, Target};
 
 use crate::json::{self, OffsetMap};
+use crate::preview::Preview;
+use crate::reading::Reading;
+use crate::settings::ModelSettings;
 use crate::{ini, jsonc};
 
 /// What kind of file a document is: decides where its templates are.
@@ -64,9 +71,22 @@ pub struct Region {
     pub contents: Span,
     pub map: OffsetMap,
     pub parse: Parse,
+    /// In a profile the library can read: the model it gives this template's target (its
+    /// layer heights, shells and direction). `None` in `.rot` files.
+    pub profile: Option<ProfileModel>,
 }
 
 impl Region {
+    /// The one reading of this template (model and base) that hover, inlay hints, symbols
+    /// and the compat diagnostics share: the profile's where there is one, else the
+    /// settings' model.
+    pub fn reading(&self, settings: &ModelSettings) -> Reading {
+        match &self.profile {
+            Some(profile) => Reading::of_profile(profile, &self.text),
+            None => Reading::of_settings(settings),
+        }
+    }
+
     /// A template span in document bytes.
     pub fn doc_span(&self, span: Span) -> Span {
         self.map.span_to_doc(span)
@@ -81,14 +101,24 @@ impl Region {
     /// The instruction under a template offset (its end included, where a cursor rests
     /// after typing it).
     pub fn instruction_at(&self, offset: usize) -> Option<(usize, &Instruction)> {
-        self.parse
-            .template
-            .instructions
+        // Instructions are in text order: a binary search, not a walk through the half
+        // million of a 3 MB template on every hover.
+        let instructions = &self.parse.template.instructions;
+        let first = instructions.partition_point(|i| i.span.end < offset);
+        instructions
             .iter()
             .enumerate()
-            .find(|(_, i)| i.span.start <= offset && offset <= i.span.end && !i.span.is_empty())
+            .skip(first)
+            .take_while(|(_, i)| i.span.start <= offset)
+            .find(|(_, i)| offset <= i.span.end && !i.span.is_empty())
     }
 }
+
+/// A value computed for some settings.
+type Cached<T> = (ModelSettings, Arc<T>);
+
+/// Compat findings, each with the index of its region.
+pub type Findings = Arc<Vec<(usize, rotlang::Diagnostic)>>;
 
 #[derive(Debug)]
 pub struct Document {
@@ -101,12 +131,21 @@ pub struct Document {
     /// For documents over the size limit: their size and the limit. Their text is not
     /// kept and they have no templates.
     pub too_large: Option<(usize, usize)>,
+    /// The compat findings, computed once per settings for diagnostics and code actions
+    /// alike (`crate::compat::cached`).
+    pub compat: Mutex<Option<(ModelSettings, Findings)>>,
+    /// Each region's preview (its layers summarised), computed once per settings: the
+    /// evaluator prepares the whole template first, which on a 3 MB template costs more
+    /// than a hover may take (`Document::preview`).
+    previews: Mutex<Vec<Option<Cached<Preview>>>>,
 }
 
 impl Document {
-    pub fn new(text: String, kind: Kind, version: i32) -> Document {
+    /// Parse a document. `path`: the file's place, where a JSON preset's `inherits`
+    /// parents are found (as the CLI finds them).
+    pub fn new(text: String, kind: Kind, version: i32, path: Option<&Path>) -> Document {
         let mut json_error = None;
-        let regions = match kind {
+        let mut regions = match kind {
             Kind::Rot => vec![Region {
                 key: None,
                 key_span: None,
@@ -115,6 +154,7 @@ impl Document {
                 map: OffsetMap::identity(text.len()),
                 contents: Span::new(0, text.len()),
                 text: text.clone(),
+                profile: None,
             }],
             Kind::Json | Kind::Jsonc | Kind::Ini => {
                 let found = match kind {
@@ -140,10 +180,19 @@ impl Document {
                         text: t.text,
                         contents: t.contents,
                         map: t.map,
+                        profile: None,
                     })
                     .collect()
             }
         };
+        if kind != Kind::Rot && !regions.is_empty() {
+            let profile = profile_of(&text, kind, path);
+            for region in &mut regions {
+                region.profile = profile
+                    .as_ref()
+                    .map(|p| p.model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT));
+            }
+        }
         // A JSON file that never names a template key is not a profile (an editor may hand
         // the server every JSON file: settings.json, package.json, tsconfig.json with its
         // comments): its syntax is the JSON server's business, not ours.
@@ -157,6 +206,8 @@ impl Document {
             regions,
             json_error,
             too_large: None,
+            compat: Mutex::default(),
+            previews: Mutex::default(),
         }
     }
 
@@ -169,7 +220,37 @@ impl Document {
             regions: Vec::new(),
             json_error: None,
             too_large: Some((len, limit)),
+            compat: Mutex::default(),
+            previews: Mutex::default(),
         }
+    }
+
+    /// The preview of region `index` in its reading, computed on first use for these
+    /// settings and kept (the analysis computes them in the background, so that a hover
+    /// finds them ready).
+    pub fn preview(&self, index: usize, settings: &ModelSettings) -> Option<Arc<Preview>> {
+        let region = self.regions.get(index)?;
+        let lock = || self.previews.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some(Some((for_settings, preview))) = lock().get(index)
+            && for_settings == settings
+        {
+            return Some(preview.clone());
+        }
+        let preview = Arc::new(Preview::compute(
+            &region.parse.template,
+            &region.reading(settings),
+        ));
+        let mut previews = lock();
+        if previews.len() < self.regions.len() {
+            previews.resize(self.regions.len(), None);
+        }
+        previews[index] = Some((*settings, preview.clone()));
+        Some(preview)
+    }
+
+    /// The index of a region of this document (found by address).
+    pub fn index_of(&self, region: &Region) -> Option<usize> {
+        self.regions.iter().position(|r| std::ptr::eq(r, region))
     }
 
     /// The template containing a document offset, and the offset inside it.
@@ -186,4 +267,22 @@ impl Document {
             Kind::Json | Kind::Jsonc => json::escape(text),
         }
     }
+}
+
+/// The library's reading of a profile's text: its settings, with the `inherits` parents
+/// beside `path` when the document is a file. `None` when the library cannot read it.
+fn profile_of(text: &str, kind: Kind, path: Option<&Path>) -> Option<rotlang::profile::Profile> {
+    // A name that says its kind: the library decides the format from it.
+    let name = match kind {
+        Kind::Rot => return None,
+        Kind::Json => "profile.json",
+        Kind::Jsonc => "profile.jsonc",
+        Kind::Ini => "profile.ini",
+    };
+    let mut profile = rotlang::profile::parse(Path::new(name), text.as_bytes()).ok()?;
+    if let Some(path) = path {
+        profile.path = path.to_owned();
+        profile.resolve_inherits();
+    }
+    Some(profile)
 }

@@ -8,6 +8,7 @@ use tower_lsp_server::ls_types::{Hover, HoverContents, MarkupContent, MarkupKind
 use crate::document::{Document, Region};
 use crate::position::Positions;
 use crate::preview::{Preview, Run, SPARKLINE_WIDTH, fmt_deg};
+use crate::reading::Reading;
 use crate::settings::ModelSettings;
 use rotlang::explain::deg_and_lines;
 
@@ -31,10 +32,11 @@ pub fn hover(
             .map(|r| (r, usize::MAX))
     };
     let (region, at) = doc.region_at(offset).or_else(on_key)?;
-    let preview = Preview::compute(&region.parse.template, model);
+    let reading = region.reading(model);
+    let preview = doc.preview(doc.index_of(region)?, model)?;
     let (markdown, span) = match region.instruction_at(at) {
         Some((i, ins)) => (
-            instruction_hover(region, i, ins, &preview),
+            instruction_hover(region, i, ins, &reading, &preview),
             region.doc_span(ins.span),
         ),
         None => (template_hover(region, &preview), region.contents),
@@ -53,19 +55,20 @@ pub fn instruction_hover(
     region: &Region,
     index: usize,
     ins: &Instruction,
+    reading: &Reading,
     preview: &Preview,
 ) -> String {
-    let model = &preview.model;
     let text = quote(region.text.get(ins.span.range()).unwrap_or(""));
-    let mut out = format!("`{text}` {}.\n\n", describe(ins, model));
-    match preview.instructions.get(index) {
+    let mut out = format!("`{text}` {}.\n\n", describe(ins, reading));
+    match preview.instructions.get(&index) {
         Some(p) if p.layers > 0 => {
             out.push_str(&format!(
                 "Governs {} of the {} layers.",
-                p.layers, model.layers
+                p.layers, preview.layers
             ));
             let mut budget = crate::preview::FIRST_RUN_BUDGET;
-            let run = crate::preview::first_run(&region.parse.template, index, model, &mut budget);
+            let run =
+                crate::preview::first_run(&region.parse.template, index, reading, &mut budget);
             if let Some(run) = run.or(p.first_block) {
                 let last = run.first_layer + run.layers - 1;
                 let layers = if run.layers == 1 {
@@ -98,7 +101,6 @@ pub fn instruction_hover(
 
 /// The whole-template hover as Markdown.
 pub fn template_hover(region: &Region, preview: &Preview) -> String {
-    let model = &preview.model;
     let count = region.parse.template.instructions.len();
     let text = quote(&region.text);
     // An empty code span would show as a literal "``".
@@ -134,7 +136,7 @@ pub fn template_hover(region: &Region, preview: &Preview) -> String {
         first.len(),
         first.join(", ")
     ));
-    if model.layers > first.len() {
+    if preview.layers > first.len() {
         out.push_str(", …");
     }
     out.push_str(&format!(
@@ -142,21 +144,21 @@ pub fn template_hover(region: &Region, preview: &Preview) -> String {
         preview.head_sparkline(),
         preview.head.len()
     ));
-    if model.layers > preview.head.len() {
+    if preview.layers > preview.head.len() {
         // Highest and lowest angle per bucket: a mean would draw angles no layer has
         // (`0, 90` would be a flat line at 45°).
         let (high, low) = preview.model_sparklines();
         out.push_str(&format!(
             "\n`{high}` highest and\n`{low}` lowest angle of each group of about {} layers, all {} layers\n",
-            (model.layers + SPARKLINE_WIDTH / 2) / SPARKLINE_WIDTH,
-            model.layers,
+            (preview.layers + SPARKLINE_WIDTH / 2) / SPARKLINE_WIDTH,
+            preview.layers,
         ));
     }
     out.push_str(&format!(
         "\nAngles from {} to {} over all {} layers.{}\n",
         fmt_deg(preview.min),
         fmt_deg(preview.max),
-        model.layers,
+        preview.layers,
         lines_note(preview)
     ));
     out.push_str(&footer(region, preview));
@@ -174,7 +176,7 @@ fn lines_note(preview: &Preview) -> &'static str {
 }
 
 fn footer(region: &Region, preview: &Preview) -> String {
-    let mut s = format!("\n_Model: {}._", preview.model.describe());
+    let mut s = format!("\n_Model: {}._", preview.describe);
     if region.parse.has_errors() {
         s.push_str(" _The template has errors: the preview uses the instructions that parse._");
     }
@@ -183,8 +185,8 @@ fn footer(region: &Region, preview: &Preview) -> String {
 
 /// What an instruction does, in plain words, starting with a verb (the library's words,
 /// shared with `rotlang explain`).
-pub fn describe(ins: &Instruction, model: &ModelSettings) -> String {
-    rotlang::explain::instruction(ins, &crate::preview::model_of(model))
+pub fn describe(ins: &Instruction, reading: &Reading) -> String {
+    rotlang::explain::instruction(ins, &reading.model)
 }
 
 /// The turn across a run, as `rotlang explain` words it (`0°→22.5° over 50 layers`, or

@@ -7,7 +7,7 @@ use tower_lsp_server::ls_types::{InlayHint, InlayHintKind, InlayHintLabel, Inlay
 use crate::document::Document;
 use crate::hover::turn_words;
 use crate::position::{Cursor, Positions};
-use crate::preview::{FIRST_RUN_BUDGET, Preview, first_run};
+use crate::preview::{FIRST_RUN_BUDGET, first_run};
 use crate::settings::ModelSettings;
 
 /// Hints per request: an editor shows a screenful, not a megabyte's worth.
@@ -23,11 +23,14 @@ pub fn inlay_hints(
     let mut hints = Vec::new();
     let mut cursor = Cursor::new(pos);
     let mut budget = FIRST_RUN_BUDGET;
-    for region in &doc.regions {
+    for (index, region) in doc.regions.iter().enumerate() {
         if region.contents.end < range.start || region.contents.start > range.end {
             continue;
         }
-        let preview = Preview::compute(&region.parse.template, model);
+        let reading = region.reading(model);
+        let Some(preview) = doc.preview(index, model) else {
+            continue;
+        };
         for (i, ins) in region.parse.template.instructions.iter().enumerate() {
             let end = region.doc_span(ins.span).end;
             if end < range.start || end > range.end || ins.is_dummy() {
@@ -36,8 +39,8 @@ pub fn inlay_hints(
             if hints.len() >= MAX_HINTS {
                 return hints;
             }
-            let run = first_run(&region.parse.template, i, model, &mut budget)
-                .or_else(|| preview.instructions.get(i).and_then(|p| p.first_block));
+            let run = first_run(&region.parse.template, i, &reading, &mut budget)
+                .or_else(|| preview.instructions.get(&i).and_then(|p| p.first_block));
             let label = match run {
                 Some(run) => turn_words(ins, &run),
                 None => "not reached".to_string(),
@@ -49,7 +52,7 @@ pub fn inlay_hints(
                 text_edits: None,
                 tooltip: Some(InlayHintTooltip::String(format!(
                     "first run on {}",
-                    model.describe()
+                    reading.describe
                 ))),
                 padding_left: Some(true),
                 padding_right: Some(false),

@@ -136,6 +136,11 @@ impl<'a> Positions<'a> {
         })
     }
 
+    /// The number of lines (a text ending in a line break has an empty last line).
+    pub fn line_count(&self) -> usize {
+        self.lines.count()
+    }
+
     /// A client range as a byte span (clamped); `None` if its start line does not exist.
     pub fn span(&self, range: Range) -> Option<Span> {
         let start = self.offset(range.start)?;

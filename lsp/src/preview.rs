@@ -5,9 +5,12 @@
 //! Everything else is a bounded summary of the stream: memory is O(instructions), whatever
 //! the number of layers.
 
-use rotlang::eval::{self, Model, Options};
+use std::collections::BTreeMap;
+
+use rotlang::eval::{self, Model};
 use rotlang::{Fill, Span, Template};
 
+use crate::reading::Reading;
 use crate::settings::ModelSettings;
 
 /// Layers listed in the whole-template hover.
@@ -26,21 +29,15 @@ pub struct PreviewLayer {
     pub instruction: Option<Span>,
 }
 
-/// Evaluate `template` on the model with the library's evaluator, layer by layer, bottom
-/// to top, while `f` returns `true`. The only function here that knows how evaluation is
-/// called.
+/// Evaluate `template` in its reading (model and base) with the library's evaluator, layer
+/// by layer, bottom to top, while `f` returns `true`. The only function here that knows how
+/// evaluation is called.
 pub fn for_each_layer(
     template: &Template,
-    model: &ModelSettings,
+    reading: &Reading,
     mut f: impl FnMut(PreviewLayer) -> bool,
 ) {
-    // Settings are validated with the evaluator's own limits, so this fails only if those
-    // change; then there is simply nothing to preview.
-    let Ok(m) = Model::uniform(model.layers, model.layer_height, model.first_layer_height) else {
-        return;
-    };
-    let m = m.with_shells(model.bottom_shell_layers, model.top_shell_layers);
-    for layer in eval::layers(template, &m, Options::default()) {
+    for layer in eval::layers(template, &reading.model, reading.options) {
         let go_on = f(PreviewLayer {
             index: layer.index,
             angle: layer.angle,
@@ -57,15 +54,23 @@ pub fn for_each_layer(
 /// on long templates over tall models.
 pub const FIRST_RUN_BUDGET: usize = 2_000_000;
 
-/// The first run of instruction `index` (see `rotlang::explain::first_run`, which this
-/// calls on the settings' model).
+/// The first run of instruction `index` in the reading (see `rotlang::explain::first_run`,
+/// which evaluates without a base: the reading's base is added to its angles, as the
+/// evaluator adds it to every layer).
 pub fn first_run(
     template: &Template,
     index: usize,
-    model: &ModelSettings,
+    reading: &Reading,
     budget: &mut usize,
 ) -> Option<Run> {
-    rotlang::explain::first_run(template, index, &model_of(model), budget)
+    let run = rotlang::explain::first_run(template, index, &reading.model, budget)?;
+    let base = reading.options.base;
+    Some(Run {
+        from: run.from + base,
+        first: run.first + base,
+        to: run.to + base,
+        ..run
+    })
 }
 
 /// A contiguous block of layers governed by one instruction (the library's).
@@ -92,7 +97,10 @@ pub struct InstructionPreview {
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Preview {
-    pub model: ModelSettings,
+    /// The number of layers of the reading's model.
+    pub layers: usize,
+    /// The reading's model in words.
+    pub describe: String,
     /// The first layers of the model: (angle, fill).
     pub first: Vec<(f64, Fill)>,
     /// The first `SPARKLINE_WIDTH` layers' angles, one per layer, for the sparkline.
@@ -104,22 +112,23 @@ pub struct Preview {
     pub ranges: Vec<(f64, f64)>,
     pub min: f64,
     pub max: f64,
-    /// Per instruction, in the template's order.
-    pub instructions: Vec<InstructionPreview>,
+    /// Per instruction that governs a layer, by its index in the template. (Not a vector
+    /// of every instruction: a 3 MB template has half a million, and a hover must not
+    /// allocate for all of them when a model's layers reach a few.)
+    pub instructions: BTreeMap<usize, InstructionPreview>,
 }
 
 impl Preview {
-    pub fn compute(template: &Template, model: &ModelSettings) -> Preview {
-        let n = template.instructions.len();
-        let mut instructions = vec![InstructionPreview::default(); n];
+    pub fn compute(template: &Template, reading: &Reading) -> Preview {
+        let mut instructions: BTreeMap<usize, InstructionPreview> = BTreeMap::new();
         let mut first = Vec::new();
         let mut head = Vec::new();
         let mut ranges = Vec::new();
         let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
-        let layers = model.layers.max(1);
+        let layers = reading.layers().max(1);
         let mut buckets = vec![(f64::INFINITY, f64::NEG_INFINITY); SPARKLINE_WIDTH.min(layers)];
         let mut previous: (f64, Option<usize>) = (0.0, None);
-        for_each_layer(template, model, |layer| {
+        for_each_layer(template, reading, |layer| {
             let angle = if layer.angle.is_finite() {
                 layer.angle
             } else {
@@ -140,9 +149,8 @@ impl Preview {
             min = min.min(angle);
             max = max.max(angle);
             let which = layer.instruction.and_then(|span| index_of(template, span));
-            if let Some(i) = which
-                && let Some(p) = instructions.get_mut(i)
-            {
+            if let Some(i) = which {
+                let p = instructions.entry(i).or_default();
                 p.layers += 1;
                 if p.sample.len() < INSTRUCTION_SAMPLE {
                     p.sample.push((layer.index, angle, layer.fill));
@@ -174,7 +182,8 @@ impl Preview {
             (min, max) = (0.0, 0.0);
         }
         Preview {
-            model: *model,
+            layers: reading.layers(),
+            describe: reading.describe.clone(),
             first,
             head,
             ranges,

@@ -3,8 +3,10 @@
 
 use std::collections::HashMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex, MutexGuard};
 
+use tokio::sync::watch;
 use tower_lsp_server::jsonrpc::{Error, Result};
 use tower_lsp_server::ls_types::*;
 use tower_lsp_server::{Client, LanguageServer, LspService, Server};
@@ -12,6 +14,7 @@ use tower_lsp_server::{Client, LanguageServer, LspService, Server};
 use crate::document::{Document, Kind};
 use crate::position::{Encoding, Positions};
 use crate::settings::ModelSettings;
+use crate::sync::{self, Applied, Open};
 use crate::{
     code_actions, completion, diagnostics, formatting, hover, inlay_hints, markup, semantic_tokens,
     symbols,
@@ -19,7 +22,7 @@ use crate::{
 
 #[derive(Default)]
 struct State {
-    documents: HashMap<Uri, Arc<Document>>,
+    documents: HashMap<Uri, Open>,
     encoding: Encoding,
     model: ModelSettings,
     inlay_refresh: bool,
@@ -38,9 +41,14 @@ struct State {
     shown_settings_warning: bool,
 }
 
+/// The server's handle: cheap to clone into the tasks that analyse documents.
+#[derive(Clone)]
 pub struct Backend {
     client: Client,
     state: Arc<Mutex<State>>,
+    /// Bumped whenever an analysis is installed (or a document changes state), so that
+    /// requests waiting for the current version wake up and look again.
+    analysed: Arc<watch::Sender<u64>>,
 }
 
 impl Backend {
@@ -48,6 +56,7 @@ impl Backend {
         Backend {
             client,
             state: Arc::new(Mutex::new(State::default())),
+            analysed: Arc::new(watch::channel(0).0),
         }
     }
 
@@ -62,37 +71,80 @@ impl Backend {
         if !self.state().pull_configuration {
             return;
         }
-        let client = self.client.clone();
-        let state = self.state.clone();
+        let this = self.clone();
         tokio::spawn(async move {
             let item = ConfigurationItem {
                 scope_uri: None,
                 section: Some("rotlang".into()),
             };
-            if let Ok(values) = client.configuration(vec![item]).await
+            if let Ok(values) = this.client.configuration(vec![item]).await
                 && let Some(value) = values.first()
                 // `null`: the client has no such section; what it gave before stays.
                 && !value.is_null()
             {
                 let section = ModelSettings::section(value).unwrap_or(value);
-                let (rejected, refresh) = {
-                    let mut state = lock(&state);
-                    (state.model.replace(section), state.inlay_refresh)
-                };
-                report_settings(&client, &state, rejected).await;
-                if refresh {
-                    // Hints depend on the model; the answer does not matter.
-                    let _ = client.inlay_hint_refresh().await;
-                }
+                this.apply_settings(section).await;
             }
         });
     }
 
-    /// The document (shared, so no lock is held while computing), the encoding and model.
-    fn snapshot(&self, uri: &Uri) -> Option<(Arc<Document>, Encoding, ModelSettings)> {
-        let state = self.state();
-        let doc = state.documents.get(uri)?.clone();
-        Some((doc, state.encoding, state.model))
+    /// Take a new `rotlang` section: report what was refused, republish the diagnostics
+    /// when they depend on what changed, refresh inlay hints.
+    async fn apply_settings(&self, section: &serde_json::Value) {
+        let (before, rejected) = {
+            let mut state = self.state();
+            let before = state.model;
+            (before, state.model.replace(section))
+        };
+        report_settings(&self.client, &self.state, rejected).await;
+        let (after, refresh) = {
+            let state = self.state();
+            (state.model, state.inlay_refresh)
+        };
+        if after != before {
+            // The compat findings are part of the diagnostics, and a `.rot` file's are
+            // computed on the settings' model.
+            let uris: Vec<Uri> = self.state().documents.keys().cloned().collect();
+            for uri in uris {
+                let doc = {
+                    let state = self.state();
+                    state.documents.get(&uri).and_then(Open::current).cloned()
+                };
+                if let Some(doc) = doc {
+                    self.publish(uri, doc).await;
+                }
+            }
+        }
+        if refresh {
+            // Hints depend on the model; the answer does not matter.
+            let _ = self.client.inlay_hint_refresh().await;
+        }
+    }
+
+    /// The analysis of a document's latest version, with the encoding and settings; waits
+    /// while it is being computed (a `$/cancelRequest` ends the wait: the request is then
+    /// answered as cancelled). `None` when the document is not open, not a template file,
+    /// or out of sync.
+    async fn current(&self, uri: &Uri) -> Option<(Arc<Document>, Encoding, ModelSettings)> {
+        let mut changes = self.analysed.subscribe();
+        // The version the request was made against: later edits do not make it wait longer.
+        let wanted = self.state().documents.get(uri)?.version;
+        loop {
+            {
+                let state = self.state();
+                let open = state.documents.get(uri)?;
+                if open.out_of_sync.is_some() {
+                    return None;
+                }
+                if let Some(doc) = &open.analysed
+                    && doc.version >= wanted
+                    && doc.version <= open.version
+                {
+                    return Some((doc.clone(), state.encoding, state.model));
+                }
+            }
+            changes.changed().await.ok()?;
+        }
     }
 
     /// Register for `workspace/didChangeConfiguration` where the client allows it.
@@ -119,48 +171,213 @@ impl Backend {
         });
     }
 
-    async fn publish(&self, uri: Uri, doc: Arc<Document>, encoding: Encoding) {
-        let settings = self.state().model;
-        let Some(diags) = guard(|| {
-            let pos = Positions::new(&doc.text, encoding);
-            let mut diags = diagnostics::diagnostics(&doc, &uri, &pos);
-            diags.extend(crate::compat::diagnostics(&doc, &uri, &pos, &settings));
-            diags
-        }) else {
+    /// Publish a document's diagnostics (computed off the main thread: a large document
+    /// takes a while), unless a newer version has arrived meanwhile: it publishes its own.
+    async fn publish(&self, uri: Uri, doc: Arc<Document>) {
+        let (settings, encoding) = {
+            let state = self.state();
+            (state.model, state.encoding)
+        };
+        let job = {
+            let (uri, doc) = (uri.clone(), doc.clone());
+            move || {
+                guard(|| {
+                    let pos = Positions::new(&doc.text, encoding);
+                    let mut diags = diagnostics::diagnostics(&doc, &uri, &pos);
+                    let found = crate::compat::cached(&doc, &settings);
+                    diags.extend(crate::compat::diagnostics(&doc, &found, &uri, &pos));
+                    diags
+                })
+            }
+        };
+        let Ok(Some(diags)) = tokio::task::spawn_blocking(job).await else {
             return;
         };
-        // A newer edit may have arrived while computing: it publishes its own.
-        let current = self.state().documents.get(&uri).map(|d| d.version);
-        if current == Some(doc.version) {
+        let current = self
+            .state()
+            .documents
+            .get(&uri)
+            .map(|o| (o.version, o.out_of_sync.is_some()));
+        if current == Some((doc.version, false)) {
             self.client
                 .publish_diagnostics(uri, diags, Some(doc.version))
                 .await;
         }
     }
 
-    async fn open(&self, uri: Uri, text: String, kind: Kind, version: i32) {
-        let limit = self.state().model.max_document_bytes;
-        if text.len() > limit {
-            let doc = Arc::new(Document::too_large(text.len(), limit, kind, version));
-            drop(text);
-            let encoding = {
-                let mut state = self.state();
-                state.documents.insert(uri.clone(), doc.clone());
-                state.encoding
-            };
-            self.publish(uri, doc, encoding).await;
-            return;
-        }
-        let Some(doc) = guard(|| Arc::new(Document::new(text, kind, version))) else {
-            return;
-        };
-        let encoding = {
+    /// Make sure the latest text of `uri` gets analysed: start the document's analysis task
+    /// unless one runs already (it takes the latest text when it finishes the one in hand).
+    /// So a storm of edits costs one analysis at a time, each of the latest text, however
+    /// many edits queue up meanwhile.
+    fn analyse(&self, uri: Uri) {
+        {
             let mut state = self.state();
-            state.documents.insert(uri.clone(), doc.clone());
-            state.encoding
-        };
-        self.publish(uri, doc, encoding).await;
+            let Some(open) = state.documents.get_mut(&uri) else {
+                return;
+            };
+            if open.busy {
+                return;
+            }
+            open.busy = true;
+        }
+        let this = self.clone();
+        tokio::spawn(async move { this.analysis_task(uri).await });
     }
+
+    async fn analysis_task(&self, uri: Uri) {
+        loop {
+            let job = {
+                let mut state = self.state();
+                let (limit, settings) = (state.model.max_document_bytes, state.model);
+                let Some(open) = state.documents.get_mut(&uri) else {
+                    return; // closed meanwhile
+                };
+                let done = open
+                    .analysed
+                    .as_ref()
+                    .is_some_and(|d| d.version == open.version);
+                if done || open.out_of_sync.is_some() {
+                    open.busy = false;
+                    return;
+                }
+                // The analysis of an older text goes now: every request waits for the
+                // latest anyway, and memory is bounded by one analysed document.
+                let stale = open.analysed.take();
+                let job = (
+                    open.text.clone(),
+                    open.kind,
+                    open.version,
+                    open.path.clone(),
+                );
+                (job, limit, stale, settings, open.latest.clone())
+            };
+            let ((text, kind, version, path), limit, stale, settings, latest) = job;
+            let analysis = tokio::task::spawn_blocking(move || {
+                // Freed here, not on the thread that reads messages; and handed back to
+                // the system when large, or each worker thread's arena would keep its own
+                // document's worth.
+                let large = stale.as_ref().is_some_and(|d| d.text.len() > LARGE);
+                drop(stale);
+                if large {
+                    crate::memory::release();
+                }
+                guard(|| match text {
+                    Some(text) if text.len() <= limit => {
+                        // The text is shared with the store; the document owns a copy only
+                        // while it is the latest analysis.
+                        Document::new(String::clone(&text), kind, version, path.as_deref())
+                    }
+                    Some(text) => Document::too_large(text.len(), limit, kind, version),
+                    None => Document::too_large(0, limit, kind, version),
+                })
+                .inspect(|doc| {
+                    // Ready for the hovers to come, unless a newer text is waiting.
+                    if latest.load(Ordering::Relaxed) != version {
+                        return;
+                    }
+                    for index in 0..doc.regions.len() {
+                        let _ = guard(|| doc.preview(index, &settings));
+                    }
+                })
+            })
+            .await;
+            let doc = match analysis {
+                Ok(Some(doc)) => Arc::new(doc),
+                // A panic (a bug, reported on stderr): this version shows no templates;
+                // the next edit tries again.
+                _ => Arc::new(Document::new(String::new(), kind, version, None)),
+            };
+            let latest = {
+                let mut state = self.state();
+                let Some(open) = state.documents.get_mut(&uri) else {
+                    return;
+                };
+                let latest = open.version == version;
+                if open.analysed.as_ref().is_none_or(|d| d.version <= version) {
+                    // The previous analysis goes: memory is bounded by the current text.
+                    open.analysed = Some(doc.clone());
+                }
+                if let Some((len, _)) = doc.too_large
+                    && latest
+                    && len > 0
+                {
+                    open.text = None; // not kept: a pasted log file costs nothing
+                }
+                latest
+            };
+            self.analysed.send_modify(|n| *n += 1);
+            if latest {
+                self.publish(uri.clone(), doc).await;
+            }
+        }
+    }
+
+    /// An edit could not be applied: say so in the log and on the document, and wait for
+    /// the whole text (see `crate::sync`).
+    async fn out_of_sync(&self, uri: Uri, why: String) {
+        let version = {
+            let mut state = self.state();
+            let Some(open) = state.documents.get_mut(&uri) else {
+                return;
+            };
+            open.out_of_sync = Some(why.clone());
+            open.version
+        };
+        self.analysed.send_modify(|n| *n += 1);
+        let message = format!(
+            "rotlang: an edit to {} could not be applied ({why}); the server waits for the \
+             whole text: edit or save the file, or close and reopen it",
+            uri.as_str()
+        );
+        self.client.log_message(MessageType::ERROR, &message).await;
+        let diagnostic = Diagnostic {
+            range: Range::default(),
+            severity: Some(DiagnosticSeverity::ERROR),
+            code: Some(NumberOrString::String(sync::OUT_OF_SYNC.into())),
+            source: Some(diagnostics::SOURCE.into()),
+            message: format!(
+                "rotlang is out of step with this document: an edit could not be applied \
+                 ({why}). Edit or save the file, or close and reopen it."
+            ),
+            ..Diagnostic::default()
+        };
+        self.client
+            .publish_diagnostics(uri, vec![diagnostic], Some(version))
+            .await;
+    }
+
+    /// `rotlang-lsp/invalidChange`: a `didChange` the server could not read, turned into
+    /// this by the framing guard (`crate::transport`), which cannot reach the documents.
+    async fn invalid_change(&self, params: InvalidChange) {
+        let Some(uri) = params.uri else {
+            self.client
+                .log_message(
+                    MessageType::ERROR,
+                    format!(
+                        "rotlang: a didChange without a document was ignored: {}",
+                        params.reason
+                    ),
+                )
+                .await;
+            return;
+        };
+        if self.state().documents.contains_key(&uri) {
+            self.out_of_sync(uri, params.reason).await;
+        }
+    }
+}
+
+/// Closing a document this large (bytes) hands its memory back to the system.
+const LARGE: usize = 1 << 20;
+
+/// A `didChange` the framing guard could not read, forwarded under this name.
+pub const INVALID_CHANGE: &str = "rotlang-lsp/invalidChange";
+
+/// The parameters of `rotlang-lsp/invalidChange` (see `crate::transport`).
+#[derive(serde::Deserialize)]
+struct InvalidChange {
+    uri: Option<Uri>,
+    reason: String,
 }
 
 fn lock(state: &Mutex<State>) -> MutexGuard<'_, State> {
@@ -288,37 +505,72 @@ impl LanguageServer for Backend {
         let Some(kind) = Kind::detect(&d.language_id, d.uri.as_str()) else {
             return; // not a template file: requests on it answer null
         };
-        self.open(d.uri, d.text, kind, d.version).await;
+        let path = d.uri.to_file_path().map(|p| p.into_owned());
+        // A reopened document starts afresh (in sync, with nothing analysed).
+        self.state()
+            .documents
+            .insert(d.uri.clone(), Open::new(kind, d.version, d.text, path));
+        self.analyse(d.uri);
     }
 
     async fn did_change(&self, params: DidChangeTextDocumentParams) {
         let uri = params.text_document.uri;
-        let Some((old, encoding, _)) = self.snapshot(&uri) else {
-            return; // a change to a document never opened: nothing to apply it to
+        // Applying the edits is all that happens here: the analysis runs in its own task,
+        // on the latest text only, so edits never queue up behind analyses.
+        let (text, encoding, dropped) = {
+            let state = self.state();
+            let Some(open) = state.documents.get(&uri) else {
+                return; // a change to a document never opened: nothing to apply it to
+            };
+            let text = open.text.clone().filter(|_| open.out_of_sync.is_none());
+            // Over the size limit the text is not kept: a ranged edit has nothing to apply to.
+            let dropped = open.text.is_none() && open.out_of_sync.is_none();
+            (text, state.encoding, dropped)
         };
-        // Full sync sends the whole text; ranged changes are applied too, in case a
-        // client sends them anyway.
-        let mut text: Option<String> = None;
-        for change in params.content_changes {
-            match change.range {
-                None => text = Some(change.text),
-                Some(range) => {
-                    let mut current = text.take().unwrap_or_else(|| old.text.clone());
-                    if let Some(span) = Positions::new(&current, encoding).span(range) {
-                        current.replace_range(span.range(), &change.text);
-                    }
-                    text = Some(current);
+        let ranged_first = params
+            .content_changes
+            .first()
+            .is_some_and(|c| c.range.is_some());
+        match sync::apply(
+            text.as_deref().map(String::as_str),
+            params.content_changes,
+            encoding,
+        ) {
+            Applied::Text(text) => {
+                {
+                    let mut state = self.state();
+                    let Some(open) = state.documents.get_mut(&uri) else {
+                        return;
+                    };
+                    open.text = Some(Arc::new(text));
+                    open.version = params.text_document.version;
+                    open.latest.store(open.version, Ordering::Relaxed);
+                    open.out_of_sync = None;
                 }
+                self.analysed.send_modify(|n| *n += 1);
+                self.analyse(uri);
             }
+            Applied::Rejected(why) => self.out_of_sync(uri, why).await,
+            Applied::Nothing if dropped && ranged_first => {
+                let why = "the document was over the size limit, so its text was not kept";
+                self.out_of_sync(uri, why.into()).await;
+            }
+            Applied::Nothing => {}
         }
-        let Some(text) = text else { return };
-        self.open(uri, text, old.kind, params.text_document.version)
-            .await;
     }
 
     async fn did_close(&self, params: DidCloseTextDocumentParams) {
         let uri = params.text_document.uri;
-        self.state().documents.remove(&uri);
+        let closed = self.state().documents.remove(&uri);
+        self.analysed.send_modify(|n| *n += 1);
+        if closed
+            .as_ref()
+            .is_some_and(|c| c.text.as_ref().is_some_and(|t| t.len() > LARGE))
+        {
+            // Its analysis was made on a worker thread, whose arena keeps the memory.
+            drop(closed);
+            crate::memory::release();
+        }
         // Clear what was shown: a closed document has no problems to display.
         self.client.publish_diagnostics(uri, Vec::new(), None).await;
     }
@@ -330,34 +582,13 @@ impl LanguageServer for Backend {
             self.pull_configuration();
             return;
         };
-        let before = self.state().model.compat;
-        let rejected = self.state().model.replace(section);
-        report_settings(&self.client, &self.state, rejected).await;
-        if self.state().model.compat != before {
-            // The compat findings are part of every document's diagnostics.
-            let (docs, encoding) = {
-                let state = self.state();
-                let docs: Vec<_> = state
-                    .documents
-                    .iter()
-                    .map(|(u, d)| (u.clone(), d.clone()))
-                    .collect();
-                (docs, state.encoding)
-            };
-            for (uri, doc) in docs {
-                self.publish(uri, doc, encoding).await;
-            }
-        }
-        if self.state().inlay_refresh {
-            // Hints depend on the model; the answer does not matter.
-            let _ = self.client.inlay_hint_refresh().await;
-        }
+        self.apply_settings(section).await;
     }
 
     async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
         let p = params.text_document_position_params;
         let plain = self.state().plain_hover;
-        let Some((doc, encoding, model)) = self.snapshot(&p.text_document.uri) else {
+        let Some((doc, encoding, model)) = self.current(&p.text_document.uri).await else {
             return Ok(None);
         };
         guard(|| {
@@ -375,7 +606,7 @@ impl LanguageServer for Backend {
     async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
         let p = params.text_document_position;
         let plain = self.state().plain_documentation;
-        let Some((doc, encoding, _)) = self.snapshot(&p.text_document.uri) else {
+        let Some((doc, encoding, _)) = self.current(&p.text_document.uri).await else {
             return Ok(None);
         };
         guard(|| {
@@ -398,7 +629,7 @@ impl LanguageServer for Backend {
         &self,
         params: SemanticTokensParams,
     ) -> Result<Option<SemanticTokensResult>> {
-        let Some((doc, encoding, _)) = self.snapshot(&params.text_document.uri) else {
+        let Some((doc, encoding, _)) = self.current(&params.text_document.uri).await else {
             return Ok(None);
         };
         guard(|| {
@@ -411,7 +642,7 @@ impl LanguageServer for Backend {
     }
 
     async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
-        let Some((doc, encoding, settings)) = self.snapshot(&params.text_document.uri) else {
+        let Some((doc, encoding, settings)) = self.current(&params.text_document.uri).await else {
             return Ok(None);
         };
         let keep_orcaslicer = settings.compat.applies_to(doc.kind);
@@ -422,7 +653,7 @@ impl LanguageServer for Backend {
     }
 
     async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
-        let Some((doc, encoding, model)) = self.snapshot(&params.text_document.uri) else {
+        let Some((doc, encoding, model)) = self.current(&params.text_document.uri).await else {
             return Ok(None);
         };
         guard(|| {
@@ -435,13 +666,15 @@ impl LanguageServer for Backend {
 
     async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
         let uri = params.text_document.uri;
-        let Some((doc, encoding, _)) = self.snapshot(&uri) else {
+        let Some((doc, encoding, settings)) = self.current(&uri).await else {
             return Ok(None);
         };
         guard(|| {
             let pos = Positions::new(&doc.text, encoding);
             let range = pos.span(params.range)?;
-            Some(code_actions::code_actions(&doc, &uri, range, &pos))
+            // The compat findings published with the diagnostics (cached with them).
+            let found = crate::compat::cached(&doc, &settings);
+            Some(code_actions::code_actions(&doc, &uri, range, &pos, &found))
         })
         .ok_or_else(internal)
     }
@@ -450,7 +683,7 @@ impl LanguageServer for Backend {
         &self,
         params: DocumentSymbolParams,
     ) -> Result<Option<DocumentSymbolResponse>> {
-        let Some((doc, encoding, model)) = self.snapshot(&params.text_document.uri) else {
+        let Some((doc, encoding, model)) = self.current(&params.text_document.uri).await else {
             return Ok(None);
         };
         guard(|| {
@@ -507,7 +740,9 @@ where
     O: tokio::io::AsyncWrite + Unpin,
 {
     crate::transport::serve(input, output, |input, output| async move {
-        let (service, socket) = LspService::new(Backend::new);
+        let (service, socket) = LspService::build(Backend::new)
+            .custom_method(INVALID_CHANGE, Backend::invalid_change)
+            .finish();
         Server::new(input, output, socket).serve(service).await;
     })
     .await;

@@ -6,6 +6,7 @@ use tower_lsp_server::ls_types::{DocumentSymbol, SymbolKind};
 use crate::document::{Document, Region};
 use crate::hover::describe;
 use crate::position::{Cursor, Positions};
+use crate::reading::Reading;
 use crate::settings::ModelSettings;
 
 /// Symbols per document: an outline of a 1 MB template is no use past this.
@@ -15,7 +16,7 @@ pub fn symbols(doc: &Document, model: &ModelSettings, pos: &Positions) -> Vec<Do
     let mut budget = MAX_SYMBOLS;
     let mut out = Vec::new();
     for region in &doc.regions {
-        let children = instructions(region, model, pos, &mut budget);
+        let children = instructions(region, &region.reading(model), pos, &mut budget);
         match (&region.key, region.key_span) {
             (Some(key), Some(key_span)) => {
                 let whole = key_span.cover(region.contents);
@@ -36,7 +37,7 @@ pub fn symbols(doc: &Document, model: &ModelSettings, pos: &Positions) -> Vec<Do
 
 fn instructions(
     region: &Region,
-    model: &ModelSettings,
+    reading: &Reading,
     pos: &Positions,
     budget: &mut usize,
 ) -> Vec<DocumentSymbol> {
@@ -56,7 +57,7 @@ fn instructions(
         let name = region.text.get(ins.span.range()).unwrap_or("?").to_string();
         out.push(symbol(
             name,
-            Some(describe(ins, model)),
+            Some(describe(ins, reading)),
             SymbolKind::OPERATOR,
             range,
             range,

@@ -17,6 +17,25 @@ fn codes(diags: &[serde_json::Value]) -> Vec<String> {
     c
 }
 
+/// What `rotlang check` reports for a profile's text with no file behind it: the parse of
+/// each template and the library's compat lint on the profile's model, codes sorted.
+fn library_codes(name: &str, text: &str) -> Vec<String> {
+    let profile = rotlang::profile::parse(std::path::Path::new(name), text.as_bytes()).unwrap();
+    let mut out = Vec::new();
+    for found in &profile.templates {
+        let pm = profile.model(found.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
+        let parse = rotlang::parse(&found.text, found.target);
+        out.extend(parse.diagnostics.iter().map(|d| d.code.to_owned()));
+        out.extend(
+            pm.compat(&found.text, found.target)
+                .iter()
+                .map(|d| d.code.to_owned()),
+        );
+    }
+    out.sort();
+    out
+}
+
 #[test]
 fn profiles_get_compat_findings_by_default() {
     let mut lsp = Lsp::start();
@@ -29,7 +48,8 @@ fn profiles_get_compat_findings_by_default() {
         ["orcaslicer::differs", "orcaslicer::space-separated-list"],
         "{diags:#?}"
     );
-    // A direction the profile sets, OrcaSlicer ignores for a template: said once.
+    // A direction the profile sets: the findings are the library's for the profile (what
+    // `rotlang check` reports), with the direction applied as the library decides.
     let set = doc.replace(
         "\"0.2\",",
         "\"0.2\",\n  \"sparse_infill_direction\": \"30\",",
@@ -37,20 +57,8 @@ fn profiles_get_compat_findings_by_default() {
     let with_direction = lsp.open("file:///tmp/q.json", "json", &set);
     assert_eq!(
         codes(&with_direction),
-        [
-            "orcaslicer::differs",
-            "orcaslicer::direction-ignored",
-            "orcaslicer::space-separated-list"
-        ],
+        library_codes("q.json", &set),
         "{with_direction:#?}"
-    );
-    let direction = with_direction
-        .iter()
-        .find(|d| d["code"] == "orcaslicer::direction-ignored")
-        .unwrap();
-    assert_eq!(
-        direction["message"],
-        "OrcaSlicer ignores sparse_infill_direction = 30° when a template is set; rotlang adds it to every angle"
     );
     let space = diags
         .iter()
@@ -109,12 +117,11 @@ fn inherited_settings_are_read_beside_the_file() {
     std::fs::write(&child, text).unwrap();
     let mut lsp = Lsp::start();
     let diags = lsp.open(&format!("file://{}", child.display()), "json", text);
-    // The parent's direction, 30°, is the profile's own: OrcaSlicer ignores it here.
     let from_server = codes(&diags);
-    assert!(
-        from_server.contains(&"orcaslicer::direction-ignored".to_owned()),
-        "{diags:#?}"
-    );
+    // The hover reads the template on the parent's layers too (0.1 mm, 200 of them).
+    let at = text.find("0, +10").unwrap() as u32;
+    let h = hover_text(&mut lsp, &format!("file://{}", child.display()), 0, at);
+    assert!(h.contains("Model: 200 layers × 0.1 mm"), "{h}");
     // What `rotlang check --compat orcaslicer child.json` reports.
     let profile = rotlang::profile::read(&child).unwrap();
     let found = &profile.templates[0];
@@ -137,12 +144,85 @@ fn inherited_settings_are_read_beside_the_file() {
             .unwrap();
         assert_eq!(d["message"], lib.message);
     }
-    // An unsaved buffer (no file behind it) keeps OrcaSlicer's defaults: no parent, so
-    // no direction of its own to report.
+    // An unsaved buffer (no file behind it) keeps OrcaSlicer's defaults: no parent.
     let diags = lsp.open("untitled:Untitled-1", "json", text);
-    assert!(
-        !codes(&diags).contains(&"orcaslicer::direction-ignored".to_owned()),
+    assert_eq!(
+        codes(&diags),
+        library_codes("untitled.json", text),
         "{diags:#?}"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// An `.ini` export whose template has an error gets the OrcaSlicer findings `rotlang check`
+/// reports for the same file (issue 17), beside the error.
+#[test]
+fn an_ini_with_errors_gets_the_findings_check_reports() {
+    let mut lsp = Lsp::start();
+    let text = "layer_height = 0.2\nsparse_infill_rotate_template = 1:4, +30X\n";
+    let diags = lsp.open("file:///tmp/errors.ini", "ini", text);
+    let from_server = codes(&diags);
+    assert!(
+        from_server.contains(&"rotlang::unknown-sign".to_owned()),
+        "{diags:#?}"
+    );
+    assert!(
+        from_server.iter().any(|c| c.starts_with("orcaslicer::")),
+        "OrcaSlicer findings on a template with errors: {diags:#?}"
+    );
+    assert_eq!(from_server, library_codes("errors.ini", text));
+}
+
+/// Every compat finding with a fix has its code action, in `.rot` (when asked for), JSON
+/// and `.ini` (issue 17): "separate the angles with commas" turns `0 90` into `0, 90`.
+#[test]
+fn compat_fixes_are_code_actions() {
+    let (mut lsp, _) = Lsp::start_with(json!({}), json!({"rotlang": {"compat": "orcaslicer"}}));
+    let cases = [
+        ("file:///tmp/fix.rot", "rotlang", "0 90".to_owned(), 0),
+        (
+            "file:///tmp/fix.json",
+            "json",
+            "{\n  \"sparse_infill_rotate_template\": \"0 90\"\n}\n".to_owned(),
+            1,
+        ),
+        (
+            "file:///tmp/fix.ini",
+            "ini",
+            "sparse_infill_rotate_template = 0 90\n".to_owned(),
+            0,
+        ),
+    ];
+    for (uri, language, text, line) in cases {
+        let diags = lsp.open(uri, language, &text);
+        let finding = diags
+            .iter()
+            .find(|d| d["code"] == "orcaslicer::space-separated-list")
+            .unwrap_or_else(|| panic!("{uri}: {diags:#?}"));
+        let actions = lsp.result(
+            "textDocument/codeAction",
+            json!({"textDocument": {"uri": uri}, "range": finding["range"],
+                   "context": {"diagnostics": [finding]}}),
+        );
+        let action = actions
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|a| a["diagnostics"][0]["code"] == "orcaslicer::space-separated-list")
+            .unwrap_or_else(|| panic!("{uri}: no action for the finding: {actions:#}"));
+        assert_eq!(action["kind"], "quickfix");
+        assert_eq!(action["title"], "separate the angles with commas");
+        let edits = &action["edit"]["changes"][uri];
+        // Applied to the line, the edit gives `0, 90`.
+        let mut fixed = text.lines().nth(line).unwrap().to_owned();
+        for edit in edits.as_array().unwrap().iter().rev() {
+            assert_eq!(edit["range"]["start"]["line"], line as u64);
+            let (a, b) = (
+                edit["range"]["start"]["character"].as_u64().unwrap() as usize,
+                edit["range"]["end"]["character"].as_u64().unwrap() as usize,
+            );
+            fixed.replace_range(a..b, edit["newText"].as_str().unwrap());
+        }
+        assert!(fixed.contains("0, 90"), "{uri}: {fixed}");
+    }
 }

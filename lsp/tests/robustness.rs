@@ -289,3 +289,92 @@ fn exit_without_shutdown_and_closed_input_end_the_process() {
         std::thread::sleep(Duration::from_millis(20));
     }
 }
+
+/// A `Content-Length` over the server's limit is refused with an error, and the next
+/// message is found at its header (issue 22 item 6): the declared length is not read, so a
+/// wrong one cannot swallow the messages after it while the server looks alive.
+#[test]
+fn an_oversized_content_length_is_refused_and_the_stream_resyncs() {
+    let mut lsp = Lsp::start();
+    lsp.open(ROT, "rotlang", "+30/50%");
+    // Far more than the limit (64 MiB), followed by a small body and then real requests.
+    lsp.send_raw(b"Content-Length: 1000000000000\r\n\r\n{\"jsonrpc\":\"2.0\",\"id\":5}");
+    let refused = lsp.wait(|m| m.get("error").is_some() && m["id"].is_null());
+    assert_eq!(error_code(&refused), -32700);
+    assert!(
+        refused["error"]["message"]
+            .as_str()
+            .unwrap()
+            .contains("too large"),
+        "{refused}"
+    );
+    // The hover right after it is answered: the stream is back in step.
+    let h = hover_text(&mut lsp, ROT, 0, 1);
+    assert!(h.contains("`+30/50%`"), "{h}");
+    // The same with a lower-case header split over two writes.
+    lsp.send_raw(b"Content-Length: 99999999999\r\n\r\nxx");
+    lsp.send_raw(b"con");
+    lsp.send(&json!({"jsonrpc": "2.0", "id": 77, "method": "shutdown"}));
+    let refused = lsp.wait(|m| m.get("error").is_some() && m["id"].is_null());
+    assert_eq!(error_code(&refused), -32700);
+    // `con` + `Content-Length: …` is one line: the header is found inside it.
+    let answer = lsp.wait(|m| m["id"] == 77);
+    assert!(answer.get("error").is_none(), "{answer}");
+}
+
+/// Edits that cannot be applied are rejected with a logged error, never guessed at
+/// (issue 22 item 6): a negative position (which the server cannot even read), a range
+/// that ends before it starts, a line past the end. The document is then out of sync: one
+/// diagnostic says so, requests answer null, ranged edits wait, and the next full text
+/// brings it back.
+#[test]
+fn edits_that_cannot_be_applied_mark_the_document_out_of_sync() {
+    let cases = [
+        (
+            json!({"start": {"line": 0, "character": -1}, "end": {"line": 0, "character": 2}}),
+            "cannot read",
+        ),
+        (
+            json!({"start": {"line": 0, "character": 4}, "end": {"line": 0, "character": 1}}),
+            "before it starts",
+        ),
+        (
+            json!({"start": {"line": 5, "character": 0}, "end": {"line": 5, "character": 1}}),
+            "past the end",
+        ),
+    ];
+    for (bad_range, why) in cases {
+        let mut lsp = Lsp::start();
+        lsp.open(ROT, "rotlang", "+30/50%, 90");
+        lsp.notify(
+            "textDocument/didChange",
+            json!({"textDocument": {"uri": ROT, "version": 2},
+                   "contentChanges": [{"range": bad_range, "text": "X"}]}),
+        );
+        let log = lsp.wait(|m| m["method"] == "window/logMessage" && m["params"]["type"] == 1);
+        let message = log["params"]["message"].as_str().unwrap();
+        assert!(message.contains(why) && message.contains(ROT), "{message}");
+        let shown = lsp.diagnostics(ROT, None);
+        assert_eq!(shown.len(), 1, "{shown:?}");
+        assert_eq!(shown[0]["code"], "rotlang-lsp::out-of-sync");
+        // Nothing is answered on a text that is not the editor's.
+        let hover = lsp.result(
+            "textDocument/hover",
+            json!({"textDocument": {"uri": ROT}, "position": {"line": 0, "character": 1}}),
+        );
+        assert!(hover.is_null(), "{hover}");
+        // A ranged edit cannot bring it back; the whole text does.
+        lsp.notify(
+            "textDocument/didChange",
+            json!({"textDocument": {"uri": ROT, "version": 3},
+                   "contentChanges": [{"range": range(0, 0, 0, 0), "text": "0, "}]}),
+        );
+        lsp.change(ROT, 4, "+30X");
+        let back = lsp.diagnostics(ROT, Some(4));
+        let codes: Vec<&str> = back.iter().map(|d| d["code"].as_str().unwrap()).collect();
+        assert_eq!(codes, ["rotlang::unknown-sign"], "{why}");
+        let h = hover_text(&mut lsp, ROT, 0, 1);
+        assert!(h.contains("+30X"), "{h}");
+        lsp.shutdown();
+    }
+}

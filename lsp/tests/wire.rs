@@ -130,9 +130,19 @@ fn json_profile_diagnostics_land_on_the_right_characters() {
         "}\n"
     );
     let diags = lsp.open(JSON, "json", doc);
-    // Profiles also get the OrcaSlicer compat findings, but not on templates with errors
-    // (both here have one): their errors come first.
-    assert_eq!(diags.len(), 2, "{diags:#?}");
+    // Profiles also get the OrcaSlicer compat findings, templates with errors too, as
+    // `rotlang check` reports them: here OrcaSlicer's reading of the solid sign.
+    let mut codes: Vec<_> = diags.iter().map(|d| d["code"].as_str().unwrap()).collect();
+    codes.sort();
+    assert_eq!(
+        codes,
+        [
+            "orcaslicer::solid-sign",
+            "rotlang::solid-sign-in-solid-template",
+            "rotlang::unknown-sign"
+        ],
+        "{diags:#?}"
+    );
     let line2 = doc.lines().nth(2).unwrap();
     let x = line2.find('X').unwrap() as u64;
     let sparse = diags
@@ -804,4 +814,153 @@ fn utf16_and_utf8_positions_with_wide_characters() {
         .find(|d| d["code"] == "rotlang::unexpected-character")
         .expect("alpha");
     assert_eq!(d["range"], range(0, a, 0, a + 1));
+}
+
+/// One reading of a preset (issue 16 item 3, issue 17): a preset that sets a direction and
+/// has a non-empty template is read as OrcaSlicer reads it (the template's angles alone,
+/// on the preset's own layer heights), and the hover, the inlay hints and the compat
+/// diagnostic agree with the library on every layer they name.
+#[test]
+fn a_preset_reads_the_same_in_hover_inlay_hints_and_diagnostics() {
+    use rotlang::eval::Options;
+    use rotlang::explain::deg_and_lines;
+    let mut lsp = Lsp::start();
+    let uri = "file:///tmp/preset.json";
+    let doc = "{\n  \"layer_height\": \"0.12\",\n  \"sparse_infill_direction\": \"45\",\n  \"sparse_infill_rotate_template\": \"0 90\"\n}\n";
+    let diags = lsp.open(uri, "json", doc);
+    // The library's reading: the preset's model; no direction added to a non-empty template.
+    let profile =
+        rotlang::profile::parse(std::path::Path::new("preset.json"), doc.as_bytes()).unwrap();
+    let pm = profile.model(
+        rotlang::Target::Sparse,
+        None,
+        rotlang::profile::DEFAULT_OBJECT_HEIGHT,
+    );
+    let template = rotlang::parse("0 90", rotlang::Target::Sparse).template;
+    let angles: Vec<f64> = rotlang::eval::layers(&template, &pm.model, Options::default())
+        .map(|l| l.angle)
+        .collect();
+    assert_eq!(angles.len(), 166, "0.2 mm, then 0.12 mm layers to 20 mm");
+
+    // The hover on the key: the first 24 layers, and the model's layer count.
+    let h = hover_text(&mut lsp, uri, 3, 5);
+    let first: Vec<String> = angles[..24].iter().map(|&a| deg_and_lines(a)).collect();
+    assert!(
+        h.contains(&format!("First 24 layers: {}, …", first.join(", "))),
+        "{h}"
+    );
+    assert!(h.contains("over all 166 layers"), "{h}");
+
+    // The inlay hint of each instruction: the angle of the first layer it governs.
+    let hints = lsp.result(
+        "textDocument/inlayHint",
+        json!({"textDocument": {"uri": uri}, "range": range(0, 0, 5, 0)}),
+    );
+    let labels: Vec<&str> = hints
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| h["label"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            format!("{} for 1 layer", rotlang::explain::deg(angles[0])),
+            format!("{} for 1 layer", rotlang::explain::deg(angles[1])),
+        ]
+    );
+
+    // The compat diagnostic: rotlang's angle of the layer it names is the library's, and
+    // the hover on the same characters lists that layer with that angle.
+    let differs = diags
+        .iter()
+        .find(|d| d["code"] == "orcaslicer::differs")
+        .expect("OrcaSlicer reads `0 90` as `0`");
+    let message = differs["message"].as_str().unwrap();
+    let layer: usize = message
+        .split("layer ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .expect(message);
+    let start = &differs["range"]["start"];
+    let h = hover_text(
+        &mut lsp,
+        uri,
+        start["line"].as_u64().unwrap() as u32,
+        start["character"].as_u64().unwrap() as u32,
+    );
+    assert!(
+        h.contains(&format!("{layer}: {}", deg_and_lines(angles[layer]))),
+        "layer {layer} in the hover: {h}"
+    );
+    let ours: f64 = message
+        .rsplit("rotlang to ")
+        .next()
+        .and_then(|s| s.trim_end_matches('°').parse().ok())
+        .expect(message);
+    assert_eq!(
+        ours, angles[layer],
+        "the diagnostic's angle is the hover's (needs the library's one reading of a \
+         profile, issue 16 item 3): {message}"
+    );
+}
+
+/// At the start of an instruction only what can begin one is offered (issue 17): at
+/// `0, ⎀+30` nothing that would make `/+30` or `*+30`; at `0, ⎀` the angle's signs, and no
+/// runtime mark or unit, which cannot begin an instruction.
+#[test]
+fn completion_at_the_start_of_an_instruction_offers_what_can_begin_one() {
+    let mut lsp = Lsp::start();
+    let labels = |lsp: &mut Lsp, fixture: &str| -> Vec<(String, String)> {
+        let (text, line, col, _) = cursor(fixture);
+        lsp.open(ROT, "rotlang", &text);
+        let items = lsp.result(
+            "textDocument/completion",
+            json!({"textDocument": {"uri": ROT}, "position": {"line": line, "character": col}}),
+        );
+        items
+            .as_array()
+            .expect("a list")
+            .iter()
+            .map(|i| {
+                let edit = i["textEdit"]["newText"].as_str().unwrap_or("").to_owned();
+                (i["label"].as_str().unwrap().to_owned(), edit)
+            })
+            .collect()
+    };
+    let before_turn = labels(&mut lsp, "0, $0+30");
+    for (label, new_text) in &before_turn {
+        let parse = rotlang::parse(new_text, rotlang::Target::Sparse);
+        assert!(
+            parse
+                .diagnostics
+                .iter()
+                .all(|d| d.code == "rotlang::incomplete"),
+            "`{label}` makes `{new_text}`: {:?}",
+            parse.diagnostics.iter().map(|d| d.code).collect::<Vec<_>>()
+        );
+    }
+    assert!(
+        !before_turn
+            .iter()
+            .any(|(l, _)| ["/", "*", "*2", "!", "N"].contains(&l.as_str()))
+    );
+
+    let empty = labels(&mut lsp, "0, $0");
+    let offered: Vec<&str> = empty.iter().map(|(l, _)| l.as_str()).collect();
+    assert!(
+        offered.contains(&"+") && offered.contains(&"-"),
+        "{offered:?}"
+    );
+    for never in ["*", "*2", "!", "*!", "mm", "cm"] {
+        assert!(!offered.contains(&never), "`{never}` offered: {offered:?}");
+    }
+    // Within an instruction the signs are offered as before.
+    let within = labels(&mut lsp, "0, +30$0");
+    let offered: Vec<&str> = within.iter().map(|(l, _)| l.as_str()).collect();
+    for sign in ["/", "N", "*", "!"] {
+        assert!(offered.contains(&sign), "`{sign}` missing: {offered:?}");
+    }
+    assert!(!offered.contains(&"+"), "{offered:?}");
 }

@@ -1,0 +1,57 @@
+//! One reading of a template: the model and the options (the base) its angles are computed
+//! on. Hover, inlay hints, symbols and the compat diagnostics of a template all take it from
+//! here, so they never disagree on a layer.
+//!
+//! In a profile (JSON, `.ini`) the reading is the library's: the profile's own layer
+//! heights, shells and infill direction (`rotlang::profile::ProfileModel`), with the base
+//! the library decides (OrcaSlicer's rule: the direction turns an empty template only). In a
+//! `.rot` file it is the model of the client's settings, with no base.
+
+use rotlang::eval::{Model, Options};
+use rotlang::profile::ProfileModel;
+
+use crate::settings::ModelSettings;
+
+#[derive(Clone, Debug)]
+pub struct Reading {
+    pub model: Model,
+    pub options: Options,
+    /// The model in words, for hovers and tooltips.
+    pub describe: String,
+}
+
+impl Reading {
+    /// The reading of a `.rot` template (or of a profile the library cannot read): the
+    /// settings' model, no base.
+    pub fn of_settings(settings: &ModelSettings) -> Reading {
+        let model = crate::preview::model_of(settings);
+        Reading {
+            describe: rotlang::explain::model(&model),
+            model,
+            options: Options::default(),
+        }
+    }
+
+    /// The reading of `text`, a template of a profile whose model the library gave: the one
+    /// place the server takes a profile's base from.
+    pub fn of_profile(profile: &ProfileModel, text: &str) -> Reading {
+        // The library's options for this template: its base is the profile's direction only
+        // where OrcaSlicer uses it (an empty template). When the library's `ProfileModel`
+        // gives `options(text)` itself, this line becomes that call.
+        let options = rotlang::dialect::orcaslicer::profile_options(text, profile.options);
+        Reading {
+            describe: format!(
+                "{}, from this profile (the object's height is not in a profile: {} mm assumed)",
+                rotlang::explain::model(&profile.model),
+                rotlang::explain::num(rotlang::profile::DEFAULT_OBJECT_HEIGHT)
+            ),
+            model: profile.model.clone(),
+            options,
+        }
+    }
+
+    /// The number of layers of the model.
+    pub fn layers(&self) -> usize {
+        self.model.len()
+    }
+}

@@ -38,7 +38,7 @@ impl Reading {
         // The library's options for this template: its base is the profile's direction only
         // where OrcaSlicer uses it (an empty template). When the library's `ProfileModel`
         // gives `options(text)` itself, this line becomes that call.
-        let options = rotlang::dialect::orcaslicer::profile_options(text, profile.options);
+        let options = profile.options(text);
         Reading {
             describe: format!(
                 "{}, from this profile (the object's height is not in a profile: {} mm assumed)",

@@ -39,13 +39,20 @@ impl fmt::Display for Given {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Given::Float(v) => write!(f, "{}", Shown(*v)),
-            // Through 64 bits: the code that prints an i128 is a kilobyte of the wasm
-            // module, and a number beyond 64 bits reads as well as `1.2676506002282294e30`.
-            Given::Int(v) => match (i64::try_from(*v), u64::try_from(*v)) {
-                (Ok(v), _) => write!(f, "{v}"),
-                (_, Ok(v)) => write!(f, "{v}"),
-                _ => write!(f, "{}", Shown(*v as f64)),
-            },
+            // In two u64 halves: the code that prints an i128 is a kilobyte of the wasm
+            // module (which never prints one).
+            Given::Int(v) => {
+                const E19: u128 = 10_000_000_000_000_000_000;
+                let sign = if *v < 0 { "-" } else { "" };
+                let m = v.unsigned_abs();
+                // m <= 2^127, so m / 1e19 < 1.8e19 fits a u64.
+                let (hi, lo) = ((m / E19) as u64, (m % E19) as u64);
+                if hi == 0 {
+                    write!(f, "{sign}{lo}")
+                } else {
+                    write!(f, "{sign}{hi}{lo:019}")
+                }
+            }
         }
     }
 }
@@ -175,7 +182,13 @@ mod tests {
         }
         assert!(shells("top_shells", Given::Int(1 << 40)).is_err());
         let e = seed("seed", Given::Int(-(10i128.pow(30))), MAX_SEED).unwrap_err();
-        assert!(e.message.ends_with("not -1e30"), "{e}");
+        assert!(
+            e.message.ends_with(&format!("not -1{}", "0".repeat(30))),
+            "{e}"
+        );
+        assert_eq!(Given::Int(i128::MIN).to_string(), i128::MIN.to_string());
+        assert_eq!(Given::Int(i128::MAX).to_string(), i128::MAX.to_string());
+        assert_eq!(Given::Int(1 << 64).to_string(), "18446744073709551616");
         assert!(layers("layers", Given::Int(0)).is_err());
         let e = layers("layers", Given::Float(1e9)).unwrap_err();
         assert!(e.message.contains("from 1 to 100000000"), "{e}");

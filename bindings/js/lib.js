@@ -217,7 +217,23 @@ export async function bind(wasmModule) {
 
   /** Every diagnostic of a template (errors and warnings); never throws for a bad template. */
   function check(text, options = {}) {
-    return call('rotlang_check', text, options);
+    const answer = call('rotlang_check', text, options);
+    // The instructions come as four u32 a span (bytes, then UTF-16 units), not as JSON: a
+    // megabyte template has a quarter of a million of them (src/api.rs `check`).
+    const ex = instance.exports;
+    const n = ex.rotlang_spans_len();
+    const flat = new Uint32Array(ex.memory.buffer, ex.rotlang_spans_ptr(), n);
+    const instructions = new Array(n >> 2);
+    for (let i = 0, k = 0; k < n; i += 1, k += 4) {
+      const startUtf16 = flat[k + 2];
+      const endUtf16 = flat[k + 3];
+      instructions[i] = {
+        start: flat[k], end: flat[k + 1], startUtf16, endUtf16, text: text.slice(startUtf16, endUtf16),
+      };
+    }
+    ex.rotlang_release();
+    answer.instructions = instructions;
+    return answer;
   }
 
   /** The canonical form of a template; throws a RotlangError (kind 'template') when it has errors. */

@@ -81,9 +81,9 @@ export interface Options {
    */
   dialect?: 'rotlang' | 'orcaslicer';
   model?: Model;
-  /** The base direction in degrees (the profile's infill direction). */
+  /** The base direction in degrees (the profile's infill direction), within ±1e9. */
   base?: number;
-  /** The seed of the random joints `~` and `^`. */
+  /** The seed of the random joints `~` and `^`: a whole number from 0 to 2^53 − 1. */
   seed?: number;
 }
 

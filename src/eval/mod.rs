@@ -36,6 +36,7 @@
 //! ```
 
 mod engine;
+pub mod limits;
 mod model;
 mod random;
 mod shape;

@@ -15,6 +15,8 @@ use crate::options::Request;
 thread_local! {
     static OUT: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
     static LAYERS: RefCell<Layers> = RefCell::new(Layers::default());
+    /// The last `check`'s instruction spans, four u32 each (`api::check`).
+    static SPANS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
 }
 
 /// Inputs are aligned for f64 (the request slots and layer heights are f64 arrays, which
@@ -76,10 +78,22 @@ pub extern "C" fn rotlang_instructions_ptr() -> *const i32 {
     LAYERS.with_borrow(|l| l.instructions.as_ptr())
 }
 
-/// Frees the last `expand`'s arrays (JavaScript has copied them).
+/// The last `check`'s instruction spans: `rotlang_spans_len` u32s, four per instruction.
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_spans_ptr() -> *const u32 {
+    SPANS.with_borrow(|s| s.as_ptr())
+}
+
+#[unsafe(no_mangle)]
+pub extern "C" fn rotlang_spans_len() -> usize {
+    SPANS.with_borrow(Vec::len)
+}
+
+/// Frees the last `expand`'s or `check`'s arrays (JavaScript has copied them).
 #[unsafe(no_mangle)]
 pub extern "C" fn rotlang_release() {
     LAYERS.with_borrow_mut(|l| *l = Layers::default());
+    SPANS.with_borrow_mut(|s| *s = Vec::new());
     OUT.with_borrow_mut(|o| *o = Vec::new());
 }
 
@@ -104,7 +118,12 @@ pub unsafe extern "C" fn rotlang_check(
     req_len: usize,
 ) -> i32 {
     // SAFETY: forwarded from this function's contract.
-    finish(unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| api::check(t, &r)))
+    let result = unsafe { inputs(text, text_len, req, req_len) }
+        .and_then(|(t, r)| SPANS.with_borrow_mut(|spans| api::check(t, &r, spans)));
+    if result.is_err() {
+        SPANS.with_borrow_mut(Vec::clear);
+    }
+    finish(result)
 }
 
 /// # Safety

@@ -4,6 +4,7 @@
 
 use rotlang::Target;
 use rotlang::dialect::Dialect;
+use rotlang::eval::limits::{self, Given};
 use rotlang::eval::{Model, Options};
 
 use crate::Failure;
@@ -92,42 +93,37 @@ impl Request {
     }
 
     /// A whole, non-negative number from a slot (`max` inclusive).
-    fn whole(&self, slot: usize, max: f64) -> Result<Option<u64>, Failure> {
-        match self.get(slot) {
-            None => Ok(None),
-            Some(v) if v.is_finite() && v >= 0.0 && v.fract() == 0.0 && v <= max => {
-                Ok(Some(v as u64))
-            }
-            Some(v) => Err(Failure::options(format!(
-                "`{}` must be a whole number from 0 to {max}, not {v}",
-                NAMES[slot]
-            ))),
-        }
+    fn whole(&self, slot: usize, max: u64) -> Result<Option<u64>, Failure> {
+        self.get(slot)
+            .map(|v| limits::whole(NAMES[slot], Given::Float(v), 0, max))
+            .transpose()
+            .map_err(|e| Failure::options(e.message))
     }
 
     pub fn target(&self) -> Result<Target, Failure> {
-        Ok(match self.whole(slot::TARGET, 1.0)? {
+        Ok(match self.whole(slot::TARGET, 1)? {
             Some(1) => Target::Solid,
             _ => Target::Sparse,
         })
     }
 
     pub fn dialect(&self) -> Result<Dialect, Failure> {
-        Ok(match self.whole(slot::DIALECT, 1.0)? {
+        Ok(match self.whole(slot::DIALECT, 1)? {
             Some(1) => Dialect::OrcaSlicer,
             _ => Dialect::Rotlang,
         })
     }
 
+    /// The base and seed, in the ranges every binding takes (`rotlang::eval::limits`); a
+    /// seed above 2^53 cannot come exactly through a JS number.
     pub fn eval_options(&self) -> Result<Options, Failure> {
-        let base = self.get(slot::BASE).unwrap_or(0.0);
-        if !base.is_finite() {
-            return Err(Failure::options("the base angle must be a finite number"));
-        }
-        // Seeds above 2^53 cannot come exactly through a JS number.
-        let seed = self
-            .whole(slot::SEED, 9_007_199_254_740_991.0)?
-            .unwrap_or(0);
+        let base = limits::base(self.get(slot::BASE).unwrap_or(0.0))
+            .map_err(|e| Failure::options(e.message))?;
+        let seed = match self.get(slot::SEED) {
+            Some(v) => limits::seed(NAMES[slot::SEED], Given::Float(v), limits::MAX_EXACT_SEED)
+                .map_err(|e| Failure::options(e.message))?,
+            None => 0,
+        };
         Ok(Options { base, seed })
     }
 
@@ -138,7 +134,9 @@ impl Request {
 
     /// A whole number from a slot, at most `max`.
     pub fn index(&self, slot: usize, max: usize) -> Result<Option<usize>, Failure> {
-        Ok(self.whole(slot, max as f64)?.map(|v| v as usize))
+        Ok(self
+            .whole(slot, max as u64)?
+            .map(|v| usize::try_from(v).unwrap_or(max)))
     }
 
     /// A picture size in pixels from a slot: 16 to 4096, or `default`.
@@ -155,9 +153,12 @@ impl Request {
 
     /// The first layer and one past the last layer asked for (absent: None).
     pub fn range(&self) -> Result<(Option<usize>, Option<usize>), Failure> {
-        let max = rotlang::eval::MAX_LAYERS as f64;
-        let from = self.whole(slot::FROM, max)?.map(|v| v as usize);
-        let to = self.whole(slot::TO, max)?.map(|v| v as usize);
+        let max = rotlang::eval::MAX_LAYERS;
+        let index = |slot| {
+            self.whole(slot, max as u64)
+                .map(|v| v.map(|v| usize::try_from(v).unwrap_or(max)))
+        };
+        let (from, to) = (index(slot::FROM)?, index(slot::TO)?);
         Ok((from, to))
     }
 
@@ -170,7 +171,8 @@ impl Request {
             let h = layer_height.or(heights.first().copied()).unwrap_or(0.2);
             Model::from_heights(heights, h)
         } else if let Some(n) = self.get(slot::LAYERS) {
-            let n = count(n)?;
+            let n = limits::layers(NAMES[slot::LAYERS], Given::Float(n))
+                .map_err(|e| Failure::model(e.message))?;
             Model::uniform(n, layer_height.unwrap_or(0.2), first)
         } else if let Some(height) = self.get(slot::HEIGHT) {
             Model::from_total_height(height, layer_height.unwrap_or(0.2), first)
@@ -183,8 +185,9 @@ impl Request {
         };
         let mut model = model.map_err(|e| Failure::model(e.to_string()))?;
         let shells = |slot: usize| {
-            self.whole(slot, f64::from(u32::MAX))
-                .map(|v| v.map(|v| v as u32))
+            self.get(slot)
+                .map(|v| limits::shells(NAMES[slot], Given::Float(v)))
+                .transpose()
                 .map_err(|e| Failure::model(e.message))
         };
         let bottom = shells(slot::BOTTOM_SHELLS)?;
@@ -196,22 +199,6 @@ impl Request {
         }
         Ok(model)
     }
-}
-
-/// A whole, non-negative count of layers.
-fn count(v: f64) -> Result<usize, Failure> {
-    if !(v.is_finite() && v >= 0.0 && v.fract() == 0.0) {
-        return Err(Failure::model(format!(
-            "`layers` must be a whole number of layers, not {v}"
-        )));
-    }
-    if v > rotlang::eval::MAX_LAYERS as f64 {
-        return Err(Failure::model(format!(
-            "the model would have {v} layers; at most {} are supported",
-            rotlang::eval::MAX_LAYERS
-        )));
-    }
-    Ok(v as usize)
 }
 
 #[cfg(test)]
@@ -250,5 +237,38 @@ mod tests {
             .unwrap_err();
         assert!(e.message.contains("`topShells`"), "{}", e.message);
         assert!(Request::default().with(slot::FROM, 1.5).range().is_err());
+    }
+
+    #[test]
+    fn base_and_seed_have_the_ranges_of_every_binding() {
+        for base in [2e300, -2e300, 1e9 + 1.0] {
+            let e = Request::default()
+                .with(slot::BASE, base)
+                .eval_options()
+                .unwrap_err();
+            assert_eq!(e.kind, "options");
+            assert!(e.message.contains("within ±1000000000"), "{}", e.message);
+        }
+        let ok = Request::default().with(slot::BASE, -1e9).eval_options();
+        assert_eq!(ok.map(|o| o.base).ok(), Some(-1e9));
+        let e = Request::default()
+            .with(slot::SEED, 2f64.powi(53))
+            .eval_options()
+            .unwrap_err();
+        assert_eq!(
+            e.message,
+            "`seed` must be a whole number from 0 to 9007199254740991, not 9007199254740992"
+        );
+        let e = Request::default()
+            .with(slot::LAYERS, 0.0)
+            .model(None)
+            .unwrap_err();
+        assert_eq!(
+            (e.kind, e.message.as_str()),
+            (
+                "model",
+                "`layers` must be a whole number from 1 to 100000000, not 0"
+            )
+        );
     }
 }

@@ -18,6 +18,20 @@ test('check: unknown sign X in +30X5, with its span and message', () => {
   assert.deepEqual([d.line, d.column], [1, 4]);
 });
 
+test('check: each instruction with its byte and UTF-16 span and its text, after a 𝕏 too', () => {
+  assert.deepEqual(check('𝕏, +10, -5').instructions, [
+    { start: 6, end: 9, startUtf16: 4, endUtf16: 7, text: '+10' },
+    { start: 11, end: 13, startUtf16: 9, endUtf16: 11, text: '-5' },
+  ]);
+  const big = '+10L25%, α, '.repeat(50_000);
+  const r = check(big);
+  assert.equal(r.instructions.length, 50_000);
+  assert.deepEqual(r.instructions.at(-1), {
+    start: 49_999 * 13, end: 49_999 * 13 + 7, startUtf16: 49_999 * 12, endUtf16: 49_999 * 12 + 7, text: '+10L25%',
+  });
+  assert.deepEqual(check('').instructions, []);
+});
+
 test('check: the space before % has a fix that gives +30/50%', () => {
   const text = '+30/50 %';
   const d = check(text).diagnostics.find((d) => d.fix);

@@ -50,6 +50,20 @@ test('bad options and arguments throw option errors', () => {
   assert.throws(() => expand('0', { colour: 'red' }), isError('options'));
 });
 
+test('a base beyond ±1e9 and a seed beyond 2^53 are refused in both dialects, as C and Python refuse them', () => {
+  for (const dialect of ['rotlang', 'orcaslicer']) {
+    for (const base of [2e300, -2e300, 1e9 + 1]) {
+      assert.throws(() => expand('0, 90', { base, dialect }), (e) => isError('options')(e)
+        && e.message.startsWith('`base` must be a finite number of degrees within ±1000000000, not '), `${dialect} ${base}`);
+    }
+    assert.deepEqual([...expand('0, 90', { base: -1e9, dialect, model: { layers: 2 } }).angles], [-1e9, -1e9 + 90]);
+    assert.throws(() => expand('0', { seed: 2 ** 53, dialect }),
+      (e) => isError('options')(e) && e.message === '`seed` must be a whole number from 0 to 9007199254740991, not 9007199254740992');
+  }
+  assert.throws(() => expand('0', { model: { layers: 10, topShells: 2 ** 40 } }),
+    (e) => isError('model')(e) && e.message === '`topShells` must be a whole number from 0 to 4294967295, not 1099511627776');
+});
+
 test('a hundred million layers is refused at once, a range of them works', () => {
   assert.throws(() => expand('+1', { model: { layers: 1e8 } }), isError('limit'));
   const r = expand('+1', { model: { layers: 1e7 + 3 }, from: 1e7 });

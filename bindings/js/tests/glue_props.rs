@@ -66,7 +66,15 @@ proptest! {
 
     #[test]
     fn check_spans_agree(text in text()) {
-        let answer = api::check(&text, &Request::default()).expect("check never fails");
+        let mut spans = vec![7; 3]; // stale content is replaced
+        let answer = api::check(&text, &Request::default(), &mut spans).expect("check never fails");
+        let parse = rotlang::parse(&text, rotlang::Target::Sparse);
+        prop_assert_eq!(spans.len(), 4 * parse.template.instructions.len());
+        for (quad, i) in spans.chunks(4).zip(&parse.template.instructions) {
+            let (start, end) = (i.span.start, i.span.end);
+            let want = [start, end, utf16_offset(&text, start), utf16_offset(&text, end)];
+            prop_assert_eq!(quad.iter().map(|&n| n as usize).collect::<Vec<_>>(), want.to_vec());
+        }
         let Value::Array(diagnostics) = field(&answer, "diagnostics") else { panic!() };
         for d in diagnostics {
             let (start, end) = (num(field(d, "start")), num(field(d, "end")));

@@ -4,10 +4,11 @@
 //! slices) and as UTF-8 byte offsets (`byte_start`, `byte_end`). Bad input raises
 //! `rotlang.TemplateError` (carrying the diagnostics) or `ValueError`, never crashes.
 
-use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::exceptions::{PyException, PyOverflowError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
 
+use rotlang_core::eval::limits::{self, Given, LimitError};
 use rotlang_core::eval::{self, Model as RustModel, Options};
 use rotlang_core::{Diagnostic as RustDiagnostic, Target};
 
@@ -95,6 +96,71 @@ fn template_error(py: Python<'_>, text: &str, diagnostics: &[RustDiagnostic]) ->
     }
 }
 
+/// An integer argument as Python gave it, checked against its range by
+/// `rotlang::eval::limits` (the JavaScript binding's ranges and messages): a negative or
+/// too large number raises `ValueError` with the range, not PyO3's `OverflowError`.
+#[derive(Clone, Debug)]
+enum Int {
+    Given(i128),
+    /// Beyond 128 bits: its repr, for the message.
+    Huge(String),
+}
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Int {
+    type Error = PyErr;
+
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Int> {
+        match obj.extract::<i128>() {
+            Ok(v) => Ok(Int::Given(v)),
+            Err(e) if e.is_instance_of::<PyOverflowError>(obj.py()) => {
+                Ok(Int::Huge(obj.repr()?.to_string()))
+            }
+            Err(e) => Err(e),
+        }
+    }
+}
+
+fn limit_error(e: LimitError) -> PyErr {
+    PyValueError::new_err(e.message)
+}
+
+impl Int {
+    const ZERO: Int = Int::Given(0);
+
+    /// `check(name, value)` on the number, or its refusal for a number beyond 128 bits.
+    fn checked<T>(
+        &self,
+        name: &str,
+        min: u64,
+        max: u64,
+        check: impl Fn(&str, Given) -> Result<T, LimitError>,
+    ) -> PyResult<T> {
+        match self {
+            Int::Given(v) => check(name, Given::Int(*v)).map_err(limit_error),
+            Int::Huge(shown) => Err(limit_error(limits::out_of_range(name, min, max, shown))),
+        }
+    }
+
+    fn seed(&self) -> PyResult<u64> {
+        self.checked("seed", 0, limits::MAX_SEED, |name, v| {
+            limits::seed(name, v, limits::MAX_SEED)
+        })
+    }
+
+    fn shells(&self, name: &str) -> PyResult<u32> {
+        self.checked(name, 0, limits::MAX_SHELLS, limits::shells)
+    }
+
+    fn layers(&self) -> PyResult<usize> {
+        self.checked("layers", 1, eval::MAX_LAYERS as u64, limits::layers)
+    }
+}
+
+/// The shell counts of a model, checked.
+fn shells(model: RustModel, bottom: &Int, top: &Int) -> PyResult<RustModel> {
+    Ok(model.with_shells(bottom.shells("bottom_shells")?, top.shells("top_shells")?))
+}
+
 /// The layers of one object: a list of heights or a uniform model, with `h`, `B`, `T`.
 #[pyclass(frozen, skip_from_py_object, module = "rotlang")]
 #[derive(Clone)]
@@ -110,48 +176,47 @@ fn model_error(e: eval::ModelError) -> PyErr {
 impl Model {
     /// `layers` layers of `layer_height` mm, the first of `first_layer_height`.
     #[staticmethod]
-    #[pyo3(signature = (layers, layer_height=0.2, first_layer_height=None, bottom_shells=3, top_shells=4))]
+    #[pyo3(signature = (layers, layer_height=0.2, first_layer_height=None, bottom_shells=Int::Given(3), top_shells=Int::Given(4)))]
     fn uniform(
-        layers: usize,
+        layers: Int,
         layer_height: f64,
         first_layer_height: Option<f64>,
-        bottom_shells: u32,
-        top_shells: u32,
+        bottom_shells: Int,
+        top_shells: Int,
     ) -> PyResult<Model> {
-        let inner = RustModel::uniform(layers, layer_height, first_layer_height)
-            .map_err(model_error)?
-            .with_shells(bottom_shells, top_shells);
+        let model = RustModel::uniform(layers.layers()?, layer_height, first_layer_height)
+            .map_err(model_error)?;
+        let inner = shells(model, &bottom_shells, &top_shells)?;
         Ok(Model { inner })
     }
 
     /// A model from every layer's height (mm, bottom to top) and the standard height.
     #[staticmethod]
-    #[pyo3(signature = (heights, layer_height, bottom_shells=3, top_shells=4))]
+    #[pyo3(signature = (heights, layer_height, bottom_shells=Int::Given(3), top_shells=Int::Given(4)))]
     fn from_heights(
         heights: Vec<f64>,
         layer_height: f64,
-        bottom_shells: u32,
-        top_shells: u32,
+        bottom_shells: Int,
+        top_shells: Int,
     ) -> PyResult<Model> {
-        let inner = RustModel::from_heights(heights, layer_height)
-            .map_err(model_error)?
-            .with_shells(bottom_shells, top_shells);
+        let model = RustModel::from_heights(heights, layer_height).map_err(model_error)?;
+        let inner = shells(model, &bottom_shells, &top_shells)?;
         Ok(Model { inner })
     }
 
     /// An object `height` mm tall in layers of `layer_height`.
     #[staticmethod]
-    #[pyo3(signature = (height, layer_height=0.2, first_layer_height=None, bottom_shells=3, top_shells=4))]
+    #[pyo3(signature = (height, layer_height=0.2, first_layer_height=None, bottom_shells=Int::Given(3), top_shells=Int::Given(4)))]
     fn from_total_height(
         height: f64,
         layer_height: f64,
         first_layer_height: Option<f64>,
-        bottom_shells: u32,
-        top_shells: u32,
+        bottom_shells: Int,
+        top_shells: Int,
     ) -> PyResult<Model> {
-        let inner = RustModel::from_total_height(height, layer_height, first_layer_height)
-            .map_err(model_error)?
-            .with_shells(bottom_shells, top_shells);
+        let model = RustModel::from_total_height(height, layer_height, first_layer_height)
+            .map_err(model_error)?;
+        let inner = shells(model, &bottom_shells, &top_shells)?;
         Ok(Model { inner })
     }
 
@@ -303,38 +368,38 @@ fn angles_object<'py>(py: Python<'py>, angles: &[f64], array: bool) -> PyResult<
 /// The angle (degrees) of every layer of `model` (default: the 20 mm cube) under the
 /// template: a `list` of floats, or an `array('d')` with `array=True`.
 #[pyfunction]
-#[pyo3(signature = (template, model=None, *, base=0.0, seed=0, target="sparse", dialect="rotlang", array=false))]
+#[pyo3(signature = (template, model=None, *, base=0.0, seed=Int::ZERO, target="sparse", dialect="rotlang", array=false))]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments
 fn expand<'py>(
     py: Python<'py>,
     template: &str,
     model: Option<&Model>,
     base: f64,
-    seed: u64,
+    seed: Int,
     target: &str,
     dialect: &str,
     array: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let options = options(base, seed)?;
+    let options = options(base, &seed)?;
     let done = evaluate(py, template, model, options, target, dialect, false)?;
     angles_object(py, &done.angles, array)
 }
 
 /// Angles, fills and findings together (see `Expansion`).
 #[pyfunction]
-#[pyo3(signature = (template, model=None, *, base=0.0, seed=0, target="sparse", dialect="rotlang", array=false))]
+#[pyo3(signature = (template, model=None, *, base=0.0, seed=Int::ZERO, target="sparse", dialect="rotlang", array=false))]
 #[allow(clippy::too_many_arguments)] // Python keyword arguments
 fn evaluate_layers(
     py: Python<'_>,
     template: &str,
     model: Option<&Model>,
     base: f64,
-    seed: u64,
+    seed: Int,
     target: &str,
     dialect: &str,
     array: bool,
 ) -> PyResult<Expansion> {
-    let options = options(base, seed)?;
+    let options = options(base, &seed)?;
     let done = evaluate(py, template, model, options, target, dialect, true)?;
     Ok(Expansion {
         angles: angles_object(py, &done.angles, array)?.unbind(),
@@ -343,13 +408,12 @@ fn evaluate_layers(
     })
 }
 
-fn options(base: f64, seed: u64) -> PyResult<Options> {
-    if !(base.is_finite() && base.abs() <= 1e9) {
-        return Err(PyValueError::new_err(format!(
-            "base must be a finite number of degrees within ±1e9, not {base}"
-        )));
-    }
-    Ok(Options { base, seed })
+/// The base and seed, in the ranges every binding takes (`rotlang::eval::limits`).
+fn options(base: f64, seed: &Int) -> PyResult<Options> {
+    Ok(Options {
+        base: limits::base(base).map_err(limit_error)?,
+        seed: seed.seed()?,
+    })
 }
 
 /// Every diagnostic (errors and warnings) of a template; an empty list when it is clean.

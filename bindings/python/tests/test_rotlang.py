@@ -105,8 +105,45 @@ def test_models():
         rotlang.Model.uniform(0)
     with pytest.raises(ValueError):
         rotlang.Model.uniform(10, float("inf"))
-    with pytest.raises((ValueError, OverflowError, TypeError)):
+    with pytest.raises(ValueError):
         rotlang.Model.uniform(-1)
+
+
+# Out-of-range integers raise ValueError with the allowed range (the wording of
+# rotlang::eval::limits, which the JavaScript binding shares), never OverflowError.
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: rotlang.Model.uniform(-1), "`layers` must be a whole number from 1 to 100000000, not -1"),
+        (lambda: rotlang.Model.uniform(0), "`layers` must be a whole number from 1 to 100000000, not 0"),
+        (lambda: rotlang.Model.uniform(10**30), f"`layers` must be a whole number from 1 to 100000000, not {10**30}"),
+        (lambda: rotlang.Model.uniform(10**50), f"`layers` must be a whole number from 1 to 100000000, not {10**50}"),
+        (lambda: rotlang.Model.uniform(10, bottom_shells=-1), "`bottom_shells` must be a whole number from 0 to 4294967295, not -1"),
+        (lambda: rotlang.Model.uniform(10, top_shells=2**40), "`top_shells` must be a whole number from 0 to 4294967295, not 1099511627776"),
+        (lambda: rotlang.Model.from_heights([0.2], 0.2, top_shells=-3), "`top_shells` must be a whole number from 0 to 4294967295, not -3"),
+        (lambda: rotlang.Model.from_total_height(2.0, bottom_shells=2**32), "`bottom_shells` must be a whole number from 0 to 4294967295, not 4294967296"),
+        (lambda: rotlang.expand("+10~90", seed=-1), "`seed` must be a whole number from 0 to 18446744073709551615, not -1"),
+        (lambda: rotlang.expand("+10~90", seed=2**64), "`seed` must be a whole number from 0 to 18446744073709551615, not 18446744073709551616"),
+        (lambda: rotlang.evaluate_layers("+10", seed=-5), "`seed` must be a whole number from 0 to 18446744073709551615, not -5"),
+        (lambda: rotlang.expand("0, 90", base=2e300), "`base` must be a finite number of degrees within ±1000000000, not 2e300"),
+        (lambda: rotlang.expand("0, 90", base=2e300, dialect="orcaslicer"), "`base` must be a finite number of degrees within ±1000000000, not 2e300"),
+    ],
+)
+def test_out_of_range_numbers_raise_value_error_with_the_range(call, message):
+    with pytest.raises(ValueError) as caught:
+        call()
+    assert not isinstance(caught.value, OverflowError)
+    assert str(caught.value) == message
+
+
+def test_the_ends_of_the_ranges_are_taken():
+    assert len(rotlang.Model.uniform(1)) == 1
+    m = rotlang.Model.uniform(3, bottom_shells=0, top_shells=2**32 - 1)
+    assert (m.bottom_shells, m.top_shells) == (0, 2**32 - 1)
+    assert rotlang.expand("+10~90", seed=2**64 - 1) == rotlang.expand("+10~90", seed=2**64 - 1)
+    assert rotlang.expand("0", rotlang.Model.uniform(1), base=-1e9) == [-1e9]
+    with pytest.raises(TypeError):
+        rotlang.expand("0", seed=1.5)
 
 
 def test_check_gives_code_point_and_byte_offsets():

@@ -12,21 +12,33 @@ pub fn root() -> PathBuf {
 /// Installs the tools through `scripts/ensure`. `false`: they cannot be installed here
 /// (not root), and the caller skips; under CI that is a failure.
 pub fn ensure(args: &[&str]) -> bool {
-    let status = Command::new(root().join("scripts/ensure"))
+    ensure_logged(args).is_some()
+}
+
+/// As [`ensure`], returning what `scripts/ensure` said on stderr (it says nothing when
+/// everything is present already); `None` when it cannot install here.
+pub fn ensure_logged(args: &[&str]) -> Option<String> {
+    let output = Command::new(root().join("scripts/ensure"))
         .args(args)
         .stdin(Stdio::null())
-        .status()
+        .output()
         .expect("run scripts/ensure");
-    if status.code() == Some(77) {
+    let said = String::from_utf8_lossy(&output.stderr).into_owned();
+    eprint!("{said}");
+    if output.status.code() == Some(77) {
         assert!(
             std::env::var_os("CI").is_none(),
             "scripts/ensure {args:?} could not install in CI (see the message above)"
         );
         eprintln!("SKIPPED: scripts/ensure {args:?} cannot install here");
-        return false;
+        return None;
     }
-    assert!(status.success(), "scripts/ensure {args:?}: {status}");
-    true
+    assert!(
+        output.status.success(),
+        "scripts/ensure {args:?}: {}",
+        output.status
+    );
+    Some(said)
 }
 
 /// Where cargo put `librotlang_capi.{a,so}` for this test run: beside the test binary

@@ -387,7 +387,10 @@ mod profiles {
             );
         }
         let m = p.model(Target::Sparse, None, 20.0);
-        assert!(!m.model.is_empty() && m.direction.degrees.is_finite(), "{name}");
+        assert!(
+            !m.model.is_empty() && m.direction.degrees.is_finite(),
+            "{name}"
+        );
         Ok(p)
     }
 

@@ -9,6 +9,11 @@ export interface ProfileTemplate {
   object: string | null;
   target: 'sparse' | 'solid';
   text: string;
+  /**
+   * The base to evaluate this template with (`options.base`): the profile's infill
+   * direction where the template is empty, else 0, as OrcaSlicer reads a profile.
+   */
+  base: number;
 }
 
 export interface Profile {
@@ -16,7 +21,10 @@ export interface Profile {
   templates: ProfileTemplate[];
   /** The model the profile's settings give (a 20 mm tall object). */
   model: { layers: number; layerHeight: number; firstLayerHeight: number | null; bottomShells: number; topShells: number };
-  /** The profile's infill direction. */
+  /**
+   * The profile's infill direction. OrcaSlicer turns an empty template only by it: use
+   * each template's own `base`, not this, to evaluate a template.
+   */
   base: number;
   notes: { message: string; error: boolean }[];
   /** Some note is an error (e.g. the JSON is broken after the templates). */

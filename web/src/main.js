@@ -493,10 +493,10 @@ window.addEventListener('hashchange', () => {
   if (s) applyState(sharedState(s));
 });
 
-// The base a profile's template is evaluated with: the library's reading of a profile
-// (rotlang::profile::ProfileModel::options, both readings alike) turns an empty template
-// by the profile's infill direction (`readProfile`'s `base`) and no other.
-const profileBase = (p, text) => (text === '' ? p.base : 0);
+// The base a profile's template is evaluated with: the library's one reading of a profile
+// (rotlang::profile::ProfileModel::options, both readings alike), given with each template
+// by `readProfile` (the direction turns an empty template only).
+const profileBase = (t) => t.base;
 
 async function loadProfile(file) {
   try {
@@ -519,7 +519,7 @@ async function loadProfile(file) {
     const m = p.model;
     applyState({
       layers: m.layers, layerHeight: m.layerHeight, firstLayerHeight: m.firstLayerHeight ?? '',
-      bottomShells: m.bottomShells, topShells: m.topShells, base: profileBase(p, first.text),
+      bottomShells: m.bottomShells, topShells: m.topShells, base: profileBase(first),
       pattern: PATTERN_NAMES.includes(p.pattern) ? p.pattern : undefined,
       density: Number.isFinite(p.density) ? p.density : undefined,
       target: first.target, text: first.text,
@@ -535,7 +535,7 @@ async function loadProfile(file) {
       b.type = 'button';
       b.textContent = `${named(t)}: ${t.text.length > 40 ? `${t.text.slice(0, 40)}…` : t.text || '(empty)'}`;
       if (fits(t)) {
-        b.addEventListener('click', () => applyState({ target: t.target, text: t.text, base: profileBase(p, t.text) }));
+        b.addEventListener('click', () => applyState({ target: t.target, text: t.text, base: profileBase(t) }));
       } else {
         b.disabled = true;
         b.textContent += ` (not loaded: ${chars(t.text.length)})`;

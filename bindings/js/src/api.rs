@@ -253,6 +253,11 @@ pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
                     Target::Solid => "solid",
                 },
                 "text": t.text,
+                // What every tool adds to this template's angles: the profile's direction
+                // only where the template is empty, as OrcaSlicer reads a profile.
+                "base": p.model(t.target, t.object.as_deref(), rotlang::profile::DEFAULT_OBJECT_HEIGHT)
+                    .options(&t.text)
+                    .base,
             })
         })
         .collect();

@@ -34,7 +34,21 @@ fn node_test_suite_passes() {
     assert!(files.len() >= 3, "{files:?}");
     let mut args = vec!["--test"];
     args.extend(files.iter().map(String::as_str));
-    let stdout = node(&dir, &args, &[]);
+    // The workspace's own binaries (built by `cargo test --workspace` before any test
+    // runs), for the test that reads one preset through the CLI, the server and JS.
+    let bin = target_dir().join("debug");
+    let (cli, lsp) = (bin.join("rotlang"), bin.join("rotlang-lsp"));
+    assert!(
+        cli.is_file() && lsp.is_file(),
+        "{} and {} are built by `cargo test --workspace --all-features`",
+        cli.display(),
+        lsp.display()
+    );
+    let stdout = node(&dir, &args, &[("ROTLANG_CLI", &cli), ("ROTLANG_LSP", &lsp)]);
+    assert!(
+        !stdout.contains("# skipped 1") && stdout.contains("# skipped 0"),
+        "no test skipped"
+    );
     assert!(stdout.contains("# fail 0"), "no test failed");
 }
 

@@ -186,6 +186,14 @@ static CODES: &[CodeDoc] = &[
         "Fix the JSON at the position shown (here: close the object with `}`); the templates after it are then checked again.",
     ),
     doc(
+        "rotlang-lsp::out-of-sync",
+        E,
+        "the editor sent an edit the language server cannot apply",
+        "The language server keeps its own copy of every open document and applies the editor's changes to it. A change whose range is reversed, lies outside the document, or has a negative position is never guessed at: the document is marked out of sync, the error is logged, requests on it answer nothing, and this one diagnostic stands at its start. The last good text is kept meanwhile.",
+        "an edit from line 3 back to line 1 sent by a misbehaving client",
+        "Close and reopen the file, or save it: the next change that carries the whole text brings the document back in sync.",
+    ),
+    doc(
         "rotlang-lsp::too-many",
         I,
         "more problems than the language server lists in one document",

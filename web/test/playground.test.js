@@ -327,14 +327,16 @@ test('a dropped profile fills the editor and the model; a non-JSON one is refuse
 // library's reading of a profile, as OrcaSlicer's): the page adds no base of its own.
 test('a dropped profile\'s infill direction turns an empty template only', async () => {
   const page = await open();
-  await drop(page, 'dir.json', JSON.stringify({ name: 'Dir', sparse_infill_direction: '30', sparse_infill_rotate_template: '0, 90', solid_infill_rotate_template: '' }));
+  // Each template is turned by its own target's direction: the solid one by
+  // solid_infill_direction, not the sparse one's.
+  await drop(page, 'dir.json', JSON.stringify({ name: 'Dir', sparse_infill_direction: '30', solid_infill_direction: '60', sparse_infill_rotate_template: '0, 90', solid_infill_rotate_template: '' }));
   await settled(page, '0, 90');
   assert.equal(await page.inputValue('#base'), '0');
   const angles = await page.evaluate(() => [...window.rotlangPlayground.analysis().layers.angles.slice(0, 2)]);
   assert.deepEqual(angles, [0, 90]);
   await page.click('#profile-templates button:has-text("solid_infill_rotate_template")');
   await settled(page, '');
-  assert.equal(await page.inputValue('#base'), '30');
+  assert.equal(await page.inputValue('#base'), '60');
   await page.close();
 });
 

@@ -16,8 +16,8 @@ fn node_test_suite_passes() {
     // The budget is the core module's; rotlang-full.wasm (the playground's) is larger.
     let size = std::fs::metadata(dir.join("rotlang.wasm")).map_or(0, |m| m.len());
     assert!(
-        size > 0 && size < 300 * 1024,
-        "rotlang.wasm is {size} bytes; the budget is 300 KB"
+        size > 0 && size < 320 * 1024,
+        "rotlang.wasm is {size} bytes; the budget is 320 KB"
     );
     assert!(dir.join("rotlang-full.wasm").is_file());
     // The README's sizes are the modules just built (build.mjs writes them).

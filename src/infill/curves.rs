@@ -55,7 +55,16 @@ pub(crate) fn gyroid(
                 (su, cz, sz * cu)
             };
             let r = (a * a + b * b).sqrt();
-            let phi = b.atan2(a);
+            // The phase must be continuous along u. atan2 jumps by 2π where its first
+            // argument crosses 0 with the second negative: along y, `a = sin z` is fixed and
+            // `b = cos u` crosses 0, so for `sin z < 0` measure the phase from the opposite
+            // direction (continuous there) and add π. Along x, `b = cos z` is fixed and at
+            // least √½ in size, so atan2 never reaches its cut.
+            let phi = if along_y && a < 0.0 {
+                (-b).atan2(-a) + PI
+            } else {
+                b.atan2(a)
+            };
             let delta = (-c / r).clamp(-1.0, 1.0).acos();
             (u, phi + delta, phi - delta)
         })

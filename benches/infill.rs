@@ -43,11 +43,15 @@ fn fill<const S: usize>(bencher: Bencher, pattern: Pattern) {
     bencher.bench(|| black_box(&region).fill(&params).map(|p| p.polylines.len()));
 }
 
+/// The template of `object_100_layers`: bottom shells monotonic, then turns (a test in
+/// tests/pictures.rs parses every bench template: an error would make the bench measure
+/// whatever instructions were left).
+pub const OBJECT_TEMPLATE: &str = "0MB, +15, +30/5";
+
 /// 100 layers of the holed square under a rotating template (bottom shells monotonic).
 #[divan::bench(args = PATTERNS, max_time = 2)]
 fn object_100_layers(bencher: Bencher, pattern: Pattern) {
-    let text = "B!M, +15, +30/5";
-    let template = rotlang::parse(text, rotlang::Target::Sparse).template;
+    let template = rotlang::parse(OBJECT_TEMPLATE, rotlang::Target::Sparse).template;
     let model = Model::cube20();
     let region = shape("holed40");
     let settings = Settings {

@@ -442,3 +442,121 @@ fn shell_words(line: &str) -> Vec<String> {
     }
     words
 }
+
+/// Every example in `rotlang plot --help` and `rotlang preview --help` runs and succeeds
+/// (two once failed with a parse error), in a directory holding the files they name, and
+/// `--size` resizes a shape file (it was silently ignored).
+#[cfg(feature = "cli")]
+#[test]
+fn every_help_example_of_plot_and_preview_runs() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("help-examples");
+    std::fs::create_dir_all(&dir).unwrap();
+    let square = |k: f64| {
+        format!(
+            "<svg xmlns='http://www.w3.org/2000/svg'><path d='M 0 0 L {k} 0 L {k} {k} L 0 {k} Z'/></svg>"
+        )
+    };
+    std::fs::write(dir.join("part.svg"), square(10.0)).unwrap();
+    std::fs::write(
+        dir.join("outline.json"),
+        "[[[[0, 0], [30, 0], [30, 30], [0, 30]]]]",
+    )
+    .unwrap();
+    std::fs::write(dir.join("profile.rot"), "+10L25%, -10l25%\n").unwrap();
+    std::fs::write(
+        dir.join("part.json"),
+        r#"{"layer_height": 0.2, "layer_heights": [0.3, 0.2, 0.2, 0.2, 0.2]}"#,
+    )
+    .unwrap();
+    let bin = env!("CARGO_BIN_EXE_rotlang");
+    let mut ran = 0;
+    for command in ["plot", "preview"] {
+        let help = std::process::Command::new(bin)
+            .args([command, "--help"])
+            .output()
+            .expect("rotlang runs");
+        let help = String::from_utf8(help.stdout).unwrap();
+        let examples = &help[help.find("Examples:").expect("examples")..];
+        for line in examples.lines().skip(1) {
+            let Some(rest) = line.trim_start().strip_prefix("rotlang ") else {
+                if line.trim().is_empty() {
+                    break;
+                }
+                continue;
+            };
+            // A comment after three spaces describes the example.
+            let rest = rest.split("   ").next().unwrap().trim();
+            let mut words = shell_words(rest);
+            if let Some(at) = words.iter().position(|w| w == ">") {
+                words.splice(at..at + 2, ["--out".to_string(), words[at + 1].clone()]);
+            }
+            let output = std::process::Command::new(bin)
+                .args(&words)
+                .current_dir(&dir)
+                .output()
+                .expect("rotlang runs");
+            assert!(
+                output.status.success(),
+                "`rotlang {rest}` failed: {}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+            ran += 1;
+        }
+    }
+    assert!(ran >= 8, "{ran} examples");
+    // --size 40 makes the 10 mm square of part.svg 40 mm wide: four times the lines.
+    let lines = |size: Option<&str>| {
+        let mut args = vec![
+            "preview", "0", "--shape", "part.svg", "--layers", "0", "--format", "json",
+        ];
+        if let Some(s) = size {
+            args.extend(["--size", s]);
+        }
+        let out = std::process::Command::new(bin)
+            .args(&args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        v["layers"][0]["length"].as_f64().unwrap()
+    };
+    let (own, resized) = (lines(None), lines(Some("40")));
+    assert!(
+        resized > 10.0 * own,
+        "{own} mm, then {resized} mm at --size 40"
+    );
+}
+
+/// Every template the benches evaluate parses without an error (one once had a parse
+/// error, so its bench measured the instructions that were left).
+#[test]
+fn every_bench_template_parses() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("benches");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(&root).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        // Templates are the string constants and literals given to parse or parse_layers.
+        for (i, _) in text.match_indices("TEMPLATE: &str = \"") {
+            let rest = &text[i + "TEMPLATE: &str = \"".len()..];
+            let template = &rest[..rest.find('"').unwrap()];
+            let parse = rotlang::parse(template, rotlang::Target::Sparse);
+            assert!(
+                !parse.has_errors(),
+                "{}: {template:?}: {:?}",
+                path.display(),
+                parse.diagnostics
+            );
+            seen += 1;
+        }
+        for (i, _) in text.match_indices("parse(\"") {
+            let rest = &text[i + "parse(\"".len()..];
+            let template = &rest[..rest.find('"').unwrap()];
+            let parse = rotlang::parse(template, rotlang::Target::Sparse);
+            assert!(!parse.has_errors(), "{}: {template:?}", path.display());
+            seen += 1;
+        }
+    }
+    assert!(seen >= 1, "no bench template found");
+}

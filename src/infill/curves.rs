@@ -249,7 +249,9 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
 /// The loops' offsets: arcs in steps of 0.5 rad (not geo's 0.2): the loops are far from
 /// the outline, and a third of the vertices makes the offset three times quicker.
 fn shrink(area: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
-    super::region::convex_inset(area, d, 0.5).unwrap_or_else(|| {
-        area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
-    })
+    super::region::convex_inset(area, d, 0.5)
+        .or_else(|| super::offset::raw_inset(area, d, 0.5))
+        .unwrap_or_else(|| {
+            area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
+        })
 }

@@ -92,6 +92,7 @@
 mod clip;
 mod curves;
 mod lightning;
+mod offset;
 mod order;
 pub mod preview;
 mod region;

@@ -62,13 +62,15 @@ impl Region {
             }
         }
         let cleaned = clean(region);
-        let inset = convex_inset(&cleaned, nozzle / 2.0, 0.2).unwrap_or_else(|| {
-            if cleaned.0.is_empty() {
-                cleaned.clone()
-            } else {
-                cleaned.buffer(-nozzle / 2.0)
-            }
-        });
+        let inset = convex_inset(&cleaned, nozzle / 2.0, 0.2)
+            .or_else(|| super::offset::raw_inset(&cleaned, nozzle / 2.0, 0.2))
+            .unwrap_or_else(|| {
+                if cleaned.0.is_empty() {
+                    cleaned.clone()
+                } else {
+                    cleaned.buffer(-nozzle / 2.0)
+                }
+            });
         let mut rings = Vec::new();
         for p in &inset.0 {
             rings.push(open_ring(p.exterior()));

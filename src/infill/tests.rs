@@ -851,3 +851,59 @@ fn gyroid_layers_half_a_period_apart_are_alike() {
         );
     }
 }
+
+/// The raw offset of concave regions (an L, a star, a star with a hole, an L with two
+/// holes, islands) covers the same area as geo's buffer wherever it answers, and it
+/// answers at a half-nozzle inset of each (the inset once dominated a concave layer's
+/// time: 15.7 µs of the star's 17.5 with lines). Where the offset pinches or an edge
+/// vanishes, it declines.
+#[test]
+fn raw_inset_matches_the_general_buffer() {
+    use geo::{Area, Buffer, Translate};
+    let star_with_hole = MultiPolygon::new(vec![Polygon::new(
+        shapes::star(10.0, 4.5).0[0].exterior().clone(),
+        vec![shapes::circle(1.5).0[0].exterior().clone()],
+    )]);
+    let l_with_holes = MultiPolygon::new(vec![Polygon::new(
+        shapes::l_shape(20.0).0[0].exterior().clone(),
+        vec![
+            shapes::circle(2.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(-5.0),
+            shapes::star(2.0, 1.0).0[0]
+                .exterior()
+                .clone()
+                .translate(5.0, -5.0),
+        ],
+    )]);
+    let mut islands = shapes::star(10.0, 4.5);
+    islands
+        .0
+        .extend(shapes::l_shape(10.0).translate(30.0, 0.0).0);
+    let cases = [
+        ("L", shapes::l_shape(20.0)),
+        ("star", shapes::star(10.0, 4.5)),
+        ("star with a hole", star_with_hole),
+        ("L with holes", l_with_holes),
+        ("islands", islands),
+    ];
+    for (name, region) in &cases {
+        assert!(
+            offset::raw_inset(region, W / 2.0, 0.2).is_some(),
+            "{name}: no raw inset at half a nozzle"
+        );
+        for d in [0.2, 1.0, 2.0, 3.0, 4.0, 6.0] {
+            let slow = region.buffer(-d);
+            if let Some(fast) = offset::raw_inset(region, d, 0.05) {
+                let (a, b) = (fast.unsigned_area(), slow.unsigned_area());
+                assert!(
+                    (a - b).abs() <= 0.005 * b.max(1.0),
+                    "{name} inset by {d}: {a} here, {b} by geo's buffer"
+                );
+            }
+        }
+    }
+    // The L's arms pinch off its corner square well before 6 mm; a star's tips vanish.
+    assert!(offset::raw_inset(&shapes::star(10.0, 4.5), 4.0, 0.2).is_none());
+}

@@ -165,16 +165,15 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
         let stroke = (nozzle * scale).max(1.0);
         if options.travel {
             let mut travel = String::new();
-            for w in panel.paths.polylines.windows(2) {
-                if let (Some(&a), Some(&b)) = (w[0].0.last(), w[1].0.first()) {
-                    let ((x0, y0), (x1, y1)) = (px(a), px(b));
+            for route in &panel.paths.travels {
+                for (k, &c) in route.0.iter().enumerate() {
+                    let (x, y) = px(c);
                     let _ = write!(
                         travel,
-                        "M{} {}L{} {}",
-                        num(x0, 2),
-                        num(y0, 2),
-                        num(x1, 2),
-                        num(y1, 2)
+                        "{}{} {}",
+                        if k == 0 { 'M' } else { 'L' },
+                        num(x, 2),
+                        num(y, 2)
                     );
                 }
             }

@@ -199,13 +199,31 @@ impl Region {
             }
             Pattern::Spiral => curves::spiral(self, centre, theta, w / rho, &mut paths),
             Pattern::Lightning => {
-                lightning::lightning(self, centre, theta, 2.0 * w / rho, &mut paths)
+                // Branches are spaced along the outline, so how much they cover depends on
+                // the shape (a star's long outline gets more): measure a first tree and
+                // space the branches again so that the density printed is the one asked.
+                let mut spacing = 2.0 * w / rho;
+                for _ in 0..2 {
+                    paths.clear();
+                    lightning::lightning(self, centre, theta, spacing, &mut paths);
+                    let length: f64 = paths.iter().map(|p| super::travel::length(p)).sum();
+                    let printed = length * w / self.area;
+                    if !(printed > 0.0) || (printed / rho - 1.0).abs() < 0.03 {
+                        break;
+                    }
+                    spacing *= (printed / rho).clamp(0.25, 4.0);
+                }
             }
         }
         let min_segment = w / 10.0;
         paths.retain_mut(|p| order::simplify(p, min_segment));
         let monotonic = params.order == Order::Monotonic;
-        Ok(order::order(paths, monotonic, Frame::new(centre, theta)))
+        Ok(order::order(
+            paths,
+            monotonic,
+            Frame::new(centre, theta),
+            &self.rings,
+        ))
     }
 }
 

@@ -171,8 +171,7 @@ fn every_pattern_stays_inside_every_shape() {
 /// Each shape is scaled to span at least 12 repeats of the pattern (`cell`) across its
 /// narrowest part: the rule the module documentation states (with fewer, a line more or
 /// less across the region is a large share of it: at 4 repeats densities are up to a
-/// quarter off). Exceptions: lightning is sparse by design (asserted: 0.5–0.8 of the
-/// density asked, 0.5–1.1 on the star, whose long outline gets the most branches); a gyroid
+/// quarter off). Exceptions: a gyroid
 /// layer varies with its height like the surface's section (asserted: each layer within
 /// −15%/+30%, the mean over a period of heights within 10%).
 #[test]
@@ -194,14 +193,17 @@ fn density_is_what_was_asked() {
                 let label = format!("{pattern} on {name} ×{k:.1} at {rho}");
                 match pattern {
                     Pattern::Lightning => {
-                        let d = density(
-                            &prepared,
-                            &prepared.fill(&Params::new(pattern, rho, W)).unwrap(),
-                        );
-                        // Measured: 0.57–0.69 of ρ on the square, circle, L and holed
-                        // square, about 1.0 on the star.
-                        let most = if name == "star" { 1.1 } else { 0.8 };
-                        check(d >= 0.5 * rho && d <= most * rho, format!("{label}: {d}"));
+                        // The branches are spaced again after a first tree so that the
+                        // density printed is the one asked (it was 0.57–0.69 of it on
+                        // compact shapes, about all of it on the star).
+                        for angle in [0.0, 30.0, 71.0] {
+                            let params = Params::new(pattern, rho, W).angle(angle);
+                            let d = density(&prepared, &prepared.fill(&params).unwrap());
+                            check(
+                                (d / rho - 1.0).abs() < 0.1,
+                                format!("{label} at {angle}°: {d}"),
+                            );
+                        }
                     }
                     Pattern::Gyroid => {
                         // Every layer of a whole period of heights (a quarter period
@@ -435,7 +437,8 @@ fn travel_is_reported_and_short() {
                 (b - a).x.hypot((b - a).y)
             })
             .sum();
-        assert!((travel - paths.travel).abs() < 1e-6, "{pattern}");
+        // Routed around the hole where a straight move would cross it: never shorter.
+        assert!(paths.travel >= travel - 1e-6, "{pattern}");
         let length: f64 = paths
             .polylines
             .iter()
@@ -906,4 +909,64 @@ fn raw_inset_matches_the_general_buffer() {
     }
     // The L's arms pinch off its corner square well before 6 mm; a star's tips vanish.
     assert!(offset::raw_inset(&shapes::star(10.0, 4.5), 4.0, 0.2).is_none());
+}
+
+/// Travel stays inside the region: a move that would cross a hole (or leave a concave
+/// outline) goes around it, and the travel reported is the length of the moves as routed.
+/// Straight moves once crossed the holed square's hole on most layers.
+#[test]
+fn travel_goes_around_holes() {
+    let two_holes = MultiPolygon::new(vec![Polygon::new(
+        shapes::square(40.0).0[0].exterior().clone(),
+        vec![
+            shapes::circle(5.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(-9.0),
+            shapes::star(6.0, 3.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(9.0),
+        ],
+    )]);
+    let cases = [
+        ("holed square", shapes::holed_square(40.0, 10.0)),
+        ("two holes", two_holes),
+        ("star", shapes::star(10.0, 4.5)),
+        ("L", shapes::l_shape(20.0)),
+    ];
+    for (name, region) in &cases {
+        let rings = rings_of(region);
+        let prepared = Region::new(region, W).unwrap();
+        for pattern in Pattern::ALL {
+            for angle in [0.0, 35.0, 90.0] {
+                let paths = prepared
+                    .fill(&Params::new(pattern, 0.15, W).angle(angle).z(0.7))
+                    .unwrap();
+                let label = format!("{pattern} on {name} at {angle}°");
+                assert_eq!(
+                    paths.travels.len(),
+                    paths.polylines.len().saturating_sub(1),
+                    "{label}"
+                );
+                let mut total = 0.0;
+                for (k, route) in paths.travels.iter().enumerate() {
+                    assert_eq!(route.0.first(), paths.polylines[k].0.last(), "{label}");
+                    assert_eq!(route.0.last(), paths.polylines[k + 1].0.first(), "{label}");
+                    for seg in route.0.windows(2) {
+                        total += (seg[1] - seg[0]).x.hypot((seg[1] - seg[0]).y);
+                        for i in 1..8 {
+                            let p = seg[0] + (seg[1] - seg[0]) * (i as f64 / 8.0);
+                            assert!(
+                                inside(&rings, p) || distance_to_boundary(&rings, p) < 0.05,
+                                "{label}: travel {k} passes {p:?}, outside the region: {:?}",
+                                route.0
+                            );
+                        }
+                    }
+                }
+                assert!((total - paths.travel).abs() < 1e-6, "{label}");
+            }
+        }
+    }
 }

@@ -22,9 +22,13 @@ pub mod format;
 pub mod infill;
 pub mod ir;
 mod lint;
+#[cfg(feature = "mesh")]
+pub mod mesh;
 pub mod number;
 pub mod plot;
 pub mod profile;
+#[cfg(feature = "mesh")]
+pub mod slice;
 mod syntax;
 
 pub use syntax::MAX_DIAGNOSTICS;

@@ -464,6 +464,11 @@ fn every_help_example_of_plot_and_preview_runs() {
     .unwrap();
     std::fs::write(dir.join("profile.rot"), "+10L25%, -10l25%\n").unwrap();
     std::fs::write(
+        dir.join("part.stl"),
+        rotlang::mesh::shapes::tube(15.0, 5.0, 10.0, 64).to_binary_stl(),
+    )
+    .unwrap();
+    std::fs::write(
         dir.join("part.json"),
         r#"{"layer_height": 0.2, "layer_heights": [0.3, 0.2, 0.2, 0.2, 0.2]}"#,
     )
@@ -559,4 +564,78 @@ fn every_bench_template_parses() {
         }
     }
     assert!(seen >= 1, "no bench template found");
+}
+
+/// `rotlang preview --shape part.stl`: every layer is the mesh's section at its middle
+/// (a tube's ring, with its hole), filled inside its walls, the shells solid; the summary
+/// covers the whole part, and two templates give two summaries to compare.
+#[cfg(feature = "cli")]
+#[test]
+fn preview_of_a_mesh_fills_its_sections() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh-preview");
+    std::fs::create_dir_all(&dir).unwrap();
+    let stl = dir.join("tube.stl");
+    std::fs::write(
+        &stl,
+        rotlang::mesh::shapes::tube(15.0, 5.0, 10.0, 64).to_binary_stl(),
+    )
+    .unwrap();
+    let run = |template: &str, pattern: &str| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(["preview", template, "--shape"])
+            .arg(&stl)
+            .args([
+                "--pattern",
+                pattern,
+                "--layers",
+                "0..50",
+                "--format",
+                "json",
+            ])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert!(stderr.contains("50 layers"), "{stderr}");
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    let v = run("+45", "grid");
+    let layers = v["layers"].as_array().unwrap();
+    assert_eq!(layers.len(), 50);
+    for l in layers {
+        let i = l["index"].as_u64().unwrap();
+        let section = l["section"].as_array().unwrap();
+        assert_eq!(section.len(), 1, "layer {i}: one ring");
+        assert_eq!(
+            section[0].as_array().unwrap().len(),
+            2,
+            "layer {i}: with its hole"
+        );
+        let solid = i < 3 || i >= 46;
+        assert_eq!(l["density"].as_f64().unwrap() == 1.0, solid, "layer {i}");
+        // Every point of the infill lies in the ring less two walls and half a nozzle.
+        for line in l["polylines"].as_array().unwrap() {
+            for p in line.as_array().unwrap() {
+                let (x, y) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
+                let r = x.hypot(y);
+                assert!(
+                    r > 5.0 + 0.95 && r < 15.0 - 0.95,
+                    "layer {i}: {x}, {y} at r {r}"
+                );
+            }
+        }
+    }
+    let summary = &v["summary"];
+    assert_eq!(summary["layers"], 50);
+    let other = run("0, 90", "lines");
+    let (a, b) = (
+        summary["extrusion_mm"].as_f64().unwrap(),
+        other["summary"]["extrusion_mm"].as_f64().unwrap(),
+    );
+    assert!(a > 0.0 && b > 0.0 && a != b, "{a} {b}");
+    assert!(summary["time_s"].as_f64().unwrap() > a / 100.0);
 }

@@ -12,6 +12,7 @@ pub mod explain;
 pub mod files;
 pub mod fmt;
 pub mod model;
+pub mod part;
 pub mod plot;
 pub mod preview;
 mod sources;

@@ -19,12 +19,19 @@ Examples:
   rotlang preview '+30/50%' --pattern hexagons --shape ring --layers 10..=13 --format json
   rotlang preview '+15' --pattern lines --shape part.svg --size 40 --centring global
   rotlang preview '+15' --shape outline.json --pattern triangles --density 15%
+  rotlang preview '0MB, +30' --shape part.stl --layers 10..14 --walls 3
 
 Each panel shows one layer: the region's outline and holes, the infill lines at the
 nozzle's width coloured by print order (blue first, red last), travel moves dashed, and
 the layer's index, height, angle, fill and governing instruction. Solid layers use their
 fill kind at 100%: D the pattern, S --solid-pattern, O concentric, M monotonic lines,
 R lines.
+
+--shape FILE.stl|.obj (a mesh): the part is sliced at the middle of each layer (the
+model is as tall as the mesh unless --height or --model says otherwise), each section
+less --walls loops of nozzle width is filled, the bottom and top shell layers solid; a
+summary of the whole part (infill extrusion, travel, time at --speed) is printed to
+stderr, and under `summary` with --format json, so templates can be compared.
 
 --shape FILE: an .svg file (every <path> and <polygon>; user units read as mm, y up,
 transforms not applied; nested outlines become holes) or a .json multi-polygon
@@ -72,6 +79,8 @@ pub struct PreviewArgs {
     /// The pattern of `S` layers (the profile's solid infill pattern).
     #[arg(long, value_enum, default_value_t, help_heading = "Infill")]
     pub solid_pattern: PatternArg,
+    #[command(flatten)]
+    pub part: super::part::PartArgs,
     /// The region: square, circle, ring, star, l, or a FILE (.svg or .json).
     #[arg(
         long,
@@ -415,6 +424,9 @@ pub fn run(
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> Result<i32, UsageError> {
+    if super::part::is_mesh(&args.shape) {
+        return super::part::run(args, out, err);
+    }
     let model = args.model.build(None)?;
     let region = shape(&args.shape, args.size)?;
     if !(0.01..=10.0).contains(&args.nozzle) {

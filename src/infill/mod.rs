@@ -103,7 +103,7 @@ mod straight;
 mod travel;
 
 pub use geo::{Coord, LineString, MultiPolygon, Polygon};
-pub use region::Region;
+pub use region::{Region, inset};
 pub use schedule::{LayerFill, Schedule, Settings};
 
 use std::fmt;

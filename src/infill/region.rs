@@ -227,6 +227,18 @@ impl Region {
     }
 }
 
+/// The region moved inward by `d` mm (the erosion by a disc; what walls leave to the
+/// infill): the fast exact offsets where they apply, geo's buffer otherwise.
+pub fn inset(region: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
+    let cleaned = clean(region);
+    if cleaned.0.is_empty() || !(d > 0.0) {
+        return cleaned;
+    }
+    convex_inset(&cleaned, d, 0.2)
+        .or_else(|| super::offset::raw_inset(&cleaned, d, 0.2))
+        .unwrap_or_else(|| cleaned.buffer(-d))
+}
+
 /// The region without degenerate rings, every ring closed.
 fn clean(region: &MultiPolygon<f64>) -> MultiPolygon<f64> {
     let keep = |ring: &LineString<f64>| {

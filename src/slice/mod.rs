@@ -28,6 +28,9 @@ use geo::{Coord, LineString, MultiPolygon, Polygon};
 
 use crate::mesh::Mesh;
 
+pub mod part;
+pub use part::{Part, PartLayer, PartOptions, Summary};
+
 /// One layer's section.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Section {

@@ -1,0 +1,288 @@
+//! `rotlang preview --shape part.stl`: a real part, sliced, filled layer by layer.
+
+use std::io::Write;
+
+use super::UsageError;
+use super::plot::{emit, template};
+use super::preview::{CentringArg, Format, PreviewArgs};
+use crate::infill::preview::{self, Panel, PreviewOptions};
+use crate::infill::{Centring, Settings};
+use crate::ir::Fill;
+use crate::mesh::Mesh;
+use crate::plot::{num, shorten};
+use crate::slice::{Part, PartOptions, Summary};
+
+/// The most bytes a mesh file may have (a 25-million-triangle binary STL).
+const MAX_MESH_BYTES: u64 = 84 + 50 * crate::mesh::MAX_TRIANGLES as u64;
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct PartArgs {
+    /// For a mesh: wall loops around the infill (each a nozzle wide).
+    #[arg(long, value_name = "N", default_value_t = 2, help_heading = "Part (a mesh as --shape)",
+          value_parser = clap::value_parser!(u32).range(0..=100))]
+    pub walls: u32,
+    /// For a mesh: the infill print speed in mm/s, for the summary's time.
+    #[arg(
+        long,
+        value_name = "MM/S",
+        default_value_t = 100.0,
+        help_heading = "Part (a mesh as --shape)"
+    )]
+    pub speed: f64,
+    /// For a mesh: the travel speed in mm/s, for the summary's time.
+    #[arg(
+        long,
+        value_name = "MM/S",
+        default_value_t = 200.0,
+        help_heading = "Part (a mesh as --shape)"
+    )]
+    pub travel_speed: f64,
+}
+
+/// Whether `--shape` names a mesh file.
+pub fn is_mesh(shape: &str) -> bool {
+    let lower = shape.to_ascii_lowercase();
+    lower.ends_with(".stl") || lower.ends_with(".obj")
+}
+
+fn read_mesh(name: &str) -> Result<Mesh, UsageError> {
+    use std::io::Read;
+    let file =
+        std::fs::File::open(name).map_err(|e| UsageError(format!("cannot read {name}: {e}")))?;
+    let mut bytes = Vec::new();
+    file.take(MAX_MESH_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| UsageError(format!("cannot read {name}: {e}")))?;
+    if bytes.len() as u64 > MAX_MESH_BYTES {
+        return Err(UsageError(format!(
+            "{name} is larger than {MAX_MESH_BYTES} bytes"
+        )));
+    }
+    let mesh = Mesh::read(name, &bytes)
+        .map_err(|e| UsageError(format!("cannot read a mesh from {name}: {e}")))?;
+    if mesh.triangles.is_empty() {
+        return Err(UsageError(format!("{name} has no triangles")));
+    }
+    Ok(mesh)
+}
+
+pub fn run(
+    args: &PreviewArgs,
+    out: &mut dyn Write,
+    err: &mut dyn Write,
+) -> Result<i32, UsageError> {
+    for (name, v) in [
+        ("--speed", args.part.speed),
+        ("--travel-speed", args.part.travel_speed),
+    ] {
+        if !(v.is_finite() && v > 0.0 && v <= 10_000.0) {
+            return Err(UsageError(format!(
+                "{name} must be above 0 and at most 10000 mm/s, found {v}"
+            )));
+        }
+    }
+    if !(0.01..=10.0).contains(&args.nozzle) {
+        return Err(UsageError(format!(
+            "--nozzle must be between 0.01 and 10 mm, found {}",
+            args.nozzle
+        )));
+    }
+    let mesh = read_mesh(&args.shape)?;
+    let (lo, hi) = mesh.bounds().unwrap_or(([0.0; 3], [0.0; 3]));
+    let m = &args.model;
+    let model = if m.height.is_none() && m.model.is_none() {
+        // As tall as the mesh.
+        let model = crate::eval::Model::from_total_height(
+            (hi[2] - lo[2]).max(1e-3),
+            m.layer_height.unwrap_or(0.2),
+            m.first_layer_height,
+        )
+        .map_err(|e| UsageError(format!("invalid model: {e}")))?;
+        let (bottom, top) = (
+            m.bottom_shell_layers.unwrap_or(model.bottom_shells()),
+            m.top_shell_layers.unwrap_or(model.top_shells()),
+        );
+        model.with_shells(bottom, top)
+    } else {
+        m.build(None)?
+    };
+    let (input, parse) = match template(&args.template, &args.file, args.target, args.color, err)? {
+        Ok(t) => t,
+        Err(code) => return Ok(code),
+    };
+    let settings = Settings {
+        pattern: args.pattern.into(),
+        density: args.density,
+        nozzle: args.nozzle,
+        centring: match args.centring {
+            CentringArg::Object => Centring::Object,
+            CentringArg::Global => Centring::Global,
+        },
+        solid_pattern: args.solid_pattern.into(),
+    };
+    let range = args.layers.clone().unwrap_or(0..8);
+    if range.start >= model.len() {
+        return Err(UsageError(format!(
+            "--layers starts at layer {} but the part has {} layers (0..{})",
+            range.start,
+            model.len(),
+            model.len()
+        )));
+    }
+    let part = Part::new(
+        &mesh,
+        &parse.template,
+        &model,
+        args.model.options(),
+        settings,
+        PartOptions {
+            walls: args.part.walls,
+            shells: true,
+        },
+    );
+    // Every layer is filled for the summary; only the shown ones are kept.
+    let mut summary = Summary::default();
+    let mut shown = Vec::new();
+    for layer in part {
+        let layer = layer.map_err(|e| UsageError(e.to_string()))?;
+        summary.add(&layer, args.part.speed, args.part.travel_speed);
+        if range.contains(&layer.layer.index) {
+            shown.push(layer);
+        }
+    }
+    let text = match args.format {
+        Format::Svg => {
+            let labels: Vec<(String, String)> = shown
+                .iter()
+                .map(|l| {
+                    let instruction = l
+                        .layer
+                        .instruction
+                        .and_then(|s| input.text.get(s.range()))
+                        .map_or_else(|| "(holds)".to_owned(), |t| shorten(t, 28));
+                    let kind = match l.params.density {
+                        d if d < 1.0 => {
+                            format!("{} {}%", l.params.pattern, num(d * 100.0, 1))
+                        }
+                        _ if l.layer.fill == Fill::Sparse => {
+                            format!("shell ({})", l.params.pattern)
+                        }
+                        _ => format!("{} ({})", l.layer.fill.name(), l.params.pattern),
+                    };
+                    (
+                        format!(
+                            "layer {} · z {} mm · {}°",
+                            l.layer.index,
+                            num(l.layer.top, 3),
+                            num(l.layer.angle, 2)
+                        ),
+                        format!("{instruction} · {kind}"),
+                    )
+                })
+                .collect();
+            let panels: Vec<Panel<'_>> = shown
+                .iter()
+                .zip(&labels)
+                .map(|(l, (title, subtitle))| Panel {
+                    region: &l.section.region,
+                    paths: &l.paths,
+                    title: title.clone(),
+                    subtitle: subtitle.clone(),
+                })
+                .collect();
+            let options = PreviewOptions {
+                columns: args.columns,
+                ..PreviewOptions::default()
+            };
+            preview::svg(&panels, settings.nozzle, &options)
+        }
+        Format::Json => {
+            let layers: Vec<serde_json::Value> = shown
+                .iter()
+                .map(|l| {
+                    serde_json::json!({
+                        "index": l.layer.index,
+                        "bottom": l.layer.bottom,
+                        "top": l.layer.top,
+                        "z": l.section.z,
+                        "angle": l.layer.angle,
+                        "fill": l.layer.fill.name(),
+                        "pattern": l.params.pattern.name(),
+                        "density": l.params.density,
+                        "length": l.paths.length,
+                        "travel": l.paths.travel,
+                        "open": l.section.open,
+                        "bridged": l.section.bridged,
+                        "section": rings(&l.section.region),
+                        "polylines": l.paths.polylines.iter().map(|p| p.0.iter().map(|c| [c.x, c.y]).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                    })
+                })
+                .collect();
+            let mut text = serde_json::to_string(&serde_json::json!({
+                "template": input.text,
+                "summary": summary_json(&summary, args),
+                "layers": layers,
+            }))
+            .unwrap_or_default();
+            text.push('\n');
+            text
+        }
+    };
+    emit(&text, args.out.as_deref(), out)?;
+    let _ = writeln!(
+        err,
+        "{}: {} layers, infill {} m extruded, {} m travel, {} at {} mm/s (travel {} mm/s){}",
+        args.shape,
+        summary.layers,
+        num(summary.extrusion / 1000.0, 2),
+        num(summary.travel / 1000.0, 2),
+        duration(summary.time),
+        num(args.part.speed, 1),
+        num(args.part.travel_speed, 1),
+        if summary.open_layers > 0 {
+            format!(
+                "; {} layers have sections that could not be closed (holes in the mesh)",
+                summary.open_layers
+            )
+        } else {
+            String::new()
+        }
+    );
+    Ok(0)
+}
+
+fn summary_json(s: &Summary, args: &PreviewArgs) -> serde_json::Value {
+    serde_json::json!({
+        "layers": s.layers,
+        "extrusion_mm": s.extrusion,
+        "travel_mm": s.travel,
+        "time_s": s.time,
+        "speed": args.part.speed,
+        "travel_speed": args.part.travel_speed,
+        "open_layers": s.open_layers,
+        "bridged": s.bridged,
+        "walls": args.part.walls,
+    })
+}
+
+fn rings(region: &geo::MultiPolygon<f64>) -> Vec<Vec<Vec<[f64; 2]>>> {
+    region
+        .0
+        .iter()
+        .map(|p| {
+            std::iter::once(p.exterior())
+                .chain(p.interiors())
+                .map(|r| r.0.iter().map(|c| [c.x, c.y]).collect())
+                .collect()
+        })
+        .collect()
+}
+
+fn duration(seconds: f64) -> String {
+    let s = seconds.round() as u64;
+    if s >= 3600 {
+        format!("{}h {:02}min", s / 3600, (s % 3600) / 60)
+    } else {
+        format!("{}min {:02}s", s / 60, s % 60)
+    }
+}

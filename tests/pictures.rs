@@ -639,3 +639,64 @@ fn preview_of_a_mesh_fills_its_sections() {
     assert!(a > 0.0 && b > 0.0 && a != b, "{a} {b}");
     assert!(summary["time_s"].as_f64().unwrap() > a / 100.0);
 }
+
+/// `preview --3d`: the part's layers stacked in an isometric SVG (or an HTML page holding
+/// it), one group per layer from the bottom up; rendered, the bottom layers' blue lies
+/// below the top layers' red.
+#[cfg(feature = "cli")]
+#[test]
+fn preview_3d_stacks_the_layers_of_a_mesh() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh-3d");
+    std::fs::create_dir_all(&dir).unwrap();
+    let stl = dir.join("cylinder.stl");
+    std::fs::write(
+        &stl,
+        rotlang::mesh::shapes::tube(10.0, 0.0, 8.0, 48).to_binary_stl(),
+    )
+    .unwrap();
+    for (file, html) in [("cylinder.svg", false), ("cylinder.html", true)] {
+        let picture = dir.join(file);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(["preview", "+30", "--shape"])
+            .arg(&stl)
+            .arg("--3d")
+            .arg(&picture)
+            .args(["--format", "json"])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = std::fs::read_to_string(&picture).unwrap();
+        assert_eq!(text.starts_with("<!doctype html>"), html);
+        let svg = &text[text.find("<svg").unwrap()..text.rfind("</svg>").unwrap() + 6];
+        let heights: Vec<f64> = svg
+            .match_indices("<g data-z=\"")
+            .map(|(i, m)| {
+                let rest = &svg[i + m.len()..];
+                rest[..rest.find('"').unwrap()].parse().unwrap()
+            })
+            .collect();
+        // 8 mm at 0.2 mm: 40 layers, each cut at its middle.
+        assert_eq!(heights.len(), 40, "{heights:?}");
+        assert!((heights[0] - 0.1).abs() < 1e-9 && (heights[39] - 7.9).abs() < 1e-9);
+        assert!(heights.windows(2).all(|w| w[0] < w[1]));
+        let pixmap = render(svg, &format!("3d-{file}"));
+        // The mean row of blue pixels lies below (a larger y) that of red ones.
+        let (mut blue, mut red) = ((0.0, 0usize), (0.0, 0usize));
+        for (i, c) in pixmap.pixels().iter().enumerate() {
+            let y = (i as u32 / pixmap.width()) as f64;
+            let (r, g, b) = (c.red() as i32, c.green() as i32, c.blue() as i32);
+            if b > r + 60 && b > g + 60 {
+                blue = (blue.0 + y, blue.1 + 1);
+            }
+            if r > b + 60 && r > g + 60 {
+                red = (red.0 + y, red.1 + 1);
+            }
+        }
+        assert!(blue.1 > 50 && red.1 > 50, "{blue:?} {red:?}");
+        assert!(blue.0 / blue.1 as f64 > red.0 / red.1 as f64);
+    }
+}

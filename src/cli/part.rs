@@ -37,6 +37,14 @@ pub struct PartArgs {
         help_heading = "Part (a mesh as --shape)"
     )]
     pub travel_speed: f64,
+    /// For a mesh: also draw the part's layers stacked in 3D (isometric) to FILE: an
+    /// .svg, or an .html page holding it. At most 150 layers are drawn, evenly spread.
+    #[arg(
+        long = "3d",
+        value_name = "FILE",
+        help_heading = "Part (a mesh as --shape)"
+    )]
+    pub three_d: Option<std::path::PathBuf>,
 }
 
 /// Whether `--shape` names a mesh file.
@@ -143,12 +151,46 @@ pub fn run(
     // Every layer is filled for the summary; only the shown ones are kept.
     let mut summary = Summary::default();
     let mut shown = Vec::new();
+    // The layers of the 3D picture (every `step`-th): their sections and paths.
+    let step = model.len().div_ceil(150).max(1);
+    let mut stacked = Vec::new();
     for layer in part {
         let layer = layer.map_err(|e| UsageError(e.to_string()))?;
         summary.add(&layer, args.part.speed, args.part.travel_speed);
+        if args.part.three_d.is_some() && layer.layer.index % step == 0 {
+            stacked.push((
+                layer.section.z,
+                layer.section.region.clone(),
+                layer.paths.clone(),
+            ));
+        }
         if range.contains(&layer.layer.index) {
             shown.push(layer);
         }
+    }
+    if let Some(path) = &args.part.three_d {
+        let slabs: Vec<preview::Slab<'_>> = stacked
+            .iter()
+            .map(|(z, region, paths)| preview::Slab {
+                z: *z,
+                region,
+                paths,
+            })
+            .collect();
+        let svg = preview::isometric(&slabs, 900.0);
+        let html = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"));
+        let text = if html {
+            format!(
+                "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>{}</title></head>\n<body style=\"margin:0\">\n{svg}</body></html>\n",
+                crate::plot::escape(&args.shape)
+            )
+        } else {
+            svg
+        };
+        std::fs::write(path, text)
+            .map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
     }
     let text = match args.format {
         Format::Svg => {

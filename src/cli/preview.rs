@@ -20,6 +20,7 @@ Examples:
   rotlang preview '+15' --pattern lines --shape part.svg --size 40 --centring global
   rotlang preview '+15' --shape outline.json --pattern triangles --density 15%
   rotlang preview '0MB, +30' --shape part.stl --layers 10..14 --walls 3
+  rotlang preview '+45' --shape part.stl --pattern gyroid --3d part.html --out layers.svg
 
 Each panel shows one layer: the region's outline and holes, the infill lines at the
 nozzle's width coloured by print order (blue first, red last), travel moves dashed, and

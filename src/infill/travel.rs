@@ -4,12 +4,10 @@
 
 use geo::Coord;
 
-/// Where a move from `p` to `q` crosses one ring: (fraction along the move, distance
-/// along the ring from its first point).
-fn hits(ring: &[Coord], cumulative: &[f64], p: Coord, q: Coord) -> Vec<(f64, f64)> {
+/// Where a move from `p` to `q` crosses ring `r`: the fractions along the move.
+fn hits(ring: &[Coord], r: usize, p: Coord, q: Coord, out: &mut Vec<(f64, usize)>) {
     let n = ring.len();
     let d = q - p;
-    let mut out = Vec::new();
     for i in 0..n {
         let (a, b) = (ring[i], ring[(i + 1) % n]);
         let e = b - a;
@@ -21,17 +19,17 @@ fn hits(ring: &[Coord], cumulative: &[f64], p: Coord, q: Coord) -> Vec<(f64, f64
         let t = (ap.x * e.y - ap.y * e.x) / denom;
         let u = (ap.x * d.y - ap.y * d.x) / denom;
         if (0.0..=1.0).contains(&t) && (0.0..1.0).contains(&u) {
-            out.push((t, cumulative[i] + u * (cumulative[i + 1] - cumulative[i])));
+            out.push((t, r));
         }
     }
-    out.sort_by(|x, y| x.0.total_cmp(&y.0));
-    out
 }
 
 /// The rings with their cumulative lengths, ready for many moves.
 pub(crate) struct Router<'a> {
     rings: &'a [Vec<Coord>],
     cumulative: Vec<Vec<f64>>,
+    /// Each ring's bounding box: a move or point outside it cannot cross it or be in it.
+    boxes: Vec<(Coord, Coord)>,
 }
 
 impl<'a> Router<'a> {
@@ -51,7 +49,40 @@ impl<'a> Router<'a> {
                 c
             })
             .collect();
-        Router { rings, cumulative }
+        let boxes = rings
+            .iter()
+            .map(|r| {
+                r.iter().fold(
+                    (
+                        Coord {
+                            x: f64::INFINITY,
+                            y: f64::INFINITY,
+                        },
+                        Coord {
+                            x: f64::NEG_INFINITY,
+                            y: f64::NEG_INFINITY,
+                        },
+                    ),
+                    |(lo, hi), c| {
+                        (
+                            Coord {
+                                x: lo.x.min(c.x),
+                                y: lo.y.min(c.y),
+                            },
+                            Coord {
+                                x: hi.x.max(c.x),
+                                y: hi.y.max(c.y),
+                            },
+                        )
+                    },
+                )
+            })
+            .collect();
+        Router {
+            rings,
+            cumulative,
+            boxes,
+        }
     }
 
     /// The move from `p` to `q`: `[p, q]` when it stays inside, else each stretch that
@@ -62,12 +93,27 @@ impl<'a> Router<'a> {
             return vec![p, q];
         }
         let mut cuts: Vec<(f64, usize)> = Vec::new();
-        for (r, (ring, cumulative)) in self.rings.iter().zip(&self.cumulative).enumerate() {
-            cuts.extend(
-                hits(ring, cumulative, p, q)
-                    .into_iter()
-                    .map(|(t, _)| (t, r)),
-            );
+        let (lo, hi) = (
+            Coord {
+                x: p.x.min(q.x),
+                y: p.y.min(q.y),
+            },
+            Coord {
+                x: p.x.max(q.x),
+                y: p.y.max(q.y),
+            },
+        );
+        for (r, ring) in self.rings.iter().enumerate() {
+            let (a, b) = self.boxes[r];
+            if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
+                continue;
+            }
+            hits(ring, r, p, q, &mut cuts);
+        }
+        // The usual move, between two ends on a ring and across nothing: straight.
+        let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
+        if !cuts.iter().any(|&(t, _)| interior(t)) && self.inside((p + q) / 2.0) {
+            return vec![p, q];
         }
         // A move between two points of one ring (line ends lie on the inset's rings) may
         // find no crossing at all, its ends being on the ring: the middle of each
@@ -98,7 +144,10 @@ impl<'a> Router<'a> {
     /// Even-odd over every ring.
     fn inside(&self, p: Coord) -> bool {
         let mut inside = false;
-        for ring in self.rings {
+        for (ring, &(lo, hi)) in self.rings.iter().zip(&self.boxes) {
+            if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
+                continue;
+            }
             let n = ring.len();
             for i in 0..n {
                 let (a, b) = (ring[i], ring[(i + 1) % n]);

@@ -373,5 +373,10 @@ pub mod shapes {
     }
 }
 
+#[cfg(feature = "3mf")]
+mod threemf;
+#[cfg(feature = "3mf")]
+pub use threemf::read_3mf;
+
 #[cfg(test)]
 mod tests;

@@ -23,6 +23,8 @@ pub struct Region {
     max: Coord,
     area: f64,
     nozzle: f64,
+    /// One convex outline, no hole: every straight travel stays inside, none is routed.
+    convex: bool,
 }
 
 impl Region {
@@ -85,7 +87,9 @@ impl Region {
             min = Coord::zero();
             max = Coord::zero();
         }
+        let convex = rings.len() == 1 && outlines == 1 && convex_ring(&rings[0]).is_some();
         Ok(Region {
+            convex,
             inset,
             outline: cleaned,
             rings,
@@ -222,7 +226,7 @@ impl Region {
             paths,
             monotonic,
             Frame::new(centre, theta),
-            &self.rings,
+            if self.convex { &[] } else { &self.rings },
         ))
     }
 }

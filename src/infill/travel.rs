@@ -89,6 +89,7 @@ impl<'a> Router<'a> {
     /// leaves the region (into a hole, or out of a concave outline) replaced by a walk
     /// along the ring it crossed, the shorter way round.
     pub(crate) fn route(&self, p: Coord, q: Coord) -> Vec<Coord> {
+        // No rings: a convex region, where every straight move stays inside.
         if self.rings.iter().any(|r| r.len() < 3) || self.rings.is_empty() {
             return vec![p, q];
         }

@@ -259,6 +259,9 @@ fn chain(
 /// Loops into polygons, even-odd: a loop inside an odd number of others is a hole of the
 /// smallest loop around it.
 pub fn nest(mut loops: Vec<Vec<Coord>>) -> MultiPolygon<f64> {
+    for l in &mut loops {
+        drop_inline(l);
+    }
     loops.retain(|l| l.len() >= 3 && area(l) != 0.0);
     // Largest first: a loop's containers come before it.
     loops.sort_by(|a, b| area(b).abs().total_cmp(&area(a).abs()));
@@ -296,6 +299,39 @@ pub fn nest(mut loops: Vec<Vec<Coord>>) -> MultiPolygon<f64> {
         }
     }
     MultiPolygon::new(polygons.into_iter().map(|(_, p)| p).collect())
+}
+
+/// Drops the vertices within a micrometre of the line through their neighbours (a plane
+/// crossing a flat quad cuts both its triangles: the point on the diagonal between them
+/// is in line), and repeated points: half the vertices for the infill to clip against.
+fn drop_inline(ring: &mut Vec<Coord>) {
+    // Twice, the second time from the middle: a point in line next to where the ring
+    // starts is seen with both neighbours.
+    for _ in 0..2 {
+        let mut kept: Vec<Coord> = Vec::with_capacity(ring.len());
+        for &c in ring.iter() {
+            if kept.last() == Some(&c) {
+                continue;
+            }
+            while kept.len() >= 2 && in_line(kept[kept.len() - 2], kept[kept.len() - 1], c) {
+                kept.pop();
+            }
+            kept.push(c);
+        }
+        while kept.len() > 1 && kept.first() == kept.last() {
+            kept.pop();
+        }
+        let half = kept.len() / 2;
+        kept.rotate_left(half);
+        *ring = kept;
+    }
+}
+
+/// Whether `b` lies within a micrometre of the line from `a` to `c`, between them.
+fn in_line(a: Coord, b: Coord, c: Coord) -> bool {
+    let (u, v) = (b - a, c - a);
+    let len = v.x.hypot(v.y);
+    len > 0.0 && (u.x * v.y - u.y * v.x).abs() / len < 1e-3 && u.x * v.x + u.y * v.y > 0.0
 }
 
 fn area(ring: &[Coord]) -> f64 {

@@ -89,3 +89,25 @@ fn heights_may_go_down_again() {
     let b = slicer.section(2.0);
     assert_eq!(area_of(&a), area_of(&b));
 }
+
+/// A vase built by `shapes::vase` (a lathe profile: foot, belly, waist, flared lip,
+/// hollow above a 3 mm floor): discs below the floor, rings above, every section closed,
+/// the ring's area what the profile says.
+#[test]
+fn a_vase_gives_discs_then_rings() {
+    let vase = shapes::vase(128);
+    let mut slicer = Slicer::new(&vase);
+    for i in 0..400 {
+        let z = 0.1 + 0.2 * i as f64;
+        let s = slicer.section(z);
+        assert_eq!((s.open, s.bridged), (0, 0), "z {z}");
+        assert_eq!(s.region.0.len(), 1, "z {z}");
+        let holes = s.region.0[0].interiors().len();
+        assert_eq!(holes, usize::from(z > 3.0), "z {z}");
+    }
+    // The belly (z 27) is wider than the waist (z 65); the plane crosses each quad's two
+    // triangles, and the vertex between them (on the quad's diagonal, in line) is dropped.
+    let (belly, waist) = (slicer.section(27.1), slicer.section(65.1));
+    assert!(area_of(&belly) > 1.5 * area_of(&waist));
+    assert_eq!(belly.region.0[0].exterior().0.len(), 129);
+}

@@ -615,7 +615,7 @@ fn preview_of_a_mesh_fills_its_sections() {
             2,
             "layer {i}: with its hole"
         );
-        let solid = i < 3 || i >= 46;
+        let solid = !(3..46).contains(&i);
         assert_eq!(l["density"].as_f64().unwrap() == 1.0, solid, "layer {i}");
         // Every point of the infill lies in the ring less two walls and half a nozzle.
         for line in l["polylines"].as_array().unwrap() {

@@ -251,7 +251,7 @@ fn resized(region: MultiPolygon<f64>, size: f64) -> MultiPolygon<f64> {
         return region;
     };
     let wide = rect.width().max(rect.height());
-    if !(wide > 0.0) {
+    if wide.is_nan() || wide <= 0.0 {
         return region;
     }
     let (centre, k) = (rect.center(), size / wide);

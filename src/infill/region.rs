@@ -212,7 +212,7 @@ impl Region {
                     lightning::lightning(self, centre, theta, spacing, &mut paths);
                     let length: f64 = paths.iter().map(|p| super::travel::length(p)).sum();
                     let printed = length * w / self.area;
-                    if !(printed > 0.0) || (printed / rho - 1.0).abs() < 0.03 {
+                    if printed.is_nan() || printed <= 0.0 || (printed / rho - 1.0).abs() < 0.03 {
                         break;
                     }
                     spacing *= (printed / rho).clamp(0.25, 4.0);
@@ -235,7 +235,7 @@ impl Region {
 /// infill): the fast exact offsets where they apply, geo's buffer otherwise.
 pub fn inset(region: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
     let cleaned = clean(region);
-    if cleaned.0.is_empty() || !(d > 0.0) {
+    if cleaned.0.is_empty() || d.is_nan() || d <= 0.0 {
         return cleaned;
     }
     convex_inset(&cleaned, d, 0.2)

@@ -182,8 +182,7 @@ fn chain(
                 keys.reverse();
                 e = first;
             }
-            loop {
-                let Some(&[a, b]) = at.get(&e) else { break };
+            while let Some(&[a, b]) = at.get(&e) {
                 let next = [a, b]
                     .into_iter()
                     .find(|&s| s != u32::MAX && !used[s as usize]);

@@ -184,7 +184,7 @@ mod tests {
                 "layer {}: {a}",
                 l.layer.index
             );
-            let solid = l.layer.index < 3 || l.layer.index >= 46;
+            let solid = !(3..46).contains(&l.layer.index);
             assert_eq!(l.params.density == 1.0, solid, "layer {}", l.layer.index);
         }
         assert_eq!(summary.layers, 50);

@@ -700,3 +700,81 @@ fn preview_3d_stacks_the_layers_of_a_mesh() {
         assert!(blue.0 / blue.1 as f64 > red.0 / red.1 as f64);
     }
 }
+
+/// `rotlang preview project.3mf --object NAME` (the mesh in the template's place): the
+/// named object of a 3MF's build, placed as on the plate; a name it does not hold is a
+/// usage error listing those it holds.
+#[cfg(feature = "cli")]
+#[test]
+fn preview_of_a_3mf_object() {
+    use std::io::Write;
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh-3mf");
+    std::fs::create_dir_all(&dir).unwrap();
+    let object = |id: u32, name: &str, mesh: &rotlang::mesh::Mesh| {
+        let mut s = format!(r#"<object id="{id}" name="{name}" type="model"><mesh><vertices>"#);
+        for v in &mesh.vertices {
+            s.push_str(&format!(
+                r#"<vertex x="{}" y="{}" z="{}"/>"#,
+                v[0], v[1], v[2]
+            ));
+        }
+        s.push_str("</vertices><triangles>");
+        for t in &mesh.triangles {
+            s.push_str(&format!(
+                r#"<triangle v1="{}" v2="{}" v3="{}"/>"#,
+                t[0], t[1], t[2]
+            ));
+        }
+        s + "</triangles></mesh></object>"
+    };
+    let model = format!(
+        r#"<?xml version="1.0"?><model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>{}{}</resources><build><item objectid="1" transform="1 0 0 0 1 0 0 0 1 50 0 0"/><item objectid="2"/></build></model>"#,
+        object(1, "Box", &rotlang::mesh::shapes::cuboid([20.0, 20.0, 6.0])),
+        object(2, "Tube", &rotlang::mesh::shapes::tube(8.0, 4.0, 6.0, 48)),
+    );
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    zip.start_file("3D/3dmodel.model", zip::write::SimpleFileOptions::default())
+        .unwrap();
+    zip.write_all(model.as_bytes()).unwrap();
+    let path = dir.join("project.3mf");
+    std::fs::write(&path, zip.finish().unwrap().into_inner()).unwrap();
+    let run = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .arg("preview")
+            .arg(&path)
+            .args(["--layers", "10", "--format", "json"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = run(&["--object", "Box"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let section = &v["layers"][0]["section"];
+    assert_eq!(section.as_array().unwrap().len(), 1);
+    // The box, moved 50 mm along x by its build item.
+    let xs: Vec<f64> = section[0][0]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p[0].as_f64().unwrap())
+        .collect();
+    let (lo, hi) = xs
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+    assert!(
+        (lo - 50.0).abs() < 1e-6 && (hi - 70.0).abs() < 1e-6,
+        "{lo} {hi}"
+    );
+    // Both objects without --object: two islands, the tube's with its hole.
+    let out = run(&[]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["layers"][0]["section"].as_array().unwrap().len(), 2);
+    let out = run(&["--object", "Boat"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("Box, Tube"));
+}

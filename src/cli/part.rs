@@ -45,15 +45,19 @@ pub struct PartArgs {
         help_heading = "Part (a mesh as --shape)"
     )]
     pub three_d: Option<std::path::PathBuf>,
+    /// For a .3mf: the object to preview, by name (default: every object of the build,
+    /// placed as on the plate).
+    #[arg(long, value_name = "NAME", help_heading = "Part (a mesh as --shape)")]
+    pub object: Option<String>,
 }
 
 /// Whether `--shape` names a mesh file.
 pub fn is_mesh(shape: &str) -> bool {
     let lower = shape.to_ascii_lowercase();
-    lower.ends_with(".stl") || lower.ends_with(".obj")
+    lower.ends_with(".stl") || lower.ends_with(".obj") || lower.ends_with(".3mf")
 }
 
-fn read_mesh(name: &str) -> Result<Mesh, UsageError> {
+fn read_mesh(name: &str, object: Option<&str>) -> Result<Mesh, UsageError> {
     use std::io::Read;
     let file =
         std::fs::File::open(name).map_err(|e| UsageError(format!("cannot read {name}: {e}")))?;
@@ -66,16 +70,45 @@ fn read_mesh(name: &str) -> Result<Mesh, UsageError> {
             "{name} is larger than {MAX_MESH_BYTES} bytes"
         )));
     }
-    let mesh = Mesh::read(name, &bytes)
-        .map_err(|e| UsageError(format!("cannot read a mesh from {name}: {e}")))?;
+    let cannot =
+        |e: crate::mesh::MeshError| UsageError(format!("cannot read a mesh from {name}: {e}"));
+    let mesh = if name.to_ascii_lowercase().ends_with(".3mf") {
+        let objects = crate::mesh::read_3mf(&bytes).map_err(cannot)?;
+        let mut merged = Mesh::default();
+        let mut found = false;
+        for (n, m) in &objects {
+            if object.is_none_or(|o| o == n) {
+                found = true;
+                let base = merged.vertices.len() as u32;
+                merged.vertices.extend(&m.vertices);
+                merged
+                    .triangles
+                    .extend(m.triangles.iter().map(|t| t.map(|i| i + base)));
+            }
+        }
+        if !found {
+            let names: Vec<&str> = objects.iter().map(|(n, _)| n.as_str()).collect();
+            return Err(UsageError(format!(
+                "{name} has no object {:?}; its objects: {}",
+                object.unwrap_or_default(),
+                names.join(", ")
+            )));
+        }
+        merged
+    } else {
+        Mesh::read(name, &bytes).map_err(cannot)?
+    };
     if mesh.triangles.is_empty() {
         return Err(UsageError(format!("{name} has no triangles")));
     }
     Ok(mesh)
 }
 
+/// Previews the mesh `shape` under the template `text` (or `--file`).
 pub fn run(
     args: &PreviewArgs,
+    shape: &str,
+    text: &Option<String>,
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> Result<i32, UsageError> {
@@ -95,7 +128,7 @@ pub fn run(
             args.nozzle
         )));
     }
-    let mesh = read_mesh(&args.shape)?;
+    let mesh = read_mesh(shape, args.part.object.as_deref())?;
     let (lo, hi) = mesh.bounds().unwrap_or(([0.0; 3], [0.0; 3]));
     let m = &args.model;
     let model = if m.height.is_none() && m.model.is_none() {
@@ -114,7 +147,7 @@ pub fn run(
     } else {
         m.build(None)?
     };
-    let (input, parse) = match template(&args.template, &args.file, args.target, args.color, err)? {
+    let (input, parse) = match template(text, &args.file, args.target, args.color, err)? {
         Ok(t) => t,
         Err(code) => return Ok(code),
     };
@@ -184,7 +217,7 @@ pub fn run(
         let text = if html {
             format!(
                 "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>{}</title></head>\n<body style=\"margin:0\">\n{svg}</body></html>\n",
-                crate::plot::escape(&args.shape)
+                crate::plot::escape(shape)
             )
         } else {
             svg
@@ -274,7 +307,7 @@ pub fn run(
     let _ = writeln!(
         err,
         "{}: {} layers, infill {} m extruded, {} m travel, {} at {} mm/s (travel {} mm/s){}",
-        args.shape,
+        shape,
         summary.layers,
         num(summary.extrusion / 1000.0, 2),
         num(summary.travel / 1000.0, 2),

@@ -20,6 +20,7 @@ Examples:
   rotlang preview '+15' --pattern lines --shape part.svg --size 40 --centring global
   rotlang preview '+15' --shape outline.json --pattern triangles --density 15%
   rotlang preview '0MB, +30' --shape part.stl --layers 10..14 --walls 3
+  rotlang preview part.stl --format json > part.json          every layer at 0°
   rotlang preview '+45' --shape part.stl --pattern gyroid --3d part.html --out layers.svg
 
 Each panel shows one layer: the region's outline and holes, the infill lines at the
@@ -28,7 +29,7 @@ the layer's index, height, angle, fill and governing instruction. Solid layers u
 fill kind at 100%: D the pattern, S --solid-pattern, O concentric, M monotonic lines,
 R lines.
 
---shape FILE.stl|.obj (a mesh): the part is sliced at the middle of each layer (the
+--shape FILE.stl|.obj|.3mf (a mesh; --object NAME picks one of a 3MF's): the part is sliced at the middle of each layer (the
 model is as tall as the mesh unless --height or --model says otherwise), each section
 less --walls loops of nozzle width is filled, the bottom and top shell layers solid; a
 summary of the whole part (infill extrusion, travel, time at --speed) is printed to
@@ -426,7 +427,21 @@ pub fn run(
     err: &mut dyn Write,
 ) -> Result<i32, UsageError> {
     if super::part::is_mesh(&args.shape) {
-        return super::part::run(args, out, err);
+        return super::part::run(args, &args.shape, &args.template, out, err);
+    }
+    // `rotlang preview part.stl`: the mesh in the template's place, the template from
+    // --file, or none (every layer at the base direction).
+    if let Some(mesh) = args
+        .template
+        .as_ref()
+        .filter(|t| super::part::is_mesh(t) && std::path::Path::new(t).is_file())
+    {
+        let template = if args.file.is_some() {
+            None
+        } else {
+            Some(String::new())
+        };
+        return super::part::run(args, mesh, &template, out, err);
     }
     let model = args.model.build(None)?;
     let region = shape(&args.shape, args.size)?;

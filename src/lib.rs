@@ -24,9 +24,13 @@ pub mod gcode;
 pub mod infill;
 pub mod ir;
 mod lint;
+#[cfg(feature = "mesh")]
+pub mod mesh;
 pub mod number;
 pub mod plot;
 pub mod profile;
+#[cfg(feature = "mesh")]
+pub mod slice;
 mod syntax;
 
 pub use syntax::MAX_DIAGNOSTICS;

@@ -442,3 +442,339 @@ fn shell_words(line: &str) -> Vec<String> {
     }
     words
 }
+
+/// Every example in `rotlang plot --help` and `rotlang preview --help` runs and succeeds
+/// (two once failed with a parse error), in a directory holding the files they name, and
+/// `--size` resizes a shape file (it was silently ignored).
+#[cfg(feature = "cli")]
+#[test]
+fn every_help_example_of_plot_and_preview_runs() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("help-examples");
+    std::fs::create_dir_all(&dir).unwrap();
+    let square = |k: f64| {
+        format!(
+            "<svg xmlns='http://www.w3.org/2000/svg'><path d='M 0 0 L {k} 0 L {k} {k} L 0 {k} Z'/></svg>"
+        )
+    };
+    std::fs::write(dir.join("part.svg"), square(10.0)).unwrap();
+    std::fs::write(
+        dir.join("outline.json"),
+        "[[[[0, 0], [30, 0], [30, 30], [0, 30]]]]",
+    )
+    .unwrap();
+    std::fs::write(dir.join("profile.rot"), "+10L25%, -10l25%\n").unwrap();
+    std::fs::write(
+        dir.join("part.stl"),
+        rotlang::mesh::shapes::tube(15.0, 5.0, 10.0, 64).to_binary_stl(),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("part.json"),
+        r#"{"layer_height": 0.2, "layer_heights": [0.3, 0.2, 0.2, 0.2, 0.2]}"#,
+    )
+    .unwrap();
+    let bin = env!("CARGO_BIN_EXE_rotlang");
+    let mut ran = 0;
+    for command in ["plot", "preview"] {
+        let help = std::process::Command::new(bin)
+            .args([command, "--help"])
+            .output()
+            .expect("rotlang runs");
+        let help = String::from_utf8(help.stdout).unwrap();
+        let examples = &help[help.find("Examples:").expect("examples")..];
+        for line in examples.lines().skip(1) {
+            let Some(rest) = line.trim_start().strip_prefix("rotlang ") else {
+                if line.trim().is_empty() {
+                    break;
+                }
+                continue;
+            };
+            // A comment after three spaces describes the example.
+            let rest = rest.split("   ").next().unwrap().trim();
+            let mut words = shell_words(rest);
+            if let Some(at) = words.iter().position(|w| w == ">") {
+                words.splice(at..at + 2, ["--out".to_string(), words[at + 1].clone()]);
+            }
+            let output = std::process::Command::new(bin)
+                .args(&words)
+                .current_dir(&dir)
+                .output()
+                .expect("rotlang runs");
+            assert!(
+                output.status.success(),
+                "`rotlang {rest}` failed: {}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+            ran += 1;
+        }
+    }
+    assert!(ran >= 8, "{ran} examples");
+    // --size 40 makes the 10 mm square of part.svg 40 mm wide: four times the lines.
+    let lines = |size: Option<&str>| {
+        let mut args = vec![
+            "preview", "0", "--shape", "part.svg", "--layers", "0", "--format", "json",
+        ];
+        if let Some(s) = size {
+            args.extend(["--size", s]);
+        }
+        let out = std::process::Command::new(bin)
+            .args(&args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        v["layers"][0]["length"].as_f64().unwrap()
+    };
+    let (own, resized) = (lines(None), lines(Some("40")));
+    assert!(
+        resized > 10.0 * own,
+        "{own} mm, then {resized} mm at --size 40"
+    );
+}
+
+/// Every template the benches evaluate parses without an error (one once had a parse
+/// error, so its bench measured the instructions that were left).
+#[test]
+fn every_bench_template_parses() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("benches");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(&root).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        // Templates are the string constants and literals given to parse or parse_layers.
+        for (i, _) in text.match_indices("TEMPLATE: &str = \"") {
+            let rest = &text[i + "TEMPLATE: &str = \"".len()..];
+            let template = &rest[..rest.find('"').unwrap()];
+            let parse = rotlang::parse(template, rotlang::Target::Sparse);
+            assert!(
+                !parse.has_errors(),
+                "{}: {template:?}: {:?}",
+                path.display(),
+                parse.diagnostics
+            );
+            seen += 1;
+        }
+        for (i, _) in text.match_indices("parse(\"") {
+            let rest = &text[i + "parse(\"".len()..];
+            let template = &rest[..rest.find('"').unwrap()];
+            let parse = rotlang::parse(template, rotlang::Target::Sparse);
+            assert!(!parse.has_errors(), "{}: {template:?}", path.display());
+            seen += 1;
+        }
+    }
+    assert!(seen >= 1, "no bench template found");
+}
+
+/// `rotlang preview --shape part.stl`: every layer is the mesh's section at its middle
+/// (a tube's ring, with its hole), filled inside its walls, the shells solid; the summary
+/// covers the whole part, and two templates give two summaries to compare.
+#[cfg(feature = "cli")]
+#[test]
+fn preview_of_a_mesh_fills_its_sections() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh-preview");
+    std::fs::create_dir_all(&dir).unwrap();
+    let stl = dir.join("tube.stl");
+    std::fs::write(
+        &stl,
+        rotlang::mesh::shapes::tube(15.0, 5.0, 10.0, 64).to_binary_stl(),
+    )
+    .unwrap();
+    let run = |template: &str, pattern: &str| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(["preview", template, "--shape"])
+            .arg(&stl)
+            .args([
+                "--pattern",
+                pattern,
+                "--layers",
+                "0..50",
+                "--format",
+                "json",
+            ])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert!(stderr.contains("50 layers"), "{stderr}");
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    let v = run("+45", "grid");
+    let layers = v["layers"].as_array().unwrap();
+    assert_eq!(layers.len(), 50);
+    for l in layers {
+        let i = l["index"].as_u64().unwrap();
+        let section = l["section"].as_array().unwrap();
+        assert_eq!(section.len(), 1, "layer {i}: one ring");
+        assert_eq!(
+            section[0].as_array().unwrap().len(),
+            2,
+            "layer {i}: with its hole"
+        );
+        let solid = !(3..46).contains(&i);
+        assert_eq!(l["density"].as_f64().unwrap() == 1.0, solid, "layer {i}");
+        // Every point of the infill lies in the ring less two walls and half a nozzle.
+        for line in l["polylines"].as_array().unwrap() {
+            for p in line.as_array().unwrap() {
+                let (x, y) = (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
+                let r = x.hypot(y);
+                assert!(
+                    r > 5.0 + 0.95 && r < 15.0 - 0.95,
+                    "layer {i}: {x}, {y} at r {r}"
+                );
+            }
+        }
+    }
+    let summary = &v["summary"];
+    assert_eq!(summary["layers"], 50);
+    let other = run("0, 90", "lines");
+    let (a, b) = (
+        summary["extrusion_mm"].as_f64().unwrap(),
+        other["summary"]["extrusion_mm"].as_f64().unwrap(),
+    );
+    assert!(a > 0.0 && b > 0.0 && a != b, "{a} {b}");
+    assert!(summary["time_s"].as_f64().unwrap() > a / 100.0);
+}
+
+/// `preview --3d`: the part's layers stacked in an isometric SVG (or an HTML page holding
+/// it), one group per layer from the bottom up; rendered, the bottom layers' blue lies
+/// below the top layers' red.
+#[cfg(feature = "cli")]
+#[test]
+fn preview_3d_stacks_the_layers_of_a_mesh() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh-3d");
+    std::fs::create_dir_all(&dir).unwrap();
+    let stl = dir.join("cylinder.stl");
+    std::fs::write(
+        &stl,
+        rotlang::mesh::shapes::tube(10.0, 0.0, 8.0, 48).to_binary_stl(),
+    )
+    .unwrap();
+    for (file, html) in [("cylinder.svg", false), ("cylinder.html", true)] {
+        let picture = dir.join(file);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(["preview", "+30", "--shape"])
+            .arg(&stl)
+            .arg("--3d")
+            .arg(&picture)
+            .args(["--format", "json"])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = std::fs::read_to_string(&picture).unwrap();
+        assert_eq!(text.starts_with("<!doctype html>"), html);
+        let svg = &text[text.find("<svg").unwrap()..text.rfind("</svg>").unwrap() + 6];
+        let heights: Vec<f64> = svg
+            .match_indices("<g data-z=\"")
+            .map(|(i, m)| {
+                let rest = &svg[i + m.len()..];
+                rest[..rest.find('"').unwrap()].parse().unwrap()
+            })
+            .collect();
+        // 8 mm at 0.2 mm: 40 layers, each cut at its middle.
+        assert_eq!(heights.len(), 40, "{heights:?}");
+        assert!((heights[0] - 0.1).abs() < 1e-9 && (heights[39] - 7.9).abs() < 1e-9);
+        assert!(heights.windows(2).all(|w| w[0] < w[1]));
+        let pixmap = render(svg, &format!("3d-{file}"));
+        // The mean row of blue pixels lies below (a larger y) that of red ones.
+        let (mut blue, mut red) = ((0.0, 0usize), (0.0, 0usize));
+        for (i, c) in pixmap.pixels().iter().enumerate() {
+            let y = (i as u32 / pixmap.width()) as f64;
+            let (r, g, b) = (c.red() as i32, c.green() as i32, c.blue() as i32);
+            if b > r + 60 && b > g + 60 {
+                blue = (blue.0 + y, blue.1 + 1);
+            }
+            if r > b + 60 && r > g + 60 {
+                red = (red.0 + y, red.1 + 1);
+            }
+        }
+        assert!(blue.1 > 50 && red.1 > 50, "{blue:?} {red:?}");
+        assert!(blue.0 / blue.1 as f64 > red.0 / red.1 as f64);
+    }
+}
+
+/// `rotlang preview project.3mf --object NAME` (the mesh in the template's place): the
+/// named object of a 3MF's build, placed as on the plate; a name it does not hold is a
+/// usage error listing those it holds.
+#[cfg(feature = "cli")]
+#[test]
+fn preview_of_a_3mf_object() {
+    use std::io::Write;
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh-3mf");
+    std::fs::create_dir_all(&dir).unwrap();
+    let object = |id: u32, name: &str, mesh: &rotlang::mesh::Mesh| {
+        let mut s = format!(r#"<object id="{id}" name="{name}" type="model"><mesh><vertices>"#);
+        for v in &mesh.vertices {
+            s.push_str(&format!(
+                r#"<vertex x="{}" y="{}" z="{}"/>"#,
+                v[0], v[1], v[2]
+            ));
+        }
+        s.push_str("</vertices><triangles>");
+        for t in &mesh.triangles {
+            s.push_str(&format!(
+                r#"<triangle v1="{}" v2="{}" v3="{}"/>"#,
+                t[0], t[1], t[2]
+            ));
+        }
+        s + "</triangles></mesh></object>"
+    };
+    let model = format!(
+        r#"<?xml version="1.0"?><model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>{}{}</resources><build><item objectid="1" transform="1 0 0 0 1 0 0 0 1 50 0 0"/><item objectid="2"/></build></model>"#,
+        object(1, "Box", &rotlang::mesh::shapes::cuboid([20.0, 20.0, 6.0])),
+        object(2, "Tube", &rotlang::mesh::shapes::tube(8.0, 4.0, 6.0, 48)),
+    );
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    zip.start_file("3D/3dmodel.model", zip::write::SimpleFileOptions::default())
+        .unwrap();
+    zip.write_all(model.as_bytes()).unwrap();
+    let path = dir.join("project.3mf");
+    std::fs::write(&path, zip.finish().unwrap().into_inner()).unwrap();
+    let run = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .arg("preview")
+            .arg(&path)
+            .args(["--layers", "10", "--format", "json"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = run(&["--object", "Box"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let section = &v["layers"][0]["section"];
+    assert_eq!(section.as_array().unwrap().len(), 1);
+    // The box, moved 50 mm along x by its build item.
+    let xs: Vec<f64> = section[0][0]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p[0].as_f64().unwrap())
+        .collect();
+    let (lo, hi) = xs
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+    assert!(
+        (lo - 50.0).abs() < 1e-6 && (hi - 70.0).abs() < 1e-6,
+        "{lo} {hi}"
+    );
+    // Both objects without --object: two islands, the tube's with its hole.
+    let out = run(&[]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["layers"][0]["section"].as_array().unwrap().len(), 2);
+    let out = run(&["--object", "Boat"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("Box, Tube"));
+}

@@ -15,6 +15,7 @@ mod fix_files;
 pub mod fmt;
 pub mod gcode;
 pub mod model;
+pub mod part;
 pub mod paths;
 pub mod plot;
 pub mod preview;

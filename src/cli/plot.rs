@@ -11,7 +11,7 @@ use crate::plot::PlotOptions;
 #[command(after_long_help = "\
 Examples:
   rotlang plot '+10L25%, -10l25%' --out angles.svg          the 20 mm cube (100 × 0.2 mm)
-  rotlang plot '0, 90, B!M' --height 40 --layer-height 0.1 > angles.svg
+  rotlang plot '0, 90, 0MB' --height 40 --layer-height 0.1 > angles.svg
   rotlang plot --file profile.rot --model part.json --base 45 --out angles.svg
   rotlang plot -- -30/50%                                    a template that begins with '-'
 

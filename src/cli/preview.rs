@@ -15,16 +15,25 @@ use crate::infill::{Centring, Pattern, Settings, shapes};
 #[command(after_long_help = "\
 Examples:
   rotlang preview '+45' --pattern grid --density 20 --out grid.svg
-  rotlang preview '0, 90, B!M' --pattern gyroid --shape circle --layers 0..8 > gyroid.svg
+  rotlang preview '0, 90, 0MB' --pattern gyroid --shape circle --layers 0..8 > gyroid.svg
   rotlang preview '+30/50%' --pattern hexagons --shape ring --layers 10..=13 --format json
   rotlang preview '+15' --pattern lines --shape part.svg --size 40 --centring global
   rotlang preview '+15' --shape outline.json --pattern triangles --density 15%
+  rotlang preview '0MB, +30' --shape part.stl --layers 10..14 --walls 3
+  rotlang preview part.stl --format json > part.json          every layer at 0°
+  rotlang preview '+45' --shape part.stl --pattern gyroid --3d part.html --out layers.svg
 
 Each panel shows one layer: the region's outline and holes, the infill lines at the
 nozzle's width coloured by print order (blue first, red last), travel moves dashed, and
 the layer's index, height, angle, fill and governing instruction. Solid layers use their
 fill kind at 100%: D the pattern, S --solid-pattern, O concentric, M monotonic lines,
 R lines.
+
+--shape FILE.stl|.obj|.3mf (a mesh; --object NAME picks one of a 3MF's): the part is sliced at the middle of each layer (the
+model is as tall as the mesh unless --height or --model says otherwise), each section
+less --walls loops of nozzle width is filled, the bottom and top shell layers solid; a
+summary of the whole part (infill extrusion, travel, time at --speed) is printed to
+stderr, and under `summary` with --format json, so templates can be compared.
 
 --shape FILE: an .svg file (every <path> and <polygon>; user units read as mm, y up,
 transforms not applied; nested outlines become holes) or a .json multi-polygon
@@ -72,6 +81,8 @@ pub struct PreviewArgs {
     /// The pattern of `S` layers (the profile's solid infill pattern).
     #[arg(long, value_enum, default_value_t, help_heading = "Infill")]
     pub solid_pattern: PatternArg,
+    #[command(flatten)]
+    pub part: super::part::PartArgs,
     /// The region: square, circle, ring, star, l, or a FILE (.svg or .json).
     #[arg(
         long,
@@ -81,14 +92,10 @@ pub struct PreviewArgs {
         help_heading = "Region"
     )]
     pub shape: String,
-    /// The width of a built-in shape in mm.
-    #[arg(
-        long,
-        value_name = "MM",
-        default_value_t = 20.0,
-        help_heading = "Region"
-    )]
-    pub size: f64,
+    /// The width of a built-in shape in mm [default: 20]; a shape file is scaled about
+    /// its centre so that its wider side is this long (without it, the file's own size).
+    #[arg(long, value_name = "MM", help_heading = "Region")]
+    pub size: Option<f64>,
     /// The layers to show: A..B (B excluded), A..=B, or one index [default: 0..8].
     #[arg(long, value_name = "A..B", value_parser = parse_layers)]
     pub layers: Option<Range<usize>>,
@@ -201,12 +208,14 @@ fn parse_layers(s: &str) -> Result<Range<usize>, String> {
 }
 
 /// The region `--shape` names.
-pub fn shape(name: &str, size: f64) -> Result<MultiPolygon<f64>, UsageError> {
-    if !(size.is_finite() && size > 0.0 && size <= 10_000.0) {
+pub fn shape(name: &str, size: Option<f64>) -> Result<MultiPolygon<f64>, UsageError> {
+    if let Some(size) = size.filter(|s| !(s.is_finite() && *s > 0.0 && *s <= 10_000.0)) {
         return Err(UsageError(format!(
             "--size must be between 0 and 10000 mm, found {size}"
         )));
     }
+    let given = size;
+    let size = size.unwrap_or(20.0);
     let r = size / 2.0;
     Ok(match name.to_ascii_lowercase().as_str() {
         "square" => shapes::square(size),
@@ -228,9 +237,28 @@ pub fn shape(name: &str, size: f64) -> Result<MultiPolygon<f64>, UsageError> {
             } else {
                 from_svg(&text)
             };
-            region.map_err(|e| UsageError(format!("cannot read a region from {name}: {e}")))?
+            let region =
+                region.map_err(|e| UsageError(format!("cannot read a region from {name}: {e}")))?;
+            match given {
+                Some(size) => resized(region, size),
+                None => region,
+            }
         }
     })
+}
+
+/// The region scaled about its bounding box's centre so that its wider side is `size`.
+fn resized(region: MultiPolygon<f64>, size: f64) -> MultiPolygon<f64> {
+    use geo::{BoundingRect, MapCoords};
+    let Some(rect) = region.bounding_rect() else {
+        return region;
+    };
+    let wide = rect.width().max(rect.height());
+    if wide.is_nan() || wide <= 0.0 {
+        return region;
+    }
+    let (centre, k) = (rect.center(), size / wide);
+    region.map_coords(|c| centre + (c - centre) * k)
 }
 
 /// The outlines of every `<path>` and `<polygon>` in an SVG document: curves flattened,
@@ -400,6 +428,23 @@ pub fn run(
     out: &mut dyn Write,
     err: &mut dyn Write,
 ) -> Result<i32, UsageError> {
+    if super::part::is_mesh(&args.shape) {
+        return super::part::run(args, &args.shape, &args.template, out, err);
+    }
+    // `rotlang preview part.stl`: the mesh in the template's place, the template from
+    // --file, or none (every layer at the base direction).
+    if let Some(mesh) = args
+        .template
+        .as_ref()
+        .filter(|t| super::part::is_mesh(t) && std::path::Path::new(t).is_file())
+    {
+        let template = if args.file.is_some() {
+            None
+        } else {
+            Some(String::new())
+        };
+        return super::part::run(args, mesh, &template, out, err);
+    }
     let region = shape(&args.shape, args.size)?;
     if !(0.01..=10.0).contains(&args.nozzle) {
         return Err(UsageError(format!(
@@ -569,13 +614,13 @@ mod tests {
             r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0 H20 V20 H0 Z M5 5 V15 H15 V5 Z"/></svg>"#,
         )
         .unwrap();
-        let region = shape(svg.to_str().unwrap(), 20.0).unwrap();
+        let region = shape(svg.to_str().unwrap(), None).unwrap();
         assert_eq!((region.0.len(), region.0[0].interiors().len()), (1, 1));
         let json = dir.join("part.json");
         std::fs::write(&json, "[[[0,0],[10,0],[10,10],[0,10]]]").unwrap();
-        assert_eq!(shape(json.to_str().unwrap(), 20.0).unwrap().0.len(), 1);
+        assert_eq!(shape(json.to_str().unwrap(), None).unwrap().0.len(), 1);
         std::fs::write(&json, "[1, 2]").unwrap();
-        assert!(shape(json.to_str().unwrap(), 20.0).is_err());
+        assert!(shape(json.to_str().unwrap(), None).is_err());
         let _ = std::fs::remove_dir_all(&dir);
     }
 

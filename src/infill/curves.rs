@@ -55,7 +55,16 @@ pub(crate) fn gyroid(
                 (su, cz, sz * cu)
             };
             let r = (a * a + b * b).sqrt();
-            let phi = b.atan2(a);
+            // The phase must be continuous along u. atan2 jumps by 2π where its first
+            // argument crosses 0 with the second negative: along y, `a = sin z` is fixed and
+            // `b = cos u` crosses 0, so for `sin z < 0` measure the phase from the opposite
+            // direction (continuous there) and add π. Along x, `b = cos z` is fixed and at
+            // least √½ in size, so atan2 never reaches its cut.
+            let phi = if along_y && a < 0.0 {
+                (-b).atan2(-a) + PI
+            } else {
+                b.atan2(a)
+            };
             let delta = (-c / r).clamp(-1.0, 1.0).acos();
             (u, phi + delta, phi - delta)
         })
@@ -200,6 +209,8 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     };
     // Each loop offset from the inset itself, not from the previous loop: offsets of
     // offsets pile up the arcs at reflex corners.
+    // The previous loops' distance and (perimeter, outline rings − hole rings).
+    let mut previous: Option<(f64, f64, f64)> = None;
     for k in 0.. {
         let mut d = (k as f64 + 0.5) * spacing;
         // From the region itself: the inset's offset by d is its offset by w/2 + d.
@@ -209,9 +220,24 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
             d /= 2.0;
             current = shrink(region.outline(), region.nozzle() / 2.0 + d);
         }
+        let shape = perimeter(&current);
+        // Where part of the region ended between the last loops and these (an L's arm),
+        // a band up to two spacings wide would stay empty: its middle gets the pieces of
+        // a loop half a spacing further in that no loop here is near. (Not where the
+        // whole region ends: a last loop there costs more density than the gap.)
+        // Offsets shrink each outline's perimeter by 2π per unit (and grow each hole's):
+        // a larger drop says a part ended.
+        if let Some((d0, length, turns)) = previous {
+            let expected = TAU * spacing * turns;
+            if !current.0.is_empty() && length - shape.0 > expected + 4.0 * spacing {
+                let middle = shrink(region.outline(), region.nozzle() / 2.0 + d0 + spacing / 2.0);
+                uncovered(&middle, &current, 0.75 * spacing, out);
+            }
+        }
         if current.0.is_empty() {
             break;
         }
+        previous = Some((d, shape.0, shape.1));
         for polygon in &current.0 {
             for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
                 let mut pts = ring.0.clone();
@@ -237,10 +263,83 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     }
 }
 
+/// The total length of a region's rings, and its outline rings less its hole rings.
+fn perimeter(area: &MultiPolygon<f64>) -> (f64, f64) {
+    let mut length = 0.0;
+    let mut turns = 0.0;
+    for p in &area.0 {
+        turns += 1.0 - p.interiors().len() as f64;
+        for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
+            length += ring
+                .0
+                .windows(2)
+                .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+                .sum::<f64>();
+        }
+    }
+    (length, turns)
+}
+
+/// The stretches of `middle`'s rings farther than `gap` from every ring of `covered`.
+fn uncovered(
+    middle: &MultiPolygon<f64>,
+    covered: &MultiPolygon<f64>,
+    gap: f64,
+    out: &mut Vec<Vec<Coord>>,
+) {
+    let segments: Vec<(Coord, Coord)> = covered
+        .0
+        .iter()
+        .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+        .flat_map(|r| r.0.windows(2).map(|w| (w[0], w[1])))
+        .collect();
+    let far = |p: Coord| {
+        segments.iter().all(|&(a, b)| {
+            let e = b - a;
+            let len2 = e.x * e.x + e.y * e.y;
+            let t = if len2 > 0.0 {
+                (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let q = a + e * t;
+            (p - q).x * (p - q).x + (p - q).y * (p - q).y > gap * gap
+        })
+    };
+    for p in &middle.0 {
+        for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
+            let pts = &ring.0;
+            let flags: Vec<bool> = pts.iter().map(|&c| far(c)).collect();
+            if flags.iter().all(|&f| f) {
+                out.push(pts.clone());
+                continue;
+            }
+            // Runs of far vertices, the ring read from a near one so no run wraps.
+            let n = pts.len().saturating_sub(1);
+            let Some(start) = (0..n).find(|&i| !flags[i]) else {
+                continue;
+            };
+            let mut run: Vec<Coord> = Vec::new();
+            for k in 1..=n {
+                let i = (start + k) % n;
+                if flags[i] {
+                    run.push(pts[i]);
+                } else if run.len() >= 2 {
+                    out.push(std::mem::take(&mut run));
+                } else {
+                    run.clear();
+                }
+            }
+        }
+    }
+}
+
 /// The loops' offsets: arcs in steps of 0.5 rad (not geo's 0.2): the loops are far from
 /// the outline, and a third of the vertices makes the offset three times quicker.
 fn shrink(area: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
-    super::region::convex_inset(area, d, 0.5).unwrap_or_else(|| {
-        area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
-    })
+    super::region::convex_inset(area, d, 0.5)
+        .or_else(|| super::offset::raw_inset(area, d, 0.5))
+        .unwrap_or_else(|| {
+            area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
+        })
 }

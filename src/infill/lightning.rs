@@ -4,8 +4,8 @@
 //! from points spaced `2.5 × spacing` along each outline, starting at its farthest point in
 //! direction θ, a branch runs 80% of the way to the centre, turned ±10° on alternate
 //! branches; at 40% of its length it forks into two twigs at ±45°, each 40% as long.
-//! Everything is clipped to the region (holes included). Sparse by design: about 60% of
-//! the requested density on large regions.
+//! Everything is clipped to the region (holes included). A given spacing covers 0.57–0.69
+//! of the density on compact shapes: `Region::fill` measures a first tree and respaces.
 
 use geo::Coord;
 

@@ -41,8 +41,14 @@ pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
     path.len() >= 2
 }
 
-/// Puts the paths in print order and measures them.
-pub(crate) fn order(paths: Vec<Vec<Coord>>, monotonic: bool, frame: Frame) -> Toolpaths {
+/// Puts the paths in print order and measures them; travel between them is routed
+/// inside `rings` (the inset's outlines and holes).
+pub(crate) fn order(
+    paths: Vec<Vec<Coord>>,
+    monotonic: bool,
+    frame: Frame,
+    rings: &[Vec<Coord>],
+) -> Toolpaths {
     let ordered = if monotonic {
         monotonic_order(paths, &frame)
     } else {
@@ -52,10 +58,13 @@ pub(crate) fn order(paths: Vec<Vec<Coord>>, monotonic: bool, frame: Frame) -> To
         polylines: Vec::with_capacity(ordered.len()),
         ..Toolpaths::default()
     };
+    let router = super::travel::Router::new(rings);
     let mut last: Option<Coord> = None;
     for path in ordered {
         if let (Some(l), Some(&first)) = (last, path.first()) {
-            toolpaths.travel += dist(l, first);
+            let route = router.route(l, first);
+            toolpaths.travel += super::travel::length(&route);
+            toolpaths.travels.push(LineString::new(route));
         }
         toolpaths.length += path.windows(2).map(|w| dist(w[0], w[1])).sum::<f64>();
         last = path.last().copied();

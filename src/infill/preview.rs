@@ -165,16 +165,15 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
         let stroke = (nozzle * scale).max(1.0);
         if options.travel {
             let mut travel = String::new();
-            for w in panel.paths.polylines.windows(2) {
-                if let (Some(&a), Some(&b)) = (w[0].0.last(), w[1].0.first()) {
-                    let ((x0, y0), (x1, y1)) = (px(a), px(b));
+            for route in &panel.paths.travels {
+                for (k, &c) in route.0.iter().enumerate() {
+                    let (x, y) = px(c);
                     let _ = write!(
                         travel,
-                        "M{} {}L{} {}",
-                        num(x0, 2),
-                        num(y0, 2),
-                        num(x1, 2),
-                        num(y1, 2)
+                        "{}{} {}",
+                        if k == 0 { 'M' } else { 'L' },
+                        num(x, 2),
+                        num(y, 2)
                     );
                 }
             }
@@ -278,4 +277,119 @@ pub fn render(
         })
         .collect();
     Ok(svg(&panels, settings.nozzle, preview))
+}
+
+/// One layer of a 3D picture: its height, section and toolpaths.
+#[derive(Clone, Copy, Debug)]
+pub struct Slab<'a> {
+    pub z: f64,
+    pub region: &'a MultiPolygon<f64>,
+    pub paths: &'a Toolpaths,
+}
+
+/// The layers stacked in an isometric view (x to the lower right, y to the lower left, z
+/// up), drawn bottom to top: each section's outline in grey (not filled, so that the
+/// infill of every layer shows through), its infill coloured by height (blue at the
+/// bottom to red at the top).
+pub fn isometric(slabs: &[Slab<'_>], width: f64) -> String {
+    let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let project = |p: Coord, z: f64| Coord {
+        x: (p.x - p.y) * c,
+        y: -(p.x + p.y) * s - z,
+    };
+    // Bounds of every projected vertex.
+    let mut min = Coord {
+        x: f64::INFINITY,
+        y: f64::INFINITY,
+    };
+    let mut max = Coord {
+        x: f64::NEG_INFINITY,
+        y: f64::NEG_INFINITY,
+    };
+    for slab in slabs {
+        for p in &slab.region.0 {
+            for q in p.exterior().coords() {
+                let v = project(*q, slab.z);
+                min = Coord {
+                    x: min.x.min(v.x),
+                    y: min.y.min(v.y),
+                };
+                max = Coord {
+                    x: max.x.max(v.x),
+                    y: max.y.max(v.y),
+                };
+            }
+        }
+    }
+    if !min.x.is_finite() {
+        min = Coord::zero();
+        max = Coord { x: 1.0, y: 1.0 };
+    }
+    let margin = 16.0;
+    let scale = (width - 2.0 * margin) / (max.x - min.x).max(1e-9);
+    let height = (max.y - min.y) * scale + 2.0 * margin;
+    let px = |p: Coord, z: f64| {
+        let v = project(p, z);
+        (
+            (v.x - min.x) * scale + margin,
+            (v.y - min.y) * scale + margin,
+        )
+    };
+    let (z0, z1) = slabs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), l| {
+            (a.min(l.z), b.max(l.z))
+        });
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="0 0 {} {}"><rect width="100%" height="100%" fill="white"/>"#,
+        num(width, 0),
+        num(height, 0),
+        num(width, 0),
+        num(height, 0)
+    );
+    for slab in slabs {
+        let mut outline = String::new();
+        for p in &slab.region.0 {
+            for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
+                for (k, q) in ring.coords().enumerate() {
+                    let (x, y) = px(*q, slab.z);
+                    let _ = write!(
+                        outline,
+                        "{}{} {}",
+                        if k == 0 { 'M' } else { 'L' },
+                        num(x, 1),
+                        num(y, 1)
+                    );
+                }
+            }
+        }
+        let t = if z1 > z0 {
+            (slab.z - z0) / (z1 - z0)
+        } else {
+            0.0
+        };
+        let mut lines = String::new();
+        for line in &slab.paths.polylines {
+            for (k, q) in line.0.iter().enumerate() {
+                let (x, y) = px(*q, slab.z);
+                let _ = write!(
+                    lines,
+                    "{}{} {}",
+                    if k == 0 { 'M' } else { 'L' },
+                    num(x, 1),
+                    num(y, 1)
+                );
+            }
+        }
+        let _ = write!(
+            out,
+            r##"<g data-z="{}"><path d="{outline}" fill="none" stroke="#999" stroke-width="0.4"/><path d="{lines}" fill="none" stroke="hsl({:.0},80%,45%)" stroke-width="0.8"/></g>"##,
+            num(slab.z, 3),
+            240.0 * (1.0 - t)
+        );
+    }
+    out.push_str("</svg>\n");
+    out
 }

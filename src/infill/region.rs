@@ -23,6 +23,8 @@ pub struct Region {
     max: Coord,
     area: f64,
     nozzle: f64,
+    /// One convex outline, no hole: every straight travel stays inside, none is routed.
+    convex: bool,
 }
 
 impl Region {
@@ -62,13 +64,15 @@ impl Region {
             }
         }
         let cleaned = clean(region);
-        let inset = convex_inset(&cleaned, nozzle / 2.0, 0.2).unwrap_or_else(|| {
-            if cleaned.0.is_empty() {
-                cleaned.clone()
-            } else {
-                cleaned.buffer(-nozzle / 2.0)
-            }
-        });
+        let inset = convex_inset(&cleaned, nozzle / 2.0, 0.2)
+            .or_else(|| super::offset::raw_inset(&cleaned, nozzle / 2.0, 0.2))
+            .unwrap_or_else(|| {
+                if cleaned.0.is_empty() {
+                    cleaned.clone()
+                } else {
+                    cleaned.buffer(-nozzle / 2.0)
+                }
+            });
         let mut rings = Vec::new();
         for p in &inset.0 {
             rings.push(open_ring(p.exterior()));
@@ -83,7 +87,9 @@ impl Region {
             min = Coord::zero();
             max = Coord::zero();
         }
+        let convex = rings.len() == 1 && outlines == 1 && convex_ring(&rings[0]).is_some();
         Ok(Region {
+            convex,
             inset,
             outline: cleaned,
             rings,
@@ -197,14 +203,44 @@ impl Region {
             }
             Pattern::Spiral => curves::spiral(self, centre, theta, w / rho, &mut paths),
             Pattern::Lightning => {
-                lightning::lightning(self, centre, theta, 2.0 * w / rho, &mut paths)
+                // Branches are spaced along the outline, so how much they cover depends on
+                // the shape (a star's long outline gets more): measure a first tree and
+                // space the branches again so that the density printed is the one asked.
+                let mut spacing = 2.0 * w / rho;
+                for _ in 0..2 {
+                    paths.clear();
+                    lightning::lightning(self, centre, theta, spacing, &mut paths);
+                    let length: f64 = paths.iter().map(|p| super::travel::length(p)).sum();
+                    let printed = length * w / self.area;
+                    if printed.is_nan() || printed <= 0.0 || (printed / rho - 1.0).abs() < 0.03 {
+                        break;
+                    }
+                    spacing *= (printed / rho).clamp(0.25, 4.0);
+                }
             }
         }
         let min_segment = w / 10.0;
         paths.retain_mut(|p| order::simplify(p, min_segment));
         let monotonic = params.order == Order::Monotonic;
-        Ok(order::order(paths, monotonic, Frame::new(centre, theta)))
+        Ok(order::order(
+            paths,
+            monotonic,
+            Frame::new(centre, theta),
+            if self.convex { &[] } else { &self.rings },
+        ))
     }
+}
+
+/// The region moved inward by `d` mm (the erosion by a disc; what walls leave to the
+/// infill): the fast exact offsets where they apply, geo's buffer otherwise.
+pub fn inset(region: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
+    let cleaned = clean(region);
+    if cleaned.0.is_empty() || d.is_nan() || d <= 0.0 {
+        return cleaned;
+    }
+    convex_inset(&cleaned, d, 0.2)
+        .or_else(|| super::offset::raw_inset(&cleaned, d, 0.2))
+        .unwrap_or_else(|| cleaned.buffer(-d))
 }
 
 /// The region without degenerate rings, every ring closed.

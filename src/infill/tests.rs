@@ -171,8 +171,7 @@ fn every_pattern_stays_inside_every_shape() {
 /// Each shape is scaled to span at least 12 repeats of the pattern (`cell`) across its
 /// narrowest part: the rule the module documentation states (with fewer, a line more or
 /// less across the region is a large share of it: at 4 repeats densities are up to a
-/// quarter off). Exceptions: lightning is sparse by design (asserted: 0.5–0.8 of the
-/// density asked, 0.5–1.1 on the star, whose long outline gets the most branches); a gyroid
+/// quarter off). Exceptions: a gyroid
 /// layer varies with its height like the surface's section (asserted: each layer within
 /// −15%/+30%, the mean over a period of heights within 10%).
 #[test]
@@ -194,21 +193,26 @@ fn density_is_what_was_asked() {
                 let label = format!("{pattern} on {name} ×{k:.1} at {rho}");
                 match pattern {
                     Pattern::Lightning => {
-                        let d = density(
-                            &prepared,
-                            &prepared.fill(&Params::new(pattern, rho, W)).unwrap(),
-                        );
-                        // Measured: 0.57–0.69 of ρ on the square, circle, L and holed
-                        // square, about 1.0 on the star.
-                        let most = if name == "star" { 1.1 } else { 0.8 };
-                        check(d >= 0.5 * rho && d <= most * rho, format!("{label}: {d}"));
+                        // The branches are spaced again after a first tree so that the
+                        // density printed is the one asked (it was 0.57–0.69 of it on
+                        // compact shapes, about all of it on the star).
+                        for angle in [0.0, 30.0, 71.0] {
+                            let params = Params::new(pattern, rho, W).angle(angle);
+                            let d = density(&prepared, &prepared.fill(&params).unwrap());
+                            check(
+                                (d / rho - 1.0).abs() < 0.1,
+                                format!("{label} at {angle}°: {d}"),
+                            );
+                        }
                     }
                     Pattern::Gyroid => {
+                        // Every layer of a whole period of heights (a quarter period
+                        // once hid a wrong section on a quarter of all layers).
                         let period = TAU * W * GYROID_LAMBDA / rho;
-                        let n = 16;
+                        let n = 24;
                         let mut sum = 0.0;
                         for i in 0..n {
-                            let z = period / 4.0 * (i as f64 + 0.5) / n as f64;
+                            let z = period * (i as f64 + 0.5) / n as f64;
                             let params = Params::new(pattern, rho, W).z(z).angle(30.0);
                             let d = density(&prepared, &prepared.fill(&params).unwrap());
                             check(
@@ -224,12 +228,23 @@ fn density_is_what_was_asked() {
                         );
                     }
                     _ => {
-                        for angle in [0.0, 30.0, 71.0] {
-                            let params = Params::new(pattern, rho, W).angle(angle);
+                        // Cubic moves with z: every layer of a whole period (its lines
+                        // repeat every spacing·√2 of height); the others do not.
+                        let heights: Vec<f64> = if pattern == Pattern::Cubic {
+                            let period = 3.0 * W / rho * std::f64::consts::SQRT_2;
+                            (0..8).map(|i| period * (i as f64 + 0.5) / 8.0).collect()
+                        } else {
+                            vec![0.0]
+                        };
+                        for (angle, z) in [0.0, 30.0, 71.0]
+                            .into_iter()
+                            .flat_map(|a| heights.iter().map(move |&z| (a, z)))
+                        {
+                            let params = Params::new(pattern, rho, W).angle(angle).z(z);
                             let d = density(&prepared, &prepared.fill(&params).unwrap());
                             check(
                                 (d / rho - 1.0).abs() < 0.1,
-                                format!("{label} at {angle}°: {d}"),
+                                format!("{label} at {angle}° z {z}: {d}"),
                             );
                         }
                     }
@@ -422,7 +437,8 @@ fn travel_is_reported_and_short() {
                 (b - a).x.hypot((b - a).y)
             })
             .sum();
-        assert!((travel - paths.travel).abs() < 1e-6, "{pattern}");
+        // Routed around the hole where a straight move would cross it: never shorter.
+        assert!(paths.travel >= travel - 1e-6, "{pattern}");
         let length: f64 = paths
             .polylines
             .iter()
@@ -809,4 +825,207 @@ fn cubic_families_shift_with_height() {
     assert_ne!(at(0.0).polylines, at(1.0).polylines);
     let (a, b) = (at(1.0), at(1.0 + spacing * std::f64::consts::SQRT_2));
     assert!((a.length - b.length).abs() < 1e-6 * a.length);
+}
+
+/// The gyroid surface is unchanged by a shift of half a period along x, y and z at once,
+/// so a layer half a period higher is the same section, shifted: the same density and
+/// about as many paths. Before the phase was made continuous, the layers where
+/// `sin z < 0` and `|sin z| > |cos z|` (a quarter of all) were drawn as crossing lines
+/// and arcs: three times the paths and 2.3–2.5 times the density.
+#[test]
+fn gyroid_layers_half_a_period_apart_are_alike() {
+    let rho = 0.2;
+    let region = Region::new(&shapes::square(40.0), W).unwrap();
+    let period = TAU * W * GYROID_LAMBDA / rho;
+    for i in 0..32 {
+        let z = period / 2.0 * (i as f64 + 0.5) / 32.0;
+        let fill = |z: f64| {
+            region
+                .fill(&Params::new(Pattern::Gyroid, rho, W).z(z).angle(45.0))
+                .unwrap()
+        };
+        let (a, b) = (fill(z), fill(z + period / 2.0));
+        let (da, db) = (density(&region, &a), density(&region, &b));
+        assert!((da / db - 1.0).abs() < 0.05, "z {z}: {da} against {db}");
+        let (na, nb) = (a.polylines.len() as f64, b.polylines.len() as f64);
+        assert!(
+            (na / nb - 1.0).abs() < 0.35,
+            "z {z}: {na} paths against {nb}"
+        );
+    }
+}
+
+/// The raw offset of concave regions (an L, a star, a star with a hole, an L with two
+/// holes, islands) covers the same area as geo's buffer wherever it answers, and it
+/// answers at a half-nozzle inset of each (the inset once dominated a concave layer's
+/// time: 15.7 µs of the star's 17.5 with lines). Where the offset pinches or an edge
+/// vanishes, it declines.
+#[test]
+fn raw_inset_matches_the_general_buffer() {
+    use geo::{Area, Buffer, Translate};
+    let star_with_hole = MultiPolygon::new(vec![Polygon::new(
+        shapes::star(10.0, 4.5).0[0].exterior().clone(),
+        vec![shapes::circle(1.5).0[0].exterior().clone()],
+    )]);
+    let l_with_holes = MultiPolygon::new(vec![Polygon::new(
+        shapes::l_shape(20.0).0[0].exterior().clone(),
+        vec![
+            shapes::circle(2.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(-5.0),
+            shapes::star(2.0, 1.0).0[0]
+                .exterior()
+                .clone()
+                .translate(5.0, -5.0),
+        ],
+    )]);
+    let mut islands = shapes::star(10.0, 4.5);
+    islands
+        .0
+        .extend(shapes::l_shape(10.0).translate(30.0, 0.0).0);
+    let cases = [
+        ("L", shapes::l_shape(20.0)),
+        ("star", shapes::star(10.0, 4.5)),
+        ("star with a hole", star_with_hole),
+        ("L with holes", l_with_holes),
+        ("islands", islands),
+    ];
+    for (name, region) in &cases {
+        assert!(
+            offset::raw_inset(region, W / 2.0, 0.2).is_some(),
+            "{name}: no raw inset at half a nozzle"
+        );
+        for d in [0.2, 1.0, 2.0, 3.0, 4.0, 6.0] {
+            let slow = region.buffer(-d);
+            if let Some(fast) = offset::raw_inset(region, d, 0.05) {
+                let (a, b) = (fast.unsigned_area(), slow.unsigned_area());
+                assert!(
+                    (a - b).abs() <= 0.005 * b.max(1.0),
+                    "{name} inset by {d}: {a} here, {b} by geo's buffer"
+                );
+            }
+        }
+    }
+    // The L's arms pinch off its corner square well before 6 mm; a star's tips vanish.
+    assert!(offset::raw_inset(&shapes::star(10.0, 4.5), 4.0, 0.2).is_none());
+}
+
+/// Travel stays inside the region: a move that would cross a hole (or leave a concave
+/// outline) goes around it, and the travel reported is the length of the moves as routed.
+/// Straight moves once crossed the holed square's hole on most layers.
+#[test]
+fn travel_goes_around_holes() {
+    let two_holes = MultiPolygon::new(vec![Polygon::new(
+        shapes::square(40.0).0[0].exterior().clone(),
+        vec![
+            shapes::circle(5.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(-9.0),
+            shapes::star(6.0, 3.0).0[0]
+                .exterior()
+                .clone()
+                .map_coords_shift(9.0),
+        ],
+    )]);
+    let cases = [
+        ("holed square", shapes::holed_square(40.0, 10.0)),
+        ("two holes", two_holes),
+        ("star", shapes::star(10.0, 4.5)),
+        ("L", shapes::l_shape(20.0)),
+    ];
+    for (name, region) in &cases {
+        let rings = rings_of(region);
+        let prepared = Region::new(region, W).unwrap();
+        for pattern in Pattern::ALL {
+            for angle in [0.0, 35.0, 90.0] {
+                let paths = prepared
+                    .fill(&Params::new(pattern, 0.15, W).angle(angle).z(0.7))
+                    .unwrap();
+                let label = format!("{pattern} on {name} at {angle}°");
+                assert_eq!(
+                    paths.travels.len(),
+                    paths.polylines.len().saturating_sub(1),
+                    "{label}"
+                );
+                let mut total = 0.0;
+                for (k, route) in paths.travels.iter().enumerate() {
+                    assert_eq!(route.0.first(), paths.polylines[k].0.last(), "{label}");
+                    assert_eq!(route.0.last(), paths.polylines[k + 1].0.first(), "{label}");
+                    for seg in route.0.windows(2) {
+                        total += (seg[1] - seg[0]).x.hypot((seg[1] - seg[0]).y);
+                        for i in 1..8 {
+                            let p = seg[0] + (seg[1] - seg[0]) * (i as f64 / 8.0);
+                            assert!(
+                                inside(&rings, p) || distance_to_boundary(&rings, p) < 0.05,
+                                "{label}: travel {k} passes {p:?}, outside the region: {:?}",
+                                route.0
+                            );
+                        }
+                    }
+                }
+                assert!((total - paths.travel).abs() < 1e-6, "{label}");
+            }
+        }
+    }
+}
+
+/// The largest gap concentric loops leave: the most any point of the inset area is from
+/// every path, sampled every 0.1 mm.
+fn largest_gap(region: &Region, paths: &Toolpaths) -> f64 {
+    let rings = rings_of(region.inset());
+    let segments: Vec<(Coord, Coord)> = paths
+        .polylines
+        .iter()
+        .flat_map(|l| l.0.windows(2).map(|w| (w[0], w[1])).collect::<Vec<_>>())
+        .collect();
+    let (lo, hi) = (
+        region.centre() - Coord { x: 12.0, y: 12.0 },
+        region.centre() + Coord { x: 12.0, y: 12.0 },
+    );
+    let mut worst: f64 = 0.0;
+    let mut y = lo.y;
+    while y < hi.y {
+        let mut x = lo.x;
+        while x < hi.x {
+            let p = Coord { x, y };
+            if inside(&rings, p) {
+                let d = segments
+                    .iter()
+                    .map(|&(a, b)| {
+                        let e = b - a;
+                        let t = (((p - a).x * e.x + (p - a).y * e.y)
+                            / (e.x * e.x + e.y * e.y).max(1e-18))
+                        .clamp(0.0, 1.0);
+                        let q = a + e * t;
+                        (p - q).x.hypot((p - q).y)
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                worst = worst.max(d);
+            }
+            x += 0.1;
+        }
+        y += 0.1;
+    }
+    worst
+}
+
+/// Concentric loops leave no band wider than about a spacing: where part of the region
+/// ends between two loops (the L's arms at 20%: loops 1 and 3 mm in from each side of a
+/// 9.6 mm arm), the middle gets pieces of a loop in between. Without them the arms kept a
+/// 3.6 mm empty band (a point 1.8 mm from every line; Polyslice 1.2).
+#[test]
+fn concentric_leaves_no_wide_band() {
+    for (name, shape) in [
+        ("L", shapes::l_shape(20.0)),
+        ("square", shapes::square(19.0)),
+    ] {
+        let region = Region::new(&shape, W).unwrap();
+        let paths = region
+            .fill(&Params::new(Pattern::Concentric, 0.2, W))
+            .unwrap();
+        let gap = largest_gap(&region, &paths);
+        assert!(gap < 1.5, "{name}: a point {gap} mm from every line");
+    }
 }

@@ -45,10 +45,6 @@ pub struct PartArgs {
         help_heading = "Part (a mesh as --shape)"
     )]
     pub three_d: Option<std::path::PathBuf>,
-    /// For a .3mf: the object to preview, by name (default: every object of the build,
-    /// placed as on the plate).
-    #[arg(long, value_name = "NAME", help_heading = "Part (a mesh as --shape)")]
-    pub object: Option<String>,
 }
 
 /// Whether `--shape` names a mesh file.
@@ -128,7 +124,7 @@ pub fn run(
             args.nozzle
         )));
     }
-    let mesh = read_mesh(shape, args.part.object.as_deref())?;
+    let mesh = read_mesh(shape, args.profile.object.as_deref())?;
     let (lo, hi) = mesh.bounds().unwrap_or(([0.0; 3], [0.0; 3]));
     let m = &args.model;
     let model = if m.height.is_none() && m.model.is_none() {
@@ -150,7 +146,12 @@ pub fn run(
     let drawn = match template(
         text,
         &args.file,
-        &args.profile,
+        // `--object` picks the mesh's object; it names a project's overrides only with
+        // --profile.
+        &super::paths::ProfileArgs {
+            profile: args.profile.profile.clone(),
+            object: args.profile.profile.as_ref().and(args.profile.object.clone()),
+        },
         (args.target, crate::eval::Dialect::Rotlang),
         args.color,
         (&args.model, None),

@@ -105,7 +105,8 @@ pub struct ProfileArgs {
     #[arg(long, value_name = "PATH")]
     pub profile: Option<PathBuf>,
     /// With a .3mf project: the object whose overrides apply (its template, layer height,
-    /// shells); `--profile project.3mf` alone lists the objects.
+    /// shells); `--profile project.3mf` alone lists the objects. In `preview` with a
+    /// .3mf mesh as --shape, also the object drawn (default: every object, as on the plate).
     #[arg(long, value_name = "NAME")]
     pub object: Option<String>,
 }

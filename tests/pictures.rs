@@ -778,3 +778,60 @@ fn preview_of_a_3mf_object() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("Box, Tube"));
 }
+
+/// Issue 17: `rotlang preview` draws the layers a slicer prints solid as solid: the bottom
+/// and top shells of the model, where the template says sparse (the template still turns
+/// them), and says what the colours mean in a legend.
+#[cfg(feature = "cli")]
+#[test]
+fn preview_prints_shell_layers_solid_with_a_legend() {
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(args)
+            .output()
+            .expect("rotlang runs");
+        assert!(out.status.success(), "{args:?}");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    // The 20 mm cube: 100 layers, 3 bottom and 4 top shell layers.
+    let json: serde_json::Value = serde_json::from_str(&run(&[
+        "preview",
+        "+30",
+        "--pattern",
+        "grid",
+        "--layers",
+        "0..100",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    let layers = json["layers"].as_array().unwrap();
+    assert_eq!(layers.len(), 100);
+    for l in layers {
+        let i = l["index"].as_u64().unwrap();
+        let shell = i < 3 || i >= 96;
+        assert_eq!(l["fill"], "sparse", "the template's fill");
+        assert_eq!(
+            l["printed"],
+            if shell { "solid" } else { "sparse" },
+            "layer {i}"
+        );
+        assert_eq!(
+            l["pattern"],
+            if shell { "lines" } else { "grid" },
+            "layer {i}"
+        );
+        let angle = l["angle"].as_f64().unwrap();
+        assert!(
+            (angle - 30.0 * (i + 1) as f64).abs() < 1e-9,
+            "the template turns shells too"
+        );
+    }
+    let svg = run(&["preview", "+30", "--layers", "1..5"]);
+    assert!(
+        svg.contains("shell, solid (lines)") && svg.contains("lines 20%"),
+        "{svg}"
+    );
+    assert!(svg.contains("print order: first (blue) to last (red)"));
+    assert!(svg.contains(r#"fill="url(#print-order)""#));
+}

@@ -150,7 +150,11 @@ pub fn run(
         // --profile.
         &super::paths::ProfileArgs {
             profile: args.profile.profile.clone(),
-            object: args.profile.profile.as_ref().and(args.profile.object.clone()),
+            object: args
+                .profile
+                .profile
+                .as_ref()
+                .and(args.profile.object.clone()),
         },
         (args.target, crate::eval::Dialect::Rotlang),
         args.color,

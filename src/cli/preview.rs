@@ -521,7 +521,8 @@ fn json(
     range: Range<usize>,
 ) -> Result<String, crate::infill::Error> {
     let prepared = crate::infill::Region::new(region, settings.nozzle)?;
-    let mut schedule = crate::infill::Schedule::new(template, model, options, *settings);
+    let mut schedule =
+        crate::infill::Schedule::new(template, model, options, *settings).with_shells(model);
     let mut layers = Vec::new();
     for index in range {
         let Some(fill) = schedule.layer(index, &prepared)? else {
@@ -534,6 +535,7 @@ fn json(
             "top": l.top,
             "angle": l.angle,
             "fill": l.fill.name(),
+            "printed": fill.printed.name(),
             "instruction": l.instruction.map(|s| serde_json::json!({"start": s.start, "end": s.end})),
             "pattern": fill.params.pattern.name(),
             "density": fill.params.density,

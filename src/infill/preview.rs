@@ -50,6 +50,8 @@ pub struct Panel<'a> {
 pub const LABEL_HEIGHT: f64 = 40.0;
 const MARGIN: f64 = 12.0;
 const GAP: f64 = 16.0;
+/// The strip under the panels that says what the colours and dashes mean.
+const LEGEND_HEIGHT: f64 = 22.0;
 
 /// The mapping from region coordinates (mm, y up) to the pixels of panel number `index`
 /// (y down): `(scale, offset)` with `pixel = (x·scale + offset.x, −y·scale + offset.y)`.
@@ -115,7 +117,7 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
     let columns = options.columns.max(1);
     let rows = panels.len().div_ceil(columns).max(1);
     let width = GAP + columns.min(panels.len().max(1)) as f64 * (options.panel + GAP);
-    let height = GAP + rows as f64 * (options.panel + LABEL_HEIGHT + GAP);
+    let height = GAP + rows as f64 * (options.panel + LABEL_HEIGHT + GAP) + LEGEND_HEIGHT;
     let mut s = String::new();
     let _ = write!(
         s,
@@ -206,6 +208,37 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
             r##"<path d="{outline}" fill="none" stroke="#222222" stroke-width="1.2"/>"##
         );
     }
+    // The legend: print order as a blue-to-red bar, and the travel's dashes when drawn.
+    let y = height - LEGEND_HEIGHT - GAP / 2.0 + 6.0;
+    s.push_str(r#"<defs><linearGradient id="print-order">"#);
+    for k in 0..=4 {
+        let _ = write!(
+            s,
+            r#"<stop offset="{}" stop-color="{}"/>"#,
+            num(k as f64 / 4.0, 2),
+            colour(k, 5)
+        );
+    }
+    s.push_str("</linearGradient></defs>");
+    let _ = write!(
+        s,
+        r##"<rect x="{x}" y="{y}" width="60" height="8" fill="url(#print-order)"/><text x="{tx}" y="{ty}" fill="#444">print order: first (blue) to last (red)</text>"##,
+        x = num(GAP, 2),
+        y = num(y, 2),
+        tx = num(GAP + 68.0, 2),
+        ty = num(y + 8.0, 2)
+    );
+    if options.travel {
+        let _ = write!(
+            s,
+            r##"<path d="M{x1} {ym}L{x2} {ym}" fill="none" stroke="#9a9a9a" stroke-width="0.6" stroke-dasharray="2 2"/><text x="{tx}" y="{ty}" fill="#444">travel</text>"##,
+            x1 = num(GAP + 320.0, 2),
+            x2 = num(GAP + 350.0, 2),
+            ym = num(y + 4.0, 2),
+            tx = num(GAP + 356.0, 2),
+            ty = num(y + 8.0, 2)
+        );
+    }
     s.push_str("</svg>\n");
     s
 }
@@ -223,7 +256,7 @@ pub fn layers(
     layers: Range<usize>,
 ) -> Result<Vec<(Toolpaths, String, String)>, Error> {
     let prepared = Region::new(region, settings.nozzle)?;
-    let mut schedule = Schedule::new(template, model, options, *settings);
+    let mut schedule = Schedule::new(template, model, options, *settings).with_shells(model);
     let mut out = Vec::new();
     for index in layers {
         let Some(fill) = schedule.layer(index, &prepared)? else {
@@ -234,13 +267,15 @@ pub fn layers(
             .instruction
             .and_then(|s| source.get(s.range()))
             .map_or_else(|| "(holds)".to_owned(), |t| shorten(t, 28));
-        let kind = match l.fill {
-            Fill::Sparse => format!(
+        let kind = match (l.fill, fill.printed) {
+            (Fill::Sparse, Fill::Sparse) => format!(
                 "{} {}%",
                 fill.params.pattern,
                 num(fill.params.density * 100.0, 1)
             ),
-            solid => format!("{} ({})", solid.name(), fill.params.pattern),
+            // A shell layer: the template says sparse, the slicer prints it solid.
+            (Fill::Sparse, _) => format!("shell, solid ({})", fill.params.pattern),
+            (solid, _) => format!("{} ({})", solid.name(), fill.params.pattern),
         };
         let title = format!(
             "layer {} · z {} mm · {}°",

@@ -60,6 +60,9 @@ impl Settings {
 #[derive(Clone, Debug, PartialEq)]
 pub struct LayerFill {
     pub layer: Layer,
+    /// What is printed: the template's fill, or solid in a shell layer
+    /// ([`Schedule::with_shells`]).
+    pub printed: Fill,
     pub params: Params,
     pub paths: Toolpaths,
 }
@@ -85,6 +88,9 @@ pub struct LayerFill {
 pub struct Schedule<'a> {
     evaluator: Evaluator<'a>,
     settings: Settings,
+    /// The model's bottom and top shell counts and its layer count, when shell layers
+    /// are printed solid.
+    shells: Option<(usize, usize, usize)>,
 }
 
 impl<'a> Schedule<'a> {
@@ -97,6 +103,32 @@ impl<'a> Schedule<'a> {
         Schedule {
             evaluator: Evaluator::new(template, model, options),
             settings,
+            shells: None,
+        }
+    }
+
+    /// Prints the model's bottom and top shell layers solid where the template says
+    /// sparse, as a slicer does (the template still turns them): what `rotlang preview`
+    /// and the playground draw.
+    pub fn with_shells(mut self, model: &Model) -> Self {
+        self.shells = Some((
+            model.bottom_shells() as usize,
+            model.top_shells() as usize,
+            model.len(),
+        ));
+        self
+    }
+
+    /// What `layer` is printed as: its fill, or solid in a shell.
+    pub fn printed(&self, layer: &Layer) -> Fill {
+        match self.shells {
+            Some((bottom, top, n))
+                if layer.fill == Fill::Sparse
+                    && (layer.index < bottom || layer.index + top >= n) =>
+            {
+                Fill::Solid
+            }
+            _ => layer.fill,
         }
     }
 
@@ -114,12 +146,14 @@ impl<'a> Schedule<'a> {
         let Some(layer) = self.evaluator.layer(index) else {
             return Ok(None);
         };
-        let params =
-            self.settings
-                .params(layer.fill, layer.angle, (layer.bottom + layer.top) / 2.0);
+        let printed = self.printed(&layer);
+        let params = self
+            .settings
+            .params(printed, layer.angle, (layer.bottom + layer.top) / 2.0);
         let paths = region.fill(&params)?;
         Ok(Some(LayerFill {
             layer,
+            printed,
             params,
             paths,
         }))

@@ -809,7 +809,7 @@ fn preview_prints_shell_layers_solid_with_a_legend() {
     assert_eq!(layers.len(), 100);
     for l in layers {
         let i = l["index"].as_u64().unwrap();
-        let shell = i < 3 || i >= 96;
+        let shell = !(3..96).contains(&i);
         assert_eq!(l["fill"], "sparse", "the template's fill");
         assert_eq!(
             l["printed"],

@@ -255,6 +255,11 @@ pub fn layers(
     settings: &Settings,
     layers: Range<usize>,
 ) -> Result<Vec<(Toolpaths, String, String)>, Error> {
+    // The sparse density is checked whatever the layers drawn: a shell layer, printed
+    // solid, would not look at it.
+    if !(settings.density > 0.0 && settings.density <= 1.0) {
+        return Err(Error::Density(settings.density));
+    }
     let prepared = Region::new(region, settings.nozzle)?;
     let mut schedule = Schedule::new(template, model, options, *settings).with_shells(model);
     let mut out = Vec::new();

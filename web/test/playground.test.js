@@ -398,6 +398,12 @@ test('hostile input: a 1 MB paste is refused, a million layers plot, ten million
 test('every pattern and shape previews; the chart by rotlang plot opens', async () => {
   const page = await open();
   await type(page, '+10L25%, -10l25%');
+  // Layer 0 is a bottom shell: printed solid, as the CLI's preview draws it.
+  await page.waitForFunction(() => /shell, solid/.test(document.querySelector('#preview svg')?.textContent ?? ''));
+  // Above the shells, the sparse pattern chosen.
+  await page.focus('#layer-slider');
+  await page.keyboard.press('Home');
+  for (let i = 0; i < 10; i++) await page.keyboard.press('ArrowRight');
   for (const pattern of ['grid', 'gyroid', 'concentric', 'lightning']) {
     await page.selectOption('#pattern', pattern);
     await page.selectOption('#shape', pattern === 'grid' ? 'star' : 'ring');

@@ -580,7 +580,7 @@ mod tests {
             "--pattern",
             "grid",
             "--layers",
-            "1..=2",
+            "2..=3",
             "--format",
             "json",
         ]);
@@ -590,7 +590,12 @@ mod tests {
         assert_eq!(layers.len(), 2);
         assert_eq!(
             (layers[0]["index"].clone(), layers[0]["angle"].clone()),
-            (1.into(), 90.0.into())
+            (2.into(), 135.0.into())
+        );
+        // Layer 2 is the cube's last bottom shell, printed solid; layer 3 is sparse grid.
+        assert_eq!(
+            (&layers[0]["printed"], &layers[0]["pattern"]),
+            (&"solid".into(), &"lines".into())
         );
         assert_eq!(layers[1]["pattern"], "grid");
         assert!(!layers[1]["polylines"].as_array().unwrap().is_empty());

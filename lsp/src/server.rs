@@ -128,7 +128,7 @@ impl Backend {
     async fn current(&self, uri: &Uri) -> Option<(Arc<Document>, Encoding, ModelSettings)> {
         let mut changes = self.analysed.subscribe();
         // The version the request was made against: later edits do not make it wait longer.
-        let wanted = self.state().documents.get(uri)?.version;
+        let mut wanted = self.state().documents.get(uri)?.version;
         loop {
             {
                 let state = self.state();
@@ -136,6 +136,10 @@ impl Backend {
                 if open.out_of_sync.is_some() {
                     return None;
                 }
+                // A client may send a lower version next (versions should rise, but the
+                // server must not hang on one that does not): then the latest is the one
+                // to wait for, or no analysis would ever be between the two.
+                wanted = wanted.min(open.version);
                 if let Some(doc) = &open.analysed
                     && doc.version >= wanted
                     && doc.version <= open.version

@@ -249,3 +249,29 @@ fn a_request_waiting_for_an_analysis_can_be_cancelled() {
     assert!(h.contains("`+2`"), "{}", &h[..h.len().min(300)]);
     lsp.shutdown();
 }
+
+/// A request that waits for an analysis is answered even when the client's next version
+/// is lower than the one the request was made against (found by the `lsp_framing` fuzz
+/// target: the request waited for an analysis between version 10 and version 3, forever).
+#[test]
+fn a_lower_version_does_not_leave_a_request_waiting() {
+    let mut lsp = Lsp::start();
+    let base = big_template(2 * MIB);
+    lsp.notify(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": ROT, "languageId": "rotlang", "version": 10, "text": format!("{base}+1")}}),
+    );
+    // The hover waits for version 10's analysis (a 2 MB template: not done yet) ...
+    lsp.send(
+        &json!({"jsonrpc": "2.0", "id": 900, "method": "textDocument/hover",
+        "params": {"textDocument": {"uri": ROT}, "position": {"line": 0, "character": 0}}}),
+    );
+    // ... while the client goes back to version 3 with a small text.
+    lsp.change(ROT, 3, "+30");
+    let answer = lsp.wait(|m| m.get("id") == Some(&json!(900)));
+    assert!(answer.get("error").is_none(), "{answer}");
+    // The server goes on: the latest text is what a new request sees.
+    let h = hover_text(&mut lsp, ROT, 0, 1);
+    assert!(h.contains("+30"), "{h}");
+    lsp.shutdown();
+}

@@ -4,9 +4,8 @@ use std::io::Write;
 
 use super::UsageError;
 use super::plot::{emit, template};
-use super::preview::{CentringArg, Format, PreviewArgs};
+use super::preview::{Format, PreviewArgs};
 use crate::infill::preview::{self, Panel, PreviewOptions};
-use crate::infill::{Centring, Settings};
 use crate::ir::Fill;
 use crate::mesh::Mesh;
 use crate::plot::{num, shorten};
@@ -165,25 +164,8 @@ pub fn run(
         Err(code) => return Ok(code),
     };
     let (input, parse) = (drawn.input, drawn.parse);
-    let settings = Settings {
-        pattern: args.pattern.into(),
-        density: args.density,
-        nozzle: args.nozzle,
-        centring: match args.centring {
-            CentringArg::Object => Centring::Object,
-            CentringArg::Global => Centring::Global,
-        },
-        solid_pattern: args.solid_pattern.into(),
-    };
-    let range = args.layers.clone().unwrap_or(0..8);
-    if range.start >= model.len() {
-        return Err(UsageError(format!(
-            "--layers starts at layer {} but the part has {} layers (0..{})",
-            range.start,
-            model.len(),
-            model.len()
-        )));
-    }
+    let settings = args.settings();
+    let range = args.range(model.len(), "part")?;
     let part = Part::new(
         &mesh,
         &parse.template,

@@ -133,6 +133,35 @@ pub enum PatternArg {
     Cubic,
 }
 
+impl PreviewArgs {
+    /// The infill settings the options give.
+    pub(super) fn settings(&self) -> Settings {
+        Settings {
+            pattern: self.pattern.into(),
+            density: self.density,
+            nozzle: self.nozzle,
+            centring: match self.centring {
+                CentringArg::Object => Centring::Object,
+                CentringArg::Global => Centring::Global,
+            },
+            solid_pattern: self.solid_pattern.into(),
+        }
+    }
+
+    /// The layers to draw (`--layers`, else the first eight) of `len`, which must start
+    /// inside them; `what` names the model or part in the message.
+    pub(super) fn range(&self, len: usize, what: &str) -> Result<Range<usize>, UsageError> {
+        let range = self.layers.clone().unwrap_or(0..8);
+        if range.start >= len {
+            return Err(UsageError(format!(
+                "--layers starts at layer {} but the {what} has {len} layers (0..{len})",
+                range.start
+            )));
+        }
+        Ok(range)
+    }
+}
+
 impl From<PatternArg> for Pattern {
     fn from(p: PatternArg) -> Pattern {
         match p {
@@ -465,25 +494,8 @@ pub fn run(
         Err(code) => return Ok(code),
     };
     let (input, parse, model) = (drawn.input, drawn.parse, drawn.model);
-    let settings = Settings {
-        pattern: args.pattern.into(),
-        density: args.density,
-        nozzle: args.nozzle,
-        centring: match args.centring {
-            CentringArg::Object => Centring::Object,
-            CentringArg::Global => Centring::Global,
-        },
-        solid_pattern: args.solid_pattern.into(),
-    };
-    let range = args.layers.clone().unwrap_or(0..8);
-    if range.start >= model.len() {
-        return Err(UsageError(format!(
-            "--layers starts at layer {} but the model has {} layers (0..{})",
-            range.start,
-            model.len(),
-            model.len()
-        )));
-    }
+    let settings = args.settings();
+    let range = args.range(model.len(), "model")?;
     let options = drawn.options;
     let fail = |e: crate::infill::Error| UsageError(e.to_string());
     let text = match args.format {

@@ -100,7 +100,7 @@ mod region;
 mod schedule;
 pub mod shapes;
 mod straight;
-mod travel;
+pub(crate) mod travel;
 
 pub use geo::{Coord, LineString, MultiPolygon, Polygon};
 pub use region::{Region, inset};

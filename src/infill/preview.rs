@@ -102,6 +102,20 @@ fn bounds(region: &MultiPolygon<f64>) -> (Coord, Coord) {
     }
 }
 
+/// Appends the SVG path data of a polyline through `points` (`M x y L x y …`), each
+/// coordinate printed with `digits` decimals at most.
+fn path_data(out: &mut String, points: impl Iterator<Item = (f64, f64)>, digits: usize) {
+    for (k, (x, y)) in points.enumerate() {
+        let _ = write!(
+            out,
+            "{}{} {}",
+            if k == 0 { 'M' } else { 'L' },
+            num(x, digits),
+            num(y, digits)
+        );
+    }
+}
+
 /// The colour of the `i`-th of `n` paths: a hue from blue (first) to red (last).
 pub fn colour(i: usize, n: usize) -> String {
     let t = if n <= 1 {
@@ -146,16 +160,7 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
         let mut outline = String::new();
         for p in &panel.region.0 {
             for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
-                for (k, &c) in ring.0.iter().enumerate() {
-                    let (x, y) = px(c);
-                    let _ = write!(
-                        outline,
-                        "{}{} {}",
-                        if k == 0 { 'M' } else { 'L' },
-                        num(x, 2),
-                        num(y, 2)
-                    );
-                }
+                path_data(&mut outline, ring.0.iter().map(|&c| px(c)), 2);
                 outline.push('Z');
             }
         }
@@ -168,16 +173,7 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
         if options.travel {
             let mut travel = String::new();
             for route in &panel.paths.travels {
-                for (k, &c) in route.0.iter().enumerate() {
-                    let (x, y) = px(c);
-                    let _ = write!(
-                        travel,
-                        "{}{} {}",
-                        if k == 0 { 'M' } else { 'L' },
-                        num(x, 2),
-                        num(y, 2)
-                    );
-                }
+                path_data(&mut travel, route.0.iter().map(|&c| px(c)), 2);
             }
             let _ = write!(
                 s,
@@ -186,16 +182,7 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
         }
         for (i, line) in panel.paths.polylines.iter().enumerate() {
             let mut d = String::new();
-            for (k, &c) in line.0.iter().enumerate() {
-                let (x, y) = px(c);
-                let _ = write!(
-                    d,
-                    "{}{} {}",
-                    if k == 0 { 'M' } else { 'L' },
-                    num(x, 2),
-                    num(y, 2)
-                );
-            }
+            path_data(&mut d, line.0.iter().map(|&c| px(c)), 2);
             let _ = write!(
                 s,
                 r#"<path d="{d}" fill="none" stroke="{}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round"/>"#,
@@ -393,16 +380,7 @@ pub fn isometric(slabs: &[Slab<'_>], width: f64) -> String {
         let mut outline = String::new();
         for p in &slab.region.0 {
             for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
-                for (k, q) in ring.coords().enumerate() {
-                    let (x, y) = px(*q, slab.z);
-                    let _ = write!(
-                        outline,
-                        "{}{} {}",
-                        if k == 0 { 'M' } else { 'L' },
-                        num(x, 1),
-                        num(y, 1)
-                    );
-                }
+                path_data(&mut outline, ring.coords().map(|q| px(*q, slab.z)), 1);
             }
         }
         let t = if z1 > z0 {
@@ -412,16 +390,7 @@ pub fn isometric(slabs: &[Slab<'_>], width: f64) -> String {
         };
         let mut lines = String::new();
         for line in &slab.paths.polylines {
-            for (k, q) in line.0.iter().enumerate() {
-                let (x, y) = px(*q, slab.z);
-                let _ = write!(
-                    lines,
-                    "{}{} {}",
-                    if k == 0 { 'M' } else { 'L' },
-                    num(x, 1),
-                    num(y, 1)
-                );
-            }
+            path_data(&mut lines, line.0.iter().map(|q| px(*q, slab.z)), 1);
         }
         let _ = write!(
             out,

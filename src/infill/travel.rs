@@ -49,35 +49,7 @@ impl<'a> Router<'a> {
                 c
             })
             .collect();
-        let boxes = rings
-            .iter()
-            .map(|r| {
-                r.iter().fold(
-                    (
-                        Coord {
-                            x: f64::INFINITY,
-                            y: f64::INFINITY,
-                        },
-                        Coord {
-                            x: f64::NEG_INFINITY,
-                            y: f64::NEG_INFINITY,
-                        },
-                    ),
-                    |(lo, hi), c| {
-                        (
-                            Coord {
-                                x: lo.x.min(c.x),
-                                y: lo.y.min(c.y),
-                            },
-                            Coord {
-                                x: hi.x.max(c.x),
-                                y: hi.y.max(c.y),
-                            },
-                        )
-                    },
-                )
-            })
-            .collect();
+        let boxes = rings.iter().map(|r| bounds(r)).collect();
         Router {
             rings,
             cumulative,
@@ -251,4 +223,32 @@ pub(crate) fn length(path: &[Coord]) -> f64 {
     path.windows(2)
         .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
         .sum()
+}
+
+/// The bounding box of a ring: its lowest and highest corner.
+pub(crate) fn bounds(ring: &[Coord]) -> (Coord, Coord) {
+    ring.iter().fold(
+        (
+            Coord {
+                x: f64::INFINITY,
+                y: f64::INFINITY,
+            },
+            Coord {
+                x: f64::NEG_INFINITY,
+                y: f64::NEG_INFINITY,
+            },
+        ),
+        |(lo, hi), c| {
+            (
+                Coord {
+                    x: lo.x.min(c.x),
+                    y: lo.y.min(c.y),
+                },
+                Coord {
+                    x: hi.x.max(c.x),
+                    y: hi.y.max(c.y),
+                },
+            )
+        },
+    )
 }

@@ -264,7 +264,10 @@ pub fn nest(mut loops: Vec<Vec<Coord>>) -> MultiPolygon<f64> {
     loops.retain(|l| l.len() >= 3 && area(l) != 0.0);
     // Largest first: a loop's containers come before it.
     loops.sort_by(|a, b| area(b).abs().total_cmp(&area(a).abs()));
-    let boxes: Vec<(Coord, Coord)> = loops.iter().map(|l| bbox(l)).collect();
+    let boxes: Vec<(Coord, Coord)> = loops
+        .iter()
+        .map(|l| crate::infill::travel::bounds(l))
+        .collect();
     let mut parent: Vec<Option<usize>> = vec![None; loops.len()];
     let mut depth = vec![0usize; loops.len()];
     for i in 0..loops.len() {
@@ -339,33 +342,6 @@ fn area(ring: &[Coord]) -> f64 {
         .map(|i| ring[i].x * ring[(i + 1) % n].y - ring[(i + 1) % n].x * ring[i].y)
         .sum::<f64>()
         / 2.0
-}
-
-fn bbox(ring: &[Coord]) -> (Coord, Coord) {
-    ring.iter().fold(
-        (
-            Coord {
-                x: f64::INFINITY,
-                y: f64::INFINITY,
-            },
-            Coord {
-                x: f64::NEG_INFINITY,
-                y: f64::NEG_INFINITY,
-            },
-        ),
-        |(lo, hi), c| {
-            (
-                Coord {
-                    x: lo.x.min(c.x),
-                    y: lo.y.min(c.y),
-                },
-                Coord {
-                    x: hi.x.max(c.x),
-                    y: hi.y.max(c.y),
-                },
-            )
-        },
-    )
 }
 
 fn contains(ring: &[Coord], p: Coord) -> bool {

@@ -59,3 +59,56 @@ export interface PlotOptions extends Options {
 }
 /** The angle chart as SVG (what `rotlang plot` draws); throws for a template with errors. */
 export function plot(text: string, options?: PlotOptions): string;
+
+export interface MeshInfo {
+  triangles: number;
+  vertices: number;
+  /** The mesh's bounding box corners, [x, y, z] in mm. */
+  min: [number, number, number];
+  max: [number, number, number];
+  /** A 3MF's object names (all are merged); empty for STL and OBJ. */
+  objects: string[];
+}
+/**
+ * Reads a mesh file (the name's extension picks `.stl` (binary or ASCII), `.obj` or
+ * `.3mf`) and keeps it for `part`. Throws RotlangError (kind 'model') when it cannot be read.
+ */
+export function readMesh(name: string, content: Uint8Array | ArrayBuffer | string): MeshInfo;
+
+export type Point = [number, number];
+export interface PartLayer {
+  index: number;
+  bottom: number;
+  top: number;
+  /** The height of the cut (the layer's middle) above the mesh's lowest point. */
+  z: number;
+  angle: number;
+  fill: string;
+  pattern: string;
+  density: number;
+  /** Infill extruded and travelled on this layer (mm). */
+  length: number;
+  travel: number;
+  /** Chains that could not be closed, and gaps bridged (holes in the mesh's surface). */
+  open: number;
+  bridged: number;
+  /** The section: polygons, each its outline then its holes. */
+  section: Point[][][];
+  polylines: Point[][];
+}
+export interface PartOptions extends Omit<PreviewOptions, 'shape' | 'layer' | 'width'> {
+  /** Wall loops around the infill, each a 0.4 mm line (default 2). */
+  walls?: number;
+}
+/**
+ * The mesh kept by `readMesh`, sliced at the middle of each layer and filled under the
+ * template: what `rotlang preview --shape part.stl --format json` prints.
+ */
+export function part(text: string, options?: PartOptions): {
+  template: string;
+  summary: {
+    layers: number; extrusion_mm: number; travel_mm: number; time_s: number;
+    speed: number; travel_speed: number; open_layers: number; bridged: number; walls: number;
+  };
+  layers: PartLayer[];
+};

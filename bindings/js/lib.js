@@ -326,9 +326,64 @@ export async function bind(wasmModule) {
     return call('rotlang_preview', text, options, true).svg;
   }
 
+  /**
+   * Reads a mesh file (`name` picks STL, OBJ or 3MF by its extension; `content` its bytes)
+   * and keeps it for `part`: `{ triangles, vertices, min, max, objects }`.
+   */
+  function readMesh(name, content) {
+    if (typeof name !== 'string') throw new RotlangError('options', 'the mesh name must be a string');
+    const bytes = content instanceof Uint8Array ? content
+      : ArrayBuffer.isView(content) ? new Uint8Array(content.buffer, content.byteOffset, content.byteLength)
+        : content instanceof ArrayBuffer ? new Uint8Array(content)
+          : typeof content === 'string' ? encoder.encode(content) : null;
+    if (!bytes) throw new RotlangError('options', 'the mesh content must be bytes or a string');
+    return withInputs('rotlang_mesh', [encoder.encode(name), bytes], []);
+  }
+
+  /**
+   * The kept mesh (`readMesh`) sliced at its layers and filled under the template, as
+   * `rotlang preview --shape part.stl --format json`: `{ summary, layers }`, each layer with
+   * its `z`, `angle`, `fill`, `section` (polygons: outline then holes, `[x, y]` points) and
+   * infill `polylines`. Options as expand's (the model is as tall as the mesh unless it
+   * gives `layers` or `height`; `from`/`to` pick the layers returned), plus `pattern`,
+   * `density` and `walls` (wall loops, 2 when absent).
+   */
+  function part(text, options = {}) {
+    const { walls, ...rest } = options ?? {};
+    if (walls !== undefined && walls !== null) finite('options', 'walls', walls);
+    const [slots] = request(rest);
+    return withInputs('rotlang_part', [encoder.encode(textArg(text)), new Uint8Array(slots.buffer)], [walls ?? NaN], true);
+  }
+
+  // Copies the byte inputs in, calls `name` with their (pointer, length) pairs (a request's
+  // length counted in slots) then `extra`, frees them, returns the answer or throws.
+  function withInputs(name, inputs, extra, lastIsRequest = false) {
+    const ex = exportsOrThrow();
+    const blocks = [];
+    try {
+      for (const b of inputs) blocks.push(put(ex, b));
+      const args = blocks.flatMap((b, i) => (lastIsRequest && i === blocks.length - 1 ? [b[0], SLOT_COUNT] : b));
+      const code = ex[name](...args, ...extra);
+      const answer = readJson(ex);
+      if (code !== 0) throw new RotlangError(answer.kind, answer.message, answer.diagnostics ?? null);
+      ex.rotlang_release();
+      return answer;
+    } catch (e) {
+      if (e instanceof WebAssembly.RuntimeError || e instanceof RangeError) {
+        blocks.length = 0;
+        restart();
+        throw new RotlangError('internal', `rotlang failed internally (${e.message}); the input was refused`);
+      }
+      throw e;
+    } finally {
+      for (const block of blocks) ex.rotlang_dealloc(block[0], block[1]);
+    }
+  }
+
   const api = { version, signs, check, format, explain, explainCode, compare, compat, expand };
   // In rotlang-full.wasm only.
   if (instance.exports.rotlang_profile) api.readProfile = readProfile;
   if (instance.exports.rotlang_preview) Object.assign(api, { plot, preview });
+  if (instance.exports.rotlang_part) Object.assign(api, { readMesh, part });
   return api;
 }

@@ -428,7 +428,7 @@ fn findings_json(findings: &[rotlang::dialect::Finding]) -> Value {
 }
 
 /// The template's parse, or the failure that carries its errors.
-fn parse_clean(text: &str, target: Target) -> Result<Parse, Failure> {
+pub(crate) fn parse_clean(text: &str, target: Target) -> Result<Parse, Failure> {
     let parse = rotlang::parse(text, target);
     if parse.has_errors() {
         let errors = parse.errors;

@@ -17,6 +17,10 @@ thread_local! {
     static LAYERS: RefCell<Layers> = RefCell::new(Layers::default());
     /// The last `check`'s instruction spans, four u32 each (`api::check`).
     static SPANS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
+    /// The mesh of the last `rotlang_mesh` (kept so that each template or slider change
+    /// slices it again without copying the file in again).
+    #[cfg(feature = "full")]
+    static MESH: RefCell<Option<rotlang::mesh::Mesh>> = const { RefCell::new(None) };
 }
 
 /// Inputs are aligned for f64 (the request slots and layer heights are f64 arrays, which
@@ -289,6 +293,61 @@ pub unsafe extern "C" fn rotlang_preview(
         // SAFETY: as above.
         let heights = unsafe { f64s(heights, count) };
         api::preview(t, &r, heights)
+    });
+    finish(result)
+}
+
+#[cfg(feature = "full")]
+/// A mesh file (STL, OBJ, 3MF by its name's extension): read and kept for `rotlang_part`
+/// (a file that cannot be read leaves no mesh). The answer: its size and bounds.
+///
+/// # Safety
+/// As [`rotlang_profile`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_mesh(
+    name: *const u8,
+    name_len: usize,
+    bytes: *const u8,
+    bytes_len: usize,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let name = unsafe { utf8(name, name_len) }.unwrap_or("mesh");
+    let bytes = if bytes.is_null() || bytes_len == 0 {
+        &[][..]
+    } else {
+        // SAFETY: forwarded from this function's contract.
+        unsafe { std::slice::from_raw_parts(bytes, bytes_len) }
+    };
+    MESH.with_borrow_mut(|m| *m = None);
+    let result = crate::part::read_mesh(name, bytes).map(|(mesh, objects)| {
+        let answer = crate::part::mesh_json(&mesh, &objects);
+        MESH.with_borrow_mut(|m| *m = Some(mesh));
+        answer
+    });
+    finish(result)
+}
+
+#[cfg(feature = "full")]
+/// The kept mesh sliced and filled under the template (`rotlang::slice::Part`): every
+/// layer's section and infill paths (or those of `from`..`to`), as
+/// `rotlang preview --shape part.stl --format json`. `walls`: wall loops (NaN: 2).
+///
+/// # Safety
+/// As [`rotlang_check`].
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_part(
+    text: *const u8,
+    text_len: usize,
+    req: *const f64,
+    req_len: usize,
+    walls: f64,
+) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        MESH.with_borrow(|m| match m {
+            Some(mesh) => crate::part::part(mesh, t, &r, walls),
+            None => Err(Failure::options("no mesh: read one with `readMesh` first")),
+        })
     });
     finish(result)
 }

@@ -14,6 +14,8 @@ pub mod diagnostics;
 pub mod ffi;
 pub mod json;
 pub mod options;
+#[cfg(feature = "full")]
+pub mod part;
 pub mod utf16;
 
 use crate::json::Value;

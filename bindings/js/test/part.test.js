@@ -1,0 +1,85 @@
+// A real part through `rotlang/full` (readMesh + part): the same layers as the CLI's
+// `rotlang preview --shape part.stl --format json` for the same mesh and template (one
+// answer everywhere), and the sections a cube and a cylinder must have. The Rust runner
+// (tests/node.rs) passes the workspace's CLI as ROTLANG_CLI.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { RotlangError, part, readMesh } from '../full.js';
+import { box, cylinder } from './meshes.js';
+
+const cli = process.env.ROTLANG_CLI;
+const skip = !cli && 'ROTLANG_CLI names the rotlang binary (tests/node.rs sets it)';
+
+function viaCli(stl, args) {
+  const dir = mkdtempSync(join(tmpdir(), 'rotlang-part-'));
+  const file = join(dir, 'cube.stl');
+  writeFileSync(file, stl);
+  const r = spawnSync(cli, ['preview', ...args, '--shape', file, '--format', 'json'], { encoding: 'utf8' });
+  assert.equal(r.status, 0, r.stderr);
+  return JSON.parse(r.stdout);
+}
+
+test('a cube gives the CLI\'s layers, sections and paths', { skip }, () => {
+  const stl = box([20, 20, 10]);
+  const info = readMesh('cube.stl', stl);
+  assert.equal(info.triangles, 12);
+  assert.deepEqual([info.min, info.max], [[0, 0, 0], [20, 20, 10]]);
+  const js = part('+45, 0M', {});
+  assert.equal(js.layers.length, 50);
+  const shown = viaCli(stl, ['+45, 0M', '--layers', '0..50']);
+  assert.deepEqual(js, shown);
+  // Another pattern, density, layer height, walls and a range: still the CLI's answer.
+  const js2 = part('0, 90', {
+    pattern: 'grid', density: 0.35, walls: 3, from: 5, to: 12,
+    model: { height: 10, layerHeight: 0.25, firstLayerHeight: 0.3, topShells: 2 },
+  });
+  const cli2 = viaCli(stl, ['0, 90', '--pattern', 'grid', '--density', '35', '--walls', '3',
+    '--height', '10', '--layer-height', '0.25', '--first-layer-height', '0.3', '--top-shell-layers', '2', '--layers', '5..12']);
+  assert.equal(js2.layers.length, 7);
+  assert.deepEqual(js2, cli2);
+});
+
+test('a cube\'s sections are its square; a cylinder\'s are circles of its radius', () => {
+  readMesh('cube.stl', box([20, 20, 10]));
+  const cube = part('0', {});
+  assert.equal(cube.summary.layers, 50);
+  for (const l of cube.layers) {
+    const [[outline, ...holes]] = l.section;
+    assert.equal(holes.length, 0);
+    const xs = outline.map((p) => p[0]);
+    const ys = outline.map((p) => p[1]);
+    assert.deepEqual([Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)], [0, 20, 0, 20]);
+    assert.ok(l.polylines.length > 0, `layer ${l.index} has infill`);
+  }
+  readMesh('cylinder.stl', cylinder(8, 6, 96));
+  const cyl = part('0', { model: { layerHeight: 0.3 } });
+  assert.equal(cyl.layers.length, 20);
+  for (const l of cyl.layers) {
+    assert.equal(l.section.length, 1);
+    // On the 96-gon's sides: between its inner radius (a side's middle) and the radius.
+    for (const [x, y] of l.section[0][0]) {
+      const r = Math.hypot(x, y);
+      assert.ok(r > 8 * Math.cos(Math.PI / 96) - 1e-5 && r < 8 + 1e-5, `layer ${l.index}: (${x}, ${y})`);
+    }
+    assert.ok(l.section[0][0].length > 90);
+  }
+});
+
+test('a file that is not a mesh is refused, and leaves no mesh behind', () => {
+  readMesh('cube.stl', box([5, 5, 5]));
+  assert.throws(() => readMesh('broken.stl', new Uint8Array([1, 2, 3])),
+    (e) => e instanceof RotlangError && e.kind === 'model' && /broken\.stl/.test(e.message));
+  assert.throws(() => part('0'), (e) => e instanceof RotlangError && e.kind === 'options' && /readMesh/.test(e.message));
+  assert.throws(() => readMesh('x.3mf', new Uint8Array(10)), (e) => e.kind === 'model');
+  readMesh('cube.stl', box([5, 5, 5]));
+  assert.throws(() => part('0', { walls: 1.5 }), (e) => e.kind === 'options');
+  assert.throws(() => part('0', { walls: 'two' }), (e) => e.kind === 'options');
+  assert.throws(() => part('0', { density: 0 }), (e) => e.kind === 'options');
+  assert.throws(() => part('+', {}), (e) => e.kind === 'template');
+  assert.throws(() => part('0', { model: { layerHeight: 0.004, height: 100 } }), (e) => e.kind === 'limit');
+  assert.equal(part('0', {}).layers.length, 25);
+});

@@ -3,3 +3,4 @@
 export const MAX_TEMPLATE = 64 * 1024; // characters in the editor
 export const MAX_LAYERS = 2_000_000; // layers evaluated and plotted
 export const WORKER_TIMEOUT_MS = 10_000; // then the worker is stopped and restarted
+export const MAX_MESH = 64 * 1024 * 1024; // bytes of a mesh file (1.3 million STL triangles)

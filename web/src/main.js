@@ -4,6 +4,7 @@ import { createEditor, highlight, replaceAll, showDiagnostics } from './editor.j
 import { Engine } from './engine.js';
 import { EXAMPLES } from './examples.js';
 import { MAX_LAYERS, MAX_TEMPLATE } from './limits.js';
+import { PartPanel, isMesh } from './part.js';
 import { cursorX, layerAt, plotParts, plotWidth } from './plot.js';
 import { decodeState, encodeState } from './share.js';
 
@@ -19,7 +20,10 @@ let analysedText = null;
 let seq = 0;
 let timer = null;
 
-const engine = new Engine((error) => status(error.message, true));
+const engine = new Engine((error) => {
+  part?.restarted();
+  status(error.message, true);
+});
 
 function status(message, refused = false) {
   const s = $('status');
@@ -174,6 +178,7 @@ async function analyse() {
     status(`${l.layers.toLocaleString('en')} layers · ${l.instructions.length} instruction${l.instructions.length === 1 ? '' : 's'}`);
   }
   renderPlot();
+  part.schedule();
 }
 
 // The template in words (rotlang::explain describes the template, not the base), with
@@ -329,7 +334,8 @@ function renderLayer() {
     cursor.setAttribute('x1', x);
     cursor.setAttribute('x2', x);
   }
-  schedulePreview(i);
+  if (part.active()) part.cut(i);
+  else schedulePreview(i);
   highlight(view, ins && view.state.doc.toString() === analysedText
     ? { from: ins.startUtf16, to: ins.endUtf16, title: `governs layer ${i}` }
     : null);
@@ -355,14 +361,15 @@ function schedulePreview(layer) {
   clearTimeout(previewTimer);
   previewTimer = setTimeout(async () => {
     previewTimer = null;
-    previewsInFlight++;
     const id = ++previewSeq;
+    if (part.active()) return;
+    previewsInFlight++;
     const density = Math.min(100, Math.max(1, num('density') ?? 20)) / 100;
     try {
       const svg = await engine.request('preview', {
         ...previewRequest(layer), layer, pattern: $('pattern').value, density, shape: $('shape').value,
       });
-      if (id === previewSeq) $('preview').innerHTML = svg;
+      if (id === previewSeq && !part.active()) $('preview').innerHTML = svg;
     } catch (e) {
       if (id === previewSeq) $('preview').textContent = `no preview: ${e.message}`;
     } finally {
@@ -398,6 +405,42 @@ function setLayer(i) {
 
 $('layer-slider').addEventListener('input', renderLayer);
 for (const id of ['pattern', 'density', 'shape']) $(id).addEventListener('input', renderLayer);
+for (const id of ['pattern', 'density']) $(id).addEventListener('input', () => part.schedule());
+
+// ---- a part (mesh file) -------------------------------------------------------------
+
+const density = () => Math.min(100, Math.max(1, num('density') ?? 20)) / 100;
+// The part's model is the form's without its layer count: the part is as tall as the
+// mesh, and the form's count follows the part's (onAnswer), so that the plot, the slider
+// and the 3D view have the same layers.
+const part = new PartPanel(engine, {
+  request: () => {
+    const r = currentRequest();
+    const { layers, ...model } = r.model;
+    return {
+      text: r.text, target: r.target, model, base: r.base, seed: r.seed,
+      pattern: $('pattern').value, density: density(), walls: num('walls'),
+    };
+  },
+  layer: () => Number($('layer-slider').value),
+  onAnswer: (a) => {
+    const n = a.summary.layers;
+    if (part.fresh) {
+      part.fresh = false;
+      pendingLayer = n - 1;
+    }
+    if (num('layers') !== n) {
+      $('layers').value = String(n);
+      edited();
+      schedule(0);
+    } else if (pendingLayer !== null) {
+      const top = pendingLayer;
+      pendingLayer = null;
+      setLayer(top);
+    }
+  },
+  onClose: () => renderLayer(),
+});
 
 $('plot').addEventListener('mousemove', (e) => {
   const svg = plotSvg;
@@ -567,7 +610,8 @@ document.addEventListener('drop', async (e) => {
   e.preventDefault();
   document.body.classList.remove('dragging');
   const file = e.dataTransfer?.files?.[0];
-  if (file) await loadProfile(file);
+  if (file && isMesh(file.name)) await part.open(file);
+  else if (file) await loadProfile(file);
 });
 
 for (const id of ['target', 'dialect', 'layers', 'layer-height', 'first-layer', 'bottom-shells', 'top-shells', 'base', 'seed']) {
@@ -598,10 +642,14 @@ engine.request('version').then((v) => { $('version').textContent = `rotlang ${v}
 // the width it is shown at. The browser tests wait for this instead of for time.
 function idle() {
   if (timer !== null || answered !== seq || previewTimer !== null || previewsInFlight > 0) return false;
+  if (!part.idle()) return false;
   if (JSON.stringify(answeredRequest) !== JSON.stringify(currentRequest())) return false;
   const l = analysis?.layers;
   return !l || (drawn.layers === l && drawn.width === plotWidth($('plot').clientWidth));
 }
 
 // For the browser tests and the curious: the editor view.
-window.rotlangPlayground = { view, engine, state: () => viewState(), analysis: () => analysis, analysedText: () => analysedText, idle };
+window.rotlangPlayground = {
+  view, engine, state: () => viewState(), analysis: () => analysis, analysedText: () => analysedText, idle,
+  part: () => part.inspect(),
+};

@@ -1,7 +1,7 @@
 // All rotlang work runs here, off the main thread: a 1 MB template or a million layers
 // never freezes the page. The main thread sends {id, op, args}; the answer is
 // {id, ok, result} or {id, ok: false, error: {kind, message, diagnostics}}.
-import { MAX_LAYERS, MAX_TEMPLATE } from './limits.js';
+import { MAX_LAYERS, MAX_MESH, MAX_TEMPLATE } from './limits.js';
 import { profileExtras, MAX_PROFILE } from './profile.js';
 
 // Loaded lazily so that onmessage is set before the wasm is ready (messages sent
@@ -106,6 +106,25 @@ const ops = {
         : `${name} has no sparse_infill_rotate_template or solid_infill_rotate_template`);
     }
     return { ...p, ...profileExtras(p.kind, bytes), name };
+  },
+  // A mesh file (STL, OBJ, 3MF), read and kept in the wasm instance for `part`.
+  async mesh({ name, bytes }) {
+    const r = await rotlang;
+    if (bytes.byteLength > MAX_MESH) {
+      throw refuse('limit', `${name} is ${(bytes.byteLength / 1048576).toFixed(1)} MB; meshes above ${MAX_MESH / 1048576} MB are refused here (the CLI reads them)`);
+    }
+    return r.readMesh(name, new Uint8Array(bytes));
+  },
+  // The kept mesh sliced and filled, every layer (rotlang::slice::Part, as
+  // `rotlang preview --shape part.stl --format json`): as tall as the mesh, so the
+  // model's layer count is left out.
+  async part(state) {
+    const r = await rotlang;
+    const { layers, ...model } = state.model;
+    return r.part(state.text, {
+      target: state.target, model, base: state.base, seed: state.seed,
+      pattern: state.pattern, density: state.density, walls: state.walls,
+    });
   },
   async signs() {
     return (await rotlang).signs();

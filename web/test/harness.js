@@ -63,6 +63,9 @@ export async function launch() {
     args: [
       '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
       '--disable-background-networking', '--disable-component-update', '--disable-sync',
+      // WebGL (the part's 3D view) on the CPU: with no GPU, Chromium draws WebGL through
+      // SwiftShader only when told to.
+      '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
     ],
   });
   // Every wait is for an event (an element, the page's idle state); this bound only says

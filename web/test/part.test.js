@@ -1,0 +1,151 @@
+// A part in the playground (issue 20, "See it"): a cube STL opened with the file button
+// and a cylinder STL dropped on the page, read back from the three.js scene as drawn
+// (each layer's geometry: vertex counts, bounding boxes, points) and from the canvas's
+// pixels, and checked against the mesh: the cube's layers are its height over the layer
+// height, each a 20 mm square; the cylinder's sections are circles of its radius; the
+// slider cuts through the stack.
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { join } from 'node:path';
+import { artifacts, launch, serve } from './harness.js';
+import { box, cylinder } from '../../bindings/js/test/meshes.js';
+
+let server;
+let browser;
+let base;
+
+before(async () => {
+  server = await serve();
+  base = `http://127.0.0.1:${server.address().port}/`;
+  browser = await launch();
+});
+
+after(async () => {
+  await browser?.cleanup();
+  server?.close();
+});
+
+async function open() {
+  const page = await browser.context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.errors = errors;
+  await page.goto(base);
+  await page.waitForFunction(() => window.rotlangPlayground?.analysis() && window.rotlangPlayground.idle());
+  return page;
+}
+
+// Waits until the page shows the part `name` sliced for the page as it is (the page says
+// when: rotlangPlayground.idle() counts the part's slicing and drawing), and reads it.
+async function shown(page, name) {
+  await page.waitForFunction((n) => {
+    const p = window.rotlangPlayground;
+    const s = p.part();
+    return s.name === n && (s.scene || s.error) && p.idle();
+  }, name);
+  return page.evaluate(() => window.rotlangPlayground.part());
+}
+
+async function slide(page, layer) {
+  await page.locator('#layer-slider').fill(String(layer));
+  await page.waitForFunction((l) => window.rotlangPlayground.idle() && window.rotlangPlayground.part().scene?.current === l, layer);
+  return page.evaluate(() => window.rotlangPlayground.part());
+}
+
+const near = (a, b, tol, what) => assert.ok(Math.abs(a - b) <= tol, `${what}: ${a} is not ${b} ± ${tol}`);
+
+test('a cube STL from the file button: 50 square layers stacked, the slider cutting through them', async () => {
+  const page = await open();
+  await page.locator('#mesh').setInputFiles({ name: 'cube.stl', mimeType: 'model/stl', buffer: Buffer.from(box([20, 20, 10])) });
+  let p = await shown(page, 'cube.stl');
+  assert.equal(p.error, null);
+  assert.equal(p.info.triangles, 12);
+  const { scene } = p;
+  // 10 mm at the form's 0.2 mm layers.
+  assert.equal(scene.layers.length, 50);
+  assert.equal(p.summary.layers, 50);
+  // The model follows the part: the plot and the slider have its layers.
+  assert.equal(await page.inputValue('#layers'), '50');
+  assert.equal(await page.getAttribute('#layer-slider', 'max'), '49');
+  scene.layers.forEach((l, i) => {
+    assert.equal(l.index, i);
+    near(l.z, 0.1 + 0.2 * i, 1e-5, `layer ${i}'s height`);
+    // The square's four sides: eight vertices, its corners at 0 and 20 mm.
+    assert.equal(l.outline.vertices, 8, `layer ${i}`);
+    [0, 0].forEach((v, k) => near(l.outline.min[k], v, 1e-5, `layer ${i} min`));
+    [20, 20].forEach((v, k) => near(l.outline.max[k], v, 1e-5, `layer ${i} max`));
+    near(l.outline.min[2], l.z, 1e-5, `layer ${i}'s outline is drawn at its height`);
+    near(l.outline.max[2], l.z, 1e-5, `layer ${i}'s outline is drawn at its height`);
+    // Infill inside the two 0.4 mm walls.
+    assert.ok(l.infill.vertices >= 4, `layer ${i} has infill`);
+    assert.ok(l.infill.min[0] >= 0.8 - 1e-4 && l.infill.max[0] <= 19.2 + 1e-4, `layer ${i}'s infill is inside the walls`);
+  });
+  // Opened, the whole part shows (the slider at the top layer), and WebGL drew it.
+  assert.equal(scene.current, 49);
+  assert.ok(scene.layers.every((l) => l.visible));
+  assert.ok(scene.drawnPixels > 2000, `${scene.drawnPixels} pixels drawn`);
+  await page.locator('#view3d canvas').screenshot({ path: join(artifacts, 'part-cube.png') });
+  // The slider cuts through: layers above it are hidden, its own is the highlighted one.
+  p = await slide(page, 20);
+  assert.deepEqual(p.scene.layers.filter((l) => l.visible).map((l) => l.index), [...Array(21).keys()]);
+  assert.deepEqual(p.scene.layers.filter((l) => l.current).map((l) => l.index), [20]);
+  assert.ok(p.scene.drawnPixels < scene.drawnPixels, 'fewer layers, fewer pixels');
+  // The layer from above is its section and infill.
+  const svg = page.locator('#preview svg.part-layer');
+  assert.match(await svg.getAttribute('aria-label'), /layer 20 of the part at z 4\.1 mm/);
+  assert.ok((await svg.locator('path.infill').getAttribute('d')).length > 20);
+  // A new template re-fills the same layers.
+  await page.evaluate(() => {
+    const v = window.rotlangPlayground.view;
+    v.dispatch({ changes: { from: 0, to: v.state.doc.length, insert: '+90' } });
+  });
+  await page.waitForFunction(() => window.rotlangPlayground.analysedText() === '+90' && window.rotlangPlayground.idle());
+  p = await page.evaluate(() => window.rotlangPlayground.part());
+  assert.equal(p.scene.layers.length, 50);
+  assert.deepEqual(page.errors, []);
+  await page.close();
+});
+
+test('a cylinder STL dropped on the page: circular sections of its radius', async () => {
+  const page = await open();
+  await page.fill('#layer-height', '0.3');
+  const bytes = [...cylinder(8, 6, 96)];
+  await page.evaluate((b) => {
+    const file = new File([new Uint8Array(b)], 'cylinder.stl', { type: 'model/stl' });
+    const data = new DataTransfer();
+    data.items.add(file);
+    document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: data, bubbles: true, cancelable: true }));
+  }, bytes);
+  const p = await shown(page, 'cylinder.stl');
+  assert.equal(p.error, null);
+  const { scene } = p;
+  assert.equal(scene.layers.length, 20); // 6 mm at 0.3 mm
+  const inner = 8 * Math.cos(Math.PI / 96);
+  for (const l of scene.layers) {
+    // The 96-gon's sides: 192 vertices, every one between its inner radius and its radius.
+    assert.equal(l.outline.vertices, 192, `layer ${l.index}`);
+    const pts = l.outline.points;
+    for (let k = 0; k < pts.length; k += 3) {
+      const r = Math.hypot(pts[k], pts[k + 1]);
+      assert.ok(r >= inner - 1e-4 && r <= 8 + 1e-4, `layer ${l.index}: a point at radius ${r}`);
+      near(pts[k + 2], l.z, 1e-5, `layer ${l.index}'s height`);
+    }
+    near(l.outline.min[0], -8, 8 - inner + 1e-4, 'leftmost');
+    near(l.outline.max[0], 8, 8 - inner + 1e-4, 'rightmost');
+    // The infill inside the two 0.4 mm walls: within 7.2 mm of the axis.
+    for (let k = 0; k < 2; k += 1) {
+      assert.ok(l.infill.min[k] >= -7.2 - 1e-4 && l.infill.max[k] <= 7.2 + 1e-4, `layer ${l.index}'s infill: ${l.infill.min} to ${l.infill.max}`);
+    }
+  }
+  assert.ok(scene.drawnPixels > 2000);
+  await page.locator('#view3d canvas').screenshot({ path: join(artifacts, 'part-cylinder.png') });
+  // A file that is not a mesh is refused with the reason, and the page goes on.
+  await page.locator('#mesh').setInputFiles({ name: 'broken.stl', mimeType: 'model/stl', buffer: Buffer.from('not a mesh') });
+  await page.waitForFunction(() => /refused: cannot read a mesh from broken\.stl/.test(document.getElementById('part-info').textContent));
+  // Back to the outlines: the built-in shapes' preview again.
+  await page.click('#mesh-close');
+  await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().name === null
+    && document.querySelector('#preview svg') && !document.querySelector('#preview svg.part-layer'));
+  assert.deepEqual(page.errors, []);
+  await page.close();
+});

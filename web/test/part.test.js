@@ -8,7 +8,7 @@ import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { artifacts, launch, serve } from './harness.js';
-import { box, cylinder } from '../../bindings/js/test/meshes.js';
+import { box, boxTriangles, cylinder, threeMf } from '../../bindings/js/test/meshes.js';
 
 let server;
 let browser;
@@ -146,6 +146,27 @@ test('a cylinder STL dropped on the page: circular sections of its radius', asyn
   await page.click('#mesh-close');
   await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().name === null
     && document.querySelector('#preview svg') && !document.querySelector('#preview svg.part-layer'));
+  assert.deepEqual(page.errors, []);
+  await page.close();
+});
+
+test('a 3MF project from the file button: both objects, where its build puts them', async () => {
+  const page = await open();
+  const project = threeMf([
+    { name: 'left', triangles: boxTriangles([10, 10, 4]), at: [0, 0, 0] },
+    { name: 'right', triangles: boxTriangles([10, 10, 4]), at: [30, 5, 0] },
+  ]);
+  await page.locator('#mesh').setInputFiles({ name: 'plate.3mf', mimeType: 'model/3mf', buffer: Buffer.from(project) });
+  const p = await shown(page, 'plate.3mf');
+  assert.equal(p.error, null);
+  assert.deepEqual(p.info.objects, ['left', 'right']);
+  assert.equal(p.scene.layers.length, 20);
+  for (const l of p.scene.layers) {
+    // Two squares: sixteen vertices from x 0 to 40, y 0 to 15.
+    assert.equal(l.outline.vertices, 16);
+    assert.deepEqual([l.outline.min[0], l.outline.min[1], l.outline.max[0], l.outline.max[1]], [0, 0, 40, 15]);
+  }
+  assert.match(await page.textContent('#part-info'), /plate\.3mf: 24 triangles, 40 × 15 × 4 mm \(2 objects: left, right\)/);
   assert.deepEqual(page.errors, []);
   await page.close();
 });

@@ -1,5 +1,5 @@
 // Test meshes as binary STL files, generated here (no fixture to go stale): a box and a
-// closed cylinder. Shared by test/part.test.js and the playground's browser test
+// closed cylinder; and a 3MF project holding boxes placed by its build's transforms. Shared by test/part.test.js and the playground's browser test
 // (web/test/part.test.js). Normals are left zero: readers recompute or ignore them.
 
 /** Binary STL of the triangles (each three [x, y, z] corners). */
@@ -19,18 +19,23 @@ export function binaryStl(triangles) {
   return bytes;
 }
 
-/** A box from the origin to [x, y, z], outward facing. */
-export function box([x, y, z]) {
+/** A box from the origin to [x, y, z], outward facing: binary STL. */
+export function box(size) {
+  return binaryStl(boxTriangles(size));
+}
+
+/** The twelve triangles of a box from the origin to [x, y, z]. */
+export function boxTriangles([x, y, z]) {
   const p = (i, j, k) => [i * x, j * y, k * z];
   const quad = (a, b, c, d) => [[a, b, c], [a, c, d]];
-  return binaryStl([
+  return [
     ...quad(p(0, 0, 0), p(0, 1, 0), p(1, 1, 0), p(1, 0, 0)),
     ...quad(p(0, 0, 1), p(1, 0, 1), p(1, 1, 1), p(0, 1, 1)),
     ...quad(p(0, 0, 0), p(1, 0, 0), p(1, 0, 1), p(0, 0, 1)),
     ...quad(p(1, 0, 0), p(1, 1, 0), p(1, 1, 1), p(1, 0, 1)),
     ...quad(p(1, 1, 0), p(0, 1, 0), p(0, 1, 1), p(1, 1, 1)),
     ...quad(p(0, 1, 0), p(0, 0, 0), p(0, 0, 1), p(0, 1, 1)),
-  ]);
+  ];
 }
 
 /** A closed cylinder of `radius` and `height` on the plate, centred on the origin, with `segments` sides. */
@@ -46,4 +51,82 @@ export function cylinder(radius, height, segments) {
     triangles.push([[0, 0, 0], a1, a0], [[0, 0, height], b0, b1]);
   }
   return binaryStl(triangles);
+}
+
+/**
+ * A 3MF (a zip of one `3D/3dmodel.model`, stored uncompressed) with `objects`, each
+ * `{ name, triangles, at: [x, y, z] }`: placed by a build item's translation.
+ */
+export function threeMf(objects) {
+  const resources = objects.map((o, k) => {
+    const index = new Map();
+    const vertices = [];
+    const tris = o.triangles.map((t) => t.map((c) => {
+      const key = c.join(' ');
+      if (!index.has(key)) {
+        index.set(key, vertices.length);
+        vertices.push(`<vertex x="${c[0]}" y="${c[1]}" z="${c[2]}"/>`);
+      }
+      return index.get(key);
+    }));
+    const triangles = tris.map(([a, b, c]) => `<triangle v1="${a}" v2="${b}" v3="${c}"/>`);
+    return `<object id="${k + 1}" name="${o.name}" type="model"><mesh><vertices>${vertices.join('')}</vertices>`
+      + `<triangles>${triangles.join('')}</triangles></mesh></object>`;
+  });
+  const items = objects.map((o, k) => `<item objectid="${k + 1}" transform="1 0 0 0 1 0 0 0 1 ${o.at.join(' ')}"/>`);
+  const model = '<?xml version="1.0" encoding="UTF-8"?>\n'
+    + '<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">'
+    + `<resources>${resources.join('')}</resources><build>${items.join('')}</build></model>`;
+  return storedZip('3D/3dmodel.model', new TextEncoder().encode(model));
+}
+
+const CRC_TABLE = Array.from({ length: 256 }, (_, n) => {
+  let c = n;
+  for (let k = 0; k < 8; k += 1) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+  return c >>> 0;
+});
+
+function crc32(bytes) {
+  let c = 0xffffffff;
+  for (const b of bytes) c = CRC_TABLE[(c ^ b) & 0xff] ^ (c >>> 8);
+  return (c ^ 0xffffffff) >>> 0;
+}
+
+// A zip of one entry, stored: local header, data, central directory, end record.
+function storedZip(name, data) {
+  const nameBytes = new TextEncoder().encode(name);
+  const crc = crc32(data);
+  const local = 30 + nameBytes.length;
+  const central = 46 + nameBytes.length;
+  const out = new Uint8Array(local + data.length + central + 22);
+  const v = new DataView(out.buffer);
+  const header = (at, signature, isCentral) => {
+    v.setUint32(at, signature, true);
+    let p = at + 4;
+    if (isCentral) { v.setUint16(p, 20, true); p += 2; }
+    v.setUint16(p, 20, true); // version needed
+    v.setUint16(p + 2, 0, true); // flags
+    v.setUint16(p + 4, 0, true); // stored
+    v.setUint32(p + 6, 0x00210000, true); // 1980-01-01 00:00
+    v.setUint32(p + 10, crc, true);
+    v.setUint32(p + 14, data.length, true);
+    v.setUint32(p + 18, data.length, true);
+    v.setUint16(p + 22, nameBytes.length, true);
+    return p + 26; // extra length (0) and, for the central record, the rest
+  };
+  let p = header(0, 0x04034b50, false);
+  out.set(nameBytes, p + 2);
+  out.set(data, local);
+  const c = local + data.length;
+  p = header(c, 0x02014b50, true);
+  // extra, comment, disk, internal and external attributes: 0; then the local offset.
+  v.setUint32(p + 12, 0, true);
+  out.set(nameBytes, c + 46);
+  const end = c + central;
+  v.setUint32(end, 0x06054b50, true);
+  v.setUint16(end + 8, 1, true);
+  v.setUint16(end + 10, 1, true);
+  v.setUint32(end + 12, central, true);
+  v.setUint32(end + 16, c, true);
+  return out;
 }

@@ -9,7 +9,7 @@ import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { RotlangError, part, readMesh } from '../full.js';
-import { box, cylinder } from './meshes.js';
+import { box, boxTriangles, cylinder, threeMf } from './meshes.js';
 
 const cli = process.env.ROTLANG_CLI;
 const skip = !cli && 'ROTLANG_CLI names the rotlang binary (tests/node.rs sets it)';
@@ -82,4 +82,28 @@ test('a file that is not a mesh is refused, and leaves no mesh behind', () => {
   assert.throws(() => part('+', {}), (e) => e.kind === 'template');
   assert.throws(() => part('0', { model: { layerHeight: 0.004, height: 100 } }), (e) => e.kind === 'limit');
   assert.equal(part('0', {}).layers.length, 25);
+});
+
+test('a 3MF project: its objects placed by the build and merged, as the CLI reads them', { skip }, () => {
+  const project = threeMf([
+    { name: 'left', triangles: boxTriangles([10, 10, 4]), at: [0, 0, 0] },
+    { name: 'right', triangles: boxTriangles([10, 10, 4]), at: [30, 5, 0] },
+  ]);
+  const info = readMesh('plate.3mf', project);
+  assert.deepEqual(info.objects, ['left', 'right']);
+  assert.equal(info.triangles, 24);
+  assert.deepEqual([info.min, info.max], [[0, 0, 0], [40, 15, 4]]);
+  const js = part('+45', {});
+  assert.equal(js.layers.length, 20);
+  // Two square sections on every layer, the second where the build put it.
+  for (const l of js.layers) {
+    assert.equal(l.section.length, 2, `layer ${l.index}`);
+    const xs = l.section.flat(2).map((p) => p[0]);
+    assert.deepEqual([Math.min(...xs), Math.max(...xs)], [0, 40]);
+  }
+  const dir = mkdtempSync(join(tmpdir(), 'rotlang-part-'));
+  writeFileSync(join(dir, 'plate.3mf'), project);
+  const r = spawnSync(cli, ['preview', '+45', '--shape', join(dir, 'plate.3mf'), '--format', 'json', '--layers', '0..20'], { encoding: 'utf8' });
+  assert.equal(r.status, 0, r.stderr);
+  assert.deepEqual(js, JSON.parse(r.stdout));
 });

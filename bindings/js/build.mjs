@@ -30,7 +30,7 @@ try {
   if (e.code !== 'ENOENT') throw e; // no rustup: let cargo say what is missing
 }
 // Two modules from one crate: rotlang.wasm (the package's core, `rotlang`) and
-// rotlang-full.wasm (feature `full`, `rotlang/full`: profile reading for the playground).
+// rotlang-full.wasm (feature `full`, `rotlang/full`: profile reading, previews and meshes for the playground).
 // Cargo keeps both builds; only the final copy differs.
 const outDir = join(targetDir, 'wasm32-unknown-unknown', 'wasm');
 // binaryen from this package's devDependencies, or from the caller's (the playground's).
@@ -101,7 +101,8 @@ with everything above, under the 320 KB budget: the \`wasm\` cargo profile (opt-
 LTO, one codegen unit, strip, panic=abort) gives ${kb(core.cargo)}, and \`wasm-opt -Oz\` from the
 \`binaryen\` npm package takes off another ${Math.round((1 - core.size / core.cargo) * 100)}%. \`rotlang-full.wasm\` is
 ${kb(full.size)} (${bytes(full.size)} bytes, ${kb(full.gzip)} gzipped): profile reading, the infill
-preview and the chart are what does not fit in the budget.`,
+preview, the chart and meshes (the STL, OBJ and 3MF readers with 3MF's zip, deflate and XML,
+and the slicer: about 180 KB of it) are what does not fit in the budget.`,
   [join(root, 'web', 'README.md')]: `${kb(full.size)}, ${kb(full.gzip)} gzipped`,
 };
 if (core.optimised && full.optimised) {

@@ -672,6 +672,10 @@ test('a text over the cap can still shrink: Backspace works, growing is refused'
   await page.keyboard.press('Backspace');
   await page.keyboard.press('Backspace');
   assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.length), 67_998);
+  // The analysis of the shortened text first: its status would otherwise replace the
+  // refusal below whenever it came back after the keystroke (a race that failed one run
+  // in three).
+  await page.waitForFunction(() => window.rotlangPlayground.idle());
   await page.keyboard.type('5');
   assert.equal(await page.evaluate(() => window.rotlangPlayground.view.state.doc.length), 67_998, 'growing stays refused');
   await page.waitForFunction(() => /refused: that would make the template 67,999 characters/.test(document.querySelector('#status').textContent));

@@ -440,6 +440,7 @@ const part = new PartPanel(engine, {
     }
   },
   onClose: () => renderLayer(),
+  onFile: (f) => loadMesh(f),
 });
 
 $('plot').addEventListener('mousemove', (e) => {
@@ -541,7 +542,9 @@ window.addEventListener('hashchange', () => {
 // by `readProfile` (the direction turns an empty template only).
 const profileBase = (t) => t.base;
 
-async function loadProfile(file) {
+// `quiet`: a 3MF opened for its mesh is read for a project's templates too, and says
+// nothing when it has none.
+async function loadProfile(file, { quiet = false } = {}) {
   try {
     const bytes = await file.arrayBuffer();
     const p = await engine.request('profile', { name: file.name, bytes });
@@ -554,6 +557,7 @@ async function loadProfile(file) {
     const tooLong = p.templates.filter((t) => !fits(t))
       .map((t) => `${named(t)} (${chars(t.text.length)})`).join(', ');
     if (!first) {
+      if (quiet) return;
       notice(`Refused ${title}: ${tooLong} ${p.templates.length === 1 ? 'is' : 'are'} longer than the ${CAP} the playground takes. Nothing from the profile was applied.`);
       return;
     }
@@ -561,7 +565,8 @@ async function loadProfile(file) {
     holder.replaceChildren();
     const m = p.model;
     applyState({
-      layers: m.layers, layerHeight: m.layerHeight, firstLayerHeight: m.firstLayerHeight ?? '',
+      // With a part open, the part gives the layer count (its height over the layer height).
+      layers: part.active() ? undefined : m.layers, layerHeight: m.layerHeight, firstLayerHeight: m.firstLayerHeight ?? '',
       bottomShells: m.bottomShells, topShells: m.topShells, base: profileBase(first),
       pattern: PATTERN_NAMES.includes(p.pattern) ? p.pattern : undefined,
       density: Number.isFinite(p.density) ? p.density : undefined,
@@ -596,8 +601,15 @@ async function loadProfile(file) {
       holder.append(ul);
     }
   } catch (e) {
-    notice(`refused: ${e.message}`);
+    if (!quiet) notice(`refused: ${e.message}`);
   }
+}
+
+// A mesh file: an OrcaSlicer .3mf project's templates and settings first (when it has
+// any), then its objects as the part.
+async function loadMesh(file) {
+  if (/\.3mf$/i.test(file.name)) await loadProfile(file, { quiet: true });
+  await part.open(file);
 }
 $('profile').addEventListener('change', async (e) => {
   const file = e.target.files?.[0];
@@ -610,7 +622,7 @@ document.addEventListener('drop', async (e) => {
   e.preventDefault();
   document.body.classList.remove('dragging');
   const file = e.dataTransfer?.files?.[0];
-  if (file && isMesh(file.name)) await part.open(file);
+  if (file && isMesh(file.name)) await loadMesh(file);
   else if (file) await loadProfile(file);
 });
 

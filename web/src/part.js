@@ -36,7 +36,7 @@ export class PartPanel {
    * pattern, density, walls); `layer()`: the slider's layer; `onAnswer(answer)`: a new
    * part was drawn (the page matches its model's layer count to it); `onClose()`.
    */
-  constructor(engine, { request, layer, onAnswer, onClose }) {
+  constructor(engine, { request, layer, onAnswer, onClose, onFile }) {
     Object.assign(this, { engine, request, layer, onAnswer, onClose });
     this.file = null; // { name, bytes }
     this.info = null;
@@ -51,7 +51,7 @@ export class PartPanel {
     this.drawn = null; // the answer the 3D view shows
     $('mesh').addEventListener('change', async (e) => {
       const file = e.target.files?.[0];
-      if (file) await this.open(file);
+      if (file) await (onFile ?? ((f) => this.open(f)))(file);
       e.target.value = '';
     });
     $('mesh-close').addEventListener('click', () => this.close());

@@ -90,14 +90,15 @@ const ops = {
     const r = await rotlang;
     return r.plot(state.text, { ...options(state), dialect: undefined, width: state.width ?? 720, height: state.height ?? 420 });
   },
-  // rotlang's own profile reader (JSON, jsonc, .ini, .rot); a file of another name is read
+  // rotlang's own profile reader (JSON, jsonc, .ini, .rot, an OrcaSlicer .3mf project's
+  // settings); a file of another name is read
   // as JSON, and refused when it holds no template.
   async profile({ name, bytes }) {
     const r = await rotlang;
     if (bytes.byteLength > MAX_PROFILE) {
       throw refuse('limit', `${name} is ${(bytes.byteLength / 1048576).toFixed(1)} MB; profiles above ${MAX_PROFILE / 1048576} MB are refused`);
     }
-    const known = /\.(json|jsonc|ini|rot)$/i.test(name);
+    const known = /\.(json|jsonc|ini|rot|3mf)$/i.test(name);
     const p = r.readProfile(known ? name : `${name}.json`, new Uint8Array(bytes));
     if (p.templates.length === 0) {
       const error = p.notes.find((n) => n.error);

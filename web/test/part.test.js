@@ -152,16 +152,33 @@ test('a cylinder STL dropped on the page: circular sections of its radius', asyn
 
 test('a 3MF project from the file button: both objects, where its build puts them', async () => {
   const page = await open();
+  // An OrcaSlicer project: its settings give the template and the layer height.
+  const settings = JSON.stringify({ sparse_infill_rotate_template: '0, +30/1mm', layer_height: '0.25' });
   const project = threeMf([
     { name: 'left', triangles: boxTriangles([10, 10, 4]), at: [0, 0, 0] },
     { name: 'right', triangles: boxTriangles([10, 10, 4]), at: [30, 5, 0] },
-  ]);
+  ], { 'Metadata/project_settings.config': settings });
   await page.locator('#mesh').setInputFiles({ name: 'plate.3mf', mimeType: 'model/3mf', buffer: Buffer.from(project) });
   const p = await shown(page, 'plate.3mf');
+  await page.waitForFunction(() => window.rotlangPlayground.analysedText() === '0, +30/1mm' && window.rotlangPlayground.idle());
   assert.equal(p.error, null);
   assert.deepEqual(p.info.objects, ['left', 'right']);
-  assert.equal(p.scene.layers.length, 20);
-  for (const l of p.scene.layers) {
+  assert.equal(await page.inputValue('#layer-height'), '0.25');
+  const q = await page.evaluate(() => window.rotlangPlayground.part());
+  // 4 mm at the project's 0.25 mm layers over its first layer (OrcaSlicer's 0.2 mm when
+  // the project does not say), filled by its template.
+  const first = Number(await page.inputValue('#first-layer') || 0.25);
+  const layers = 1 + Math.ceil((4 - first) / 0.25 - 1e-6);
+  assert.equal(first, 0.2);
+  assert.equal(q.scene.layers.length, layers);
+  assert.equal(await page.inputValue('#layers'), String(layers));
+  near(q.scene.layers[1].z, 0.2 + 0.125, 1e-5, 'the second layer\'s middle');
+  for (const l of q.scene.layers) {
+    // The top layer's middle is above the 4 mm part (0.2 + 16 × 0.25 = 4.2): nothing there.
+    if (l.z > 4) {
+      assert.equal(l.outline.vertices, 0);
+      continue;
+    }
     // Two squares: sixteen vertices from x 0 to 40, y 0 to 15.
     assert.equal(l.outline.vertices, 16);
     assert.deepEqual([l.outline.min[0], l.outline.min[1], l.outline.max[0], l.outline.max[1]], [0, 0, 40, 15]);

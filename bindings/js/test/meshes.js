@@ -54,10 +54,11 @@ export function cylinder(radius, height, segments) {
 }
 
 /**
- * A 3MF (a zip of one `3D/3dmodel.model`, stored uncompressed) with `objects`, each
+ * A 3MF (a zip of `3D/3dmodel.model` and the `entries` given, e.g. OrcaSlicer's
+ * `Metadata/project_settings.config`, stored uncompressed) with `objects`, each
  * `{ name, triangles, at: [x, y, z] }`: placed by a build item's translation.
  */
-export function threeMf(objects) {
+export function threeMf(objects, entries = {}) {
   const resources = objects.map((o, k) => {
     const index = new Map();
     const vertices = [];
@@ -77,7 +78,8 @@ export function threeMf(objects) {
   const model = '<?xml version="1.0" encoding="UTF-8"?>\n'
     + '<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">'
     + `<resources>${resources.join('')}</resources><build>${items.join('')}</build></model>`;
-  return storedZip('3D/3dmodel.model', new TextEncoder().encode(model));
+  const files = { '3D/3dmodel.model': model, ...entries };
+  return storedZip(Object.entries(files).map(([n, text]) => [n, new TextEncoder().encode(text)]));
 }
 
 const CRC_TABLE = Array.from({ length: 256 }, (_, n) => {
@@ -92,41 +94,56 @@ function crc32(bytes) {
   return (c ^ 0xffffffff) >>> 0;
 }
 
-// A zip of one entry, stored: local header, data, central directory, end record.
-function storedZip(name, data) {
-  const nameBytes = new TextEncoder().encode(name);
-  const crc = crc32(data);
-  const local = 30 + nameBytes.length;
-  const central = 46 + nameBytes.length;
-  const out = new Uint8Array(local + data.length + central + 22);
-  const v = new DataView(out.buffer);
-  const header = (at, signature, isCentral) => {
-    v.setUint32(at, signature, true);
-    let p = at + 4;
-    if (isCentral) { v.setUint16(p, 20, true); p += 2; }
+// A zip of `files` ([name, bytes] pairs), stored: a local header and the data of each,
+// then the central directory and its end record.
+function storedZip(files) {
+  const enc = new TextEncoder();
+  const parts = [];
+  const central = [];
+  let offset = 0;
+  // The fields local and central headers share, from "version needed" on.
+  const common = (v, p, name, data) => {
     v.setUint16(p, 20, true); // version needed
     v.setUint16(p + 2, 0, true); // flags
     v.setUint16(p + 4, 0, true); // stored
     v.setUint32(p + 6, 0x00210000, true); // 1980-01-01 00:00
-    v.setUint32(p + 10, crc, true);
+    v.setUint32(p + 10, crc32(data), true);
     v.setUint32(p + 14, data.length, true);
     v.setUint32(p + 18, data.length, true);
-    v.setUint16(p + 22, nameBytes.length, true);
-    return p + 26; // extra length (0) and, for the central record, the rest
+    v.setUint16(p + 22, name.length, true);
   };
-  let p = header(0, 0x04034b50, false);
-  out.set(nameBytes, p + 2);
-  out.set(data, local);
-  const c = local + data.length;
-  p = header(c, 0x02014b50, true);
-  // extra, comment, disk, internal and external attributes: 0; then the local offset.
-  v.setUint32(p + 12, 0, true);
-  out.set(nameBytes, c + 46);
-  const end = c + central;
-  v.setUint32(end, 0x06054b50, true);
-  v.setUint16(end + 8, 1, true);
-  v.setUint16(end + 10, 1, true);
-  v.setUint32(end + 12, central, true);
-  v.setUint32(end + 16, c, true);
+  for (const [n, data] of files) {
+    const name = enc.encode(n);
+    const local = new Uint8Array(30 + name.length);
+    const lv = new DataView(local.buffer);
+    lv.setUint32(0, 0x04034b50, true);
+    common(lv, 4, name, data);
+    local.set(name, 30);
+    const entry = new Uint8Array(46 + name.length);
+    const cv = new DataView(entry.buffer);
+    cv.setUint32(0, 0x02014b50, true);
+    cv.setUint16(4, 20, true); // version made by
+    common(cv, 6, name, data);
+    cv.setUint32(42, offset, true);
+    entry.set(name, 46);
+    parts.push(local, data);
+    central.push(entry);
+    offset += local.length + data.length;
+  }
+  const size = central.reduce((n, c) => n + c.length, 0);
+  const end = new Uint8Array(22);
+  const ev = new DataView(end.buffer);
+  ev.setUint32(0, 0x06054b50, true);
+  ev.setUint16(8, files.length, true);
+  ev.setUint16(10, files.length, true);
+  ev.setUint32(12, size, true);
+  ev.setUint32(16, offset, true);
+  const all = [...parts, ...central, end];
+  const out = new Uint8Array(all.reduce((n, b) => n + b.length, 0));
+  let at = 0;
+  for (const b of all) {
+    out.set(b, at);
+    at += b.length;
+  }
   return out;
 }

@@ -99,6 +99,9 @@ export interface PartLayer {
 export interface PartOptions extends Omit<PreviewOptions, 'shape' | 'layer' | 'width'> {
   /** Wall loops around the infill, each a 0.4 mm line (default 2). */
   walls?: number;
+  /** The layers returned, `from` (included) to `to` (excluded); all by default. The summary counts every layer. */
+  from?: number;
+  to?: number;
 }
 /**
  * The mesh kept by `readMesh`, sliced at the middle of each layer and filled under the

@@ -3,8 +3,8 @@
 // the Node suite. Never run: types only.
 import { check, compare, compat, expand, explain, explainCode, FILLS, format, RotlangError, signs, version } from 'rotlang';
 import type { Diagnostic, ExpandResult, Fill, Model } from 'rotlang';
-import { plot, preview, readProfile } from 'rotlang/full';
-import type { Profile } from 'rotlang/full';
+import { part, plot, preview, readMesh, readProfile } from 'rotlang/full';
+import type { MeshInfo, PartLayer, Profile } from 'rotlang/full';
 
 const v: string = version();
 const c = check('+30X5', { target: 'sparse' });
@@ -44,3 +44,12 @@ const svg: string = preview('+30', { layer: 3, pattern: 'gyroid', shape: 'star',
 const chart: string = plot('+30', { width: 640, height: 400, model });
 
 export const used = [v, where, fixed, canonical, angles, fill, governing, hangs, differs, lint, words, summary, meanings, sparse, svg, chart];
+
+// A mesh read once, then sliced and filled under a template.
+const mesh: MeshInfo = readMesh('cube.stl', new Uint8Array(84));
+const height: number = mesh.max[2] - mesh.min[2];
+const sliced = part('+45', { pattern: 'gyroid', density: 0.15, walls: 2, from: 0, to: 10, model: { layerHeight: 0.2 } });
+const layer: PartLayer = sliced.layers[0];
+const outline: [number, number][] = layer.section[0][0];
+const minutes: number = sliced.summary.time_s / 60 + height + outline.length + layer.polylines.length;
+export const usedPart = [minutes];

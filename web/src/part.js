@@ -87,6 +87,8 @@ export class PartPanel {
       $('mesh-close').hidden = false;
       $('view3d').hidden = false;
       $('shape').disabled = true;
+      // The part's height over the layer height gives the count (onAnswer in main.js).
+      $('layers').disabled = true;
       this.describe();
       this.schedule(0);
     } catch (e) {
@@ -102,6 +104,7 @@ export class PartPanel {
     $('mesh-close').hidden = true;
     $('view3d').hidden = true;
     $('shape').disabled = false;
+    $('layers').disabled = false;
     this.message('');
     this.onClose();
   }

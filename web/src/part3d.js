@@ -80,7 +80,7 @@ export class PartView {
     const centre = min.clone().add(max).multiplyScalar(0.5);
     const size = Math.max(1e-3, max.clone().sub(min).length());
     this.controls.target.copy(centre);
-    this.camera.position.copy(centre).add(new Vector3(0.9, -1.3, 0.9).normalize().multiplyScalar(size * 1.6));
+    this.camera.position.copy(centre).add(new Vector3(0.9, -1.3, 0.9).normalize().multiplyScalar(size * 1.35));
     this.camera.near = size / 100;
     this.camera.far = size * 20;
     this.camera.updateProjectionMatrix();

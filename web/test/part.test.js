@@ -66,6 +66,7 @@ test('a cube STL from the file button: 50 square layers stacked, the slider cutt
   assert.equal(p.summary.layers, 50);
   // The model follows the part: the plot and the slider have its layers.
   assert.equal(await page.inputValue('#layers'), '50');
+  assert.ok(await page.isDisabled('#layers'), 'the part sets the layer count');
   assert.equal(await page.getAttribute('#layer-slider', 'max'), '49');
   scene.layers.forEach((l, i) => {
     assert.equal(l.index, i);
@@ -144,6 +145,7 @@ test('a cylinder STL dropped on the page: circular sections of its radius', asyn
   await page.waitForFunction(() => /refused: cannot read a mesh from broken\.stl/.test(document.getElementById('part-info').textContent));
   // Back to the outlines: the built-in shapes' preview again.
   await page.click('#mesh-close');
+  assert.ok(await page.isEnabled('#layers'));
   await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().name === null
     && document.querySelector('#preview svg') && !document.querySelector('#preview svg.part-layer'));
   assert.deepEqual(page.errors, []);

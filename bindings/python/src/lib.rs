@@ -8,7 +8,8 @@ use pyo3::exceptions::{PyException, PyOverflowError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
 
-use rotlang_core::eval::limits::{self, Given, LimitError};
+use rotlang_core::api::{self, ApiError, ErrorKind, ModelSpec, Style};
+use rotlang_core::eval::limits::{self, Given};
 use rotlang_core::eval::{self, Model as RustModel, Options};
 use rotlang_core::{Diagnostic as RustDiagnostic, Target};
 
@@ -20,6 +21,29 @@ pyo3::create_exception!(
     PyException,
     "The template has errors; `.diagnostics` lists them (`args[1]` too)."
 );
+
+pyo3::create_exception!(
+    rotlang,
+    OptionsError,
+    PyValueError,
+    "A target, dialect, base or seed that rotlang cannot take (a `ValueError`)."
+);
+
+pyo3::create_exception!(
+    rotlang,
+    ModelError,
+    PyValueError,
+    "A model that rotlang cannot take: no layers, a bad height or count (a `ValueError`)."
+);
+
+/// A refusal of the shared API (`rotlang::api`, which the C and JavaScript bindings
+/// check their input with too): the same message in every language.
+fn refused(e: ApiError) -> PyErr {
+    match e.kind {
+        ErrorKind::Options => OptionsError::new_err(e.message),
+        ErrorKind::Model => ModelError::new_err(e.message),
+    }
+}
 
 /// One diagnostic of a template.
 #[pyclass(frozen, get_all, skip_from_py_object, module = "rotlang")]
@@ -68,13 +92,7 @@ fn diagnostic(text: &str, d: &RustDiagnostic) -> Diagnostic {
 }
 
 fn target(name: &str) -> PyResult<Target> {
-    match name {
-        "sparse" => Ok(Target::Sparse),
-        "solid" => Ok(Target::Solid),
-        other => Err(PyValueError::new_err(format!(
-            "target must be 'sparse' or 'solid', not {other:?}"
-        ))),
-    }
+    api::target(name).map_err(refused)
 }
 
 /// The TemplateError for a template with errors.
@@ -120,45 +138,28 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Int {
     }
 }
 
-fn limit_error(e: LimitError) -> PyErr {
-    PyValueError::new_err(e.message)
-}
-
 impl Int {
     const ZERO: Int = Int::Given(0);
 
-    /// `check(name, value)` on the number, or its refusal for a number beyond 128 bits.
-    fn checked<T>(
-        &self,
-        name: &str,
-        min: u64,
-        max: u64,
-        check: impl Fn(&str, Given) -> Result<T, LimitError>,
-    ) -> PyResult<T> {
+    /// The number for the shared API, or its refusal for one beyond 128 bits (`name` in
+    /// snake case).
+    fn given(&self, name: &str) -> PyResult<Given> {
         match self {
-            Int::Given(v) => check(name, Given::Int(*v)).map_err(limit_error),
-            Int::Huge(shown) => Err(limit_error(limits::out_of_range(name, min, max, shown))),
+            Int::Given(v) => Ok(Given::Int(*v)),
+            Int::Huge(shown) => Err(refused(api::out_of_range(name, Style::Snake, shown))),
         }
-    }
-
-    fn seed(&self) -> PyResult<u64> {
-        self.checked("seed", 0, limits::MAX_SEED, |name, v| {
-            limits::seed(name, v, limits::MAX_SEED)
-        })
-    }
-
-    fn shells(&self, name: &str) -> PyResult<u32> {
-        self.checked(name, 0, limits::MAX_SHELLS, limits::shells)
-    }
-
-    fn layers(&self) -> PyResult<usize> {
-        self.checked("layers", 1, eval::MAX_LAYERS as u64, limits::layers)
     }
 }
 
-/// The shell counts of a model, checked.
-fn shells(model: RustModel, bottom: &Int, top: &Int) -> PyResult<RustModel> {
-    Ok(model.with_shells(bottom.shells("bottom_shells")?, top.shells("top_shells")?))
+/// A model from its description, checked by the shared API.
+fn model(spec: ModelSpec<'_>, bottom: &Int, top: &Int) -> PyResult<Model> {
+    let spec = ModelSpec {
+        bottom_shells: Some(bottom.given("bottom_shells")?),
+        top_shells: Some(top.given("top_shells")?),
+        ..spec
+    };
+    let inner = spec.build(Style::Snake).map_err(refused)?;
+    Ok(Model { inner })
 }
 
 /// The layers of one object: a list of heights or a uniform model, with `h`, `B`, `T`.
@@ -166,10 +167,6 @@ fn shells(model: RustModel, bottom: &Int, top: &Int) -> PyResult<RustModel> {
 #[derive(Clone)]
 struct Model {
     inner: RustModel,
-}
-
-fn model_error(e: eval::ModelError) -> PyErr {
-    PyValueError::new_err(format!("invalid model: {e}"))
 }
 
 #[pymethods]
@@ -184,10 +181,13 @@ impl Model {
         bottom_shells: Int,
         top_shells: Int,
     ) -> PyResult<Model> {
-        let model = RustModel::uniform(layers.layers()?, layer_height, first_layer_height)
-            .map_err(model_error)?;
-        let inner = shells(model, &bottom_shells, &top_shells)?;
-        Ok(Model { inner })
+        let spec = ModelSpec {
+            layers: Some(layers.given("layers")?),
+            layer_height: Some(layer_height),
+            first_layer_height,
+            ..ModelSpec::default()
+        };
+        model(spec, &bottom_shells, &top_shells)
     }
 
     /// A model from every layer's height (mm, bottom to top) and the standard height.
@@ -199,9 +199,12 @@ impl Model {
         bottom_shells: Int,
         top_shells: Int,
     ) -> PyResult<Model> {
-        let model = RustModel::from_heights(heights, layer_height).map_err(model_error)?;
-        let inner = shells(model, &bottom_shells, &top_shells)?;
-        Ok(Model { inner })
+        let spec = ModelSpec {
+            heights: Some(&heights),
+            layer_height: Some(layer_height),
+            ..ModelSpec::default()
+        };
+        model(spec, &bottom_shells, &top_shells)
     }
 
     /// An object `height` mm tall in layers of `layer_height`.
@@ -214,10 +217,13 @@ impl Model {
         bottom_shells: Int,
         top_shells: Int,
     ) -> PyResult<Model> {
-        let model = RustModel::from_total_height(height, layer_height, first_layer_height)
-            .map_err(model_error)?;
-        let inner = shells(model, &bottom_shells, &top_shells)?;
-        Ok(Model { inner })
+        let spec = ModelSpec {
+            height: Some(height),
+            layer_height: Some(layer_height),
+            first_layer_height,
+            ..ModelSpec::default()
+        };
+        model(spec, &bottom_shells, &top_shells)
     }
 
     /// The documentation's 20 mm cube: 100 layers of 0.2 mm, 3 bottom and 4 top shells.
@@ -410,10 +416,7 @@ fn evaluate_layers(
 
 /// The base and seed, in the ranges every binding takes (`rotlang::eval::limits`).
 fn options(base: f64, seed: &Int) -> PyResult<Options> {
-    Ok(Options {
-        base: limits::base(base).map_err(limit_error)?,
-        seed: seed.seed()?,
-    })
+    api::options(Some(base), Some(seed.given("seed")?), limits::MAX_SEED).map_err(refused)
 }
 
 /// Every diagnostic (errors and warnings) of a template; an empty list when it is clean.
@@ -491,6 +494,8 @@ fn format_angle(degrees: f64) -> String {
 fn rotlang(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("TemplateError", m.py().get_type::<TemplateError>())?;
+    m.add("OptionsError", m.py().get_type::<OptionsError>())?;
+    m.add("ModelError", m.py().get_type::<ModelError>())?;
     m.add("DIALECTS", dialect::NAMES.to_vec())?;
     m.add_class::<Diagnostic>()?;
     m.add_class::<Model>()?;

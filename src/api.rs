@@ -19,7 +19,7 @@
 //! assert_eq!(api::dialect(" OrcaSlicer ").map(|d| d.name()), Ok("orcaslicer"));
 //! ```
 
-use std::fmt;
+use std::fmt::{self, Write};
 
 use crate::Target;
 use crate::dialect::Dialect;
@@ -91,20 +91,15 @@ pub enum Style {
 }
 
 impl Style {
-    /// `name` (written in snake case) in this style.
-    pub fn name(self, name: &str) -> String {
-        match self {
-            Style::Snake => name.to_string(),
-            Style::Camel => {
-                let mut parts = name.split('_');
-                let mut out = parts.next().unwrap_or_default().to_string();
-                for part in parts {
-                    let mut chars = part.chars();
-                    out.extend(chars.next().map(|c| c.to_ascii_uppercase()));
-                    out.push_str(chars.as_str());
-                }
-                out
-            }
+    /// `name` (one of the snake-case option names of this module) in this style. A
+    /// table rather than a conversion: the WebAssembly module carries this code.
+    pub fn name(self, name: &'static str) -> &'static str {
+        match (self, name) {
+            (Style::Camel, "bottom_shells") => "bottomShells",
+            (Style::Camel, "top_shells") => "topShells",
+            (Style::Camel, "layer_height") => "layerHeight",
+            (Style::Camel, "first_layer_height") => "firstLayerHeight",
+            _ => name,
         }
     }
 }
@@ -114,16 +109,31 @@ pub const TARGETS: [&str; 2] = ["sparse", "solid"];
 /// The names of the dialects, in the order of their numbers (C's `RotlangDialect`).
 pub const DIALECTS: [&str; 2] = ["rotlang", "orcaslicer"];
 
+/// `names` as "`a` or `b`", or with their numbers, "0 (a) or 1 (b)".
+fn listed(names: &[&str], numbered: bool) -> String {
+    let mut out = String::new();
+    for (i, n) in names.iter().enumerate() {
+        if i > 0 {
+            out.push_str(" or ");
+        }
+        if numbered {
+            let _ = write!(out, "{i} ({n})");
+        } else {
+            let _ = write!(out, "`{n}`");
+        }
+    }
+    out
+}
+
 /// The index of `given` (any case, spaces around ignored) in `names`.
 fn choice(what: &str, names: &[&str], given: &str) -> Result<usize, ApiError> {
     names
         .iter()
         .position(|n| n.eq_ignore_ascii_case(given.trim()))
         .ok_or_else(|| {
-            let expected: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
             ApiError::options(format!(
                 "unknown {what} `{given}`; expected {}",
-                expected.join(" or ")
+                listed(names, false)
             ))
         })
 }
@@ -134,14 +144,9 @@ fn numbered(what: &str, names: &[&str], given: u64) -> Result<usize, ApiError> {
         .ok()
         .filter(|i| *i < names.len())
         .ok_or_else(|| {
-            let listed: Vec<String> = names
-                .iter()
-                .enumerate()
-                .map(|(i, n)| format!("{i} ({n})"))
-                .collect();
             ApiError::options(format!(
                 "`{what}` must be {}, not {given}",
-                listed.join(" or ")
+                listed(names, true)
             ))
         })
 }
@@ -195,13 +200,13 @@ pub fn options(base: Option<f64>, seed: Option<Given>, max_seed: u64) -> Result<
 /// The refusal of an integer option the binding could not even turn into a [`Given`]
 /// (a Python integer beyond 128 bits): `name` in snake case, `shown` as the caller
 /// prints the value.
-pub fn out_of_range(name: &str, style: Style, shown: &dyn fmt::Display) -> ApiError {
+pub fn out_of_range(name: &'static str, style: Style, shown: &dyn fmt::Display) -> ApiError {
     let (min, max, kind) = match name {
         "seed" => (0, limits::MAX_SEED, ErrorKind::Options),
         "layers" => (1, crate::eval::MAX_LAYERS as u64, ErrorKind::Model),
         _ => (0, limits::MAX_SHELLS, ErrorKind::Model),
     };
-    let LimitError { message } = limits::out_of_range(&style.name(name), min, max, shown);
+    let LimitError { message } = limits::out_of_range(style.name(name), min, max, shown);
     ApiError { kind, message }
 }
 
@@ -244,7 +249,7 @@ impl ModelSpec<'_> {
                 .unwrap_or(DEFAULT_LAYER_HEIGHT);
             Model::from_heights(heights.to_vec(), h)
         } else if let Some(n) = self.layers {
-            let n = limits::layers(&style.name("layers"), n).map_err(ApiError::model)?;
+            let n = limits::layers(style.name("layers"), n).map_err(ApiError::model)?;
             let h = lh.unwrap_or(DEFAULT_LAYER_HEIGHT);
             Model::uniform(n, h, self.first_layer_height)
         } else if let Some(height) = self.height {
@@ -258,8 +263,8 @@ impl ModelSpec<'_> {
             Ok(Model::cube20())
         };
         let model = model.map_err(ApiError::model)?;
-        let shells = |name: &str, given: Option<Given>, default: u32| match given {
-            Some(v) => limits::shells(&style.name(name), v).map_err(ApiError::model),
+        let shells = |name: &'static str, given: Option<Given>, default: u32| match given {
+            Some(v) => limits::shells(style.name(name), v).map_err(ApiError::model),
             None => Ok(default),
         };
         let bottom = shells("bottom_shells", self.bottom_shells, model.bottom_shells())?;

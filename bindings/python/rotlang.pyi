@@ -14,6 +14,12 @@ class TemplateError(Exception):
 
     diagnostics: List["Diagnostic"]
 
+class OptionsError(ValueError):
+    """A target, dialect, base or seed rotlang cannot take (the message names it)."""
+
+class ModelError(ValueError):
+    """A model rotlang cannot take: no layers, a bad height, a count out of range."""
+
 class Diagnostic:
     code: str
     severity: Literal["error", "warning"]

@@ -143,7 +143,7 @@ impl Int {
 
     /// The number for the shared API, or its refusal for one beyond 128 bits (`name` in
     /// snake case).
-    fn given(&self, name: &str) -> PyResult<Given> {
+    fn given(&self, name: &'static str) -> PyResult<Given> {
         match self {
             Int::Given(v) => Ok(Given::Int(*v)),
             Int::Huge(shown) => Err(refused(api::out_of_range(name, Style::Snake, shown))),

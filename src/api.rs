@@ -19,12 +19,16 @@
 //! assert_eq!(api::dialect(" OrcaSlicer ").map(|d| d.name()), Ok("orcaslicer"));
 //! ```
 
+mod profile;
+
 use std::fmt::{self, Write};
 
 use crate::Target;
 use crate::dialect::Dialect;
 use crate::eval::limits::{self, Given, LimitError};
 use crate::eval::{Model, Options};
+
+pub use profile::{ProfileNote, ProfileSummary, ProfileTemplate, profile};
 
 /// What kind of input was refused: a binding maps it to its own error (C:
 /// `ROTLANG_STATUS_INVALID_ARGUMENT` or `_INVALID_MODEL`; JavaScript: the
@@ -35,6 +39,8 @@ pub enum ErrorKind {
     Options,
     /// The model: its layers, heights or shell counts.
     Model,
+    /// A profile file that cannot be read at all ([`profile()`]).
+    Profile,
 }
 
 impl ErrorKind {
@@ -43,6 +49,7 @@ impl ErrorKind {
         match self {
             ErrorKind::Options => "options",
             ErrorKind::Model => "model",
+            ErrorKind::Profile => "profile",
         }
     }
 }

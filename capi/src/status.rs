@@ -96,7 +96,8 @@ impl Failure {
 impl From<ApiError> for Failure {
     fn from(e: ApiError) -> Self {
         let status = match e.kind {
-            ErrorKind::Options => RotlangStatus::InvalidArgument,
+            // The C ABI reads no profile files.
+            ErrorKind::Options | ErrorKind::Profile => RotlangStatus::InvalidArgument,
             ErrorKind::Model => RotlangStatus::InvalidModel,
         };
         Failure::with(status, e.message)

@@ -288,3 +288,70 @@ fn outcome_without_template_message(o: Outcome) -> Outcome {
         other => other,
     }
 }
+
+/// The profile table (`bindings/agreement/profiles.json`) as the core reads it, in the
+/// table's form (the JavaScript and Python suites compare theirs with the same form).
+fn core_profile(case: &Value) -> Value {
+    let bytes: Vec<u8> = match case["bytes"].as_array() {
+        Some(b) => b
+            .iter()
+            .map(|v| v.as_u64().expect("a byte") as u8)
+            .collect(),
+        None => case["content"]
+            .as_str()
+            .expect("content")
+            .as_bytes()
+            .to_vec(),
+    };
+    match api::profile(case["file"].as_str().expect("file"), &bytes) {
+        Err(e) => serde_json::json!({ "error": e.kind.as_str(), "message": e.message }),
+        Ok(p) => serde_json::json!({
+            "kind": p.kind,
+            "templates": p.templates.iter().map(|t| serde_json::json!([
+                t.key, api::TARGETS[usize::from(t.target == rotlang::Target::Solid)], t.text, t.base
+            ])).collect::<Vec<_>>(),
+            "model": {
+                "layers": p.model.len(),
+                "layer_height": p.model.layer_height(),
+                "first_layer_height": p.first_layer_height,
+                "bottom_shells": p.model.bottom_shells(),
+                "top_shells": p.model.top_shells(),
+            },
+            "base": p.base,
+            "has_errors": p.has_errors,
+        }),
+    }
+}
+
+#[test]
+fn the_profile_table_is_what_the_core_gives() {
+    let path = root().join("bindings/agreement/profiles.json");
+    let table: Value =
+        serde_json::from_str(&std::fs::read_to_string(path).expect("profiles.json")).expect("JSON");
+    let cases = table["cases"].as_array().expect("cases");
+    assert!(cases.len() >= 5);
+    for case in cases {
+        let core = core_profile(case);
+        assert!(
+            same_json(&core, &case["expect"]),
+            "{}: the core gives {core}",
+            case["name"]
+        );
+    }
+}
+
+/// Equal JSON, numbers compared as doubles (the table's 0 is the core's 0.0).
+fn same_json(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => x.as_f64() == y.as_f64(),
+        (Value::Array(x), Value::Array(y)) => {
+            x.len() == y.len() && x.iter().zip(y).all(|(x, y)| same_json(x, y))
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            x.len() == y.len()
+                && x.iter()
+                    .all(|(k, v)| y.get(k).is_some_and(|w| same_json(v, w)))
+        }
+        _ => a == b,
+    }
+}

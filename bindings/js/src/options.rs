@@ -65,6 +65,11 @@ impl From<ApiError> for Failure {
         match e.kind {
             ErrorKind::Options => Failure::options(e.message),
             ErrorKind::Model => Failure::model(e.message),
+            ErrorKind::Profile => Failure {
+                kind: "profile",
+                message: e.message,
+                diagnostics: None,
+            },
         }
     }
 }

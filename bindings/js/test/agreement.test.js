@@ -51,3 +51,31 @@ for (const c of cases) {
     }
   });
 }
+
+// The profile table: readProfile (rotlang/full) shows what Python's read_profile shows.
+const profiles = JSON.parse(readFileSync(new URL('../../agreement/profiles.json', import.meta.url), 'utf8'));
+
+for (const c of profiles.cases) {
+  test(`profile agreement: ${c.name}`, async () => {
+    const { readProfile } = await import('../full.js');
+    const content = c.bytes ? new Uint8Array(c.bytes) : c.content;
+    const { expect } = c;
+    if ('error' in expect) {
+      assert.throws(() => readProfile(c.file, content), (e) => e instanceof RotlangError
+        && e.kind === expect.error && e.message === expect.message);
+      return;
+    }
+    const p = readProfile(c.file, content);
+    const m = p.model;
+    assert.deepEqual({
+      kind: p.kind,
+      templates: p.templates.map((t) => [t.key, t.target, t.text, t.base]),
+      model: {
+        layers: m.layers, layer_height: m.layerHeight, first_layer_height: m.firstLayerHeight,
+        bottom_shells: m.bottomShells, top_shells: m.topShells,
+      },
+      base: p.base,
+      has_errors: p.hasErrors,
+    }, expect);
+  });
+}

@@ -36,12 +36,20 @@ pyo3::create_exception!(
     "A model that rotlang cannot take: no layers, a bad height or count (a `ValueError`)."
 );
 
+pyo3::create_exception!(
+    rotlang,
+    ProfileError,
+    PyValueError,
+    "A profile file that cannot be read at all (a `ValueError`)."
+);
+
 /// A refusal of the shared API (`rotlang::api`, which the C and JavaScript bindings
 /// check their input with too): the same message in every language.
 fn refused(e: ApiError) -> PyErr {
     match e.kind {
         ErrorKind::Options => OptionsError::new_err(e.message),
         ErrorKind::Model => ModelError::new_err(e.message),
+        ErrorKind::Profile => ProfileError::new_err(e.message),
     }
 }
 
@@ -483,6 +491,55 @@ fn explain_code<'py>(py: Python<'py>, code: &str) -> PyResult<Option<Bound<'py, 
     Ok(Some(dict))
 }
 
+/// The templates, model and direction of a profile file, read by `rotlang::api::profile`
+/// (what the JavaScript binding's `readProfile` shows): `name` picks the kind by its
+/// extension (`.json`/`.jsonc` presets, `.ini` exports, `.rot` templates); `content` is
+/// its text or bytes. A dict: `kind`, `templates` (dicts with `key`, `object`, `target`,
+/// `text` and `base`, the direction the tools add to that template), `model` (a `Model`),
+/// `first_layer_height`, `base`, `notes` (dicts with `message` and `error`) and
+/// `has_errors`. Raises `ProfileError` for a file that cannot be read at all.
+#[pyfunction]
+fn read_profile<'py>(
+    py: Python<'py>,
+    name: &str,
+    content: Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let bytes: Vec<u8> = match content.extract::<String>() {
+        Ok(text) => text.into_bytes(),
+        Err(_) => content.extract::<Vec<u8>>()?,
+    };
+    let p = py.detach(|| api::profile(name, &bytes)).map_err(refused)?;
+    let templates = PyList::empty(py);
+    for t in &p.templates {
+        let d = PyDict::new(py);
+        d.set_item("key", &t.key)?;
+        d.set_item("object", &t.object)?;
+        d.set_item(
+            "target",
+            api::TARGETS[usize::from(t.target == Target::Solid)],
+        )?;
+        d.set_item("text", &t.text)?;
+        d.set_item("base", t.base)?;
+        templates.append(d)?;
+    }
+    let notes = PyList::empty(py);
+    for n in &p.notes {
+        let d = PyDict::new(py);
+        d.set_item("message", &n.message)?;
+        d.set_item("error", n.error)?;
+        notes.append(d)?;
+    }
+    let dict = PyDict::new(py);
+    dict.set_item("kind", p.kind)?;
+    dict.set_item("templates", templates)?;
+    dict.set_item("model", Model { inner: p.model })?;
+    dict.set_item("first_layer_height", p.first_layer_height)?;
+    dict.set_item("base", p.base)?;
+    dict.set_item("notes", notes)?;
+    dict.set_item("has_errors", p.has_errors)?;
+    Ok(dict)
+}
+
 /// Wraps an angle into `[0, 360)` and prints it without float noise (`"30"`, `"22.5"`).
 #[pyfunction]
 fn format_angle(degrees: f64) -> String {
@@ -496,6 +553,7 @@ fn rotlang(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("TemplateError", m.py().get_type::<TemplateError>())?;
     m.add("OptionsError", m.py().get_type::<OptionsError>())?;
     m.add("ModelError", m.py().get_type::<ModelError>())?;
+    m.add("ProfileError", m.py().get_type::<ProfileError>())?;
     m.add("DIALECTS", dialect::NAMES.to_vec())?;
     m.add_class::<Diagnostic>()?;
     m.add_class::<Model>()?;
@@ -508,5 +566,6 @@ fn rotlang(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(format_angle, m)?)?;
     m.add_function(wrap_pyfunction!(explain, m)?)?;
     m.add_function(wrap_pyfunction!(explain_code, m)?)?;
+    m.add_function(wrap_pyfunction!(read_profile, m)?)?;
     Ok(())
 }

@@ -56,3 +56,35 @@ def test_agreement(case):
         assert len(angles) == expect["count"]
         assert angles[: len(expect["head"])] == expect["head"]
         assert angles[-1] == expect["last"]
+
+
+PROFILES = json.loads((Path(__file__).parents[2] / "agreement" / "profiles.json").read_text("utf-8"))["cases"]
+
+
+@pytest.mark.parametrize("case", PROFILES, ids=[c["name"] for c in PROFILES])
+def test_profile_agreement(case):
+    content = bytes(case["bytes"]) if "bytes" in case else case["content"]
+    expect = case["expect"]
+    if "error" in expect:
+        with pytest.raises(rotlang.ProfileError) as caught:
+            rotlang.read_profile(case["file"], content)
+        assert isinstance(caught.value, ValueError)
+        assert str(caught.value) == expect["message"]
+        return
+    p = rotlang.read_profile(case["file"], content)
+    m = p["model"]
+    assert {
+        "kind": p["kind"],
+        "templates": [[t["key"], t["target"], t["text"], t["base"]] for t in p["templates"]],
+        "model": {
+            "layers": len(m),
+            "layer_height": m.layer_height,
+            "first_layer_height": p["first_layer_height"],
+            "bottom_shells": m.bottom_shells,
+            "top_shells": m.top_shells,
+        },
+        "base": p["base"],
+        "has_errors": p["has_errors"],
+    } == expect
+    # The model is one to evaluate on.
+    assert len(rotlang.expand("+10", m)) == len(m)

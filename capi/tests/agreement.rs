@@ -279,6 +279,15 @@ fn the_c_abi_gives_the_table() {
         );
     }
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+    // And under valgrind: no invalid access or leak on any case, refused ones included
+    // (the handles freed, the last-error buffer sized).
+    if ensure(&["apt", "valgrind"]) {
+        let cases_file = dir.join("cases.txt");
+        std::fs::write(&cases_file, &input).expect("write the cases");
+        let checked = valgrind(&exe, &[cases_file.to_str().expect("UTF-8 path")]);
+        assert!(checked.status.success());
+        assert_eq!(String::from_utf8_lossy(&checked.stdout), out);
+    }
 }
 
 /// A template error's message is each binding's own: compared by kind only.

@@ -4,7 +4,8 @@
  *   count heights... template
  * (kind 0: no model, so the 20 mm cube; 1: uniform; 2: a list of heights). For each, one
  * line on stdout: "ok" and every angle, or "err", the status and rotlang_last_error's
- * detail (the message without the status's own text). */
+ * detail (the message without the status's own text). With an argument, the cases are
+ * read from that file instead (for valgrind, which the test runs it under too). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,8 +26,12 @@ static void fail(RotlangStatus status) {
     printf("err %d %s\n", (int)status, detail);
 }
 
-int main(void) {
+int main(int argc, char **argv) {
     static char line[1 << 16];
+    if (argc > 1 && !freopen(argv[1], "r", stdin)) {
+        perror(argv[1]);
+        return 2;
+    }
     while (fgets(line, sizeof line, stdin)) {
         char *p = line;
         unsigned dialect = (unsigned)strtoul(p, &p, 10);

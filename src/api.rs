@@ -19,6 +19,9 @@
 //! assert_eq!(api::dialect(" OrcaSlicer ").map(|d| d.name()), Ok("orcaslicer"));
 //! ```
 
+// The API of every binding: documented in full (issue 21 asks it of the whole crate).
+#![warn(missing_docs)]
+
 mod profile;
 
 use std::fmt::{self, Write};

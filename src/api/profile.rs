@@ -17,6 +17,7 @@ pub struct ProfileTemplate {
     pub key: Option<String>,
     /// For a per-object override of a `.3mf` project: the object it applies to.
     pub object: Option<String>,
+    /// The setting it is the template of.
     pub target: Target,
     /// The template, unescaped.
     pub text: String,
@@ -28,7 +29,9 @@ pub struct ProfileTemplate {
 /// A note on the file: an error fails it, the rest is information.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ProfileNote {
+    /// One line of English.
     pub message: String,
+    /// Whether it fails the file.
     pub error: bool,
 }
 
@@ -37,6 +40,7 @@ pub struct ProfileNote {
 pub struct ProfileSummary {
     /// `json`, `ini`, `3mf` or `template` (a `.rot` file); `None` when the kind was not recognised.
     pub kind: Option<&'static str>,
+    /// The templates, in the file's order.
     pub templates: Vec<ProfileTemplate>,
     /// The model of the file's settings for its first template's target (an object
     /// [`DEFAULT_OBJECT_HEIGHT`] mm tall).
@@ -47,6 +51,7 @@ pub struct ProfileSummary {
     pub base: f64,
     /// The file's notes, then the model's (as information).
     pub notes: Vec<ProfileNote>,
+    /// Whether a note is an error.
     pub has_errors: bool,
 }
 

@@ -24,6 +24,7 @@
 
 mod profile;
 
+use std::borrow::Cow;
 use std::fmt::{self, Write};
 
 use crate::Target;
@@ -220,13 +221,20 @@ pub fn out_of_range(name: &'static str, style: Style, shown: &dyn fmt::Display) 
     ApiError { kind, message }
 }
 
+/// The refusal of a list of `count` layer heights, more than the evaluator takes: for
+/// a binding to give before it even reads a list that long (C's `heights_len`).
+pub fn too_many_layers(count: usize) -> ApiError {
+    ApiError::model(crate::eval::ModelError::TooManyLayers(count as f64))
+}
+
 /// A model as a binding describes it. Exactly one of `heights`, `layers` and `height`
 /// says how many layers there are (the first of them given wins, in that order); with
 /// none of them, the model is the documentation's 20 mm cube.
 #[derive(Clone, Debug, Default)]
 pub struct ModelSpec<'a> {
-    /// The height of every layer, bottom to top (mm).
-    pub heights: Option<&'a [f64]>,
+    /// The height of every layer, bottom to top (mm): borrowed (copied into the model)
+    /// or owned (moved into it, for a binding that made the list anyway).
+    pub heights: Option<Cow<'a, [f64]>>,
     /// A uniform model: this many layers.
     pub layers: Option<Given>,
     /// A uniform model: as many layers as an object this tall (mm) needs.
@@ -246,18 +254,17 @@ const DEFAULT_LAYER_HEIGHT: f64 = 0.2;
 
 impl ModelSpec<'_> {
     /// The model, checked: every refusal is an [`ErrorKind::Model`] error.
-    pub fn build(&self, style: Style) -> Result<Model, ApiError> {
+    pub fn build(self, style: Style) -> Result<Model, ApiError> {
         let lh = self.layer_height;
         let model = if let Some(heights) = self.heights {
             // Counted before the copy: a list this long is refused without one.
             if heights.len() > crate::eval::MAX_LAYERS {
-                let n = heights.len() as f64;
-                return Err(ApiError::model(crate::eval::ModelError::TooManyLayers(n)));
+                return Err(too_many_layers(heights.len()));
             }
             let h = lh
                 .or(heights.first().copied())
                 .unwrap_or(DEFAULT_LAYER_HEIGHT);
-            Model::from_heights(heights.to_vec(), h)
+            Model::from_heights(heights.into_owned(), h)
         } else if let Some(n) = self.layers {
             let n = limits::layers(style.name("layers"), n).map_err(ApiError::model)?;
             let h = lh.unwrap_or(DEFAULT_LAYER_HEIGHT);
@@ -316,7 +323,7 @@ mod tests {
     fn the_model_is_the_first_of_heights_layers_height_else_the_cube() {
         let list = [0.3, 0.2, 0.2];
         let m = ModelSpec {
-            heights: Some(&list),
+            heights: Some(Cow::Borrowed(&list)),
             layers: Some(Given::Int(50)),
             ..spec()
         };
@@ -354,7 +361,7 @@ mod tests {
         let cases = [
             (
                 ModelSpec {
-                    heights: Some(&empty),
+                    heights: Some(Cow::Borrowed(&empty)),
                     ..spec()
                 },
                 "the model has no layers",

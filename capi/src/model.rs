@@ -1,9 +1,11 @@
 //! The model and the evaluation options as C structs, and their checked conversion.
 
+use std::borrow::Cow;
+
 use rotlang::api::{self, ModelSpec, Style};
 use rotlang::dialect::Dialect;
 use rotlang::eval::limits::{Given, MAX_SEED};
-use rotlang::eval::{Model, Options};
+use rotlang::eval::{MAX_LAYERS, Model, Options};
 
 use crate::status::Failure;
 use crate::util::slice;
@@ -137,9 +139,15 @@ impl RotlangModel {
             true => None,
             // An empty list is the API's "no layers"; a non-empty one is read (the API
             // counts it before copying it).
-            false if self.heights_len == 0 => Some(&[][..]),
+            false if self.heights_len == 0 => Some(Cow::Borrowed(&[][..])),
+            // Too long to be memory, maybe: refused as the model it describes.
+            false if self.heights_len > MAX_LAYERS => {
+                return Err(api::too_many_layers(self.heights_len).into());
+            }
             // SAFETY: the caller's contract.
-            false => Some(unsafe { slice(self.heights, self.heights_len, "the heights") }?),
+            false => Some(Cow::Borrowed(unsafe {
+                slice(self.heights, self.heights_len, "the heights")
+            }?)),
         };
         let uniform = heights.is_none();
         let spec = ModelSpec {
@@ -174,5 +182,27 @@ impl Settings {
         let options = api::options(Some(o.base), Some(Given::Int(o.seed.into())), MAX_SEED)
             .map_err(Failure::from)?;
         Ok(Settings { options, dialect })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::status::RotlangStatus;
+
+    #[test]
+    fn a_list_longer_than_memory_is_an_invalid_model_before_it_is_read() {
+        let h = [0.2];
+        // (Only a length no buffer can have: a shorter wrong one would be read.)
+        let m = rotlang_model_heights(h.as_ptr(), usize::MAX, 0.2);
+        // SAFETY: the length is refused before the pointer is read.
+        let e = unsafe { m.checked_model() }.unwrap_err();
+        assert_eq!(e.status, RotlangStatus::InvalidModel);
+        assert_eq!(
+            e.detail.as_deref(),
+            Some(
+                "the model would have 1.8446744073709552e19 layers; at most 100000000 are supported"
+            )
+        );
     }
 }

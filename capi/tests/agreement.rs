@@ -62,7 +62,7 @@ fn core(case: &Value) -> Outcome {
             .as_array()
             .map(|a| a.iter().map(|h| number(h).expect("a height")).collect());
         let spec = ModelSpec {
-            heights: heights.as_deref(),
+            heights: heights.map(Into::into),
             layers: int(&m["layers"]),
             height: number(&m["height"]),
             layer_height: number(&m["layer_height"]),

@@ -201,7 +201,8 @@ impl Request {
     pub fn model(&self, heights: Option<Vec<f64>>) -> Result<Model, Failure> {
         let whole = |slot| self.get(slot).map(Given::Float);
         let spec = ModelSpec {
-            heights: heights.as_deref(),
+            // Moved into the model: the list is not copied again.
+            heights: heights.map(Into::into),
             layers: whole(slot::LAYERS),
             height: self.get(slot::HEIGHT),
             layer_height: self.get(slot::LAYER_HEIGHT),

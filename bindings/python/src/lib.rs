@@ -208,7 +208,8 @@ impl Model {
         top_shells: Int,
     ) -> PyResult<Model> {
         let spec = ModelSpec {
-            heights: Some(&heights),
+            // Moved into the model: the list is not copied again.
+            heights: Some(heights.into()),
             layer_height: Some(layer_height),
             ..ModelSpec::default()
         };

@@ -123,7 +123,7 @@ fn template_error(py: Python<'_>, text: &str, diagnostics: &[RustDiagnostic]) ->
 }
 
 /// An integer argument as Python gave it, checked against its range by
-/// `rotlang::eval::limits` (the JavaScript binding's ranges and messages): a negative or
+/// `rotlang::api` (the C and JavaScript bindings' ranges and messages): a negative or
 /// too large number raises `ValueError` with the range, not PyO3's `OverflowError`.
 #[derive(Clone, Debug)]
 enum Int {
@@ -423,7 +423,7 @@ fn evaluate_layers(
     })
 }
 
-/// The base and seed, in the ranges every binding takes (`rotlang::eval::limits`).
+/// The base and seed, in the ranges every binding takes (`rotlang::api`).
 fn options(base: f64, seed: &Int) -> PyResult<Options> {
     api::options(Some(base), Some(seed.given("seed")?), limits::MAX_SEED).map_err(refused)
 }

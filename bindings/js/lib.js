@@ -59,8 +59,10 @@ function textArg(text) {
   return text;
 }
 
-// The request crosses into wasm as a Float64Array of slots (src/options.rs `slot`); NaN
-// marks an absent value. Names and types are checked here, ranges and meanings there.
+// The request crosses into wasm as a Float64Array of slots (src/options.rs `slot`), the
+// last a bit mask of the slots given (so a NaN given is not taken for an absent value).
+// Keys and types are checked here; target and dialect names, the numbers' ranges and the
+// model are read in wasm by `rotlang::api`, as the C and Python bindings read theirs.
 const SLOTS = {
   target: 0, dialect: 1, layers: 2, height: 3, layerHeight: 4, firstLayerHeight: 5,
   bottomShells: 6, topShells: 7, base: 8, seed: 9, from: 10, to: 11,
@@ -68,12 +70,13 @@ const SLOTS = {
 };
 // Top-level `height` is the picture's; the model's `height` (slot 3) is inside `model`.
 const PICTURE_HEIGHT = 17;
-const SLOT_COUNT = 18;
+const PRESENT = 18;
+const SLOT_COUNT = 19;
 /** The preview's patterns and outlines (indices cross into wasm; src/api.rs `SHAPES`). */
 export const PATTERNS = Object.freeze(['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning']);
 export const SHAPES = Object.freeze(['square', 'circle', 'ring', 'star', 'l']);
-const TARGETS = ['sparse', 'solid'];
-const DIALECTS = ['rotlang', 'orcaslicer'];
+// The names wasm reads (`rotlang_choice`).
+const CHOICES = { target: 0, dialect: 1 };
 
 // A model may use this API's camelCase names or the conformance models.json names.
 const MODEL_KEYS = {
@@ -89,6 +92,30 @@ const MODEL_KEYS = {
   top_shell_layers: 'topShells',
 };
 
+// A number for wasm to check (NaN and infinities included: the shared API refuses them
+// with the message every binding gives).
+function number(kind, name, v) {
+  if (typeof v !== 'number') {
+    throw new RotlangError(kind, `\`${name}\` must be a number, not ${JSON.stringify(v) ?? String(v)}`);
+  }
+  return v;
+}
+
+// The number of a target or dialect name, read in wasm.
+function choice(ex, key, value) {
+  const [ptr, len] = put(ex, encoder.encode(String(value)));
+  try {
+    const i = ex.rotlang_choice(CHOICES[key], ptr, len);
+    if (i < 0) {
+      const answer = readJson(ex);
+      throw new RotlangError(answer.kind, answer.message);
+    }
+    return i;
+  } finally {
+    ex.rotlang_dealloc(ptr, len);
+  }
+}
+
 function finite(kind, name, v) {
   if (typeof v !== 'number' || !Number.isFinite(v)) {
     throw new RotlangError(kind, `\`${name}\` must be a finite number, not ${typeof v === 'number' ? v : JSON.stringify(v) ?? String(v)}`);
@@ -97,24 +124,33 @@ function finite(kind, name, v) {
 }
 
 // The request slots and the list heights (a Float64Array or null) of an options object.
-function request(options) {
+function request(ex, options) {
   if (options === undefined || options === null) options = {};
   if (typeof options !== 'object') throw new RotlangError('options', 'the options must be an object');
   const slots = new Float64Array(SLOT_COUNT).fill(NaN);
+  let present = 0;
+  const set = (slot, v) => {
+    slots[slot] = v;
+    present += 2 ** slot;
+  };
   let heights = null;
   for (const [key, value] of Object.entries(options)) {
     if (value === undefined || value === null) continue;
-    if (key === 'target' || key === 'dialect' || key === 'pattern' || key === 'shape') {
-      const names = { target: TARGETS, dialect: DIALECTS, pattern: PATTERNS, shape: SHAPES }[key];
+    if (key in CHOICES) {
+      set(SLOTS[key], choice(ex, key, value));
+    } else if (key === 'pattern' || key === 'shape') {
+      const names = { pattern: PATTERNS, shape: SHAPES }[key];
       const i = names.indexOf(typeof value === 'string' ? value.trim().toLowerCase() : value);
       if (i < 0) {
         throw new RotlangError('options', `unknown ${key} \`${value}\`; expected ${names.map((n) => `\`${n}\``).join(' or ')}`);
       }
-      slots[SLOTS[key]] = i;
+      set(SLOTS[key], i);
     } else if (key === 'height') {
-      slots[PICTURE_HEIGHT] = finite('options', key, value);
-    } else if (['base', 'seed', 'from', 'to', 'layer', 'density', 'width'].includes(key)) {
-      slots[SLOTS[key]] = finite('options', key, value);
+      set(PICTURE_HEIGHT, finite('options', key, value));
+    } else if (key === 'base' || key === 'seed') {
+      set(SLOTS[key], number('options', key, value));
+    } else if (['from', 'to', 'layer', 'density', 'width'].includes(key)) {
+      set(SLOTS[key], finite('options', key, value));
     } else if (key === 'model') {
       if (typeof value !== 'object') throw new RotlangError('model', 'the model must be an object');
       for (const [k, v] of Object.entries(value)) {
@@ -129,12 +165,13 @@ function request(options) {
         }
         const name = MODEL_KEYS[k];
         if (!name) throw new RotlangError('model', `unknown model field \`${k}\``);
-        slots[SLOTS[name]] = finite('model', k, v);
+        set(SLOTS[name], number('model', k, v));
       }
     } else {
       throw new RotlangError('options', `unknown option \`${key}\``);
     }
   }
+  slots[PRESENT] = present;
   return [slots, heights];
 }
 
@@ -165,8 +202,8 @@ export async function bind(wasmModule) {
   // One call: copies inputs in, calls `name`, frees inputs, returns the JSON answer or
   // throws the failure.
   function call(name, text, options, withHeights = false) {
-    const [slots, heights] = request(options);
     const ex = exportsOrThrow();
+    const [slots, heights] = request(ex, options);
     const textBytes = encoder.encode(textArg(text));
     const reqBytes = new Uint8Array(slots.buffer);
     let t = null;

@@ -14,6 +14,15 @@ class TemplateError(Exception):
 
     diagnostics: List["Diagnostic"]
 
+class OptionsError(ValueError):
+    """A target, dialect, base or seed rotlang cannot take (the message names it)."""
+
+class ModelError(ValueError):
+    """A model rotlang cannot take: no layers, a bad height, a count out of range."""
+
+class ProfileError(ValueError):
+    """A profile file that cannot be read at all (not UTF-8, ...)."""
+
 class Diagnostic:
     code: str
     severity: Literal["error", "warning"]
@@ -108,3 +117,9 @@ def format_angle(degrees: float) -> str: ...
 def explain(template: str, model: Optional[Model] = None, target: Target = "sparse") -> str: ...
 def explain_code(code: str) -> Optional[Dict[str, str]]:
     """``code``, ``severity``, ``summary``, ``explanation``, ``example``, ``fix``."""
+
+def read_profile(name: str, content: Union[str, bytes]) -> Dict[str, object]:
+    """The templates, model and direction of a profile file (``.json``, ``.jsonc``, ``.ini``,
+    ``.rot``): ``kind``, ``templates`` (dicts: ``key``, ``object``, ``target``, ``text``,
+    ``base``), ``model`` (a ``Model``), ``first_layer_height``, ``base``, ``notes`` (dicts:
+    ``message``, ``error``), ``has_errors``. Raises ProfileError for an unreadable file."""

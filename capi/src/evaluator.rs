@@ -1,6 +1,6 @@
 //! Layer-by-layer evaluation: a handle that owns its model and a cursor.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use rotlang::eval::{self, Layer, Model};
 use self_cell::self_cell;
@@ -133,6 +133,11 @@ impl EvaluatorState {
     }
 }
 
+/// The state of a live evaluator handle.
+fn state(handle: *const RotlangEvaluator) -> Result<Arc<Mutex<EvaluatorState>>, Failure> {
+    handle::get(handle)
+}
+
 fn open(owner: &Owner) -> Result<Cursor<'_>, Failure> {
     let stream = Stream::open(&owner.template, &owner.model, owner.settings)?;
     Ok(match owner.settings.dialect {
@@ -173,7 +178,7 @@ pub unsafe extern "C" fn rotlang_evaluator_new(
         // SAFETY: the caller's contract.
         let out = unsafe { crate::util::out(out) }?;
         *out = std::ptr::null_mut();
-        let template = handle::template(template)?;
+        let template = crate::template::data(template)?;
         // SAFETY: the caller's contract.
         let model = unsafe { input(model, "the model")?.checked_model() }?;
         let options = (!options.is_null())
@@ -186,7 +191,7 @@ pub unsafe extern "C" fn rotlang_evaluator_new(
             model,
             settings,
         })?;
-        *out = handle::new_evaluator(state);
+        *out = handle::new::<RotlangEvaluator, _>(Mutex::new(state));
         Ok(())
     })
 }
@@ -204,7 +209,7 @@ pub unsafe extern "C" fn rotlang_evaluator_layer(
     guard(|| {
         // SAFETY: the caller's contract.
         let out = unsafe { crate::util::out(out) }?;
-        let state = handle::evaluator(evaluator)?;
+        let state = state(evaluator)?;
         let mut state = state.lock().unwrap_or_else(|p| p.into_inner());
         *out = state.layer(index)?.into();
         Ok(())
@@ -225,7 +230,7 @@ pub unsafe extern "C" fn rotlang_evaluator_findings(
         if findings.is_null() {
             return Err(Failure::with(RotlangStatus::NullPointer, "findings"));
         }
-        let state = handle::evaluator(evaluator)?;
+        let state = state(evaluator)?;
         let found = state.lock().unwrap_or_else(|p| p.into_inner()).findings();
         // SAFETY: the caller's contract.
         unsafe { report(findings, &found) }
@@ -235,5 +240,5 @@ pub unsafe extern "C" fn rotlang_evaluator_findings(
 /// Frees an evaluator. NULL is `NULL_POINTER`; a second free is `INVALID_HANDLE`.
 #[unsafe(no_mangle)]
 pub extern "C" fn rotlang_evaluator_free(evaluator: *mut RotlangEvaluator) -> RotlangStatus {
-    guard(|| handle::free_evaluator(evaluator))
+    guard(|| handle::free::<_, Mutex<EvaluatorState>>(evaluator))
 }

@@ -1,6 +1,6 @@
 //! Batch evaluation into the caller's arrays.
 
-use crate::handle::{self, RotlangTemplate};
+use crate::handle::RotlangTemplate;
 use crate::model::{RotlangFill, RotlangModel, RotlangOptions, Settings};
 use crate::status::{Failure, RotlangStatus, guard};
 use crate::stream::{FindingsOut, RotlangFindings, Stream, findings_out};
@@ -94,7 +94,7 @@ unsafe fn expand_into(
     capacity: usize,
     findings: Option<FindingsOut<'_>>,
 ) -> Result<(), Failure> {
-    let data = handle::template(template)?;
+    let data = crate::template::data(template)?;
     // SAFETY: the caller's contract on each pointer.
     let model = unsafe { input(model, "the model")?.checked_model() }?;
     let options = (!options.is_null())

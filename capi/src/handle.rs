@@ -8,12 +8,11 @@
 //! thread is still evaluating the same template only drops the registry's reference: the
 //! evaluation finishes on its own.
 
+use std::any::Any;
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex, MutexGuard};
 
-use crate::evaluator::EvaluatorState;
 use crate::status::{Failure, RotlangStatus};
-use crate::template::TemplateData;
 
 /// An opaque parsed template (see `rotlang_parse`). Immutable: any number of threads may
 /// evaluate one template at the same time.
@@ -28,10 +27,23 @@ pub struct RotlangEvaluator {
     _private: [u8; 0],
 }
 
-enum Entry {
-    Template(Arc<TemplateData>),
-    Evaluator(Arc<Mutex<EvaluatorState>>),
+/// A kind of handle: the C type that stands for it and the name of the kind in messages.
+/// The registry holds any `Send + Sync` value, so it needs nothing of the modules that
+/// define them (`template`, `evaluator` import this one; this one imports neither, which
+/// keeps the module graph acyclic).
+pub(crate) trait Kind {
+    const NAME: &'static str;
 }
+
+impl Kind for RotlangTemplate {
+    const NAME: &'static str = "template";
+}
+
+impl Kind for RotlangEvaluator {
+    const NAME: &'static str = "evaluator";
+}
+
+type Entry = Arc<dyn Any + Send + Sync>;
 
 struct Registry {
     /// The next id to hand out. Ids are multiples of 16 from 0x1000, so a handle never
@@ -53,25 +65,20 @@ fn registry() -> MutexGuard<'static, Registry> {
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-fn insert(entry: Entry) -> usize {
-    let mut registry = registry();
-    let id = registry.next;
-    registry.next += 16;
-    registry.live.insert(id, entry);
-    id
-}
-
 /// The number of live handles (templates and evaluators).
 pub(crate) fn live() -> usize {
     registry().live.len()
 }
 
-pub(crate) fn new_template(data: TemplateData) -> *mut RotlangTemplate {
-    std::ptr::without_provenance_mut(insert(Entry::Template(Arc::new(data))))
-}
-
-pub(crate) fn new_evaluator(state: EvaluatorState) -> *mut RotlangEvaluator {
-    std::ptr::without_provenance_mut(insert(Entry::Evaluator(Arc::new(Mutex::new(state)))))
+/// A new handle of kind `H` holding `value`. Each kind of handle holds values of one
+/// type only (a template handle a `TemplateData`, an evaluator handle a
+/// `Mutex<EvaluatorState>`), so the type of the value tells the kind apart.
+pub(crate) fn new<H: Kind, T: Any + Send + Sync>(value: T) -> *mut H {
+    let mut registry = registry();
+    let id = registry.next;
+    registry.next += 16;
+    registry.live.insert(id, Arc::new(value));
+    std::ptr::without_provenance_mut(id)
 }
 
 fn null_or(ptr: usize) -> Result<usize, Failure> {
@@ -82,53 +89,32 @@ fn null_or(ptr: usize) -> Result<usize, Failure> {
     }
 }
 
-fn invalid(what: &str) -> Failure {
+fn invalid<H: Kind>() -> Failure {
     Failure::with(
         RotlangStatus::InvalidHandle,
-        format!("not a live {what} handle"),
+        format!("not a live {} handle", H::NAME),
     )
 }
 
-pub(crate) fn template(handle: *const RotlangTemplate) -> Result<Arc<TemplateData>, Failure> {
+/// The value of a live handle of kind `H` holding a `T`.
+pub(crate) fn get<H: Kind, T: Any + Send + Sync>(handle: *const H) -> Result<Arc<T>, Failure> {
     let id = null_or(handle.addr())?;
-    match registry().live.get(&id) {
-        Some(Entry::Template(data)) => Ok(Arc::clone(data)),
-        _ => Err(invalid("template")),
-    }
+    let entry = registry().live.get(&id).map(Arc::clone);
+    entry
+        .and_then(|entry| entry.downcast::<T>().ok())
+        .ok_or_else(invalid::<H>)
 }
 
-pub(crate) fn evaluator(
-    handle: *const RotlangEvaluator,
-) -> Result<Arc<Mutex<EvaluatorState>>, Failure> {
-    let id = null_or(handle.addr())?;
-    match registry().live.get(&id) {
-        Some(Entry::Evaluator(state)) => Ok(Arc::clone(state)),
-        _ => Err(invalid("evaluator")),
-    }
-}
-
-/// Removes a template handle. The data is dropped outside the lock (and later, if another
-/// thread is still using it).
-pub(crate) fn free_template(handle: *const RotlangTemplate) -> Result<(), Failure> {
+/// Removes a handle of kind `H` holding a `T`. The value is dropped outside the lock
+/// (and later, if another thread is still using it).
+pub(crate) fn free<H: Kind, T: Any + Send + Sync>(handle: *const H) -> Result<(), Failure> {
     let id = null_or(handle.addr())?;
     let removed = {
         let mut registry = registry();
         match registry.live.get(&id) {
-            Some(Entry::Template(_)) => registry.live.remove(&id),
+            Some(entry) if entry.is::<T>() => registry.live.remove(&id),
             _ => None,
         }
     };
-    removed.map(drop).ok_or_else(|| invalid("template"))
-}
-
-pub(crate) fn free_evaluator(handle: *const RotlangEvaluator) -> Result<(), Failure> {
-    let id = null_or(handle.addr())?;
-    let removed = {
-        let mut registry = registry();
-        match registry.live.get(&id) {
-            Some(Entry::Evaluator(_)) => registry.live.remove(&id),
-            _ => None,
-        }
-    };
-    removed.map(drop).ok_or_else(|| invalid("evaluator"))
+    removed.map(drop).ok_or_else(invalid::<H>)
 }

@@ -1,8 +1,13 @@
 //! The model and the evaluation options as C structs, and their checked conversion.
 
+use std::borrow::Cow;
+
+use rotlang::api::{self, ModelSpec, Style};
+use rotlang::dialect::Dialect;
+use rotlang::eval::limits::{Given, MAX_SEED};
 use rotlang::eval::{MAX_LAYERS, Model, Options};
 
-use crate::status::{Failure, RotlangStatus};
+use crate::status::Failure;
 use crate::util::slice;
 
 /// How a template is read (the `dialect` field of `RotlangOptions`).
@@ -123,48 +128,42 @@ pub extern "C" fn rotlang_model_heights(
     }
 }
 
-fn invalid_model(e: impl std::fmt::Display) -> Failure {
-    Failure::with(RotlangStatus::InvalidModel, e.to_string())
-}
-
 impl RotlangModel {
-    /// The Rust model, validated (heights NaN, negative, zero or absurd are refused).
+    /// The Rust model, checked by `rotlang::api` as every binding's is (heights NaN,
+    /// negative, zero or absurd, too many layers are refused).
     ///
     /// # Safety
     /// `heights` is NULL or points to `heights_len` readable doubles.
     pub(crate) unsafe fn checked_model(&self) -> Result<Model, Failure> {
-        // Checked here, as an integer: the library's own message shows the count as a
-        // float (18446744073709552000 for SIZE_MAX), and a list this long is refused
-        // before it is copied.
-        let given = match self.heights.is_null() {
-            true => self.layers,
-            false => self.heights_len,
-        };
-        if given > MAX_LAYERS {
-            return Err(Failure::with(
-                RotlangStatus::InvalidModel,
-                format!("the model has {given} layers; at most {MAX_LAYERS} are supported"),
-            ));
-        }
-        let model = if self.heights.is_null() {
-            let first = (self.first_layer_height != 0.0).then_some(self.first_layer_height);
-            Model::uniform(self.layers, self.layer_height, first).map_err(invalid_model)?
-        } else {
-            if self.heights_len == 0 {
-                return Err(Failure::with(
-                    RotlangStatus::InvalidModel,
-                    "the heights array is empty (heights_len = 0)",
-                ));
+        let heights = match self.heights.is_null() {
+            true => None,
+            // An empty list is the API's "no layers"; a non-empty one is read (the API
+            // counts it before copying it).
+            false if self.heights_len == 0 => Some(Cow::Borrowed(&[][..])),
+            // Too long to be memory, maybe: refused as the model it describes.
+            false if self.heights_len > MAX_LAYERS => {
+                return Err(api::too_many_layers(self.heights_len).into());
             }
             // SAFETY: the caller's contract.
-            let heights = unsafe { slice(self.heights, self.heights_len, "the heights") }?;
-            Model::from_heights(heights.to_vec(), self.layer_height).map_err(invalid_model)?
+            false => Some(Cow::Borrowed(unsafe {
+                slice(self.heights, self.heights_len, "the heights")
+            }?)),
         };
-        Ok(model.with_shells(self.bottom_shells, self.top_shells))
+        let uniform = heights.is_none();
+        let spec = ModelSpec {
+            heights,
+            layers: uniform.then_some(Given::Int(self.layers as i128)),
+            height: None,
+            layer_height: Some(self.layer_height),
+            // 0 is "the same as layer_height" in the C struct.
+            first_layer_height: (uniform && self.first_layer_height != 0.0)
+                .then_some(self.first_layer_height),
+            bottom_shells: Some(Given::Int(self.bottom_shells.into())),
+            top_shells: Some(Given::Int(self.top_shells.into())),
+        };
+        spec.build(Style::Snake).map_err(Failure::from)
     }
 }
-
-const MAX_BASE: f64 = 1e9;
 
 /// Options read from C, with the dialect decoded.
 #[derive(Clone, Copy, Debug)]
@@ -176,32 +175,34 @@ pub(crate) struct Settings {
 impl Settings {
     pub(crate) fn from_c(options: Option<&RotlangOptions>) -> Result<Settings, Failure> {
         let o = options.copied().unwrap_or_default();
-        let dialect = match o.dialect {
-            0 => RotlangDialect::Rotlang,
-            1 => RotlangDialect::Orcaslicer,
-            other => {
-                return Err(Failure::with(
-                    RotlangStatus::InvalidArgument,
-                    format!("dialect {other} (0 = rotlang, 1 = orcaslicer)"),
-                ));
-            }
+        let dialect = match api::dialect_number(o.dialect.into()).map_err(Failure::from)? {
+            Dialect::OrcaSlicer => RotlangDialect::Orcaslicer,
+            _ => RotlangDialect::Rotlang,
         };
-        // A direction in degrees; the bound keeps `base + angle` far from overflow.
-        if !(o.base.is_finite() && o.base.abs() <= MAX_BASE) {
-            return Err(Failure::with(
-                RotlangStatus::InvalidArgument,
-                format!(
-                    "the base direction is {}; it must be a finite number of degrees within ±{MAX_BASE}",
-                    o.base
-                ),
-            ));
-        }
-        Ok(Settings {
-            options: Options {
-                base: o.base,
-                seed: o.seed,
-            },
-            dialect,
-        })
+        let options = api::options(Some(o.base), Some(Given::Int(o.seed.into())), MAX_SEED)
+            .map_err(Failure::from)?;
+        Ok(Settings { options, dialect })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::status::RotlangStatus;
+
+    #[test]
+    fn a_list_longer_than_memory_is_an_invalid_model_before_it_is_read() {
+        let h = [0.2];
+        // (Only a length no buffer can have: a shorter wrong one would be read.)
+        let m = rotlang_model_heights(h.as_ptr(), usize::MAX, 0.2);
+        // SAFETY: the length is refused before the pointer is read.
+        let e = unsafe { m.checked_model() }.unwrap_err();
+        assert_eq!(e.status, RotlangStatus::InvalidModel);
+        assert_eq!(
+            e.detail.as_deref(),
+            Some(
+                "the model would have 1.8446744073709552e19 layers; at most 100000000 are supported"
+            )
+        );
     }
 }

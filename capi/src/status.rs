@@ -5,6 +5,8 @@ use std::cell::RefCell;
 use std::ffi::c_char;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
+use rotlang::api::{ApiError, ErrorKind};
+
 /// What a call did. Every function that can fail returns one; `ROTLANG_STATUS_OK` is 0,
 /// so `if (status) { ... }` reads as "if it failed". The values are stable across releases
 /// (new ones are only ever added at the end).
@@ -86,6 +88,19 @@ impl Failure {
             status,
             detail: Some(detail.into()),
         }
+    }
+}
+
+/// A refusal of the shared API (`rotlang::api`, what every binding checks its input
+/// with): options are `INVALID_ARGUMENT`, the model `INVALID_MODEL`.
+impl From<ApiError> for Failure {
+    fn from(e: ApiError) -> Self {
+        let status = match e.kind {
+            // The C ABI reads no profile files.
+            ErrorKind::Options | ErrorKind::Profile => RotlangStatus::InvalidArgument,
+            ErrorKind::Model => RotlangStatus::InvalidModel,
+        };
+        Failure::with(status, e.message)
     }
 }
 

@@ -1,7 +1,7 @@
 //! Parsing into a template handle, and reading its diagnostics.
 
 use std::ffi::{CString, c_char};
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 use rotlang::{Parse, Target};
 
@@ -103,6 +103,11 @@ fn lossy(bytes: &[u8]) -> (String, Vec<usize>) {
 /// A string without interior NULs (rotlang's messages have none; replace any as a guard).
 fn c_string(s: &str) -> CString {
     CString::new(s.replace('\0', "\u{FFFD}")).unwrap_or_default()
+}
+
+/// The data of a live template handle.
+pub(crate) fn data(handle: *const RotlangTemplate) -> Result<Arc<TemplateData>, Failure> {
+    handle::get(handle)
 }
 
 impl TemplateData {
@@ -207,20 +212,13 @@ unsafe fn parse(
                 data
             }
         };
-        *out = handle::new_template(data);
+        *out = handle::new::<RotlangTemplate, _>(data);
         Ok(())
     })
 }
 
 fn decode_target(target: u32) -> Result<Target, Failure> {
-    match target {
-        0 => Ok(Target::Sparse),
-        1 => Ok(Target::Solid),
-        other => Err(Failure::with(
-            RotlangStatus::InvalidArgument,
-            format!("target {other} (0 = sparse, 1 = solid)"),
-        )),
-    }
+    Ok(rotlang::api::target_number(target.into())?)
 }
 
 /// As `rotlang_parse`, but any bytes are accepted, as OrcaSlicer reads its template:
@@ -253,7 +251,7 @@ pub unsafe extern "C" fn rotlang_parse_bytes(
 /// made from the template keep working: they hold their own reference.
 #[unsafe(no_mangle)]
 pub extern "C" fn rotlang_template_free(template: *mut RotlangTemplate) -> RotlangStatus {
-    guard(|| handle::free_template(template))
+    guard(|| handle::free::<_, TemplateData>(template))
 }
 
 /// The number of diagnostics (errors and warnings) of a template.
@@ -268,7 +266,7 @@ pub unsafe extern "C" fn rotlang_template_diagnostic_count(
     guard(|| {
         // SAFETY: the caller's contract on `out`.
         let out = unsafe { util::out::<usize>(out) }?;
-        *out = handle::template(template)?.parsed().diagnostics.len();
+        *out = data(template)?.parsed().diagnostics.len();
         Ok(())
     })
 }
@@ -285,7 +283,7 @@ pub unsafe extern "C" fn rotlang_template_has_errors(
     guard(|| {
         // SAFETY: the caller's contract on `out`.
         let out = unsafe { util::out::<i32>(out) }?;
-        *out = i32::from(handle::template(template)?.parsed().parse.has_errors());
+        *out = i32::from(data(template)?.parsed().parse.has_errors());
         Ok(())
     })
 }
@@ -303,7 +301,7 @@ pub unsafe extern "C" fn rotlang_template_diagnostic(
     guard(|| {
         // SAFETY: the caller's contract on `out`.
         let out = unsafe { util::out::<RotlangDiagnostic>(out) }?;
-        let data = handle::template(template)?;
+        let data = data(template)?;
         let parsed = data.parsed();
         let d = parsed.diagnostics.get(index).ok_or_else(|| {
             Failure::with(

@@ -228,19 +228,11 @@ pub fn compat(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Va
 
 #[cfg(feature = "full")]
 /// The templates and model of a profile file (`name` picks the kind by its extension:
-/// `.json`/`.jsonc` presets, `.ini` exports, `.rot` templates), read by `rotlang::profile`.
+/// `.json`/`.jsonc` presets, `.ini` exports, `.rot` templates), read by
+/// `rotlang::api::profile` (what the Python binding's `read_profile` shows too).
 pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
-    let p = rotlang::profile::parse(std::path::Path::new(name), bytes).map_err(|e| Failure {
-        kind: "profile",
-        message: e.message,
-        diagnostics: None,
-    })?;
-    let target = p.templates.first().map_or(Target::Sparse, |t| t.target);
-    let pm = p.model(target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
-    let m = &pm.model;
-    let first = m
-        .layer_bounds(0)
-        .map(|(bottom, top)| rotlang::number::round_height(top - bottom));
+    let p = rotlang::api::profile(name, bytes)?;
+    let m = &p.model;
     let templates: Vec<Value> = p
         .templates
         .iter()
@@ -253,11 +245,7 @@ pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
                     Target::Solid => "solid",
                 },
                 "text": t.text,
-                // What every tool adds to this template's angles: the profile's direction
-                // only where the template is empty, as OrcaSlicer reads a profile.
-                "base": p.model(t.target, t.object.as_deref(), rotlang::profile::DEFAULT_OBJECT_HEIGHT)
-                    .options(&t.text)
-                    .base,
+                "base": t.base,
             })
         })
         .collect();
@@ -265,25 +253,20 @@ pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
         .notes
         .iter()
         .map(|n| obj!({ "message": n.message, "error": n.error }))
-        .chain(
-            pm.notes
-                .iter()
-                .map(|n| obj!({ "message": n, "error": false })),
-        )
         .collect();
     Ok(obj!({
-        "kind": p.kind.map(|k| k.name()),
+        "kind": p.kind,
         "templates": templates,
         "model": obj!({
             "layers": m.len(),
             "layerHeight": m.layer_height(),
-            "firstLayerHeight": first,
+            "firstLayerHeight": p.first_layer_height,
             "bottomShells": m.bottom_shells(),
             "topShells": m.top_shells(),
         }),
-        "base": pm.direction.degrees,
+        "base": p.base,
         "notes": notes,
-        "hasErrors": p.has_errors(),
+        "hasErrors": p.has_errors,
     }))
 }
 

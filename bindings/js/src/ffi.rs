@@ -396,6 +396,31 @@ unsafe fn inputs<'a>(
     Ok((text, Request::new(slots)))
 }
 
+/// The number of a target (`which` 0: `sparse` 0, `solid` 1) or a dialect (`which` 1:
+/// `rotlang` 0, `orcaslicer` 1) from its name, read by `rotlang::api` as the C and
+/// Python bindings read names (any case); -1, with the failure in the output buffer, for
+/// any other name.
+///
+/// # Safety
+/// `name`/`len`: UTF-8 bytes (from `rotlang_alloc`), or a length of 0.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn rotlang_choice(which: u32, name: *const u8, len: usize) -> i32 {
+    // SAFETY: forwarded from this function's contract.
+    let name = unsafe { utf8(name, len) }.unwrap_or("\u{FFFD}");
+    let found = match which {
+        0 => rotlang::api::target(name).map(|t| i32::from(t == rotlang::Target::Solid)),
+        _ => rotlang::api::dialect(name)
+            .map(|d| i32::from(d == rotlang::dialect::Dialect::OrcaSlicer)),
+    };
+    match found {
+        Ok(i) => i,
+        Err(e) => {
+            finish(Err(e.into()));
+            -1
+        }
+    }
+}
+
 /// # Safety
 /// `ptr` must point to `len` readable bytes, or `len` must be 0.
 unsafe fn utf8<'a>(ptr: *const u8, len: usize) -> Option<&'a str> {

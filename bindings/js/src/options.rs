@@ -1,8 +1,11 @@
 //! The request that every call takes: target, dialect, model, base, seed and a layer
 //! range, as a flat array of numbers (the JS wrapper checks names and types and fills the
-//! slots; NaN marks an absent value). Ranges and meanings are checked here.
+//! slots; the last slot says which are given, so that a NaN the caller gave is told from
+//! an absent value). The values are read by `rotlang::api`, as the C and Python bindings
+//! read theirs: one check, one message, in every language.
 
 use rotlang::Target;
+use rotlang::api::{self, ApiError, ErrorKind, ModelSpec, Style};
 use rotlang::dialect::Dialect;
 use rotlang::eval::limits::{self, Given};
 use rotlang::eval::{Model, Options};
@@ -34,18 +37,39 @@ pub mod slot {
     /// Picture size in pixels (the plot's width and height; the preview panel's side).
     pub const WIDTH: usize = 16;
     pub const PICTURE_HEIGHT: usize = 17;
-    pub const COUNT: usize = 18;
+    /// Which slots are given: bit `i` for slot `i`. Absent (NaN, or a request from
+    /// before this slot): every slot that is not NaN.
+    pub const PRESENT: usize = 18;
+    pub const COUNT: usize = 19;
 }
 
 #[derive(Clone, Debug)]
 pub struct Request {
     slots: [f64; slot::COUNT],
+    /// Bit `i`: slot `i` is given.
+    present: u32,
 }
 
 impl Default for Request {
     fn default() -> Self {
         Request {
             slots: [f64::NAN; slot::COUNT],
+            present: 0,
+        }
+    }
+}
+
+/// A refusal of the shared API as the JS wrapper's failure (`kind` options or model).
+impl From<ApiError> for Failure {
+    fn from(e: ApiError) -> Failure {
+        match e.kind {
+            ErrorKind::Options => Failure::options(e.message),
+            ErrorKind::Model => Failure::model(e.message),
+            ErrorKind::Profile => Failure {
+                kind: "profile",
+                message: e.message,
+                diagnostics: None,
+            },
         }
     }
 }
@@ -70,6 +94,7 @@ const NAMES: [&str; slot::COUNT] = [
     "shape",
     "width",
     "height",
+    "present",
 ];
 
 impl Request {
@@ -79,17 +104,28 @@ impl Request {
         for (slot, v) in r.slots.iter_mut().zip(values) {
             *slot = *v;
         }
+        let mask = r.slots[slot::PRESENT];
+        r.present = if (0.0..=f64::from(u32::MAX)).contains(&mask) && mask.fract() == 0.0 {
+            mask as u32
+        } else {
+            (0..slot::PRESENT)
+                .filter(|&i| !r.slots[i].is_nan())
+                .fold(0, |m, i| m | 1 << i)
+        };
         r
     }
 
     /// Sets a slot (for Rust callers and tests).
     pub fn with(mut self, slot: usize, value: f64) -> Request {
         self.slots[slot] = value;
+        self.present |= 1 << slot;
         self
     }
 
+    /// A slot's value when given (a given NaN included: the check that reads it refuses
+    /// it by name).
     fn get(&self, slot: usize) -> Option<f64> {
-        Some(self.slots[slot]).filter(|v| !v.is_nan())
+        (self.present & 1 << slot != 0).then_some(self.slots[slot])
     }
 
     /// A whole, non-negative number from a slot (`max` inclusive).
@@ -101,30 +137,28 @@ impl Request {
     }
 
     pub fn target(&self) -> Result<Target, Failure> {
-        Ok(match self.whole(slot::TARGET, 1)? {
-            Some(1) => Target::Solid,
-            _ => Target::Sparse,
-        })
+        match self.whole(slot::TARGET, u64::MAX)? {
+            Some(i) => Ok(api::target_number(i)?),
+            None => Ok(Target::Sparse),
+        }
     }
 
     pub fn dialect(&self) -> Result<Dialect, Failure> {
-        Ok(match self.whole(slot::DIALECT, 1)? {
-            Some(1) => Dialect::OrcaSlicer,
-            _ => Dialect::Rotlang,
-        })
+        match self.whole(slot::DIALECT, u64::MAX)? {
+            Some(i) => Ok(api::dialect_number(i)?),
+            None => Ok(Dialect::Rotlang),
+        }
     }
 
-    /// The base and seed, in the ranges every binding takes (`rotlang::eval::limits`); a
-    /// seed above 2^53 cannot come exactly through a JS number.
+    /// The base and seed, read by `rotlang::api` as every binding's are; a seed above
+    /// 2^53 cannot come exactly through a JS number.
     pub fn eval_options(&self) -> Result<Options, Failure> {
-        let base = limits::base(self.get(slot::BASE).unwrap_or(0.0))
-            .map_err(|e| Failure::options(e.message))?;
-        let seed = match self.get(slot::SEED) {
-            Some(v) => limits::seed(NAMES[slot::SEED], Given::Float(v), limits::MAX_EXACT_SEED)
-                .map_err(|e| Failure::options(e.message))?,
-            None => 0,
-        };
-        Ok(Options { base, seed })
+        let seed = self.get(slot::SEED).map(Given::Float);
+        Ok(api::options(
+            self.get(slot::BASE),
+            seed,
+            limits::MAX_EXACT_SEED,
+        )?)
     }
 
     /// A number from a slot (absent: None).
@@ -162,42 +196,21 @@ impl Request {
         Ok((from, to))
     }
 
-    /// The model: list heights when given, else the uniform model described, else the
-    /// documentation's 20 mm cube.
+    /// The model (`rotlang::api::ModelSpec`): list heights when given, else the uniform
+    /// model described, else the documentation's 20 mm cube.
     pub fn model(&self, heights: Option<Vec<f64>>) -> Result<Model, Failure> {
-        let layer_height = self.get(slot::LAYER_HEIGHT);
-        let first = self.get(slot::FIRST_LAYER_HEIGHT);
-        let model = if let Some(heights) = heights {
-            let h = layer_height.or(heights.first().copied()).unwrap_or(0.2);
-            Model::from_heights(heights, h)
-        } else if let Some(n) = self.get(slot::LAYERS) {
-            let n = limits::layers(NAMES[slot::LAYERS], Given::Float(n))
-                .map_err(|e| Failure::model(e.message))?;
-            Model::uniform(n, layer_height.unwrap_or(0.2), first)
-        } else if let Some(height) = self.get(slot::HEIGHT) {
-            Model::from_total_height(height, layer_height.unwrap_or(0.2), first)
-        } else if layer_height.is_some() || first.is_some() {
-            return Err(Failure::model(
-                "the model needs `layers`, `height` or a list of layer heights",
-            ));
-        } else {
-            Ok(Model::cube20())
+        let whole = |slot| self.get(slot).map(Given::Float);
+        let spec = ModelSpec {
+            // Moved into the model: the list is not copied again.
+            heights: heights.map(Into::into),
+            layers: whole(slot::LAYERS),
+            height: self.get(slot::HEIGHT),
+            layer_height: self.get(slot::LAYER_HEIGHT),
+            first_layer_height: self.get(slot::FIRST_LAYER_HEIGHT),
+            bottom_shells: whole(slot::BOTTOM_SHELLS),
+            top_shells: whole(slot::TOP_SHELLS),
         };
-        let mut model = model.map_err(|e| Failure::model(e.to_string()))?;
-        let shells = |slot: usize| {
-            self.get(slot)
-                .map(|v| limits::shells(NAMES[slot], Given::Float(v)))
-                .transpose()
-                .map_err(|e| Failure::model(e.message))
-        };
-        let bottom = shells(slot::BOTTOM_SHELLS)?;
-        let top = shells(slot::TOP_SHELLS)?;
-        if bottom.is_some() || top.is_some() {
-            let b = bottom.unwrap_or(model.bottom_shells());
-            let t = top.unwrap_or(model.top_shells());
-            model = model.with_shells(b, t);
-        }
-        Ok(model)
+        Ok(spec.build(Style::Camel)?)
     }
 }
 

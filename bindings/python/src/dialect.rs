@@ -1,6 +1,5 @@
 //! The OrcaSlicer dialect, and `explain`.
 
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use rotlang_core::Target;
@@ -10,7 +9,7 @@ use rotlang_core::dialect::orcaslicer;
 
 use crate::{Evaluated, Finding};
 
-pub const NAMES: [&str; 2] = ["rotlang", "orcaslicer"];
+pub const NAMES: [&str; 2] = rotlang_core::api::DIALECTS;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Dialect {
@@ -20,12 +19,9 @@ pub enum Dialect {
 
 impl Dialect {
     pub fn from_name(name: &str) -> PyResult<Dialect> {
-        match name {
-            "rotlang" => Ok(Dialect::Rotlang),
-            "orcaslicer" => Ok(Dialect::OrcaSlicer),
-            other => Err(PyValueError::new_err(format!(
-                "dialect must be 'rotlang' or 'orcaslicer', not {other:?}"
-            ))),
+        match rotlang_core::api::dialect(name).map_err(crate::refused)? {
+            rotlang_core::dialect::Dialect::OrcaSlicer => Ok(Dialect::OrcaSlicer),
+            rotlang_core::dialect::Dialect::Rotlang => Ok(Dialect::Rotlang),
         }
     }
 }
@@ -66,7 +62,9 @@ pub fn evaluate(
                 findings,
             }
         })),
-        Dialect::Rotlang => Err(PyValueError::new_err("the rotlang dialect parses first")),
+        Dialect::Rotlang => Err(pyo3::exceptions::PyValueError::new_err(
+            "the rotlang dialect parses first",
+        )),
     }
 }
 

@@ -8,7 +8,8 @@ use pyo3::exceptions::{PyException, PyOverflowError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
 
-use rotlang_core::eval::limits::{self, Given, LimitError};
+use rotlang_core::api::{self, ApiError, ErrorKind, ModelSpec, Style};
+use rotlang_core::eval::limits::{self, Given};
 use rotlang_core::eval::{self, Model as RustModel, Options};
 use rotlang_core::{Diagnostic as RustDiagnostic, Target};
 
@@ -20,6 +21,37 @@ pyo3::create_exception!(
     PyException,
     "The template has errors; `.diagnostics` lists them (`args[1]` too)."
 );
+
+pyo3::create_exception!(
+    rotlang,
+    OptionsError,
+    PyValueError,
+    "A target, dialect, base or seed that rotlang cannot take (a `ValueError`)."
+);
+
+pyo3::create_exception!(
+    rotlang,
+    ModelError,
+    PyValueError,
+    "A model that rotlang cannot take: no layers, a bad height or count (a `ValueError`)."
+);
+
+pyo3::create_exception!(
+    rotlang,
+    ProfileError,
+    PyValueError,
+    "A profile file that cannot be read at all (a `ValueError`)."
+);
+
+/// A refusal of the shared API (`rotlang::api`, which the C and JavaScript bindings
+/// check their input with too): the same message in every language.
+fn refused(e: ApiError) -> PyErr {
+    match e.kind {
+        ErrorKind::Options => OptionsError::new_err(e.message),
+        ErrorKind::Model => ModelError::new_err(e.message),
+        ErrorKind::Profile => ProfileError::new_err(e.message),
+    }
+}
 
 /// One diagnostic of a template.
 #[pyclass(frozen, get_all, skip_from_py_object, module = "rotlang")]
@@ -68,13 +100,7 @@ fn diagnostic(text: &str, d: &RustDiagnostic) -> Diagnostic {
 }
 
 fn target(name: &str) -> PyResult<Target> {
-    match name {
-        "sparse" => Ok(Target::Sparse),
-        "solid" => Ok(Target::Solid),
-        other => Err(PyValueError::new_err(format!(
-            "target must be 'sparse' or 'solid', not {other:?}"
-        ))),
-    }
+    api::target(name).map_err(refused)
 }
 
 /// The TemplateError for a template with errors.
@@ -97,7 +123,7 @@ fn template_error(py: Python<'_>, text: &str, diagnostics: &[RustDiagnostic]) ->
 }
 
 /// An integer argument as Python gave it, checked against its range by
-/// `rotlang::eval::limits` (the JavaScript binding's ranges and messages): a negative or
+/// `rotlang::api` (the C and JavaScript bindings' ranges and messages): a negative or
 /// too large number raises `ValueError` with the range, not PyO3's `OverflowError`.
 #[derive(Clone, Debug)]
 enum Int {
@@ -120,45 +146,28 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Int {
     }
 }
 
-fn limit_error(e: LimitError) -> PyErr {
-    PyValueError::new_err(e.message)
-}
-
 impl Int {
     const ZERO: Int = Int::Given(0);
 
-    /// `check(name, value)` on the number, or its refusal for a number beyond 128 bits.
-    fn checked<T>(
-        &self,
-        name: &str,
-        min: u64,
-        max: u64,
-        check: impl Fn(&str, Given) -> Result<T, LimitError>,
-    ) -> PyResult<T> {
+    /// The number for the shared API, or its refusal for one beyond 128 bits (`name` in
+    /// snake case).
+    fn given(&self, name: &'static str) -> PyResult<Given> {
         match self {
-            Int::Given(v) => check(name, Given::Int(*v)).map_err(limit_error),
-            Int::Huge(shown) => Err(limit_error(limits::out_of_range(name, min, max, shown))),
+            Int::Given(v) => Ok(Given::Int(*v)),
+            Int::Huge(shown) => Err(refused(api::out_of_range(name, Style::Snake, shown))),
         }
-    }
-
-    fn seed(&self) -> PyResult<u64> {
-        self.checked("seed", 0, limits::MAX_SEED, |name, v| {
-            limits::seed(name, v, limits::MAX_SEED)
-        })
-    }
-
-    fn shells(&self, name: &str) -> PyResult<u32> {
-        self.checked(name, 0, limits::MAX_SHELLS, limits::shells)
-    }
-
-    fn layers(&self) -> PyResult<usize> {
-        self.checked("layers", 1, eval::MAX_LAYERS as u64, limits::layers)
     }
 }
 
-/// The shell counts of a model, checked.
-fn shells(model: RustModel, bottom: &Int, top: &Int) -> PyResult<RustModel> {
-    Ok(model.with_shells(bottom.shells("bottom_shells")?, top.shells("top_shells")?))
+/// A model from its description, checked by the shared API.
+fn model(spec: ModelSpec<'_>, bottom: &Int, top: &Int) -> PyResult<Model> {
+    let spec = ModelSpec {
+        bottom_shells: Some(bottom.given("bottom_shells")?),
+        top_shells: Some(top.given("top_shells")?),
+        ..spec
+    };
+    let inner = spec.build(Style::Snake).map_err(refused)?;
+    Ok(Model { inner })
 }
 
 /// The layers of one object: a list of heights or a uniform model, with `h`, `B`, `T`.
@@ -166,10 +175,6 @@ fn shells(model: RustModel, bottom: &Int, top: &Int) -> PyResult<RustModel> {
 #[derive(Clone)]
 struct Model {
     inner: RustModel,
-}
-
-fn model_error(e: eval::ModelError) -> PyErr {
-    PyValueError::new_err(format!("invalid model: {e}"))
 }
 
 #[pymethods]
@@ -184,10 +189,13 @@ impl Model {
         bottom_shells: Int,
         top_shells: Int,
     ) -> PyResult<Model> {
-        let model = RustModel::uniform(layers.layers()?, layer_height, first_layer_height)
-            .map_err(model_error)?;
-        let inner = shells(model, &bottom_shells, &top_shells)?;
-        Ok(Model { inner })
+        let spec = ModelSpec {
+            layers: Some(layers.given("layers")?),
+            layer_height: Some(layer_height),
+            first_layer_height,
+            ..ModelSpec::default()
+        };
+        model(spec, &bottom_shells, &top_shells)
     }
 
     /// A model from every layer's height (mm, bottom to top) and the standard height.
@@ -199,9 +207,13 @@ impl Model {
         bottom_shells: Int,
         top_shells: Int,
     ) -> PyResult<Model> {
-        let model = RustModel::from_heights(heights, layer_height).map_err(model_error)?;
-        let inner = shells(model, &bottom_shells, &top_shells)?;
-        Ok(Model { inner })
+        let spec = ModelSpec {
+            // Moved into the model: the list is not copied again.
+            heights: Some(heights.into()),
+            layer_height: Some(layer_height),
+            ..ModelSpec::default()
+        };
+        model(spec, &bottom_shells, &top_shells)
     }
 
     /// An object `height` mm tall in layers of `layer_height`.
@@ -214,10 +226,13 @@ impl Model {
         bottom_shells: Int,
         top_shells: Int,
     ) -> PyResult<Model> {
-        let model = RustModel::from_total_height(height, layer_height, first_layer_height)
-            .map_err(model_error)?;
-        let inner = shells(model, &bottom_shells, &top_shells)?;
-        Ok(Model { inner })
+        let spec = ModelSpec {
+            height: Some(height),
+            layer_height: Some(layer_height),
+            first_layer_height,
+            ..ModelSpec::default()
+        };
+        model(spec, &bottom_shells, &top_shells)
     }
 
     /// The documentation's 20 mm cube: 100 layers of 0.2 mm, 3 bottom and 4 top shells.
@@ -408,12 +423,9 @@ fn evaluate_layers(
     })
 }
 
-/// The base and seed, in the ranges every binding takes (`rotlang::eval::limits`).
+/// The base and seed, in the ranges every binding takes (`rotlang::api`).
 fn options(base: f64, seed: &Int) -> PyResult<Options> {
-    Ok(Options {
-        base: limits::base(base).map_err(limit_error)?,
-        seed: seed.seed()?,
-    })
+    api::options(Some(base), Some(seed.given("seed")?), limits::MAX_SEED).map_err(refused)
 }
 
 /// Every diagnostic (errors and warnings) of a template; an empty list when it is clean.
@@ -480,6 +492,55 @@ fn explain_code<'py>(py: Python<'py>, code: &str) -> PyResult<Option<Bound<'py, 
     Ok(Some(dict))
 }
 
+/// The templates, model and direction of a profile file, read by `rotlang::api::profile`
+/// (what the JavaScript binding's `readProfile` shows): `name` picks the kind by its
+/// extension (`.json`/`.jsonc` presets, `.ini` exports, `.rot` templates); `content` is
+/// its text or bytes. A dict: `kind`, `templates` (dicts with `key`, `object`, `target`,
+/// `text` and `base`, the direction the tools add to that template), `model` (a `Model`),
+/// `first_layer_height`, `base`, `notes` (dicts with `message` and `error`) and
+/// `has_errors`. Raises `ProfileError` for a file that cannot be read at all.
+#[pyfunction]
+fn read_profile<'py>(
+    py: Python<'py>,
+    name: &str,
+    content: Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let bytes: Vec<u8> = match content.extract::<String>() {
+        Ok(text) => text.into_bytes(),
+        Err(_) => content.extract::<Vec<u8>>()?,
+    };
+    let p = py.detach(|| api::profile(name, &bytes)).map_err(refused)?;
+    let templates = PyList::empty(py);
+    for t in &p.templates {
+        let d = PyDict::new(py);
+        d.set_item("key", &t.key)?;
+        d.set_item("object", &t.object)?;
+        d.set_item(
+            "target",
+            api::TARGETS[usize::from(t.target == Target::Solid)],
+        )?;
+        d.set_item("text", &t.text)?;
+        d.set_item("base", t.base)?;
+        templates.append(d)?;
+    }
+    let notes = PyList::empty(py);
+    for n in &p.notes {
+        let d = PyDict::new(py);
+        d.set_item("message", &n.message)?;
+        d.set_item("error", n.error)?;
+        notes.append(d)?;
+    }
+    let dict = PyDict::new(py);
+    dict.set_item("kind", p.kind)?;
+    dict.set_item("templates", templates)?;
+    dict.set_item("model", Model { inner: p.model })?;
+    dict.set_item("first_layer_height", p.first_layer_height)?;
+    dict.set_item("base", p.base)?;
+    dict.set_item("notes", notes)?;
+    dict.set_item("has_errors", p.has_errors)?;
+    Ok(dict)
+}
+
 /// Wraps an angle into `[0, 360)` and prints it without float noise (`"30"`, `"22.5"`).
 #[pyfunction]
 fn format_angle(degrees: f64) -> String {
@@ -491,6 +552,9 @@ fn format_angle(degrees: f64) -> String {
 fn rotlang(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("TemplateError", m.py().get_type::<TemplateError>())?;
+    m.add("OptionsError", m.py().get_type::<OptionsError>())?;
+    m.add("ModelError", m.py().get_type::<ModelError>())?;
+    m.add("ProfileError", m.py().get_type::<ProfileError>())?;
     m.add("DIALECTS", dialect::NAMES.to_vec())?;
     m.add_class::<Diagnostic>()?;
     m.add_class::<Model>()?;
@@ -503,5 +567,6 @@ fn rotlang(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(format_angle, m)?)?;
     m.add_function(wrap_pyfunction!(explain, m)?)?;
     m.add_function(wrap_pyfunction!(explain_code, m)?)?;
+    m.add_function(wrap_pyfunction!(read_profile, m)?)?;
     Ok(())
 }

@@ -231,14 +231,14 @@ pub fn run(
                         .instruction
                         .and_then(|s| input.text.get(s.range()))
                         .map_or_else(|| "(holds)".to_owned(), |t| shorten(t, 28));
-                    let kind = match l.params.density {
+                    let kind = match l.params().density {
                         d if d < 1.0 => {
-                            format!("{} {}%", l.params.pattern, num(d * 100.0, 1))
+                            format!("{} {}%", l.params().pattern, num(d * 100.0, 1))
                         }
                         _ if l.layer.fill == Fill::Sparse => {
-                            format!("shell ({})", l.params.pattern)
+                            format!("shell ({})", l.params().pattern)
                         }
-                        _ => format!("{} ({})", l.layer.fill.name(), l.params.pattern),
+                        _ => format!("{} ({})", l.layer.fill.name(), l.params().pattern),
                     };
                     (
                         format!(
@@ -278,8 +278,8 @@ pub fn run(
                         "z": l.section.z,
                         "angle": l.layer.angle,
                         "fill": l.layer.fill.name(),
-                        "pattern": l.params.pattern.name(),
-                        "density": l.params.density,
+                        "pattern": l.params().pattern.name(),
+                        "density": l.params().density,
                         "length": l.paths.length,
                         "travel": l.paths.travel,
                         "open": l.section.open,

@@ -1845,3 +1845,56 @@ fn preview_of_a_project_takes_each_objects_settings() {
     assert_eq!(v["template"], "+10");
     assert_eq!(v["layers"][0]["angle"], 40.0);
 }
+
+/// A preset given by --profile fills a mesh as a project does (its pattern in OrcaSlicer's
+/// name, density, walls, line width, layers, shells and template); `--object` on an STL
+/// without a project is a usage error.
+#[test]
+fn preview_of_a_part_takes_a_presets_settings() {
+    let dir = TempDir::new("part-preset");
+    std::fs::write(
+        dir.0.join("cube.stl"),
+        rotlang::mesh::shapes::cuboid([20.0, 20.0, 4.0]).to_binary_stl(),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.0.join("preset.json"),
+        r#"{"sparse_infill_pattern": "honeycomb", "sparse_infill_density": "30%",
+            "wall_loops": "1", "sparse_infill_line_width": "125%", "nozzle_diameter": ["0.4"],
+            "layer_height": "0.1", "initial_layer_print_height": "0.1",
+            "top_shell_layers": "2", "sparse_infill_rotate_template": "+15"}"#,
+    )
+    .unwrap();
+    let (v, _) = preview_json(
+        &dir.0,
+        &[
+            "--profile",
+            "preset.json",
+            "--shape",
+            "cube.stl",
+            "--layers",
+            "5",
+        ],
+    );
+    let s = &v["settings"];
+    assert_eq!(
+        (&s["pattern"], &s["density"], &s["walls"], &s["line_width"]),
+        (&"hexagons".into(), &0.3.into(), &1.into(), &0.5.into())
+    );
+    assert_eq!(
+        (&s["layers"], &s["top_shell_layers"]),
+        (&40.into(), &2.into())
+    );
+    assert_eq!(v["template"], "+15");
+    assert_eq!(v["layers"][0]["angle"], 90.0);
+    // One wall of 0.5 mm: 19 × 19 mm to fill.
+    let area = v["layers"][0]["areas"][0]["area_mm2"].as_f64().unwrap();
+    assert!((area - 19.0 * 19.0).abs() < 1e-6, "{area}");
+    let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(["preview", "0", "--shape", "cube.stl", "--object", "Box"])
+        .current_dir(&dir.0)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--object picks an object of a 3MF"));
+}

@@ -136,6 +136,14 @@ pub fn run(
             )));
         }
     }
+    if args.profile.object.is_some()
+        && args.profile.profile.is_none()
+        && !shape.to_ascii_lowercase().ends_with(".3mf")
+    {
+        return Err(UsageError(format!(
+            "--object picks an object of a 3MF, or of the --profile project; {shape} is neither"
+        )));
+    }
     let (mesh, project) = read_mesh(shape, args.profile.object.as_deref())?;
     let (lo, hi) = mesh.bounds().unwrap_or(([0.0; 3], [0.0; 3]));
     let plan = match file::plan(args, shape, text.as_ref(), (hi[2] - lo[2], project), err)? {

@@ -9,8 +9,7 @@ use crate::infill::preview::{self, Panel, PreviewOptions};
 use crate::ir::Fill;
 use crate::mesh::Mesh;
 use crate::plot::{num, shorten};
-use crate::slice::part::FilledArea;
-use crate::slice::{Part, PartLayer, PartOptions, Summary};
+use crate::slice::{FilledArea, Part, PartLayer, PartOptions, Summary};
 use geo::Area;
 
 #[path = "part_file.rs"]

@@ -213,6 +213,13 @@ pub(super) fn plan(
             ),
         );
         notes.insert(0, format!("{}{of}: {}", p.display(), used.join(", ")));
+        if object.is_none() && !f.objects.is_empty() {
+            let names: Vec<&str> = f.objects.iter().map(|(n, _)| n.as_str()).collect();
+            notes.push(format!(
+                "objects with their own overrides: {} (--object NAME previews one with them)",
+                names.join(", ")
+            ));
+        }
     }
     Ok(Ok(Plan {
         input,

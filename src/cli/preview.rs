@@ -31,16 +31,17 @@ the layer's index, height, angle, fill and governing instruction. Solid layers u
 fill kind at 100%: D the pattern, S --solid-pattern, O concentric, M monotonic lines,
 R lines.
 
---shape FILE.stl|.obj|.3mf (a mesh; --object NAME picks one of a 3MF's): the part is sliced at the middle of each layer (the
-model is as tall as the mesh unless --height or --model says otherwise), each section
-less --walls loops of nozzle width is filled. Top and bottom surfaces are solid as a
-slicer makes them: the part of a layer not covered by all of the T layers above it (B
-below it) is filled solid (--solid-pattern, turned by --solid-template, else by the
-template), the rest sparse; a cube's first B and last T layers are solid throughout,
-the top of a step is solid under it only. --format json gives each layer's `areas`
-(sparse and solid, each with its region, angle and paths). A summary of the whole part
-(infill extrusion, solid included, travel, time at --speed) is printed to stderr, and
-under `summary` with --format json, so templates can be compared.
+--shape FILE.stl|.obj|.3mf (a mesh; --object NAME picks one of a 3MF's): the part is
+sliced at the middle of each layer (the model is as tall as the mesh unless --height or
+--model says otherwise) and each section less --walls loops of a line's width is filled.
+Top and bottom surfaces are solid as a slicer makes them: the part of a layer not
+covered by all of the T layers above it (or the B layers below it) is filled solid
+(--solid-pattern, turned by --solid-template, else by the template), the rest sparse. A
+cube's first B and last T layers are solid throughout; a step's top is solid on the T
+layers under it, beside the tower, which stays sparse. --format json gives each layer's
+`areas` (sparse and solid, each with its region, angle and paths). A summary of the
+whole part (infill extrusion, solid included, travel, time at --speed) is printed to
+stderr, and under `summary` with --format json, so templates can be compared.
 
 An OrcaSlicer project (rotlang preview project.3mf [--object NAME]) or --profile FILE
 gives what the command line does not: the templates (sparse_infill_rotate_template,

@@ -1898,3 +1898,57 @@ fn preview_of_a_part_takes_a_presets_settings() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--object picks an object of a 3MF"));
 }
+
+/// A project's unusable values are notes and the options' defaults are used; a template
+/// of the project with errors is reported and the preview stops (exit 1), as with
+/// --profile.
+#[test]
+fn preview_of_a_project_with_bad_values() {
+    let dir = TempDir::new("part-bad-project");
+    let cube = rotlang::mesh::shapes::cuboid([10.0, 10.0, 2.0]);
+    let objects = [project::Object {
+        name: "Cube",
+        mesh: &cube,
+        at: [0.0, 0.0],
+        overrides: &[
+            ("wall_loops", "lots"),
+            ("sparse_infill_pattern", "hilbertcurve"),
+        ],
+    }];
+    std::fs::write(
+        dir.0.join("bad.3mf"),
+        project::project(
+            &objects,
+            r#"{"sparse_infill_density": "0%", "line_width": "-1"}"#,
+        ),
+    )
+    .unwrap();
+    let (v, stderr) = preview_json(&dir.0, &["bad.3mf", "--object", "Cube", "--layers", "4"]);
+    let s = &v["settings"];
+    assert_eq!(
+        (&s["pattern"], &s["density"], &s["walls"], &s["line_width"]),
+        (&"lines".into(), &0.2.into(), &2.into(), &0.4.into())
+    );
+    for key in [
+        "`wall_loops` = `lots`",
+        "`sparse_infill_pattern` = `hilbertcurve`",
+        "`sparse_infill_density` = `0%`",
+        "`line_width` = `-1`",
+    ] {
+        assert!(stderr.contains(key), "{key}: {stderr}");
+    }
+    std::fs::write(
+        dir.0.join("errors.3mf"),
+        project::project(&objects, r#"{"sparse_infill_rotate_template": "+30X5"}"#),
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(["preview", "errors.3mf", "--object", "Cube"])
+        .current_dir(&dir.0)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("unknown sign `X`"), "{stderr}");
+}

@@ -335,13 +335,19 @@ impl Infill {
             .filter(|v| (0.01..=10.0).contains(v))
             .unwrap_or(0.4);
         // OrcaSlicer's widths: mm, or a percentage of the nozzle; 0 is "the default".
-        let width = |key: &str| {
+        let mut width = |key: &str| {
             let v = get(key)?;
             let w = match v.strip_suffix('%') {
                 Some(p) => number(p).map(|p| p / 100.0 * nozzle),
                 None => number(&v),
             };
-            w.filter(|w| (0.01..=10.0).contains(w))
+            let w = w.filter(|w| (0.01..=10.0).contains(w));
+            if w.is_none() && number(&v) != Some(0.0) {
+                notes.push(format!(
+                    "`{key}` = `{v}` is not a line width from 0.01 to 10 mm: not used"
+                ));
+            }
+            w
         };
         let line_width = width("sparse_infill_line_width")
             .or_else(|| width("line_width"))

@@ -2,7 +2,8 @@
 //!
 //! A 100,000-triangle torus (major radius 30 mm, minor 10 mm: 20 mm tall) cut into 500
 //! layers (0.04 mm), sections only (`sections_500`) and sections filled with 20% lines
-//! inside two walls under a turning template, shells solid (`part_500`), on one thread.
+//! inside two walls under a turning template, top and bottom surfaces solid (`part_500`;
+//! without them, `part_500_without_shells`), on one thread.
 //! Target: seconds on 2 cores; Polyslice's slicing of the same mesh is not in
 //! ../shared/anchors (only its infill generators are), see the README's note.
 
@@ -35,6 +36,16 @@ fn sections_500(bencher: Bencher) {
 
 #[divan::bench(sample_count = 5, sample_size = 1)]
 fn part_500(bencher: Bencher) {
+    part(bencher, true);
+}
+
+/// The same without top and bottom surfaces (no solid areas): what finding them costs.
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn part_500_without_shells(bencher: Bencher) {
+    part(bencher, false);
+}
+
+fn part(bencher: Bencher, shells: bool) {
     let mesh = torus();
     let template = rotlang::parse("0MB, +15, +30/5", rotlang::Target::Sparse).template;
     let model = model_for(&mesh, 0.04, None).expect("model");
@@ -46,7 +57,10 @@ fn part_500(bencher: Bencher) {
             &model,
             Options::default(),
             Settings::default(),
-            PartOptions::default(),
+            PartOptions {
+                shells,
+                ..PartOptions::default()
+            },
         )
         .map(|l| l.map_or(0, |l| l.paths.polylines.len()))
         .sum::<usize>()

@@ -1625,3 +1625,330 @@ fn the_retired_direction_code_is_explained() {
         "{golden}"
     );
 }
+
+// ── preview of a part (issue 20) ───────────────────────────────────────────────────────
+
+#[path = "support/project.rs"]
+mod project;
+
+/// `rotlang preview ARGS` in `dir`: stdout as JSON (with `--format json`), and stderr.
+fn preview_json(dir: &Path, args: &[&str]) -> (serde_json::Value, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .arg("preview")
+        .args(args)
+        .args(["--format", "json"])
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(out.status.success(), "{args:?}: {stderr}");
+    (serde_json::from_slice(&out.stdout).unwrap(), stderr)
+}
+
+/// Issue 20: top and bottom shells are areas. A 30 × 10 mm block with a 10 mm tower on its
+/// left end: the block's top beside the tower is solid on its last 4 layers (turned by
+/// --solid-template), the rest of those layers and the tower above stay sparse; the JSON
+/// says which areas are solid, the SVG and the summary too.
+#[test]
+fn preview_of_a_part_makes_its_top_surfaces_solid() {
+    let dir = TempDir::new("part-shells");
+    let stl = dir.0.join("step.stl");
+    std::fs::write(
+        &stl,
+        rotlang::mesh::shapes::step([30.0, 10.0, 10.0], [10.0, 10.0, 10.0]).to_binary_stl(),
+    )
+    .unwrap();
+    let (v, stderr) = preview_json(
+        &dir.0,
+        &[
+            "0",
+            "--shape",
+            "step.stl",
+            "--solid-template",
+            "90",
+            "--layers",
+            "44..54",
+        ],
+    );
+    assert!(stderr.contains("m solid)"), "{stderr}");
+    assert_eq!(v["solid_template"], "90");
+    let layers = v["layers"].as_array().unwrap();
+    assert_eq!(layers.len(), 10);
+    for l in layers {
+        let i = l["index"].as_u64().unwrap();
+        let areas = l["areas"].as_array().unwrap();
+        if (46..=49).contains(&i) {
+            assert_eq!(l["printed"], "sparse+solid", "layer {i}");
+            assert_eq!(areas.len(), 2, "layer {i}");
+            let (sparse, solid) = (&areas[0], &areas[1]);
+            assert_eq!(
+                (&sparse["solid"], &solid["solid"]),
+                (&false.into(), &true.into())
+            );
+            assert_eq!(
+                (&sparse["angle"], &solid["angle"]),
+                (&0.0.into(), &90.0.into())
+            );
+            assert_eq!(solid["density"], 1.0);
+            // The solid area is the block's top right of the tower, less the walls.
+            let area = solid["area_mm2"].as_f64().unwrap();
+            assert!((area - 19.2 * 8.4).abs() < 1e-6, "layer {i}: {area}");
+            for ring in solid["region"].as_array().unwrap() {
+                for p in ring[0].as_array().unwrap() {
+                    assert!(p[0].as_f64().unwrap() >= 10.0 - 1e-9, "layer {i}: {p}");
+                }
+            }
+            assert!(!solid["polylines"].as_array().unwrap().is_empty());
+        } else {
+            assert_eq!(l["printed"], "sparse", "layer {i}");
+            assert_eq!(areas.len(), 1, "layer {i}");
+            assert_eq!(areas[0]["solid"], false);
+        }
+    }
+    let summary = &v["summary"];
+    let (all, solid) = (
+        summary["extrusion_mm"].as_f64().unwrap(),
+        summary["solid_extrusion_mm"].as_f64().unwrap(),
+    );
+    assert!(solid > 0.0 && solid < all, "{solid} of {all}");
+    let svg = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(["preview", "0", "--shape", "step.stl", "--layers", "47"])
+        .current_dir(&dir.0)
+        .output()
+        .unwrap();
+    let svg = String::from_utf8(svg.stdout).unwrap();
+    assert!(svg.contains("lines 20% + solid 68% (lines 0°)"), "{svg}");
+}
+
+/// Issue 20: `rotlang preview project.3mf --object NAME` fills the object with the
+/// project's settings and the object's own overrides (model_settings.config), each unless
+/// the command line says otherwise.
+#[test]
+fn preview_of_a_project_takes_each_objects_settings() {
+    let dir = TempDir::new("part-project");
+    let (cube, tube) = (
+        rotlang::mesh::shapes::cuboid([20.0, 20.0, 6.0]),
+        rotlang::mesh::shapes::tube(8.0, 4.0, 6.0, 48),
+    );
+    let bytes = project::project(
+        &[
+            project::Object {
+                name: "Box",
+                mesh: &cube,
+                at: [50.0, 0.0],
+                overrides: &[
+                    ("sparse_infill_density", "40%"),
+                    ("sparse_infill_pattern", "gyroid"),
+                    ("wall_loops", "3"),
+                    ("sparse_infill_rotate_template", "+45"),
+                ],
+            },
+            project::Object {
+                name: "Tube",
+                mesh: &tube,
+                at: [0.0, 0.0],
+                overrides: &[
+                    ("sparse_infill_pattern", "grid"),
+                    ("layer_height", "0.25"),
+                    ("initial_layer_print_height", "0.25"),
+                    ("top_shell_layers", "6"),
+                ],
+            },
+        ],
+        r#"{"layer_height": "0.2", "initial_layer_print_height": "0.2",
+            "sparse_infill_density": "15%", "sparse_infill_pattern": "zig-zag",
+            "internal_solid_infill_pattern": "concentric", "wall_loops": "2",
+            "line_width": "0.45", "nozzle_diameter": ["0.4"],
+            "bottom_shell_layers": "3", "top_shell_layers": "4",
+            "sparse_infill_rotate_template": "0, 90",
+            "solid_infill_rotate_template": "+30"}"#,
+    );
+    std::fs::write(dir.0.join("project.3mf"), bytes).unwrap();
+    let settings = |v: &serde_json::Value| {
+        let s = &v["settings"];
+        (
+            s["pattern"].as_str().unwrap().to_owned(),
+            s["density"].as_f64().unwrap(),
+            s["walls"].as_u64().unwrap(),
+            s["line_width"].as_f64().unwrap(),
+            s["layer_height"].as_f64().unwrap(),
+            s["top_shell_layers"].as_u64().unwrap(),
+        )
+    };
+    // The box: its own template, pattern, density and walls; the project's line width,
+    // layers and shells, and solid template.
+    let (v, stderr) = preview_json(
+        &dir.0,
+        &["project.3mf", "--object", "Box", "--layers", "10"],
+    );
+    assert_eq!(
+        settings(&v),
+        ("gyroid".into(), 0.4, 3, 0.45, 0.2, 4),
+        "{stderr}"
+    );
+    assert_eq!(
+        (&v["template"], &v["solid_template"]),
+        (&"+45".into(), &"+30".into())
+    );
+    assert_eq!(v["settings"]["solid_pattern"], "concentric");
+    let layer = &v["layers"][0];
+    assert_eq!(layer["angle"], 45.0 * 11.0);
+    assert_eq!(layer["pattern"], "gyroid");
+    // Three walls of 0.45 mm inside the 20 mm box.
+    let area = layer["areas"][0]["area_mm2"].as_f64().unwrap();
+    assert!((area - 17.3 * 17.3).abs() < 1e-6, "{area}");
+    assert!(
+        stderr.contains(
+            "project.3mf with object Box's overrides: sparse_infill_rotate_template `+45`"
+        ),
+        "{stderr}"
+    );
+    // Its top layers are solid, turned by the project's solid template (+30 a layer).
+    let (v, _) = preview_json(
+        &dir.0,
+        &["project.3mf", "--object", "Box", "--layers", "29"],
+    );
+    let top = &v["layers"][0];
+    assert_eq!(top["printed"], "solid");
+    assert_eq!(top["areas"][0]["angle"], 30.0 * 30.0);
+    assert_eq!(top["areas"][0]["pattern"], "concentric");
+    // The tube: the project's template, density and walls; its own pattern, layers, shells.
+    let (v, _) = preview_json(
+        &dir.0,
+        &["project.3mf", "--object", "Tube", "--layers", "5"],
+    );
+    assert_eq!(settings(&v), ("grid".into(), 0.15, 2, 0.45, 0.25, 6));
+    assert_eq!(v["template"], "0, 90");
+    assert_eq!(v["settings"]["layers"], 24);
+    assert_eq!(v["layers"][0]["angle"], 90.0);
+    // The command line wins over the file.
+    let (v, _) = preview_json(
+        &dir.0,
+        &[
+            "+10",
+            "--shape",
+            "project.3mf",
+            "--object",
+            "Box",
+            "--density",
+            "10",
+            "--walls",
+            "1",
+            "--layer-height",
+            "0.3",
+            "--layers",
+            "3",
+        ],
+    );
+    assert_eq!(settings(&v), ("gyroid".into(), 0.1, 1, 0.45, 0.3, 4));
+    assert_eq!(v["template"], "+10");
+    assert_eq!(v["layers"][0]["angle"], 40.0);
+}
+
+/// A preset given by --profile fills a mesh as a project does (its pattern in OrcaSlicer's
+/// name, density, walls, line width, layers, shells and template); `--object` on an STL
+/// without a project is a usage error.
+#[test]
+fn preview_of_a_part_takes_a_presets_settings() {
+    let dir = TempDir::new("part-preset");
+    std::fs::write(
+        dir.0.join("cube.stl"),
+        rotlang::mesh::shapes::cuboid([20.0, 20.0, 4.0]).to_binary_stl(),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.0.join("preset.json"),
+        r#"{"sparse_infill_pattern": "honeycomb", "sparse_infill_density": "30%",
+            "wall_loops": "1", "sparse_infill_line_width": "125%", "nozzle_diameter": ["0.4"],
+            "layer_height": "0.1", "initial_layer_print_height": "0.1",
+            "top_shell_layers": "2", "sparse_infill_rotate_template": "+15"}"#,
+    )
+    .unwrap();
+    let (v, _) = preview_json(
+        &dir.0,
+        &[
+            "--profile",
+            "preset.json",
+            "--shape",
+            "cube.stl",
+            "--layers",
+            "5",
+        ],
+    );
+    let s = &v["settings"];
+    assert_eq!(
+        (&s["pattern"], &s["density"], &s["walls"], &s["line_width"]),
+        (&"hexagons".into(), &0.3.into(), &1.into(), &0.5.into())
+    );
+    assert_eq!(
+        (&s["layers"], &s["top_shell_layers"]),
+        (&40.into(), &2.into())
+    );
+    assert_eq!(v["template"], "+15");
+    assert_eq!(v["layers"][0]["angle"], 90.0);
+    // One wall of 0.5 mm: 19 × 19 mm to fill.
+    let area = v["layers"][0]["areas"][0]["area_mm2"].as_f64().unwrap();
+    assert!((area - 19.0 * 19.0).abs() < 1e-6, "{area}");
+    let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(["preview", "0", "--shape", "cube.stl", "--object", "Box"])
+        .current_dir(&dir.0)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--object picks an object of a 3MF"));
+}
+
+/// A project's unusable values are notes and the options' defaults are used; a template
+/// of the project with errors is reported and the preview stops (exit 1), as with
+/// --profile.
+#[test]
+fn preview_of_a_project_with_bad_values() {
+    let dir = TempDir::new("part-bad-project");
+    let cube = rotlang::mesh::shapes::cuboid([10.0, 10.0, 2.0]);
+    let objects = [project::Object {
+        name: "Cube",
+        mesh: &cube,
+        at: [0.0, 0.0],
+        overrides: &[
+            ("wall_loops", "lots"),
+            ("sparse_infill_pattern", "hilbertcurve"),
+        ],
+    }];
+    std::fs::write(
+        dir.0.join("bad.3mf"),
+        project::project(
+            &objects,
+            r#"{"sparse_infill_density": "0%", "line_width": "-1"}"#,
+        ),
+    )
+    .unwrap();
+    let (v, stderr) = preview_json(&dir.0, &["bad.3mf", "--object", "Cube", "--layers", "4"]);
+    let s = &v["settings"];
+    assert_eq!(
+        (&s["pattern"], &s["density"], &s["walls"], &s["line_width"]),
+        (&"lines".into(), &0.2.into(), &2.into(), &0.4.into())
+    );
+    for key in [
+        "`wall_loops` = `lots`",
+        "`sparse_infill_pattern` = `hilbertcurve`",
+        "`sparse_infill_density` = `0%`",
+        "`line_width` = `-1`",
+    ] {
+        assert!(stderr.contains(key), "{key}: {stderr}");
+    }
+    std::fs::write(
+        dir.0.join("errors.3mf"),
+        project::project(&objects, r#"{"sparse_infill_rotate_template": "+30X5"}"#),
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(["preview", "errors.3mf", "--object", "Cube"])
+        .current_dir(&dir.0)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("unknown sign `X`"), "{stderr}");
+}

@@ -443,6 +443,10 @@ fn shell_words(line: &str) -> Vec<String> {
     words
 }
 
+#[cfg(feature = "cli")]
+#[path = "support/project.rs"]
+mod project;
+
 /// Every example in `rotlang plot --help` and `rotlang preview --help` runs and succeeds
 /// (two once failed with a parse error), in a directory holding the files they name, and
 /// `--size` resizes a shape file (it was silently ignored).
@@ -471,6 +475,20 @@ fn every_help_example_of_plot_and_preview_runs() {
     std::fs::write(
         dir.join("part.json"),
         r#"{"layer_height": 0.2, "layer_heights": [0.3, 0.2, 0.2, 0.2, 0.2]}"#,
+    )
+    .unwrap();
+    let bracket = rotlang::mesh::shapes::step([30.0, 10.0, 5.0], [10.0, 10.0, 10.0]);
+    std::fs::write(
+        dir.join("project.3mf"),
+        project::project(
+            &[project::Object {
+                name: "Bracket",
+                mesh: &bracket,
+                at: [0.0, 0.0],
+                overrides: &[("sparse_infill_density", "25%")],
+            }],
+            r#"{"sparse_infill_rotate_template": "+30/50%", "wall_loops": "3"}"#,
+        ),
     )
     .unwrap();
     let bin = env!("CARGO_BIN_EXE_rotlang");

@@ -593,7 +593,7 @@ pub(crate) fn printable(note: &str) -> String {
 }
 
 /// A profile's errors as `check` reports them (`error[profile::invalid]`, with the line).
-fn errors_report(profile: &Profile) -> String {
+pub(crate) fn errors_report(profile: &Profile) -> String {
     let mut units: Vec<(Input, Vec<Diagnostic>)> = profile
         .sources
         .iter()

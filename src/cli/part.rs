@@ -3,23 +3,38 @@
 use std::io::Write;
 
 use super::UsageError;
-use super::plot::{emit, template};
+use super::plot::emit;
 use super::preview::{Format, PreviewArgs};
 use crate::infill::preview::{self, Panel, PreviewOptions};
 use crate::ir::Fill;
 use crate::mesh::Mesh;
 use crate::plot::{num, shorten};
-use crate::slice::{Part, PartOptions, Summary};
+use crate::slice::{FilledArea, Part, PartLayer, PartOptions, Summary};
+use geo::Area;
+
+#[path = "part_file.rs"]
+mod file;
 
 /// The most bytes a mesh file may have (a 25-million-triangle binary STL).
 const MAX_MESH_BYTES: u64 = 84 + 50 * crate::mesh::MAX_TRIANGLES as u64;
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct PartArgs {
-    /// For a mesh: wall loops around the infill (each a nozzle wide).
-    #[arg(long, value_name = "N", default_value_t = 2, help_heading = "Part (a mesh as --shape)",
+    /// For a mesh: wall loops around the infill, each a line wide [default: 2, or a
+    /// project's wall_loops].
+    #[arg(long, value_name = "N", help_heading = "Part (a mesh as --shape)",
           value_parser = clap::value_parser!(u32).range(0..=100))]
-    pub walls: u32,
+    pub walls: Option<u32>,
+    /// For a mesh: the solid infill's template (as `solid_infill_rotate_template`), which
+    /// turns the solid areas (top and bottom surfaces) [default: a project's or
+    /// --profile's; without one they turn with the template].
+    #[arg(
+        long,
+        value_name = "TEMPLATE",
+        allow_hyphen_values = true,
+        help_heading = "Part (a mesh as --shape)"
+    )]
+    pub solid_template: Option<String>,
     /// For a mesh: the infill print speed in mm/s, for the summary's time.
     #[arg(
         long,
@@ -52,7 +67,9 @@ pub fn is_mesh(shape: &str) -> bool {
     lower.ends_with(".stl") || lower.ends_with(".obj") || lower.ends_with(".3mf")
 }
 
-fn read_mesh(name: &str, object: Option<&str>) -> Result<Mesh, UsageError> {
+/// The mesh of `name` (`object` of a 3MF), and whether the file is an OrcaSlicer project
+/// (a 3MF with settings).
+fn read_mesh(name: &str, object: Option<&str>) -> Result<(Mesh, bool), UsageError> {
     use std::io::Read;
     let file =
         std::fs::File::open(name).map_err(|e| UsageError(format!("cannot read {name}: {e}")))?;
@@ -67,6 +84,7 @@ fn read_mesh(name: &str, object: Option<&str>) -> Result<Mesh, UsageError> {
     }
     let cannot =
         |e: crate::mesh::MeshError| UsageError(format!("cannot read a mesh from {name}: {e}"));
+    let project = name.to_ascii_lowercase().ends_with(".3mf") && file::is_project(&bytes);
     let mesh = if name.to_ascii_lowercase().ends_with(".3mf") {
         let objects = crate::mesh::read_3mf(&bytes).map_err(cannot)?;
         let mut merged = Mesh::default();
@@ -96,7 +114,7 @@ fn read_mesh(name: &str, object: Option<&str>) -> Result<Mesh, UsageError> {
     if mesh.triangles.is_empty() {
         return Err(UsageError(format!("{name} has no triangles")));
     }
-    Ok(mesh)
+    Ok((mesh, project))
 }
 
 /// Previews the mesh `shape` under the template `text` (or `--file`).
@@ -117,66 +135,46 @@ pub fn run(
             )));
         }
     }
-    if !(0.01..=10.0).contains(&args.nozzle) {
+    if args.profile.object.is_some()
+        && args.profile.profile.is_none()
+        && !shape.to_ascii_lowercase().ends_with(".3mf")
+    {
         return Err(UsageError(format!(
-            "--nozzle must be between 0.01 and 10 mm, found {}",
-            args.nozzle
+            "--object picks an object of a 3MF, or of the --profile project; {shape} is neither"
         )));
     }
-    let mesh = read_mesh(shape, args.profile.object.as_deref())?;
+    let (mesh, project) = read_mesh(shape, args.profile.object.as_deref())?;
     let (lo, hi) = mesh.bounds().unwrap_or(([0.0; 3], [0.0; 3]));
-    let m = &args.model;
-    let model = if m.height.is_none() && m.model.is_none() {
-        // As tall as the mesh.
-        let model = crate::eval::Model::from_total_height(
-            (hi[2] - lo[2]).max(1e-3),
-            m.layer_height.unwrap_or(0.2),
-            m.first_layer_height,
-        )
-        .map_err(|e| UsageError(format!("invalid model: {e}")))?;
-        let (bottom, top) = (
-            m.bottom_shell_layers.unwrap_or(model.bottom_shells()),
-            m.top_shell_layers.unwrap_or(model.top_shells()),
-        );
-        model.with_shells(bottom, top)
-    } else {
-        m.build(None)?
-    };
-    let drawn = match template(
-        text,
-        &args.file,
-        // `--object` picks the mesh's object; it names a project's overrides only with
-        // --profile.
-        &super::paths::ProfileArgs {
-            profile: args.profile.profile.clone(),
-            object: args
-                .profile
-                .profile
-                .as_ref()
-                .and(args.profile.object.clone()),
-        },
-        (args.target, crate::eval::Dialect::Rotlang),
-        args.color,
-        (&args.model, None),
-        err,
-    )? {
-        Ok(t) => t,
+    let plan = match file::plan(args, shape, text.as_ref(), (hi[2] - lo[2], project), err)? {
+        Ok(p) => p,
         Err(code) => return Ok(code),
     };
-    let (input, parse) = (drawn.input, drawn.parse);
-    let settings = args.settings();
+    for note in &plan.notes {
+        writeln!(err, "note: {note}")
+            .map_err(|e| UsageError(format!("cannot write to stderr: {e}")))?;
+    }
+    let (input, parse, model, settings) = (&plan.input, &plan.parse, &plan.model, plan.settings);
+    if !(0.01..=10.0).contains(&settings.nozzle) {
+        return Err(UsageError(format!(
+            "--nozzle must be between 0.01 and 10 mm, found {}",
+            settings.nozzle
+        )));
+    }
     let range = args.range(model.len(), "part")?;
-    let part = Part::new(
+    let mut part = Part::new(
         &mesh,
         &parse.template,
-        &model,
-        args.model.options(),
+        model,
+        plan.options,
         settings,
         PartOptions {
-            walls: args.part.walls,
+            walls: plan.walls,
             shells: true,
         },
     );
+    if let Some((_, solid)) = &plan.solid {
+        part = part.with_solid_template(&solid.template, plan.solid_options);
+    }
     // Every layer is filled for the summary; only the shown ones are kept.
     let mut summary = Summary::default();
     let mut shown = Vec::new();
@@ -231,15 +229,7 @@ pub fn run(
                         .instruction
                         .and_then(|s| input.text.get(s.range()))
                         .map_or_else(|| "(holds)".to_owned(), |t| shorten(t, 28));
-                    let kind = match l.params.density {
-                        d if d < 1.0 => {
-                            format!("{} {}%", l.params.pattern, num(d * 100.0, 1))
-                        }
-                        _ if l.layer.fill == Fill::Sparse => {
-                            format!("shell ({})", l.params.pattern)
-                        }
-                        _ => format!("{} ({})", l.layer.fill.name(), l.params.pattern),
-                    };
+                    let kind = kind(l);
                     (
                         format!(
                             "layer {} · z {} mm · {}°",
@@ -277,20 +267,25 @@ pub fn run(
                         "top": l.layer.top,
                         "z": l.section.z,
                         "angle": l.layer.angle,
+                        "solid_angle": l.solid_angle,
                         "fill": l.layer.fill.name(),
-                        "pattern": l.params.pattern.name(),
-                        "density": l.params.density,
+                        "printed": printed(l),
+                        "pattern": l.params().pattern.name(),
+                        "density": l.params().density,
                         "length": l.paths.length,
                         "travel": l.paths.travel,
                         "open": l.section.open,
                         "bridged": l.section.bridged,
                         "section": rings(&l.section.region),
-                        "polylines": l.paths.polylines.iter().map(|p| p.0.iter().map(|c| [c.x, c.y]).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                        "areas": areas_json(l),
+                        "polylines": polylines(&l.paths),
                     })
                 })
                 .collect();
             let mut text = serde_json::to_string(&serde_json::json!({
                 "template": input.text,
+                "solid_template": plan.solid.as_ref().map(|(i, _)| &i.text),
+                "settings": settings_json(&plan),
                 "summary": summary_json(&summary, args),
                 "layers": layers,
             }))
@@ -302,10 +297,11 @@ pub fn run(
     emit(&text, args.out.as_deref(), out)?;
     let _ = writeln!(
         err,
-        "{}: {} layers, infill {} m extruded, {} m travel, {} at {} mm/s (travel {} mm/s){}",
+        "{}: {} layers, infill {} m extruded ({} m solid), {} m travel, {} at {} mm/s (travel {} mm/s){}",
         shape,
         summary.layers,
         num(summary.extrusion / 1000.0, 2),
+        num(summary.solid_extrusion / 1000.0, 2),
         num(summary.travel / 1000.0, 2),
         duration(summary.time),
         num(args.part.speed, 1),
@@ -332,8 +328,98 @@ fn summary_json(s: &Summary, args: &PreviewArgs) -> serde_json::Value {
         "travel_speed": args.part.travel_speed,
         "open_layers": s.open_layers,
         "bridged": s.bridged,
-        "walls": args.part.walls,
+        "solid_extrusion_mm": s.solid_extrusion,
     })
+}
+
+/// What the part was filled with (from the options, the profile or the project).
+fn settings_json(plan: &file::Plan) -> serde_json::Value {
+    let (s, m) = (&plan.settings, &plan.model);
+    serde_json::json!({
+        "pattern": s.pattern.name(),
+        "density": s.density,
+        "solid_pattern": s.solid_pattern.name(),
+        "line_width": s.nozzle,
+        "walls": plan.walls,
+        "layer_height": m.layer_height(),
+        "layers": m.len(),
+        "bottom_shell_layers": m.bottom_shells(),
+        "top_shell_layers": m.top_shells(),
+        "base": plan.options.base,
+    })
+}
+
+/// What a layer prints: `sparse`, a solid fill throughout (`solid` for shells and top
+/// and bottom surfaces, or the template's solid sign), or `sparse+solid`.
+fn printed(l: &PartLayer) -> String {
+    match (l.sparse.region.0.is_empty(), l.solid.region.0.is_empty()) {
+        (false, false) => "sparse+solid".into(),
+        (true, false) => l.solid.fill.name().into(),
+        _ => "sparse".into(),
+    }
+}
+
+/// The subtitle's fill: the sparse pattern and density, and the solid area's share.
+fn kind(l: &PartLayer) -> String {
+    let (sparse, solid) = (&l.sparse, &l.solid);
+    if l.all_solid() {
+        return if l.layer.fill == Fill::Sparse {
+            format!(
+                "shell ({} {}°)",
+                solid.params.pattern,
+                num(solid.params.angle, 2)
+            )
+        } else {
+            format!("{} ({})", solid.fill.name(), solid.params.pattern)
+        };
+    }
+    let text = format!(
+        "{} {}%",
+        sparse.params.pattern,
+        num(sparse.params.density * 100.0, 1)
+    );
+    if solid.region.0.is_empty() {
+        return text;
+    }
+    let share = solid.region.unsigned_area() / l.infill_area.unsigned_area().max(1e-12);
+    format!(
+        "{text} + solid {}% ({} {}°)",
+        num(share * 100.0, 0),
+        solid.params.pattern,
+        num(solid.params.angle, 2)
+    )
+}
+
+/// The layer's areas that are not empty: the sparse one, then the solid one.
+fn areas_json(l: &PartLayer) -> Vec<serde_json::Value> {
+    [&l.sparse, &l.solid]
+        .into_iter()
+        .filter(|a| !a.region.0.is_empty())
+        .map(area_json)
+        .collect()
+}
+
+fn area_json(a: &FilledArea) -> serde_json::Value {
+    serde_json::json!({
+        "fill": a.fill.name(),
+        "solid": a.fill != Fill::Sparse,
+        "angle": a.params.angle,
+        "pattern": a.params.pattern.name(),
+        "density": a.params.density,
+        "area_mm2": a.region.unsigned_area(),
+        "region": rings(&a.region),
+        "length": a.paths.length,
+        "travel": a.paths.travel,
+        "polylines": polylines(&a.paths),
+    })
+}
+
+fn polylines(paths: &crate::infill::Toolpaths) -> Vec<Vec<[f64; 2]>> {
+    paths
+        .polylines
+        .iter()
+        .map(|p| p.0.iter().map(|c| [c.x, c.y]).collect())
+        .collect()
 }
 
 fn rings(region: &geo::MultiPolygon<f64>) -> Vec<Vec<Vec<[f64; 2]>>> {

@@ -22,6 +22,8 @@ Examples:
   rotlang preview '0MB, +30' --shape part.stl --layers 10..14 --walls 3
   rotlang preview part.stl --format json > part.json          every layer at 0°
   rotlang preview '+45' --shape part.stl --pattern gyroid --3d part.html --out layers.svg
+  rotlang preview project.3mf --object Bracket --layers 20..24 --out bracket.svg
+  rotlang preview '0, 90' --shape part.stl --solid-template '+90' --density 15
 
 Each panel shows one layer: the region's outline and holes, the infill lines at the
 nozzle's width coloured by print order (blue first, red last), travel moves dashed, and
@@ -29,11 +31,25 @@ the layer's index, height, angle, fill and governing instruction. Solid layers u
 fill kind at 100%: D the pattern, S --solid-pattern, O concentric, M monotonic lines,
 R lines.
 
---shape FILE.stl|.obj|.3mf (a mesh; --object NAME picks one of a 3MF's): the part is sliced at the middle of each layer (the
-model is as tall as the mesh unless --height or --model says otherwise), each section
-less --walls loops of nozzle width is filled, the bottom and top shell layers solid; a
-summary of the whole part (infill extrusion, travel, time at --speed) is printed to
+--shape FILE.stl|.obj|.3mf (a mesh; --object NAME picks one of a 3MF's): the part is
+sliced at the middle of each layer (the model is as tall as the mesh unless --height or
+--model says otherwise) and each section less --walls loops of a line's width is filled.
+Top and bottom surfaces are solid as a slicer makes them: the part of a layer not
+covered by all of the T layers above it (or the B layers below it) is filled solid
+(--solid-pattern, turned by --solid-template, else by the template), the rest sparse. A
+cube's first B and last T layers are solid throughout; a step's top is solid on the T
+layers under it, beside the tower, which stays sparse. --format json gives each layer's
+`areas` (sparse and solid, each with its region, angle and paths). A summary of the
+whole part (infill extrusion, solid included, travel, time at --speed) is printed to
 stderr, and under `summary` with --format json, so templates can be compared.
+
+An OrcaSlicer project (rotlang preview project.3mf [--object NAME]) or --profile FILE
+gives what the command line does not: the templates (sparse_infill_rotate_template,
+solid_infill_rotate_template), sparse_infill_density, sparse_infill_pattern,
+internal_solid_infill_pattern, wall_loops, the line width (sparse_infill_line_width,
+line_width or nozzle_diameter), layer_height, initial_layer_print_height and the shell
+counts, with the object's overrides from Metadata/model_settings.config (as `check`
+reads them). A note on stderr says what came from the file.
 
 --shape FILE: an .svg file (every <path> and <polygon>; user units read as mm, y up,
 transforms not applied; nested outlines become holes) or a .json multi-polygon
@@ -55,32 +71,24 @@ pub struct PreviewArgs {
     /// Which setting the template is for (solid signs are errors in a solid template).
     #[arg(long, value_enum, default_value_t)]
     pub target: TargetArg,
-    /// The infill pattern.
-    #[arg(
-        long,
-        short = 'p',
-        value_enum,
-        default_value_t,
-        help_heading = "Infill"
-    )]
-    pub pattern: PatternArg,
-    /// The infill density in percent, e.g. 20 or 20%.
-    #[arg(long, short = 'd', value_name = "PERCENT", default_value = "20", value_parser = parse_density, help_heading = "Infill")]
-    pub density: f64,
-    /// The nozzle diameter (line width) in mm.
-    #[arg(
-        long,
-        value_name = "MM",
-        default_value_t = 0.4,
-        help_heading = "Infill"
-    )]
-    pub nozzle: f64,
+    /// The infill pattern [default: lines, or a mesh project's sparse_infill_pattern].
+    #[arg(long, short = 'p', value_enum, help_heading = "Infill")]
+    pub pattern: Option<PatternArg>,
+    /// The infill density in percent, e.g. 20 or 20% [default: 20, or a mesh project's
+    /// sparse_infill_density].
+    #[arg(long, short = 'd', value_name = "PERCENT", value_parser = parse_density, help_heading = "Infill")]
+    pub density: Option<f64>,
+    /// The nozzle diameter (line width) in mm [default: 0.4, or a mesh project's line
+    /// width].
+    #[arg(long, value_name = "MM", help_heading = "Infill")]
+    pub nozzle: Option<f64>,
     /// Where the pattern is anchored: the object's centre, or the origin for every object.
     #[arg(long, value_enum, default_value_t, help_heading = "Infill")]
     pub centring: CentringArg,
-    /// The pattern of `S` layers (the profile's solid infill pattern).
-    #[arg(long, value_enum, default_value_t, help_heading = "Infill")]
-    pub solid_pattern: PatternArg,
+    /// The pattern of `S` layers and of a part's solid areas [default: lines, or a mesh
+    /// project's internal_solid_infill_pattern].
+    #[arg(long, value_enum, help_heading = "Infill")]
+    pub solid_pattern: Option<PatternArg>,
     #[command(flatten)]
     pub part: super::part::PartArgs,
     /// The region: square, circle, ring, star, l, or a FILE (.svg or .json).
@@ -137,14 +145,14 @@ impl PreviewArgs {
     /// The infill settings the options give.
     pub(super) fn settings(&self) -> Settings {
         Settings {
-            pattern: self.pattern.into(),
-            density: self.density,
-            nozzle: self.nozzle,
+            pattern: self.pattern.unwrap_or_default().into(),
+            density: self.density.unwrap_or(0.2),
+            nozzle: self.nozzle.unwrap_or(0.4),
             centring: match self.centring {
                 CentringArg::Object => Centring::Object,
                 CentringArg::Global => Centring::Global,
             },
-            solid_pattern: self.solid_pattern.into(),
+            solid_pattern: self.solid_pattern.unwrap_or_default().into(),
         }
     }
 
@@ -475,10 +483,10 @@ pub fn run(
         return super::part::run(args, mesh, &template, out, err);
     }
     let region = shape(&args.shape, args.size)?;
-    if !(0.01..=10.0).contains(&args.nozzle) {
+    let nozzle = args.settings().nozzle;
+    if !(0.01..=10.0).contains(&nozzle) {
         return Err(UsageError(format!(
-            "--nozzle must be between 0.01 and 10 mm, found {}",
-            args.nozzle
+            "--nozzle must be between 0.01 and 10 mm, found {nozzle}"
         )));
     }
     let drawn = match template(

@@ -421,6 +421,20 @@ pub mod shapes {
         revolved(&profile, segments)
     }
 
+    /// A stepped block: a `base` block (x, y, z sizes) with a `tower` (x, y, z) standing
+    /// on it at its x = 0, y = 0 corner: the base's top beside the tower is a top surface
+    /// under which a slicer prints solid layers, while the tower above stays sparse.
+    pub fn step(base: [f64; 3], tower: [f64; 3]) -> Mesh {
+        let mut m = cuboid(base);
+        let mut top = cuboid(tower);
+        top.translate([0.0, 0.0, base[2]]);
+        let first = m.vertices.len() as u32;
+        m.vertices.extend(top.vertices);
+        m.triangles
+            .extend(top.triangles.iter().map(|t| t.map(|i| i + first)));
+        m
+    }
+
     /// A T standing on its foot: a `foot`-wide square column `height` tall under a wide
     /// slab (the overhang), both `depth` deep.
     pub fn overhang(foot: f64, slab: f64, height: f64, thickness: f64) -> Mesh {

@@ -4,7 +4,7 @@
 //! escapes). Shared by the CLI and the language server.
 
 use super::json::{JsonTemplate, OffsetMap};
-use super::{Found, MODEL_KEYS, Profile, Settings, TEMPLATE_KEYS};
+use super::{Found, Profile, Settings, TEMPLATE_KEYS};
 use crate::Span;
 
 /// Whether most non-comment lines look like `key = value` (for files without extension).
@@ -86,9 +86,7 @@ pub(super) fn read(profile: &mut Profile) {
     // Only the keys looked for: a long export's other lines need no duplicate check.
     let lines: Vec<Line<'_>> = settings(&text)
         .filter(|l| {
-            TEMPLATE_KEYS.iter().any(|(k, _)| *k == l.key)
-                || MODEL_KEYS.contains(&l.key)
-                || l.key == "inherits"
+            TEMPLATE_KEYS.iter().any(|(k, _)| *k == l.key) || super::settings::is_setting(l.key)
         })
         .collect();
     let later = super::superseded(lines.iter().map(|l| (l.key, l.key_span)));
@@ -108,7 +106,7 @@ pub(super) fn read(profile: &mut Profile) {
                 source: 0,
                 map: OffsetMap::verbatim(l.value_span.start, l.value.len()),
             });
-        } else if MODEL_KEYS.contains(&l.key) || l.key == "inherits" {
+        } else if super::settings::is_setting(l.key) {
             settings_found.set(l.key, l.value.to_owned(), 0, l.value_span);
         }
     }

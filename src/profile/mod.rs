@@ -36,7 +36,9 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 
 pub use json::OffsetMap;
-pub use settings::{DEFAULT_OBJECT_HEIGHT, Direction, MODEL_KEYS, ProfileModel, Setting, Settings};
+pub use settings::{
+    DEFAULT_OBJECT_HEIGHT, Direction, INFILL_KEYS, MODEL_KEYS, ProfileModel, Setting, Settings,
+};
 #[cfg(feature = "3mf")]
 pub use threemf::{MAX_ENTRIES, MAX_ENTRY_BYTES};
 
@@ -382,6 +384,7 @@ pub(crate) fn json_file(profile: &mut Profile, source: usize, object: Option<&st
     }
     let mut keys: Vec<&str> = TEMPLATE_KEYS.iter().map(|(k, _)| *k).collect();
     keys.extend(MODEL_KEYS);
+    keys.extend(INFILL_KEYS);
     keys.push("inherits");
     let mut settings = Settings::default();
     let found = json::find_values(&doc, &keys);

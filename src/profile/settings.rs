@@ -22,6 +22,24 @@ pub const MODEL_KEYS: [&str; 7] = [
     "solid_infill_direction",
 ];
 
+/// The keys a part is filled with (`rotlang preview project.3mf`), read beside
+/// [`MODEL_KEYS`] (a project's and each object's): the sparse infill's density and
+/// pattern, the solid infill's pattern, the wall loops, the line widths and the nozzle.
+pub const INFILL_KEYS: [&str; 7] = [
+    "sparse_infill_density",
+    "sparse_infill_pattern",
+    "internal_solid_infill_pattern",
+    "wall_loops",
+    "line_width",
+    "sparse_infill_line_width",
+    "nozzle_diameter",
+];
+
+/// Whether a key's value is kept in [`Settings`]: a model key, an infill key, `inherits`.
+pub(crate) fn is_setting(key: &str) -> bool {
+    MODEL_KEYS.contains(&key) || INFILL_KEYS.contains(&key) || key == "inherits"
+}
+
 /// A profile says nothing about the object: the documentation's 20 mm cube.
 pub const DEFAULT_OBJECT_HEIGHT: f64 = 20.0;
 
@@ -47,7 +65,7 @@ pub struct Setting {
     pub inherited_from: Option<PathBuf>,
 }
 
-/// The model keys (and `inherits`) of a profile or of one 3mf object.
+/// The model and infill keys (and `inherits`) of a profile or of one 3mf object.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Settings {
     pub values: BTreeMap<String, Setting>,

@@ -331,7 +331,9 @@ fn collect(profile: &mut Profile, source: usize, scope: Scope, label: &str) -> S
                 source,
                 map,
             });
-        } else if super::MODEL_KEYS.contains(&key.as_str()) {
+        } else if super::MODEL_KEYS.contains(&key.as_str())
+            || super::INFILL_KEYS.contains(&key.as_str())
+        {
             settings.set(&key, value, source, span);
         }
     }

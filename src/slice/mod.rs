@@ -29,7 +29,7 @@ use geo::{Coord, LineString, MultiPolygon, Polygon};
 use crate::mesh::Mesh;
 
 pub mod part;
-pub use part::{Part, PartLayer, PartOptions, Summary};
+pub use part::{FilledArea, Part, PartLayer, PartOptions, Summary};
 
 /// One layer's section.
 #[derive(Clone, Debug, PartialEq)]

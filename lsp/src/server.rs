@@ -244,37 +244,47 @@ impl Backend {
                     open.busy = false;
                     return;
                 }
-                // The analysis of an older text goes now: every request waits for the
-                // latest anyway, and memory is bounded by one analysed document.
-                let stale = open.analysed.take();
+                // The analysis of an older text leaves the store now (every request waits
+                // for the latest anyway): it becomes the base of the next one, which
+                // re-reads only what the edits changed, and memory stays that of about one
+                // analysed document.
+                let previous = open.analysed.take();
                 let job = (
                     open.text.clone(),
                     open.kind,
                     open.version,
                     open.path.clone(),
                 );
-                (job, limit, stale, settings, open.latest.clone())
+                (job, limit, previous, settings, open.latest.clone())
             };
-            let ((text, kind, version, path), limit, stale, settings, latest) = job;
+            let ((text, kind, version, path), limit, previous, settings, latest) = job;
             let analysis = tokio::task::spawn_blocking(move || {
-                // Freed here, not on the thread that reads messages; and handed back to
-                // the system when large, or each worker thread's arena would keep its own
-                // document's worth.
-                let large = stale.as_ref().is_some_and(|d| d.text.len() > LARGE);
-                drop(stale);
-                if large {
-                    crate::memory::release();
-                }
-                guard(|| match text {
+                // The previous analysis is reused in place when nothing else holds it (a
+                // request being answered on it may: then the text is read whole).
+                let previous = previous.and_then(|d| Arc::try_unwrap(d).ok());
+                let large = previous.as_ref().is_some_and(|d| d.text.len() > LARGE);
+                let doc = guard(|| match text {
                     Some(text) if text.len() <= limit => {
                         // The text is shared with the store; the document owns a copy only
                         // while it is the latest analysis.
-                        Document::new(String::clone(&text), kind, version, path.as_deref())
+                        let text = String::clone(&text);
+                        match previous {
+                            Some(previous) => {
+                                Document::update(previous, text, kind, version, path.as_deref())
+                            }
+                            None => Document::new(text, kind, version, path.as_deref()),
+                        }
                     }
                     Some(text) => Document::too_large(text.len(), limit, kind, version),
                     None => Document::too_large(0, limit, kind, version),
-                })
-                .inspect(|doc| {
+                });
+                // What was left of the previous analysis is freed by now, here rather than
+                // on the thread that reads messages; handed back to the system when large,
+                // or each worker thread's arena would keep its own document's worth.
+                if large {
+                    crate::memory::release();
+                }
+                doc.inspect(|doc| {
                     // Ready for the hovers to come, unless a newer text is waiting.
                     if latest.load(Ordering::Relaxed) != version {
                         return;

@@ -95,8 +95,13 @@ pub fn instruction_hover(
                 p.layers, preview.layers
             ));
             let mut budget = crate::preview::FIRST_RUN_BUDGET;
-            let run =
-                crate::preview::first_run(&region.parse.template, index, reading, &mut budget);
+            let run = crate::preview::first_run(
+                &region.parse.template,
+                index,
+                reading,
+                &mut budget,
+                preview.reach,
+            );
             if let Some(run) = run.or(p.first_block) {
                 let last = run.first_layer + run.layers - 1;
                 let layers = if run.layers == 1 {

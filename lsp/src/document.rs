@@ -58,7 +58,7 @@ impl Kind {
 }
 
 /// One template inside a document.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct Region {
     /// The JSON key (`None` in `.rot` files).
     pub key: Option<String>,
@@ -267,6 +267,23 @@ impl Document {
             duplicates,
             json_error,
             too_large: None,
+            compat: Mutex::default(),
+            previews: Mutex::default(),
+        }
+    }
+
+    /// What `update` needs of this document, copied: for when the analysis is still in use
+    /// elsewhere (a request being answered on it), so it cannot be taken. Copying the parsed
+    /// instructions costs far less than parsing them again.
+    pub fn copy_for_update(&self) -> Document {
+        Document {
+            text: String::new(),
+            kind: self.kind,
+            version: self.version,
+            regions: self.regions.clone(),
+            duplicates: Vec::new(),
+            json_error: None,
+            too_large: self.too_large,
             compat: Mutex::default(),
             previews: Mutex::default(),
         }

@@ -259,9 +259,10 @@ impl Backend {
             };
             let ((text, kind, version, path), limit, previous, settings, latest) = job;
             let analysis = tokio::task::spawn_blocking(move || {
-                // The previous analysis is reused in place when nothing else holds it (a
-                // request being answered on it may: then the text is read whole).
-                let previous = previous.and_then(|d| Arc::try_unwrap(d).ok());
+                // The previous analysis is reused in place when nothing else holds it; a
+                // request being answered on it may: then what it parsed is copied.
+                let previous =
+                    previous.map(|d| Arc::try_unwrap(d).unwrap_or_else(|d| d.copy_for_update()));
                 let large = previous.as_ref().is_some_and(|d| d.text.len() > LARGE);
                 let doc = guard(|| match text {
                     Some(text) if text.len() <= limit => {

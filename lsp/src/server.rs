@@ -106,13 +106,7 @@ impl Backend {
             // computed on the settings' model.
             let uris: Vec<Uri> = self.state().documents.keys().cloned().collect();
             for uri in uris {
-                let doc = {
-                    let state = self.state();
-                    state.documents.get(&uri).and_then(Open::current).cloned()
-                };
-                if let Some(doc) = doc {
-                    self.publish(uri, doc).await;
-                }
+                self.schedule_publish(uri);
             }
         }
         if refresh {
@@ -175,6 +169,53 @@ impl Backend {
         });
     }
 
+    /// Publish the diagnostics of a document's latest analysis, in the background: one
+    /// publishing task per document, which takes the latest analysis each time round
+    /// (the OrcaSlicer lint of a long profile takes seconds: analyses go on meanwhile, and
+    /// the versions analysed in between are never linted).
+    fn schedule_publish(&self, uri: Uri) {
+        {
+            let mut state = self.state();
+            let Some(open) = state.documents.get_mut(&uri) else {
+                return;
+            };
+            if open.publishing {
+                return; // the running task takes the latest when it is done
+            }
+            open.publishing = true;
+        }
+        let this = self.clone();
+        tokio::spawn(async move { this.publish_task(uri).await });
+    }
+
+    async fn publish_task(&self, uri: Uri) {
+        loop {
+            let next = {
+                let mut state = self.state();
+                let settings = state.model;
+                let Some(open) = state.documents.get_mut(&uri) else {
+                    return;
+                };
+                let doc = open
+                    .current()
+                    .filter(|d| open.published != Some((d.version, settings)))
+                    .cloned();
+                if doc.is_none() {
+                    open.publishing = false;
+                }
+                doc.map(|d| (d, settings))
+            };
+            let Some((doc, settings)) = next else {
+                return;
+            };
+            let version = doc.version;
+            self.publish(uri.clone(), doc).await;
+            if let Some(open) = self.state().documents.get_mut(&uri) {
+                open.published = Some((version, settings));
+            }
+        }
+    }
+
     /// Publish a document's diagnostics (computed off the main thread: a large document
     /// takes a while), unless a newer version has arrived meanwhile: it publishes its own.
     async fn publish(&self, uri: Uri, doc: Arc<Document>) {
@@ -182,16 +223,34 @@ impl Backend {
             let state = self.state();
             (state.model, state.encoding)
         };
+        let version = doc.version;
         let job = {
-            let (uri, doc) = (uri.clone(), doc.clone());
+            let uri = uri.clone();
             move || {
-                guard(|| {
+                guard(move || {
+                    let mut diags = {
+                        let pos = Positions::new(&doc.text, encoding);
+                        let mut diags = diagnostics::diagnostics(&doc, &uri, &pos);
+                        if let Some(found) = crate::compat::cached_only(&doc, &settings) {
+                            diags.extend(crate::compat::diagnostics(&doc, &found, &uri, &pos));
+                            return Some(diags);
+                        }
+                        diags
+                    };
+                    // The lint reads its own copy of the templates: the analysis is not
+                    // held meanwhile, so the next one can be made from it in place.
+                    let inputs = crate::compat::inputs(&doc, &settings);
+                    let weak = Arc::downgrade(&doc);
+                    drop(doc);
+                    let found = Arc::new(crate::compat::run(inputs));
+                    // Gone: a newer analysis was made from it, and publishes its own.
+                    let doc = weak.upgrade()?;
+                    crate::compat::store(&doc, &settings, found.clone());
                     let pos = Positions::new(&doc.text, encoding);
-                    let mut diags = diagnostics::diagnostics(&doc, &uri, &pos);
-                    let found = crate::compat::cached(&doc, &settings);
                     diags.extend(crate::compat::diagnostics(&doc, &found, &uri, &pos));
-                    diags
+                    Some(diags)
                 })
+                .flatten()
             }
         };
         let Ok(Some(diags)) = tokio::task::spawn_blocking(job).await else {
@@ -202,9 +261,9 @@ impl Backend {
             .documents
             .get(&uri)
             .map(|o| (o.version, o.out_of_sync.is_some()));
-        if current == Some((doc.version, false)) {
+        if current == Some((version, false)) {
             self.client
-                .publish_diagnostics(uri, diags, Some(doc.version))
+                .publish_diagnostics(uri, diags, Some(version))
                 .await;
         }
     }
@@ -321,8 +380,9 @@ impl Backend {
                 latest
             };
             self.analysed.send_modify(|n| *n += 1);
+            drop(doc);
             if latest {
-                self.publish(uri.clone(), doc).await;
+                self.schedule_publish(uri.clone());
             }
         }
     }

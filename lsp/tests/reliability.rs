@@ -282,26 +282,42 @@ fn a_lower_version_does_not_leave_a_request_waiting() {
 /// at its place), and memory stays that of about one analysed document.
 #[test]
 fn an_edit_storm_in_the_middle_of_a_4_mb_template_is_answered_on_the_latest_text() {
+    storm_in_the_middle(ROT, "rotlang", "", "", 4 * MIB - 64 * 1024, 360_000);
+}
+
+/// The same in a 3 MB JSON profile, where the OrcaSlicer lint (on by default in profiles)
+/// takes seconds per version: it runs beside the analyses, on the latest version each time,
+/// and the diagnostics published last are the last version's.
+#[test]
+fn an_edit_storm_in_a_3_mb_profile_is_answered_on_the_latest_text() {
+    let head = r#"{"layer_height": "0.2", "sparse_infill_rotate_template": ""#;
+    storm_in_the_middle(JSON, "json", head, "\"}\n", 3 * MIB, 360_000);
+}
+
+/// 500 edits in the middle of a template of `len` bytes written between `head` and `tail`
+/// on one line, then a mistake, then a last edit; `max_kb`: the bound on the peak RSS.
+fn storm_in_the_middle(uri: &str, language: &str, head: &str, tail: &str, len: usize, max_kb: u64) {
     let mut lsp = Lsp::start();
-    let base = big_template(4 * MIB - 64 * 1024);
+    let base = big_template(len);
     let base = base.trim_end_matches([',', ' ']);
     let middle = base.len() / 2 / 25 * 25;
-    let version = |v: i64| format!("{}+{v}, {}", &base[..middle], &base[middle..]);
-    lsp.open(ROT, "rotlang", &version(1));
+    let with = |edit: &str| format!("{head}{}{edit}, {}{tail}", &base[..middle], &base[middle..]);
+    let version = |v: i64| with(&format!("+{v}"));
+    let at = (head.len() + middle) as u32;
+    lsp.open(uri, language, &version(1));
     let pid = lsp.pid();
     let mut peak = 0;
     for v in 2..=500 {
-        lsp.change(ROT, v, &version(v));
+        lsp.change(uri, v, &version(v));
         if v % 25 == 0
             && let Some(kb) = rss_kb(pid)
         {
             peak = peak.max(kb);
         }
     }
-    // The last edit: a mistake.
-    let last = format!("{}+30X, {}", &base[..middle], &base[middle..]);
-    lsp.change(ROT, 501, &last);
-    let published = lsp.diagnostics(ROT, Some(501));
+    // The last edit but one: a mistake.
+    lsp.change(uri, 501, &with("+30X"));
+    let published = lsp.diagnostics(uri, Some(501));
     assert_eq!(
         errors(&published),
         ["rotlang::unknown-sign"],
@@ -309,27 +325,36 @@ fn an_edit_storm_in_the_middle_of_a_4_mb_template_is_answered_on_the_latest_text
     );
     assert_eq!(
         published[0]["range"]["start"],
-        json!({"line": 0, "character": middle + 3})
+        json!({"line": 0, "character": at + 3})
     );
-    let h = hover_text(&mut lsp, ROT, 0, (middle + 1) as u32);
+    let h = hover_text(&mut lsp, uri, 0, at + 1);
     assert!(
         h.contains("The template has errors"),
         "{}",
         &h[..h.len().min(300)]
     );
     // And the instruction after it is the one of the latest text too.
-    lsp.change(ROT, 502, &version(502));
-    let h = hover_text(&mut lsp, ROT, 0, (middle + 2) as u32);
+    lsp.change(uri, 502, &version(502));
+    let sent = Instant::now();
+    let h = hover_text(&mut lsp, uri, 0, at + 2);
+    // Reported, not asserted (the benchmark `hover_after_storm` measures it).
+    eprintln!(
+        "{uri}: hover answered {:?} after the last edit",
+        sent.elapsed()
+    );
     assert!(h.starts_with("`+502`"), "{}", &h[..h.len().min(300)]);
-    let published = lsp.diagnostics(ROT, Some(502));
+    let published = lsp.diagnostics(uri, Some(502));
     assert!(published.is_empty(), "{published:?}");
     if let Some(kb) = rss_kb(pid) {
         peak = peak.max(kb);
     }
-    eprintln!("500 edits of a 4 MB template: peak RSS {peak} kB");
-    // One analysed 4 MB document costs about 190 MB (the parsed instructions); the next
+    eprintln!(
+        "{uri}: 500 edits of {} bytes, peak RSS {peak} kB",
+        base.len()
+    );
+    // One analysed 4 MB template costs about 190 MB (the parsed instructions); the next
     // is made from it in place. Two whole ones at once would be 380 MB.
-    assert!(peak < 360_000, "peak RSS {peak} kB");
+    assert!(peak < max_kb, "peak RSS {peak} kB");
     lsp.shutdown();
 }
 

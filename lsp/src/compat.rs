@@ -55,6 +55,11 @@ pub fn inputs(doc: &Document, settings: &ModelSettings) -> Vec<Input> {
         .collect()
 }
 
+/// The bytes of template text to lint.
+pub fn size(inputs: &[Input]) -> usize {
+    inputs.iter().map(|i| i.text.len()).sum()
+}
+
 /// The findings of the templates, with the index of each one's region, in document order.
 pub fn run(inputs: Vec<Input>) -> Vec<(usize, Finding)> {
     let mut out = Vec::new();

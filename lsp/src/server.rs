@@ -219,11 +219,18 @@ impl Backend {
     /// Publish a document's diagnostics (computed off the main thread: a large document
     /// takes a while), unless a newer version has arrived meanwhile: it publishes its own.
     async fn publish(&self, uri: Uri, doc: Arc<Document>) {
-        let (settings, encoding) = {
+        let (settings, encoding, latest) = {
             let state = self.state();
-            (state.model, state.encoding)
+            let latest = state.documents.get(&uri).map(|o| o.latest.clone());
+            (state.model, state.encoding, latest)
         };
         let version = doc.version;
+        // A newer text has come: its analysis publishes (this one would not be shown).
+        let stale = move || {
+            latest
+                .as_ref()
+                .is_none_or(|l| l.load(Ordering::Relaxed) != version)
+        };
         let job = {
             let uri = uri.clone();
             move || {
@@ -239,10 +246,19 @@ impl Backend {
                     };
                     // The lint reads its own copy of the templates: the analysis is not
                     // held meanwhile, so the next one can be made from it in place.
+                    if stale() {
+                        return None; // a lint of seconds for nothing
+                    }
                     let inputs = crate::compat::inputs(&doc, &settings);
                     let weak = Arc::downgrade(&doc);
                     drop(doc);
+                    let large = crate::compat::size(&inputs) > LARGE;
                     let found = Arc::new(crate::compat::run(inputs));
+                    if large {
+                        // The lint of a long template allocates about 50 bytes per byte on
+                        // this thread: handed back now, not kept in its arena.
+                        crate::memory::release();
+                    }
                     // Gone: a newer analysis was made from it, and publishes its own.
                     let doc = weak.upgrade()?;
                     crate::compat::store(&doc, &settings, found.clone());
@@ -318,10 +334,10 @@ impl Backend {
             };
             let ((text, kind, version, path), limit, previous, settings, latest) = job;
             let analysis = tokio::task::spawn_blocking(move || {
-                // The previous analysis is reused in place when nothing else holds it; a
-                // request being answered on it may: then what it parsed is copied.
-                let previous =
-                    previous.map(|d| Arc::try_unwrap(d).unwrap_or_else(|d| d.copy_for_update()));
+                // The previous analysis is reused in place once nothing else holds it: a
+                // request being answered on it, or its diagnostics being made, let go of it
+                // within milliseconds. Should one not, what it parsed is copied.
+                let previous = previous.map(take_when_free);
                 let large = previous.as_ref().is_some_and(|d| d.text.len() > LARGE);
                 let doc = guard(|| match text {
                     Some(text) if text.len() <= limit => {
@@ -441,6 +457,26 @@ impl Backend {
         }
     }
 }
+
+/// The document of `doc` once this is its last handle, waiting up to `TAKE_WAIT` for
+/// the others to go; else a copy of what an update needs (`Document::copy_for_update`).
+fn take_when_free(mut doc: Arc<Document>) -> Document {
+    let started = std::time::Instant::now();
+    loop {
+        match Arc::try_unwrap(doc) {
+            Ok(doc) => return doc,
+            Err(shared) if started.elapsed() < TAKE_WAIT => {
+                doc = shared;
+                std::thread::sleep(std::time::Duration::from_millis(1));
+            }
+            Err(shared) => return shared.copy_for_update(),
+        }
+    }
+}
+
+/// How long an analysis waits for others to let go of the previous one (a copy of a 4 MB
+/// template's instructions is 190 MB and takes about as long).
+const TAKE_WAIT: std::time::Duration = std::time::Duration::from_millis(50);
 
 /// Closing a document this large (bytes) hands its memory back to the system.
 const LARGE: usize = 1 << 20;

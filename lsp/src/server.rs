@@ -354,12 +354,6 @@ impl Backend {
                     Some(text) => Document::too_large(text.len(), limit, kind, version),
                     None => Document::too_large(0, limit, kind, version),
                 });
-                // What was left of the previous analysis is freed by now, here rather than
-                // on the thread that reads messages; handed back to the system when large,
-                // or each worker thread's arena would keep its own document's worth.
-                if large {
-                    crate::memory::release();
-                }
                 doc.inspect(|doc| {
                     // Ready for the hovers to come, unless a newer text is waiting.
                     if latest.load(Ordering::Relaxed) != version {
@@ -369,13 +363,17 @@ impl Backend {
                         let _ = guard(|| doc.preview(index, &settings));
                     }
                 })
+                .map(|doc| (doc, large))
             })
             .await;
-            let doc = match analysis {
-                Ok(Some(doc)) => Arc::new(doc),
+            let (doc, large) = match analysis {
+                Ok(Some((doc, large))) => (Arc::new(doc), large),
                 // A panic (a bug, reported on stderr): this version shows no templates;
                 // the next edit tries again.
-                _ => Arc::new(Document::new(String::new(), kind, version, None)),
+                _ => (
+                    Arc::new(Document::new(String::new(), kind, version, None)),
+                    false,
+                ),
             };
             let latest = {
                 let mut state = self.state();
@@ -397,6 +395,12 @@ impl Backend {
             };
             self.analysed.send_modify(|n| *n += 1);
             drop(doc);
+            if large {
+                // What was left of the previous analysis (freed on a worker thread) handed
+                // back to the system, or each worker's arena would keep a document's worth;
+                // after the new analysis is in place, so no hover waits for it.
+                tokio::task::spawn_blocking(crate::memory::release);
+            }
             if latest {
                 self.schedule_publish(uri.clone());
             }

@@ -23,32 +23,78 @@ pub const MAX_FINDINGS: usize = 100;
 /// then reports only OrcaSlicer's own problems and the rules, which hold whatever rotlang
 /// makes of the text).
 pub fn findings(doc: &Document, settings: &ModelSettings) -> Vec<(usize, Finding)> {
+    run(inputs(doc, settings))
+}
+
+/// What the lint of one template reads, owned: the lint of a long profile takes seconds,
+/// and the document it came from must not be held meanwhile (the next analysis is made
+/// from it in place).
+pub struct Input {
+    index: usize,
+    text: String,
+    target: rotlang::Target,
+    profile: Option<rotlang::profile::ProfileModel>,
+    reading: crate::reading::Reading,
+}
+
+/// The templates to lint (none where the setting leaves the document out).
+pub fn inputs(doc: &Document, settings: &ModelSettings) -> Vec<Input> {
     if !settings.compat.applies_to(doc.kind) {
         return Vec::new();
     }
+    doc.regions
+        .iter()
+        .enumerate()
+        .map(|(index, region)| Input {
+            index,
+            text: region.text.clone(),
+            target: region.target,
+            profile: region.profile.clone(),
+            reading: region.reading(settings),
+        })
+        .collect()
+}
+
+/// The bytes of template text to lint.
+pub fn size(inputs: &[Input]) -> usize {
+    inputs.iter().map(|i| i.text.len()).sum()
+}
+
+/// The findings of the templates, with the index of each one's region, in document order.
+pub fn run(inputs: Vec<Input>) -> Vec<(usize, Finding)> {
     let mut out = Vec::new();
-    for (index, region) in doc.regions.iter().enumerate() {
-        let found = match &region.profile {
+    for input in inputs {
+        let found = match &input.profile {
             // The library's lint on the profile's model, with the options it decides.
-            Some(profile) => profile.compat(&region.text, region.target),
-            None => {
-                let reading = region.reading(settings);
-                rotlang::dialect::compat(
-                    &region.text,
-                    region.target,
-                    &reading.model,
-                    reading.options,
-                )
-            }
+            Some(profile) => profile.compat(&input.text, input.target),
+            None => rotlang::dialect::compat(
+                &input.text,
+                input.target,
+                &input.reading.model,
+                input.reading.options,
+            ),
         };
         for d in found {
             if out.len() >= MAX_FINDINGS {
                 return out;
             }
-            out.push((index, d));
+            out.push((input.index, d));
         }
     }
     out
+}
+
+/// The findings cached for these settings, if computed already.
+pub fn cached_only(doc: &Document, settings: &ModelSettings) -> Option<Findings> {
+    let cached = doc.compat.lock().unwrap_or_else(|p| p.into_inner()).clone();
+    cached
+        .filter(|(s, _)| s == settings)
+        .map(|(_, found)| found)
+}
+
+/// Keep findings computed elsewhere (`run`) for the document and settings.
+pub fn store(doc: &Document, settings: &ModelSettings, found: Findings) {
+    *doc.compat.lock().unwrap_or_else(|p| p.into_inner()) = Some((*settings, found));
 }
 
 /// The findings of `findings`, computed once per document and settings: the diagnostics

@@ -14,6 +14,9 @@ pub const MAX_DIAGNOSTICS: usize = 200;
 
 pub const SOURCE: &str = "rotlang";
 
+/// The code `rotlang check` gives a profile value it does not use (`profile::value`).
+pub const DUPLICATE: &str = "profile::value";
+
 pub fn diagnostics(doc: &Document, uri: &Uri, pos: &Positions) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     if let Some((len, limit)) = doc.too_large {
@@ -40,6 +43,21 @@ pub fn diagnostics(doc: &Document, uri: &Uri, pos: &Positions) -> Vec<Diagnostic
             code: Some(NumberOrString::String("rotlang-lsp::json-syntax".into())),
             source: Some(SOURCE.into()),
             message: format!("not valid JSON: {message}; templates after this point may be missed"),
+            ..Diagnostic::default()
+        });
+    }
+    // A value a later one of the same key replaces: `rotlang check`'s warning, at its key.
+    for dup in doc.duplicates.iter().take(MAX_DIAGNOSTICS / 2) {
+        out.push(Diagnostic {
+            range: pos.range(dup.key_span),
+            severity: Some(DiagnosticSeverity::WARNING),
+            code: Some(NumberOrString::String(DUPLICATE.into())),
+            source: Some(SOURCE.into()),
+            message: dup.message.clone(),
+            related_information: Some(vec![DiagnosticRelatedInformation {
+                location: Location::new(uri.clone(), pos.range(dup.used)),
+                message: "the value that is used".into(),
+            }]),
             ..Diagnostic::default()
         });
     }

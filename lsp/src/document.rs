@@ -58,7 +58,7 @@ impl Kind {
 }
 
 /// One template inside a document.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct Region {
     /// The JSON key (`None` in `.rot` files).
     pub key: Option<String>,
@@ -114,6 +114,21 @@ impl Region {
     }
 }
 
+/// A template value that a later one of the same key replaces (OrcaSlicer's reader keeps
+/// the last; so does the library, `rotlang::profile`): it is not read, and gets the warning
+/// `rotlang check` gives it.
+#[derive(Debug)]
+pub struct Duplicate {
+    pub key: String,
+    pub key_span: Span,
+    /// Where its (unused) value lies in the document.
+    pub contents: Span,
+    /// The key of the value that is used.
+    pub used: Span,
+    /// The library's words (`rotlang check` prints the same).
+    pub message: String,
+}
+
 /// A value computed for some settings.
 type Cached<T> = (ModelSettings, Arc<T>);
 
@@ -126,6 +141,8 @@ pub struct Document {
     pub kind: Kind,
     pub version: i32,
     pub regions: Vec<Region>,
+    /// Template values that later ones of the same key replace (not in `regions`).
+    pub duplicates: Vec<Duplicate>,
     /// For JSON documents that are not valid JSON: where and why (reported once).
     pub json_error: Option<(usize, String)>,
     /// For documents over the size limit: their size and the limit. Their text is not
@@ -144,13 +161,53 @@ impl Document {
     /// Parse a document. `path`: the file's place, where a JSON preset's `inherits`
     /// parents are found (as the CLI finds them).
     pub fn new(text: String, kind: Kind, version: i32, path: Option<&Path>) -> Document {
+        Document::build(text, kind, version, path, None)
+    }
+
+    /// The document's next version, from the analysis of its previous one: each template
+    /// that is still there (same place in the list, same key) is re-read only where the
+    /// edit touched it (`crate::incremental`), with the same result as `new`.
+    pub fn update(
+        previous: Document,
+        text: String,
+        kind: Kind,
+        version: i32,
+        path: Option<&Path>,
+    ) -> Document {
+        Document::build(text, kind, version, path, Some(previous))
+    }
+
+    fn build(
+        text: String,
+        kind: Kind,
+        version: i32,
+        path: Option<&Path>,
+        previous: Option<Document>,
+    ) -> Document {
+        // The previous templates, by index, where the kind is the same.
+        let mut before: Vec<Option<Region>> = match previous {
+            Some(p) if p.kind == kind && p.too_large.is_none() => {
+                p.regions.into_iter().map(Some).collect()
+            }
+            _ => Vec::new(),
+        };
+        let mut parse = |index: usize, key: Option<&str>, target: Target, new: &str| match before
+            .get_mut(index)
+            .and_then(Option::take)
+        {
+            Some(old) if old.key.as_deref() == key && old.target == target => {
+                crate::incremental::reparse(&old.text, old.parse, new, target)
+            }
+            _ => rotlang::parse(new, target),
+        };
         let mut json_error = None;
+        let mut duplicates = Vec::new();
         let mut regions = match kind {
             Kind::Rot => vec![Region {
                 key: None,
                 key_span: None,
                 target: Target::Sparse,
-                parse: rotlang::parse(&text, Target::Sparse),
+                parse: parse(0, None, Target::Sparse, &text),
                 map: OffsetMap::identity(text.len()),
                 contents: Span::new(0, text.len()),
                 text: text.clone(),
@@ -170,10 +227,13 @@ impl Document {
                         json::find_templates(&text)
                     }
                 };
+                let (found, replaced) = last_of_each_key(&text, found);
+                duplicates = replaced;
                 found
                     .into_iter()
-                    .map(|t| Region {
-                        parse: rotlang::parse(&t.text, t.target),
+                    .enumerate()
+                    .map(|(i, t)| Region {
+                        parse: parse(i, Some(&t.key), t.target, &t.text),
                         key: Some(t.key),
                         key_span: Some(t.key_span),
                         target: t.target,
@@ -204,8 +264,26 @@ impl Document {
             kind,
             version,
             regions,
+            duplicates,
             json_error,
             too_large: None,
+            compat: Mutex::default(),
+            previews: Mutex::default(),
+        }
+    }
+
+    /// What `update` needs of this document, copied: for when the analysis is still in use
+    /// elsewhere (a request being answered on it), so it cannot be taken. Copying the parsed
+    /// instructions costs far less than parsing them again.
+    pub fn copy_for_update(&self) -> Document {
+        Document {
+            text: String::new(),
+            kind: self.kind,
+            version: self.version,
+            regions: self.regions.clone(),
+            duplicates: Vec::new(),
+            json_error: None,
+            too_large: self.too_large,
             compat: Mutex::default(),
             previews: Mutex::default(),
         }
@@ -218,6 +296,7 @@ impl Document {
             kind,
             version,
             regions: Vec::new(),
+            duplicates: Vec::new(),
             json_error: None,
             too_large: Some((len, limit)),
             compat: Mutex::default(),
@@ -267,6 +346,53 @@ impl Document {
             Kind::Json | Kind::Jsonc => json::escape(text),
         }
     }
+}
+
+/// The templates whose value is used (the last of each key, as the library reads a
+/// profile), and the others as duplicates, with the library's warning.
+fn last_of_each_key(
+    doc: &str,
+    found: Vec<json::JsonTemplate>,
+) -> (Vec<json::JsonTemplate>, Vec<Duplicate>) {
+    let mut last: std::collections::HashMap<&str, Span> = std::collections::HashMap::new();
+    for t in &found {
+        last.insert(&t.key, t.key_span);
+    }
+    let last: Vec<Option<Span>> = found
+        .iter()
+        .map(|t| {
+            last.get(t.key.as_str())
+                .copied()
+                .filter(|&l| l != t.key_span)
+        })
+        .collect();
+    if last.iter().all(Option::is_none) {
+        return (found, Vec::new());
+    }
+    // Built only when there is a duplicate (a line number is in the message).
+    let index = rotlang::LineIndex::new(doc);
+    let (mut used, mut replaced) = (Vec::new(), Vec::new());
+    for (t, later) in found.into_iter().zip(last) {
+        match later {
+            None => used.push(t),
+            Some(at) => {
+                // `rotlang::profile`'s words for the note `rotlang check` prints.
+                let line = index.line(at.start.min(doc.len())) + 1;
+                replaced.push(Duplicate {
+                    message: format!(
+                        "`{}` is set again later (line {line}): OrcaSlicer keeps the last \
+                         value, so this one is ignored (remove one of them)",
+                        t.key
+                    ),
+                    key: t.key,
+                    key_span: t.key_span,
+                    contents: t.contents,
+                    used: at,
+                });
+            }
+        }
+    }
+    (used, replaced)
 }
 
 /// The library's reading of a profile's text: its settings, with the `inherits` parents

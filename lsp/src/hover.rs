@@ -31,6 +31,34 @@ pub fn hover(
             })
             .map(|r| (r, usize::MAX))
     };
+    // On a value a later one of the same key replaces: the template that is used.
+    let on_duplicate = || {
+        let dup = doc.duplicates.iter().find(|d| {
+            (d.key_span.start <= offset && offset <= d.key_span.end)
+                || (d.contents.start <= offset && offset <= d.contents.end)
+        })?;
+        let used = doc.regions.iter().find(|r| r.key_span == Some(dup.used))?;
+        Some((dup, used))
+    };
+    if doc.region_at(offset).is_none()
+        && on_key().is_none()
+        && let Some((dup, used)) = on_duplicate()
+    {
+        let preview = doc.preview(doc.index_of(used)?, model)?;
+        let span = if dup.key_span.start <= offset && offset <= dup.key_span.end {
+            dup.key_span
+        } else {
+            dup.contents
+        };
+        let markdown = format!("{}\n\n{}", dup.message, template_hover(used, &preview));
+        return Some(Hover {
+            contents: HoverContents::Markup(MarkupContent {
+                kind: MarkupKind::Markdown,
+                value: markdown,
+            }),
+            range: Some(pos.range(span)),
+        });
+    }
     let (region, at) = doc.region_at(offset).or_else(on_key)?;
     let reading = region.reading(model);
     let preview = doc.preview(doc.index_of(region)?, model)?;
@@ -67,8 +95,13 @@ pub fn instruction_hover(
                 p.layers, preview.layers
             ));
             let mut budget = crate::preview::FIRST_RUN_BUDGET;
-            let run =
-                crate::preview::first_run(&region.parse.template, index, reading, &mut budget);
+            let run = crate::preview::first_run(
+                &region.parse.template,
+                index,
+                reading,
+                &mut budget,
+                preview.reach,
+            );
             if let Some(run) = run.or(p.first_block) {
                 let last = run.first_layer + run.layers - 1;
                 let layers = if run.layers == 1 {

@@ -39,8 +39,14 @@ pub fn inlay_hints(
             if hints.len() >= MAX_HINTS {
                 return hints;
             }
-            let run = first_run(&region.parse.template, i, &reading, &mut budget)
-                .or_else(|| preview.instructions.get(&i).and_then(|p| p.first_block));
+            let run = first_run(
+                &region.parse.template,
+                i,
+                &reading,
+                &mut budget,
+                preview.reach,
+            )
+            .or_else(|| preview.instructions.get(&i).and_then(|p| p.first_block));
             let label = match run {
                 Some(run) => turn_words(ins, &run),
                 None => "not reached".to_string(),

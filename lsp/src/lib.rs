@@ -11,6 +11,7 @@ pub mod diagnostics;
 pub mod document;
 pub mod formatting;
 pub mod hover;
+pub mod incremental;
 pub mod ini;
 pub mod inlay_hints;
 pub mod json;

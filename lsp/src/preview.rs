@@ -57,13 +57,41 @@ pub const FIRST_RUN_BUDGET: usize = 2_000_000;
 /// The first run of instruction `index` in the reading (see `rotlang::explain::first_run`,
 /// which evaluates without a base: the reading's base is added to its angles, as the
 /// evaluator adds it to every layer).
+///
+/// `reach`: the preview's (`Preview::reach`). Where the model's layers provably stay within
+/// the first instructions, the run is found on those alone, with the same result and the
+/// same charge to the budget (the whole template's length), in time independent of the
+/// template's length.
 pub fn first_run(
     template: &Template,
     index: usize,
     reading: &Reading,
     budget: &mut usize,
+    reach: Option<usize>,
 ) -> Option<Run> {
-    let run = rotlang::explain::first_run(template, index, &reading.model, budget)?;
+    // As the library: a dummy has no run, and costs nothing.
+    if template.instructions.get(index)?.is_dummy() {
+        return None;
+    }
+    let run = match reach {
+        Some(m) if m < template.instructions.len() => {
+            // The library charges the template's length first: the rest of it here.
+            *budget = budget.checked_sub(template.instructions.len() - m)?;
+            if index >= m {
+                // Never set up on this model (every layer is governed before `m - 1`), so
+                // marking it once changes nothing and it has no run; the library would
+                // still charge the budget for it.
+                *budget = budget.checked_sub(m)?;
+                *budget = budget.saturating_sub(reading.layers());
+                return None;
+            }
+            let prefix = Template {
+                instructions: template.instructions[..m].to_vec(),
+            };
+            rotlang::explain::first_run(&prefix, index, &reading.model, budget)?
+        }
+        _ => rotlang::explain::first_run(template, index, &reading.model, budget)?,
+    };
     let base = reading.options.base;
     Some(Run {
         from: run.from + base,
@@ -116,10 +144,45 @@ pub struct Preview {
     /// of every instruction: a 3 MB template has half a million, and a hover must not
     /// allocate for all of them when a model's layers reach a few.)
     pub instructions: BTreeMap<usize, InstructionPreview>,
+    /// `Some(m)`: the model's layers are all governed by the first `m - 1` instructions,
+    /// so what happens on them is what happens on the first `m` alone (the evaluator walks
+    /// the instructions in order and looks past the one it stands on only at the end of
+    /// the template, to cycle). `None`: the whole template was evaluated.
+    pub reach: Option<usize>,
 }
 
+/// The first prefix tried (instructions), and how much longer each next one is.
+const FIRST_PREFIX: usize = 1024;
+const PREFIX_GROWTH: usize = 16;
+
 impl Preview {
+    /// The preview of `template` in its reading. On a long template it is computed on its
+    /// first instructions where that is provably the same (see `reach`): preparing the
+    /// evaluator for half a million instructions takes longer than a hover may.
     pub fn compute(template: &Template, reading: &Reading) -> Preview {
+        let n = template.instructions.len();
+        let mut m = FIRST_PREFIX;
+        while m < n {
+            let prefix = Template {
+                instructions: template.instructions[..m].to_vec(),
+            };
+            let preview = Preview::compute_on(&prefix, reading);
+            // Every layer governed, each by one of the first `m - 1`: the walk never stood
+            // on the last of the prefix, where it would have cycled (or gone on).
+            let governed: usize = preview.instructions.values().map(|p| p.layers).sum();
+            let last = preview.instructions.keys().next_back().copied();
+            if governed == preview.layers && last.is_some_and(|i| i + 2 <= m) {
+                return Preview {
+                    reach: Some(m),
+                    ..preview
+                };
+            }
+            m = m.saturating_mul(PREFIX_GROWTH);
+        }
+        Preview::compute_on(template, reading)
+    }
+
+    fn compute_on(template: &Template, reading: &Reading) -> Preview {
         let mut instructions: BTreeMap<usize, InstructionPreview> = BTreeMap::new();
         let mut first = Vec::new();
         let mut head = Vec::new();
@@ -190,6 +253,7 @@ impl Preview {
             min,
             max,
             instructions,
+            reach: None,
         }
     }
 
@@ -248,6 +312,49 @@ mod tests {
         assert_eq!(fmt_num(90.0), "90");
         assert_eq!(fmt_turn(22.5), "+22.5°");
         assert_eq!(fmt_turn(-10.0), "-10°");
+    }
+
+    /// On long templates the preview and first runs come from a prefix: the same answers as
+    /// the whole template's (dummies, one-time marks, repeats and cycles included), and the
+    /// same charge to the budget.
+    #[test]
+    fn a_prefix_gives_the_whole_templates_answers() {
+        let model = ModelSettings::default();
+        let reading = Reading::of_settings(&model);
+        let mut from_a_prefix = 0;
+        for body in [
+            "+10L25%, -10l25%, 0, 90, ",
+            "45*, +5*, B!, +30/5mm*3, ",
+            "0*, 5*, 10*, ",
+            "+1!, +2!, +3!, ",
+            "0, 90, #14, +15R, ",
+        ] {
+            for count in [3, 400, 3000] {
+                let text = body.repeat(count) + "+7";
+                let template = rotlang::parse(&text, rotlang::Target::Sparse).template;
+                let fast = Preview::compute(&template, &reading);
+                let full = Preview::compute_on(&template, &reading);
+                from_a_prefix += usize::from(fast.reach.is_some());
+                assert_eq!(
+                    Preview {
+                        reach: None,
+                        ..fast.clone()
+                    },
+                    full,
+                    "{body} × {count}"
+                );
+                for index in [0, 1, 2, 5, 900, template.instructions.len() - 1] {
+                    let (mut a, mut b) = (FIRST_RUN_BUDGET, FIRST_RUN_BUDGET);
+                    assert_eq!(
+                        first_run(&template, index, &reading, &mut a, fast.reach),
+                        first_run(&template, index, &reading, &mut b, None),
+                        "{body} × {count}, instruction {index}"
+                    );
+                    assert_eq!(a, b);
+                }
+            }
+        }
+        assert!(from_a_prefix >= 5, "{from_a_prefix}");
     }
 
     #[test]

@@ -106,13 +106,7 @@ impl Backend {
             // computed on the settings' model.
             let uris: Vec<Uri> = self.state().documents.keys().cloned().collect();
             for uri in uris {
-                let doc = {
-                    let state = self.state();
-                    state.documents.get(&uri).and_then(Open::current).cloned()
-                };
-                if let Some(doc) = doc {
-                    self.publish(uri, doc).await;
-                }
+                self.schedule_publish(uri);
             }
         }
         if refresh {
@@ -175,23 +169,104 @@ impl Backend {
         });
     }
 
+    /// Publish the diagnostics of a document's latest analysis, in the background: one
+    /// publishing task per document, which takes the latest analysis each time round
+    /// (the OrcaSlicer lint of a long profile takes seconds: analyses go on meanwhile, and
+    /// the versions analysed in between are never linted).
+    fn schedule_publish(&self, uri: Uri) {
+        {
+            let mut state = self.state();
+            let Some(open) = state.documents.get_mut(&uri) else {
+                return;
+            };
+            if open.publishing {
+                return; // the running task takes the latest when it is done
+            }
+            open.publishing = true;
+        }
+        let this = self.clone();
+        tokio::spawn(async move { this.publish_task(uri).await });
+    }
+
+    async fn publish_task(&self, uri: Uri) {
+        loop {
+            let next = {
+                let mut state = self.state();
+                let settings = state.model;
+                let Some(open) = state.documents.get_mut(&uri) else {
+                    return;
+                };
+                let doc = open
+                    .current()
+                    .filter(|d| open.published != Some((d.version, settings)))
+                    .cloned();
+                if doc.is_none() {
+                    open.publishing = false;
+                }
+                doc.map(|d| (d, settings))
+            };
+            let Some((doc, settings)) = next else {
+                return;
+            };
+            let version = doc.version;
+            self.publish(uri.clone(), doc).await;
+            if let Some(open) = self.state().documents.get_mut(&uri) {
+                open.published = Some((version, settings));
+            }
+        }
+    }
+
     /// Publish a document's diagnostics (computed off the main thread: a large document
     /// takes a while), unless a newer version has arrived meanwhile: it publishes its own.
     async fn publish(&self, uri: Uri, doc: Arc<Document>) {
-        let (settings, encoding) = {
+        let (settings, encoding, latest) = {
             let state = self.state();
-            (state.model, state.encoding)
+            let latest = state.documents.get(&uri).map(|o| o.latest.clone());
+            (state.model, state.encoding, latest)
+        };
+        let version = doc.version;
+        // A newer text has come: its analysis publishes (this one would not be shown).
+        let stale = move || {
+            latest
+                .as_ref()
+                .is_none_or(|l| l.load(Ordering::Relaxed) != version)
         };
         let job = {
-            let (uri, doc) = (uri.clone(), doc.clone());
+            let uri = uri.clone();
             move || {
-                guard(|| {
+                guard(move || {
+                    let mut diags = {
+                        let pos = Positions::new(&doc.text, encoding);
+                        let mut diags = diagnostics::diagnostics(&doc, &uri, &pos);
+                        if let Some(found) = crate::compat::cached_only(&doc, &settings) {
+                            diags.extend(crate::compat::diagnostics(&doc, &found, &uri, &pos));
+                            return Some(diags);
+                        }
+                        diags
+                    };
+                    // The lint reads its own copy of the templates: the analysis is not
+                    // held meanwhile, so the next one can be made from it in place.
+                    if stale() {
+                        return None; // a lint of seconds for nothing
+                    }
+                    let inputs = crate::compat::inputs(&doc, &settings);
+                    let weak = Arc::downgrade(&doc);
+                    drop(doc);
+                    let large = crate::compat::size(&inputs) > LARGE;
+                    let found = Arc::new(crate::compat::run(inputs));
+                    if large {
+                        // The lint of a long template allocates about 50 bytes per byte on
+                        // this thread: handed back now, not kept in its arena.
+                        crate::memory::release();
+                    }
+                    // Gone: a newer analysis was made from it, and publishes its own.
+                    let doc = weak.upgrade()?;
+                    crate::compat::store(&doc, &settings, found.clone());
                     let pos = Positions::new(&doc.text, encoding);
-                    let mut diags = diagnostics::diagnostics(&doc, &uri, &pos);
-                    let found = crate::compat::cached(&doc, &settings);
                     diags.extend(crate::compat::diagnostics(&doc, &found, &uri, &pos));
-                    diags
+                    Some(diags)
                 })
+                .flatten()
             }
         };
         let Ok(Some(diags)) = tokio::task::spawn_blocking(job).await else {
@@ -202,9 +277,9 @@ impl Backend {
             .documents
             .get(&uri)
             .map(|o| (o.version, o.out_of_sync.is_some()));
-        if current == Some((doc.version, false)) {
+        if current == Some((version, false)) {
             self.client
-                .publish_diagnostics(uri, diags, Some(doc.version))
+                .publish_diagnostics(uri, diags, Some(version))
                 .await;
         }
     }
@@ -244,37 +319,42 @@ impl Backend {
                     open.busy = false;
                     return;
                 }
-                // The analysis of an older text goes now: every request waits for the
-                // latest anyway, and memory is bounded by one analysed document.
-                let stale = open.analysed.take();
+                // The analysis of an older text leaves the store now (every request waits
+                // for the latest anyway): it becomes the base of the next one, which
+                // re-reads only what the edits changed, and memory stays that of about one
+                // analysed document.
+                let previous = open.analysed.take();
                 let job = (
                     open.text.clone(),
                     open.kind,
                     open.version,
                     open.path.clone(),
                 );
-                (job, limit, stale, settings, open.latest.clone())
+                (job, limit, previous, settings, open.latest.clone())
             };
-            let ((text, kind, version, path), limit, stale, settings, latest) = job;
+            let ((text, kind, version, path), limit, previous, settings, latest) = job;
             let analysis = tokio::task::spawn_blocking(move || {
-                // Freed here, not on the thread that reads messages; and handed back to
-                // the system when large, or each worker thread's arena would keep its own
-                // document's worth.
-                let large = stale.as_ref().is_some_and(|d| d.text.len() > LARGE);
-                drop(stale);
-                if large {
-                    crate::memory::release();
-                }
-                guard(|| match text {
+                // The previous analysis is reused in place once nothing else holds it: a
+                // request being answered on it, or its diagnostics being made, let go of it
+                // within milliseconds. Should one not, what it parsed is copied.
+                let previous = previous.map(take_when_free);
+                let large = previous.as_ref().is_some_and(|d| d.text.len() > LARGE);
+                let doc = guard(|| match text {
                     Some(text) if text.len() <= limit => {
                         // The text is shared with the store; the document owns a copy only
                         // while it is the latest analysis.
-                        Document::new(String::clone(&text), kind, version, path.as_deref())
+                        let text = String::clone(&text);
+                        match previous {
+                            Some(previous) => {
+                                Document::update(previous, text, kind, version, path.as_deref())
+                            }
+                            None => Document::new(text, kind, version, path.as_deref()),
+                        }
                     }
                     Some(text) => Document::too_large(text.len(), limit, kind, version),
                     None => Document::too_large(0, limit, kind, version),
-                })
-                .inspect(|doc| {
+                });
+                doc.inspect(|doc| {
                     // Ready for the hovers to come, unless a newer text is waiting.
                     if latest.load(Ordering::Relaxed) != version {
                         return;
@@ -283,13 +363,17 @@ impl Backend {
                         let _ = guard(|| doc.preview(index, &settings));
                     }
                 })
+                .map(|doc| (doc, large))
             })
             .await;
-            let doc = match analysis {
-                Ok(Some(doc)) => Arc::new(doc),
+            let (doc, large) = match analysis {
+                Ok(Some((doc, large))) => (Arc::new(doc), large),
                 // A panic (a bug, reported on stderr): this version shows no templates;
                 // the next edit tries again.
-                _ => Arc::new(Document::new(String::new(), kind, version, None)),
+                _ => (
+                    Arc::new(Document::new(String::new(), kind, version, None)),
+                    false,
+                ),
             };
             let latest = {
                 let mut state = self.state();
@@ -310,8 +394,15 @@ impl Backend {
                 latest
             };
             self.analysed.send_modify(|n| *n += 1);
+            drop(doc);
+            if large {
+                // What was left of the previous analysis (freed on a worker thread) handed
+                // back to the system, or each worker's arena would keep a document's worth;
+                // after the new analysis is in place, so no hover waits for it.
+                tokio::task::spawn_blocking(crate::memory::release);
+            }
             if latest {
-                self.publish(uri.clone(), doc).await;
+                self.schedule_publish(uri.clone());
             }
         }
     }
@@ -370,6 +461,26 @@ impl Backend {
         }
     }
 }
+
+/// The document of `doc` once this is its last handle, waiting up to `TAKE_WAIT` for
+/// the others to go; else a copy of what an update needs (`Document::copy_for_update`).
+fn take_when_free(mut doc: Arc<Document>) -> Document {
+    let started = std::time::Instant::now();
+    loop {
+        match Arc::try_unwrap(doc) {
+            Ok(doc) => return doc,
+            Err(shared) if started.elapsed() < TAKE_WAIT => {
+                doc = shared;
+                std::thread::sleep(std::time::Duration::from_millis(1));
+            }
+            Err(shared) => return shared.copy_for_update(),
+        }
+    }
+}
+
+/// How long an analysis waits for others to let go of the previous one (a copy of a 4 MB
+/// template's instructions is 190 MB and takes about as long).
+const TAKE_WAIT: std::time::Duration = std::time::Duration::from_millis(50);
 
 /// Closing a document this large (bytes) hands its memory back to the system.
 const LARGE: usize = 1 << 20;

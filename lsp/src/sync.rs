@@ -37,6 +37,10 @@ pub struct Open {
     pub analysed: Option<Arc<Document>>,
     /// An analysis task runs for this document (it picks up the latest text when done).
     pub busy: bool,
+    /// A publishing task runs for this document (it picks up the latest analysis).
+    pub publishing: bool,
+    /// The version and settings whose diagnostics were last published (or found stale).
+    pub published: Option<(i32, crate::settings::ModelSettings)>,
     /// Why the text is no longer the client's, if an edit could not be applied.
     pub out_of_sync: Option<String>,
     /// `version`, readable by an analysis in progress without the server's lock: work for
@@ -53,6 +57,8 @@ impl Open {
             path,
             analysed: None,
             busy: false,
+            publishing: false,
+            published: None,
             out_of_sync: None,
             latest: Arc::new(AtomicI32::new(version)),
         }

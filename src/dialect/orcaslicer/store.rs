@@ -194,3 +194,83 @@ impl Tokens {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every token as 10.3 cuts the text, decoded once (what the reader kept before).
+    fn decoded(text: &str) -> Vec<Token> {
+        let bytes = text.as_bytes();
+        let mut out = Vec::new();
+        if bytes.first().is_some_and(|&b| is_separator(b)) {
+            out.push(Token::new(bytes, Span::new(0, 0)));
+        }
+        let mut start = None;
+        for (i, &b) in bytes.iter().chain([&b',']).enumerate() {
+            match (is_separator(b), start) {
+                (false, None) => start = Some(i),
+                (true, Some(s)) => {
+                    out.push(Token::new(bytes, Span::new(s, i)));
+                    start = None;
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn tokens_decode_as_when_decoded_once() {
+        let long = format!("+{}L{}%!", "1".repeat(40), "2".repeat(33));
+        let texts = [
+            "+10L25%, -10l25%",
+            ", +5*0, 7!",
+            " \t+5",
+            "+5,",
+            &format!("{long}, +3, {long}"),
+            &format!(", {long}"),
+            &format!("+1 {}", "9".repeat(32)),
+            &format!("+1 {}", "9".repeat(33)),
+            &"0*0, +1!, ".repeat(50),
+        ];
+        for text in texts {
+            let tokens = Tokens::new(text);
+            let want = decoded(text);
+            assert_eq!(tokens.len(), want.len(), "{text:?}");
+            for (k, w) in want.iter().enumerate() {
+                assert_eq!(
+                    format!("{:?}", tokens.get(k)),
+                    format!("{w:?}"),
+                    "{text:?} #{k}"
+                );
+            }
+        }
+    }
+
+    /// The union-find gives the live token after each one, round the circle, as a linked
+    /// list of the live tokens does, whatever is spent and in which order.
+    #[test]
+    fn next_live_follows_the_live_tokens() {
+        let n = 37;
+        let text = "+1, ".repeat(n);
+        let mut tokens = Tokens::new(&text);
+        let mut live = vec![true; n];
+        // A fixed order of spending that is neither ascending nor descending.
+        for step in 0..n - 1 {
+            let k = (step * 17 + 5) % n;
+            tokens.spend(k);
+            live[k] = false;
+            assert_eq!(tokens.live(), live.iter().filter(|&&l| l).count());
+            for from in 0..n {
+                let want = (1..=n).map(|d| (from + d) % n).find(|&j| live[j]).unwrap();
+                assert_eq!(
+                    tokens.next_live(from),
+                    want,
+                    "after {step} spends, from {from}"
+                );
+                assert_eq!(tokens.is_spent(from), !live[from]);
+            }
+        }
+    }
+}

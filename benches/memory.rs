@@ -289,8 +289,8 @@ fn main() {
             }
             // The bindings, each running on a script of its language.
             for (command, way) in [
-                ("js readProfile .rot", bindings::js(root, &path)),
-                ("js readProfile .json", bindings::js(root, json)),
+                ("node readProfile .rot", bindings::js(root, &path)),
+                ("node readProfile .json", bindings::js(root, json)),
                 ("python check", bindings::python(root, &path)),
             ] {
                 if wanted(command) {

@@ -184,6 +184,8 @@ fn list(var: &str) -> Option<Vec<String>> {
 }
 
 fn main() {
+    // This binary run again as the language server's client (one measure), if it is.
+    lsp::client();
     // `cargo bench` passes `--bench`; a filter argument is ignored.
     let sizes: Vec<usize> = list("ROTLANG_MEMORY_SIZES")
         .map(|l| l.iter().filter_map(|s| s.parse().ok()).collect())
@@ -277,9 +279,7 @@ fn main() {
             ] {
                 if wanted(command) {
                     let peak = match &server {
-                        Some(server) => std::fs::read_to_string(file)
-                            .map_err(|e| e.to_string())
-                            .and_then(|text| lsp::peak(server, uri, language, &text)),
+                        Some(server) => lsp::measure(server, uri, language, file),
                         None => Err(
                             "rotlang-lsp not built (cargo build --release -p rotlang-lsp)".into(),
                         ),

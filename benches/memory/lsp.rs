@@ -76,10 +76,56 @@ fn wait_for(rx: &Receiver<Value>, what: &str, pred: impl Fn(&Value) -> bool) -> 
     }
 }
 
-/// Peak RSS of the server that opens `text` as the document `uri` in `language`
-/// (`rotlang` or `json`), analyses it and shuts down.
+/// The variable that makes the bench binary the client of one measure (see [`measure`]).
+const CLIENT: &str = "ROTLANG_MEMORY_LSP_CLIENT";
+
+/// Peak RSS of the server that opens `file` as the document `uri` in `language`
+/// (`rotlang` or `json`), analyses it and shuts down. The client is this binary run again
+/// (see [`client`]): the document and its message are megabytes, and a child spawned by
+/// the bench shares its memory until `exec`, so its peak RSS counts the bench's own peak:
+/// held here, they would inflate every later measure.
+pub fn measure(server: &Path, uri: &str, language: &str, file: &Path) -> Result<u64, String> {
+    let me = std::env::current_exe().map_err(|e| e.to_string())?;
+    let spec = [
+        server.display().to_string(),
+        uri.to_owned(),
+        language.to_owned(),
+        file.display().to_string(),
+    ];
+    let out = Command::new(me)
+        .env(CLIENT, spec.join("\n"))
+        .stdin(Stdio::null())
+        .stderr(Stdio::inherit())
+        .output()
+        .map_err(|e| e.to_string())?;
+    let said = String::from_utf8_lossy(&out.stdout);
+    match said.trim().strip_prefix("peak ") {
+        Some(n) => n.parse().map_err(|_| format!("the client said {said:?}")),
+        None => Err(said.trim().to_owned()),
+    }
+}
+
+/// In the client run (the variable set): measures, prints `peak BYTES` or the reason, and
+/// exits.
+pub fn client() {
+    let Ok(spec) = std::env::var(CLIENT) else {
+        return;
+    };
+    let parts: Vec<&str> = spec.split('\n').collect();
+    let [server, uri, language, file] = parts[..] else {
+        println!("a malformed {CLIENT}");
+        std::process::exit(0);
+    };
+    match peak(Path::new(server), uri, language, Path::new(file)) {
+        Ok(n) => println!("peak {n}"),
+        Err(why) => println!("{why}"),
+    }
+    std::process::exit(0);
+}
+
+/// The measure itself: the server is spawned first, while this process is small.
 #[cfg(unix)]
-pub fn peak(server: &Path, uri: &str, language: &str, text: &str) -> Result<u64, String> {
+fn peak(server: &Path, uri: &str, language: &str, file: &Path) -> Result<u64, String> {
     let mut child = Command::new(server)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
@@ -91,6 +137,7 @@ pub fn peak(server: &Path, uri: &str, language: &str, text: &str) -> Result<u64,
     let rx = messages(child.stdout.take().expect("piped"));
     let talk = |stdin: &mut ChildStdin| -> Result<(), String> {
         let io = |e: std::io::Error| e.to_string();
+        let text = std::fs::read_to_string(file).map_err(io)?;
         // The default limit (4 MiB) would refuse the document: raised to the transport's.
         send(
             stdin,
@@ -140,6 +187,6 @@ pub fn peak(server: &Path, uri: &str, language: &str, text: &str) -> Result<u64,
 }
 
 #[cfg(not(unix))]
-pub fn peak(_: &Path, _: &str, _: &str, _: &str) -> Result<u64, String> {
+fn peak(_: &Path, _: &str, _: &str, _: &Path) -> Result<u64, String> {
     Err("not measured on this platform".into())
 }

@@ -35,7 +35,7 @@ const MIB: usize = 1 << 20;
 const TARGET_RATIO: f64 = 16.0;
 
 /// The inputs: a repeated unit, cut to the size.
-const KINDS: [(&str, &str); 5] = [
+const KINDS: [(&str, &str); 6] = [
     // What a pasted profile or template looks like, at scale.
     ("templates", "+10L25%, -10l25%, 0, 90, #5, +22.5/50%, "),
     // Legal, a warning each (capped): the IR without the diagnostics.
@@ -44,6 +44,9 @@ const KINDS: [(&str, &str); 5] = [
     ("errors", "X, +30/5/5, "),
     // The shortest instructions there are: the most instructions per byte.
     ("minimal", "0 "),
+    // One-time instructions and dummies: the evaluator keeps links and walks per
+    // instruction for these (what `expand` and the OrcaSlicer lint cost most on).
+    ("dummies", "+1!, 0*0, "),
     // Some of everything, as a pasted log file would be.
     (
         "log",

@@ -39,6 +39,7 @@ mod tests;
 
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::hash::{BuildHasherDefault, Hasher};
 
 use store::Tokens;
 
@@ -604,12 +605,37 @@ enum ChainStart {
     Absolute(f64),
 }
 
+/// A token index's hash, one multiplication (Fibonacci hashing): the chains are looked up
+/// on every walk, where SipHash doubled the cost of a walk of dummies.
+#[derive(Clone, Copy, Debug, Default)]
+struct IndexHash(u64);
+
+impl Hasher for IndexHash {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(self.0 ^ u64::from(b));
+        }
+    }
+
+    fn write_u64(&mut self, n: u64) {
+        self.0 = (self.0 ^ n).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+
+    fn write_usize(&mut self, n: usize) {
+        self.write_u64(n as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
 /// The state of the metalanguage reading (10.3), kept across layers.
 #[derive(Clone, Debug)]
 struct Meta {
     tokens: Tokens,
     /// The walk remembered from a token, by token: few tokens start long walks.
-    chains: HashMap<usize, Chain>,
+    chains: HashMap<usize, Chain, BuildHasherDefault<IndexHash>>,
     k: usize,
     start: f64,
     add: f64,
@@ -629,7 +655,7 @@ impl Meta {
     fn new(text: &str, _model: &Model) -> Meta {
         Meta {
             tokens: Tokens::new(text),
-            chains: HashMap::new(),
+            chains: HashMap::default(),
             k: 0,
             start: 0.0,
             add: 0.0,

@@ -80,7 +80,13 @@ pub(super) struct Tokens {
     /// live; index `len` stands for the end and is always "live").
     ahead: Offsets,
     live: usize,
+    /// The tokens decoded last, by index modulo its size: a template of a few hundred
+    /// tokens, walked on every layer, decodes each once.
+    recent: Box<[Option<(usize, Token)>]>,
 }
+
+/// Entries of [`Tokens::recent`], at most (16 KiB).
+const RECENT: usize = 256;
 
 impl Tokens {
     /// 10.3: split at runs of whitespace and commas; a run at the start yields an empty
@@ -130,6 +136,7 @@ impl Tokens {
             long,
             ahead,
             live: n,
+            recent: vec![None; n.clamp(1, RECENT)].into(),
         }
     }
 
@@ -144,7 +151,19 @@ impl Tokens {
 
     /// Token `k`, decoded.
     #[inline]
-    pub(super) fn get(&self, k: usize) -> Token {
+    pub(super) fn get(&mut self, k: usize) -> Token {
+        let slot = k % self.recent.len();
+        if let Some((at, token)) = self.recent[slot]
+            && at == k
+        {
+            return token;
+        }
+        let token = self.decode(k);
+        self.recent[slot] = Some((k, token));
+        token
+    }
+
+    fn decode(&self, k: usize) -> Token {
         let start = self.starts.get(k);
         let rest = &self.text[start..];
         match rest.iter().take(LONG + 1).position(|&b| is_separator(b)) {
@@ -235,10 +254,11 @@ mod tests {
             &"0*0, +1!, ".repeat(50),
         ];
         for text in texts {
-            let tokens = Tokens::new(text);
+            let mut tokens = Tokens::new(text);
             let want = decoded(text);
             assert_eq!(tokens.len(), want.len(), "{text:?}");
-            for (k, w) in want.iter().enumerate() {
+            // Twice: decoded, then from the recent ones.
+            for (k, w) in want.iter().enumerate().chain(want.iter().enumerate()) {
                 assert_eq!(
                     format!("{:?}", tokens.get(k)),
                     format!("{w:?}"),

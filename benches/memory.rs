@@ -10,18 +10,32 @@
 //! an `.ini` line and a `.3mf` project's settings (a 16 MiB template is more than a 3mf
 //! entry may inflate to: that run measures the refusal).
 //!
+//! The OrcaSlicer lint is measured with `check --compat orcaslicer -f` (by default `check`
+//! runs it on inputs up to 64 KiB only). The other ways of reading a template are measured
+//! where they are built: the language server (`rotlang-lsp` beside `rotlang`: `cargo build
+//! --release -p rotlang-lsp` first, or `ROTLANG_LSP`) opening the `.rot` and the `.json`;
+//! JavaScript's `readProfile` on both (after `node bindings/js/build.mjs`); Python's
+//! `check` on the template (`ROTLANG_PYTHON`, a Python with the package installed; it has
+//! no profile reader). A way that is not built is named with the reason, not measured.
+//!
 //! `ROTLANG_MEMORY_SIZES=1,4` picks sizes (MiB); `ROTLANG_MEMORY_KINDS=templates,minimal`
-//! picks inputs.
+//! picks inputs; `ROTLANG_MEMORY_RUNS=lsp,compat` the runs whose label contains one of
+//! the words.
 
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
+
+#[path = "memory/bindings.rs"]
+mod bindings;
+#[path = "memory/lsp.rs"]
+mod lsp;
 
 const MIB: usize = 1 << 20;
 /// Peak RSS over text size, at most.
 const TARGET_RATIO: f64 = 16.0;
 
 /// The inputs: a repeated unit, cut to the size.
-const KINDS: [(&str, &str); 5] = [
+const KINDS: [(&str, &str); 6] = [
     // What a pasted profile or template looks like, at scale.
     ("templates", "+10L25%, -10l25%, 0, 90, #5, +22.5/50%, "),
     // Legal, a warning each (capped): the IR without the diagnostics.
@@ -30,6 +44,9 @@ const KINDS: [(&str, &str); 5] = [
     ("errors", "X, +30/5/5, "),
     // The shortest instructions there are: the most instructions per byte.
     ("minimal", "0 "),
+    // One-time instructions and dummies: the evaluator keeps links and walks per
+    // instruction for these (what `expand` and the OrcaSlicer lint cost most on).
+    ("dummies", "+1!, 0*0, "),
     // Some of everything, as a pasted log file would be.
     (
         "log",
@@ -38,7 +55,8 @@ const KINDS: [(&str, &str); 5] = [
 ];
 
 #[cfg(unix)]
-fn peak_rss_bytes(cmd: &mut Command, stdin: Option<&std::path::Path>) -> Option<u64> {
+/// The peak RSS of `cmd` (stdin from `stdin`) and its exit code (-1 when killed by a signal).
+fn peak_rss_bytes(cmd: &mut Command, stdin: Option<&std::path::Path>) -> Option<(u64, i32)> {
     let input = match stdin {
         Some(path) => Stdio::from(std::fs::File::open(path).ok()?),
         None => Stdio::null(),
@@ -55,11 +73,16 @@ fn peak_rss_bytes(cmd: &mut Command, stdin: Option<&std::path::Path>) -> Option<
     let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
     // SAFETY: `pid` is our child, not yet waited for; the pointers are to live locals.
     let reaped = unsafe { libc::wait4(pid, &mut status, 0, &mut usage) };
-    (reaped == pid).then_some(usage.ru_maxrss as u64 * 1024)
+    let code = if libc::WIFEXITED(status) {
+        libc::WEXITSTATUS(status)
+    } else {
+        -1
+    };
+    (reaped == pid).then_some((usage.ru_maxrss as u64 * 1024, code))
 }
 
 #[cfg(not(unix))]
-fn peak_rss_bytes(_: &mut Command, _: Option<&std::path::Path>) -> Option<u64> {
+fn peak_rss_bytes(_: &mut Command, _: Option<&std::path::Path>) -> Option<(u64, i32)> {
     None
 }
 
@@ -164,6 +187,8 @@ fn list(var: &str) -> Option<Vec<String>> {
 }
 
 fn main() {
+    // This binary run again as the language server's client (one measure), if it is.
+    lsp::client();
     // `cargo bench` passes `--bench`; a filter argument is ignored.
     let sizes: Vec<usize> = list("ROTLANG_MEMORY_SIZES")
         .map(|l| l.iter().filter_map(|s| s.parse().ok()).collect())
@@ -178,9 +203,17 @@ fn main() {
     let dir = std::env::temp_dir().join(format!("rotlang-memory-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a temp dir");
     let binary = env!("CARGO_BIN_EXE_rotlang");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let server = lsp::binary(std::path::Path::new(binary));
+    let wanted = list("ROTLANG_MEMORY_RUNS");
+    let wanted = |label: &str| {
+        wanted
+            .as_ref()
+            .is_none_or(|words| words.iter().any(|w| label.contains(w.as_str())))
+    };
     let mut over = 0;
     println!(
-        "{:<10} {:>5} {:<13} {:>10} {:>7}",
+        "{:<10} {:>5} {:<28} {:>10} {:>7}",
         "input", "MiB", "command", "peak RSS", "ratio"
     );
     for (name, unit) in &kinds {
@@ -200,16 +233,23 @@ fn main() {
             let mut cmd = Command::new(binary);
             cmd.arg("check");
             runs.push(("check stdin".to_owned(), cmd, Some(&path)));
+            let mut cmd = Command::new(binary);
+            cmd.args(["check", "--compat", "orcaslicer", "--file"])
+                .arg(&path);
+            runs.push(("check --compat orcaslicer -f".to_owned(), cmd, None));
             let profiles = profile_runs(&dir, name, mib, unit);
             for (label, file) in &profiles {
                 let mut cmd = Command::new(binary);
                 cmd.arg("check").arg(file);
                 runs.push((label.clone(), cmd, None));
             }
-            for (command, mut cmd, stdin) in runs {
-                let Some(peak) = peak_rss_bytes(&mut cmd, stdin) else {
-                    println!("{name:<10} {mib:>5} {command:<13} (not measured on this platform)");
-                    continue;
+            let json = &profiles[0].1;
+            let mut report = |command: &str, peak: Result<u64, String>| {
+                let peak = match peak {
+                    Ok(peak) => peak,
+                    Err(why) => {
+                        return println!("{name:<10} {mib:>5} {command:<28} (not measured: {why})");
+                    }
                 };
                 let ratio = peak as f64 / len as f64;
                 let flag = if ratio > TARGET_RATIO {
@@ -219,9 +259,51 @@ fn main() {
                     ""
                 };
                 println!(
-                    "{name:<10} {mib:>5} {command:<13} {:>7.1} MB {ratio:>6.1}x{flag}",
+                    "{name:<10} {mib:>5} {command:<28} {:>7.1} MB {ratio:>6.1}x{flag}",
                     peak as f64 / 1e6
                 );
+            };
+            for (command, mut cmd, stdin) in runs {
+                if wanted(&command) {
+                    // `check` exits 1 on errors (the `errors` input has them): a signal is
+                    // what fails the run (an allocation refused, the OOM killer).
+                    let peak = match peak_rss_bytes(&mut cmd, stdin) {
+                        Some((peak, code)) if code >= 0 => Ok(peak),
+                        Some(_) => Err("killed by a signal".to_owned()),
+                        None => Err("not on this platform".to_owned()),
+                    };
+                    report(&command, peak);
+                }
+            }
+            // The language server, on the template as a document and in a preset.
+            for (command, file, uri, language) in [
+                ("lsp .rot", &path, "file:///big.rot", "rotlang"),
+                ("lsp .json", json, "file:///big.json", "json"),
+            ] {
+                if wanted(command) {
+                    let peak = match &server {
+                        Some(server) => lsp::measure(server, uri, language, file),
+                        None => Err(
+                            "rotlang-lsp not built (cargo build --release -p rotlang-lsp)".into(),
+                        ),
+                    };
+                    report(command, peak);
+                }
+            }
+            // The bindings, each running on a script of its language.
+            for (command, way) in [
+                ("node readProfile .rot", bindings::js(root, &path)),
+                ("node readProfile .json", bindings::js(root, json)),
+                ("python check", bindings::python(root, &path)),
+            ] {
+                if wanted(command) {
+                    let peak = way.and_then(|mut cmd| match peak_rss_bytes(&mut cmd, None) {
+                        Some((peak, 0)) => Ok(peak),
+                        Some((_, code)) => Err(format!("the script failed ({code})")),
+                        None => Err("not on this platform".into()),
+                    });
+                    report(command, peak);
+                }
             }
             let _ = std::fs::remove_file(&path);
             for (_, file) in profiles {

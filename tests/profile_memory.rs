@@ -95,3 +95,39 @@ fn a_long_template_costs_the_same_in_every_file() {
     assert!(peak <= 16 * template.len() as u64, "stdin: {peak}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 22 item 1: the OrcaSlicer lint (`--compat orcaslicer`) on a long template, named
+/// with `-f` and in a preset, keeps the bound too. It built the whole IR
+/// and decoded every OrcaSlicer token up front: 50× the text on this template, 67× on
+/// `0/5, 400, …` (short tokens), 137× on `0 0 0 …` (one piece of a million angles).
+#[test]
+fn the_orcaslicer_lint_costs_at_most_16_times_the_template() {
+    let dir = std::env::temp_dir().join(format!("rotlang-memory-compat-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // Templates without errors: the lint runs on those only.
+    for (name, unit) in [
+        ("templates", "+10L25%, -10l25%, 0, 90, #5, +22.5/50%, "),
+        ("short", "0/5, 400, "),
+        ("spaces", "0 "),
+    ] {
+        let template = unit.repeat((2 << 20) / unit.len());
+        let len = template.len() as u64;
+        let rot = dir.join(format!("{name}.rot"));
+        std::fs::write(&rot, &template).unwrap();
+        let json = dir.join(format!("{name}.json"));
+        std::fs::write(
+            &json,
+            format!("{{\"sparse_infill_rotate_template\": \"{template}\"}}"),
+        )
+        .unwrap();
+        let (rot, json) = (rot.display().to_string(), json.display().to_string());
+        for args in [
+            vec!["check", "--compat", "orcaslicer", "-f", &rot],
+            vec!["check", "--compat", "orcaslicer", &json],
+        ] {
+            let peak = peak_rss(&args, None);
+            assert!(peak <= 16 * len, "{name}: {args:?}: {peak} bytes for {len}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -98,10 +98,23 @@ pub fn parse_layers<'a>(
     model: &'a Model,
     options: Options,
 ) -> (crate::Parse, Layers<'a>) {
+    parse_layers_with(text, target, model, options, |_| {})
+}
+
+/// [`parse_layers`], showing each instruction to `inspect` as it is parsed (the compat
+/// lint's rules read them in the same pass, without keeping them).
+pub(crate) fn parse_layers_with<'a>(
+    text: &str,
+    target: crate::Target,
+    model: &'a Model,
+    options: Options,
+    mut inspect: impl FnMut(&crate::Instruction),
+) -> (crate::Parse, Layers<'a>) {
     // An exact upper bound on the instructions: the steps are allocated once, not grown.
     let chunks = crate::syntax::count_chunks(text);
     let mut program = engine::ProgramBuilder::with_capacity(chunks);
     let collected = crate::syntax::parse_each(text, target, |ins| {
+        inspect(&ins);
         program.push(engine::Step::new(&ins, model));
     });
     let layers = Layers {

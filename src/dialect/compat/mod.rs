@@ -31,7 +31,7 @@ use super::{HANGS, NAN, UNDEFINED};
 use crate::diagnostic::{Diagnostic, Span};
 use crate::eval::{self, Layer, Model, Options};
 use crate::ir::{AngleValue, CountKind, Fill, Instruction, Joint, Sign, Target};
-use rules::rules;
+use rules::{instruction_rules, rules, text_rules};
 
 /// OrcaSlicer's angle or fill differs from rotlang's on some layer of the model.
 pub const DIFFERS: &str = "orcaslicer::differs";
@@ -85,17 +85,33 @@ pub const CODES: [&str; 12] = [
 /// those: where the template has errors, only OrcaSlicer's own problems and the rules are
 /// reported).
 pub fn compat(text: &str, target: Target, model: &Model, options: Options) -> Vec<Diagnostic> {
-    let parse = crate::parse(text, target);
     let mut out = Vec::new();
-    let fixable = !parse.has_errors();
-    rules(
-        text,
-        &parse.template.instructions,
-        fixable,
-        target,
-        &mut out,
-    );
-    on_model(text, &parse, model, options, &mut out);
+    if text.len() <= MAX_FIXED_TEXT {
+        // A fix is offered only on a template without errors, which the whole parse tells
+        // before the rules run; on a text this short the IR costs nothing.
+        let parse = crate::parse(text, target);
+        let fixable = !parse.has_errors();
+        rules(
+            text,
+            &parse.template.instructions,
+            fixable,
+            target,
+            &mut out,
+        );
+        let ours = fixable.then(|| eval::layers(&parse.template, model, options));
+        on_model(text, ours, model, options, &mut out);
+    } else {
+        // No fix is checked on a text this long (`MAX_FIXED_TEXT`), so the rules can read
+        // each instruction as it is parsed, and rotlang's layers come from the evaluator's
+        // compact form: the IR of a megabyte template, many times its size, is never built.
+        let list = text_rules(text, false, target, &mut out);
+        let (parse, ours) = eval::parse_layers_with(text, target, model, options, |ins| {
+            instruction_rules(text, ins, list, false, target, &mut out);
+        });
+        out.truncate(rules::MAX_RULE_FINDINGS);
+        let ours = (!parse.has_errors()).then_some(ours);
+        on_model(text, ours, model, options, &mut out);
+    }
     out.sort_by_key(|d| (d.primary_span(), d.code));
     out
 }
@@ -120,15 +136,16 @@ fn whole(text: &str) -> Span {
     Span::new(0, text.len())
 }
 
+/// The findings on the model: `ours` is rotlang's reading, `None` when the template has
+/// errors (OrcaSlicer's own problems are reported then, no difference).
 fn on_model(
     text: &str,
-    parse: &crate::Parse,
+    mut ours: Option<eval::Layers<'_>>,
     model: &Model,
     options: Options,
     out: &mut Vec<Diagnostic>,
 ) {
     let mut theirs = orcaslicer::layers(text, model, options);
-    let mut ours = (!parse.has_errors()).then(|| eval::layers(&parse.template, model, options));
     let mut first: Option<(Layer, Layer)> = None;
     let mut nan_seen = 0;
     let mut halted = false;

@@ -38,6 +38,21 @@ pub(super) fn rules(
     target: Target,
     out: &mut Vec<Diagnostic>,
 ) {
+    let list = text_rules(text, fixable, target, out);
+    for ins in instructions {
+        instruction_rules(text, ins, list, fixable, target, out);
+    }
+    out.truncate(MAX_RULE_FINDINGS);
+}
+
+/// The rules read from the text alone (a plain list's pieces, a leading separator), run
+/// before [`instruction_rules`]: whether OrcaSlicer reads `text` as a plain list.
+pub(super) fn text_rules(
+    text: &str,
+    fixable: bool,
+    target: Target,
+    out: &mut Vec<Diagnostic>,
+) -> bool {
     let list = !text.is_empty() && is_list(text);
     if list {
         list_rules(text, fixable, target, out);
@@ -64,17 +79,11 @@ pub(super) fn rules(
             String::new(),
         ));
     }
-    for ins in instructions {
-        if out.len() >= MAX_RULE_FINDINGS {
-            break;
-        }
-        instruction_rules(text, ins, list, fixable, target, out);
-    }
-    out.truncate(MAX_RULE_FINDINGS);
+    list
 }
 
 /// A pasted megabyte of `+7!B` must not become a million findings (or fix checks).
-const MAX_RULE_FINDINGS: usize = 100;
+pub(super) const MAX_RULE_FINDINGS: usize = 100;
 /// Fixes are checked by evaluating the fixed text: templates are lines, not megabytes.
 pub(super) const MAX_FIXED_TEXT: usize = 4096;
 
@@ -122,10 +131,25 @@ fn list_rules(text: &str, fixable: bool, target: Target, out: &mut Vec<Diagnosti
             ));
         } else if let Some(gap) = bytes[a..b].iter().position(|&c| is_separator(c)) {
             let piece = &text[a..b];
-            let parts: Vec<&str> = piece
-                .split(|c: char| c.is_ascii_whitespace() || c == '\u{b}')
-                .filter(|p| !p.is_empty())
-                .collect();
+            // The angles of the piece, without a vector of them: a pasted megabyte of
+            // `0 90 …` is one piece.
+            let parts = || {
+                piece
+                    .split(|c: char| c.is_ascii_whitespace() || c == '\u{b}')
+                    .filter(|p| !p.is_empty())
+            };
+            let joined = |before: &str, after: &str| {
+                let mut all = String::with_capacity(piece.len() * 2 + before.len() + after.len());
+                all.push_str(before);
+                for (i, p) in parts().enumerate() {
+                    if i > 0 {
+                        all.push_str(", ");
+                    }
+                    all.push_str(p);
+                }
+                all.push_str(after);
+                all
+            };
             let gap_end = a
                 + gap
                 + bytes[a + gap..b]
@@ -136,20 +160,26 @@ fn list_rules(text: &str, fixable: bool, target: Target, out: &mut Vec<Diagnosti
                 SPACE_SEPARATED_LIST,
                 format!(
                     "OrcaSlicer reads only `{}` here: in a plain list it separates angles at commas, not spaces",
-                    parts[0]
+                    parts().next().unwrap_or_default()
                 ),
             )
             .with_primary(Span::new(a + gap, gap_end), "a space between angles")
-            .with_help(format!("write `{}`", parts.join(", ")));
-            out.push(with_checked_fix(
-                d,
-                text,
-                fixable,
-                target,
-                "separate the angles with commas",
-                Span::new(a, b),
-                parts.join(", "),
-            ));
+            .with_help(joined("write `", "`"));
+            // The fixed text is built only where a fix is checked.
+            let d = if fixable && text.len() <= MAX_FIXED_TEXT {
+                with_checked_fix(
+                    d,
+                    text,
+                    fixable,
+                    target,
+                    "separate the angles with commas",
+                    Span::new(a, b),
+                    joined("", ""),
+                )
+            } else {
+                d
+            };
+            out.push(d);
         }
         if end == bytes.len() {
             break;
@@ -158,7 +188,9 @@ fn list_rules(text: &str, fixable: bool, target: Target, out: &mut Vec<Diagnosti
     }
 }
 
-fn instruction_rules(
+/// The rules of one instruction, in the template's order; nothing once
+/// [`MAX_RULE_FINDINGS`] are found.
+pub(super) fn instruction_rules(
     text: &str,
     ins: &Instruction,
     list: bool,
@@ -166,6 +198,9 @@ fn instruction_rules(
     target: Target,
     out: &mut Vec<Diagnostic>,
 ) {
+    if out.len() >= MAX_RULE_FINDINGS {
+        return;
+    }
     let fix = |d, title: &str, span, replacement: String| {
         with_checked_fix(d, text, fixable, target, title, span, replacement)
     };

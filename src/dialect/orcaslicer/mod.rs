@@ -33,10 +33,15 @@
 //! ```
 
 mod scan;
+mod store;
 #[cfg(test)]
 mod tests;
 
+use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::hash::{BuildHasherDefault, Hasher};
+
+use store::Tokens;
 
 use super::{Finding, HANGS, NAN, UNDEFINED};
 use crate::diagnostic::Span;
@@ -570,37 +575,10 @@ impl Token {
     }
 }
 
-/// 10.3: split at runs of whitespace and commas; a run at the start yields an empty token.
-fn tokens(text: &str) -> Vec<Token> {
-    let bytes = text.as_bytes();
-    let separator = |b: u8| b == b',' || scan::is_space(b);
-    let mut out = Vec::new();
-    let mut i = 0;
-    if bytes.first().is_some_and(|&b| separator(b)) {
-        out.push(Token::new(bytes, Span::new(0, 0)));
-    }
-    while i < bytes.len() {
-        while i < bytes.len() && separator(bytes[i]) {
-            i += 1;
-        }
-        let start = i;
-        while i < bytes.len() && !separator(bytes[i]) {
-            i += 1;
-        }
-        if i > start {
-            out.push(Token::new(bytes, Span::new(start, i)));
-        }
-    }
-    out
-}
-
 /// C's `(int)x`: `None` where it is undefined (NaN, infinite, outside the 32-bit range).
 fn c_int(x: f64) -> Option<i64> {
     (x > -2_147_483_649.0 && x < 2_147_483_648.0).then(|| x.trunc() as i64)
 }
-
-/// No walk remembered from this token (see `Meta::chain_of`).
-const NO_CHAIN: u32 = u32::MAX;
 
 /// What a remembered walk does (see [`REMEMBER_AFTER`]).
 #[derive(Clone, Copy, Debug)]
@@ -618,7 +596,7 @@ struct Chain {
     /// `add` after the dummies.
     add: f64,
     /// The last dummy read.
-    last: usize,
+    last: Span,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -627,20 +605,37 @@ enum ChainStart {
     Absolute(f64),
 }
 
+/// A token index's hash, one multiplication (Fibonacci hashing): the chains are looked up
+/// on every walk, where SipHash doubled the cost of a walk of dummies.
+#[derive(Clone, Copy, Debug, Default)]
+struct IndexHash(u64);
+
+impl Hasher for IndexHash {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(self.0 ^ u64::from(b));
+        }
+    }
+
+    fn write_u64(&mut self, n: u64) {
+        self.0 = (self.0 ^ n).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+
+    fn write_usize(&mut self, n: usize) {
+        self.write_u64(n as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
 /// The state of the metalanguage reading (10.3), kept across layers.
 #[derive(Clone, Debug)]
 struct Meta {
-    tokens: Vec<Token>,
-    spent: Vec<bool>,
-    /// The live tokens as a circular doubly linked list; a spent token keeps its `next`,
-    /// so the walk can step off a token it has just spent.
-    next: Vec<usize>,
-    prev: Vec<usize>,
-    live: usize,
-    /// Per token, the index in `chains` of the walk remembered from it (`NO_CHAIN`: none):
-    /// few tokens start long walks, so the chains themselves are kept apart.
-    chain_of: Vec<u32>,
-    chains: Vec<Chain>,
+    tokens: Tokens,
+    /// The walk remembered from a token, by token: few tokens start long walks.
+    chains: HashMap<usize, Chain, BuildHasherDefault<IndexHash>>,
     k: usize,
     start: f64,
     add: f64,
@@ -658,16 +653,9 @@ struct Meta {
 
 impl Meta {
     fn new(text: &str, _model: &Model) -> Meta {
-        let tokens = tokens(text);
-        let n = tokens.len();
         Meta {
-            spent: vec![false; n],
-            next: (0..n).map(|i| (i + 1) % n).collect(),
-            prev: (0..n).map(|i| (i + n - 1) % n).collect(),
-            live: n,
-            chain_of: vec![NO_CHAIN; n],
-            chains: Vec::new(),
-            tokens,
+            tokens: Tokens::new(text),
+            chains: HashMap::default(),
             k: 0,
             start: 0.0,
             add: 0.0,
@@ -742,17 +730,17 @@ impl Meta {
     /// 10.5: read tokens from the cursor until the walk stops.
     fn walk(&mut self, at: &Cursor, bottom: f64, model: &Model) -> Result<(), Halt> {
         let n = self.tokens.len();
-        if self.live == 0 {
+        if self.tokens.live() == 0 {
             self.k = (self.k + 1) % n;
             return Ok(());
         }
         let from = self.k;
-        let live_before = self.live;
+        let live_before = self.tokens.live();
         let mut moves: u64 = 0;
         let mut dummies = 0;
         let mut remembered = false;
-        let remembered_here = self.chains.get(self.chain_of[from] as usize).copied();
-        if let Some(chain) = remembered_here.filter(|c| c.live == self.live) {
+        let remembered_here = self.chains.get(&from).copied();
+        if let Some(chain) = remembered_here.filter(|c| c.live == self.tokens.live()) {
             self.apply(chain);
             moves = chain.moves;
             remembered = true;
@@ -764,25 +752,30 @@ impl Meta {
         let limit = 3 * n as u64;
         loop {
             let k = self.k;
-            let dummy = self.tokens[k].repeats == 0;
-            let unchanged = !remembered && self.live == live_before;
+            let token = self.tokens.get(k);
+            let dummy = token.repeats == 0;
+            let unchanged = !remembered && self.tokens.live() == live_before;
             if !dummy && dummies >= REMEMBER_AFTER && unchanged {
                 self.remember(from, k, false, moves, dummies);
             }
-            self.read(k, at, bottom, model)?;
+            self.read(k, token, at, bottom, model)?;
             if dummy {
                 dummies += 1;
             }
-            if self.live == 0 {
+            if self.tokens.live() == 0 {
                 self.k = (k + 1) % n;
                 return Ok(());
             }
-            // The next live token; `next[k]` is kept even if `k` was just spent.
-            let next = self.next[k];
+            // The next live token (`k` may have just been spent).
+            let next = self.tokens.next_live(k);
             moves += if next > k { next - k } else { next + n - k } as u64;
             self.k = next;
             if !(next != 0 && self.noop) {
-                if dummy && dummies >= REMEMBER_AFTER && !remembered && self.live == live_before {
+                if dummy
+                    && dummies >= REMEMBER_AFTER
+                    && !remembered
+                    && self.tokens.live() == live_before
+                {
                     self.remember(from, next, true, moves, dummies);
                 }
                 return Ok(());
@@ -798,7 +791,7 @@ impl Meta {
         let mut start = ChainStart::Relative(0.0);
         let mut add = None::<f64>;
         let mut p = from;
-        let mut last = from;
+        let mut last = Span::default();
         for _ in 0..count {
             // start = start + add (the first dummy adds the add from before the walk).
             start = match (start, add) {
@@ -806,17 +799,17 @@ impl Meta {
                 (ChainStart::Relative(s), Some(a)) => ChainStart::Relative(s + a),
                 (ChainStart::Absolute(s), Some(a)) => ChainStart::Absolute(s + a),
             };
-            let token = &self.tokens[p];
+            let token = self.tokens.get(p);
             add = Some(token.value);
             if token.absolute {
                 start = ChainStart::Absolute(token.value);
                 add = Some(0.0);
             }
-            last = p;
-            p = self.next[p];
+            last = token.span;
+            p = self.tokens.next_live(p);
         }
         let chain = Chain {
-            live: self.live,
+            live: self.tokens.live(),
             end,
             stops,
             moves,
@@ -824,18 +817,7 @@ impl Meta {
             add: add.unwrap_or(self.add),
             last,
         };
-        match self.chains.get_mut(self.chain_of[from] as usize) {
-            Some(old) => *old = chain,
-            // Past u32::MAX chains (four billion long walks) a walk is simply not remembered.
-            None => {
-                if let Ok(i) = u32::try_from(self.chains.len())
-                    && i != NO_CHAIN
-                {
-                    self.chain_of[from] = i;
-                    self.chains.push(chain);
-                }
-            }
-        }
+        self.chains.insert(from, chain);
     }
 
     fn apply(&mut self, chain: Chain) {
@@ -847,25 +829,23 @@ impl Meta {
         self.noop = true;
         self.negative = false;
         self.repeats = 0;
-        self.governing = Some(self.tokens[chain.last].span);
-    }
-
-    fn spend(&mut self, k: usize) {
-        self.spent[k] = true;
-        self.live -= 1;
-        let (p, n) = (self.prev[k], self.next[k]);
-        self.next[p] = n;
-        self.prev[n] = p;
+        self.governing = Some(chain.last);
     }
 
     /// 10.6: read token `k` at the layer under `at`.
-    fn read(&mut self, k: usize, at: &Cursor, bottom: f64, model: &Model) -> Result<(), Halt> {
-        let token = self.tokens[k];
+    fn read(
+        &mut self,
+        k: usize,
+        token: Token,
+        at: &Cursor,
+        bottom: f64,
+        model: &Model,
+    ) -> Result<(), Halt> {
         self.noop = false;
         self.negative = false;
         self.start += self.add;
-        if token.bang && !self.spent[k] {
-            self.spend(k);
+        if token.bang && !self.tokens.is_spent(k) {
+            self.tokens.spend(k);
         }
         self.governing = Some(token.span);
         self.add = token.value;

@@ -1,6 +1,9 @@
 //! Travel moves that stay inside the region, as slicers route them ("avoid crossing
 //! walls"): a straight move that would cross a hole, or leave a concave outline, goes
 //! around along that ring instead, the shorter way.
+//!
+//! Plain square roots, not `hypot` (several times slower; coordinates are bounded by
+//! `MAX_COORDINATE`, so nothing overflows).
 
 use geo::Coord;
 
@@ -43,7 +46,7 @@ impl<'a> Router<'a> {
                 c.push(0.0);
                 for i in 0..n {
                     let e = r[(i + 1) % n] - r[i];
-                    s += e.x.hypot(e.y);
+                    s += (e.x * e.x + e.y * e.y).sqrt();
                     c.push(s);
                 }
                 c
@@ -100,7 +103,8 @@ impl<'a> Router<'a> {
         for w in bounds.windows(2) {
             let ((ta, ra), (tb, rb)) = (w[0], w[1]);
             let (a, b) = (at(ta), at(tb));
-            if (tb - ta) * (q - p).x.hypot((q - p).y) < 1e-6 || self.inside(at((ta + tb) / 2.0)) {
+            let move2 = (q - p).x * (q - p).x + (q - p).y * (q - p).y;
+            if (tb - ta) * move2.sqrt() < 1e-6 || self.inside(at((ta + tb) / 2.0)) {
                 out.push(b);
                 continue;
             }
@@ -162,7 +166,8 @@ impl<'a> Router<'a> {
                 0.0
             };
             let c = a + e * u;
-            let d = (p - c).x.hypot((p - c).y);
+            // Squared: the nearest is the same, without a root per edge.
+            let d = (p - c).x * (p - c).x + (p - c).y * (p - c).y;
             if d < best.0 {
                 best = (
                     d,
@@ -216,12 +221,15 @@ fn segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
         0.0
     };
     let c = a + e * u;
-    (p - c).x.hypot((p - c).y)
+    ((p - c).x * (p - c).x + (p - c).y * (p - c).y).sqrt()
 }
 
 pub(crate) fn length(path: &[Coord]) -> f64 {
     path.windows(2)
-        .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+        .map(|w| {
+            let d = w[1] - w[0];
+            (d.x * d.x + d.y * d.y).sqrt()
+        })
         .sum()
 }
 

@@ -449,7 +449,7 @@ fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
 
 /// One convex ring grown outward by `d`: each edge moved out, each corner an arc of radius
 /// `d` about its vertex, with its points on the arc (so the chords cut in by at most
-/// `d·(1 − cos(arc/2))`).
+/// `d·(1 − cos(arc/2))`), or where the corner turns by little, the mitre (out by no more).
 fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
     let kept = convex_ring(ring)?;
     let n = kept.len();
@@ -473,6 +473,17 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
         } else {
             (sin.atan2(cos).max(0.0) / arc).ceil().max(1.0) as usize
         };
+        // A corner turning by little (a round hole's) gets one mitre point, no farther out
+        // than a chord cuts in (`1/cos(α/2) − 1 ≤ 1 − cos(arc/2)`): half the vertices of
+        // a 64-gon hole, for every pattern's clipping and routing after.
+        if steps == 1 && cos > 0.0 {
+            let half_cos = ((1.0 + cos) / 2.0).sqrt();
+            if 1.0 / half_cos - 1.0 <= 1.0 - (arc / 2.0).cos() {
+                let k = 1.0 + cos;
+                out.push(b + (n0 + n1) * (d / k));
+                continue;
+            }
+        }
         out.push(b + n0 * d);
         if steps > 1 {
             let (s, c) = (sin.atan2(cos).max(0.0) / steps as f64).sin_cos();

@@ -64,8 +64,9 @@ impl Region {
             }
         }
         let cleaned = clean(region);
-        let inset = convex_inset(&cleaned, nozzle / 2.0, 0.2)
-            .or_else(|| super::offset::raw_inset(&cleaned, nozzle / 2.0, 0.2))
+        let arc = arc_step(nozzle / 2.0);
+        let inset = convex_inset(&cleaned, nozzle / 2.0, arc)
+            .or_else(|| super::offset::raw_inset(&cleaned, nozzle / 2.0, arc))
             .unwrap_or_else(|| {
                 if cleaned.0.is_empty() {
                     cleaned.clone()
@@ -229,6 +230,18 @@ impl Region {
             if self.convex { &[] } else { &self.rings },
         ))
     }
+}
+
+/// The angle step (radians) of the arcs of an inset by `d`: chords that stray at most
+/// 5 µm from the arc (`d·(1 − cos(step/2))`), at least 0.2 rad, at most 0.8. At half a
+/// 0.4 mm nozzle that is 0.45 rad: a star's reflex corner gets 4 chords instead of 10, and
+/// every line family, clip and travel route after has fewer edges to test.
+fn arc_step(d: f64) -> f64 {
+    const CHORD: f64 = 0.005;
+    if d <= CHORD {
+        return 0.8;
+    }
+    (2.0 * (1.0 - CHORD / d).acos()).clamp(0.2, 0.8)
 }
 
 /// The region moved inward by `d` mm (the erosion by a disc; what walls leave to the

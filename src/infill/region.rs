@@ -127,6 +127,11 @@ impl Region {
         (self.min + self.max) / 2.0
     }
 
+    /// One convex outline and no hole.
+    pub(crate) fn is_convex(&self) -> bool {
+        self.convex
+    }
+
     /// The rings of the inset: outlines first, then holes.
     pub(crate) fn rings(&self) -> &[Vec<Coord>] {
         &self.rings

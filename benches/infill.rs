@@ -38,6 +38,42 @@ fn layer<const S: usize>(bencher: Bencher, pattern: Pattern) {
     bencher.bench(|| infill::fill(black_box(&region), &params).map(|p| p.polylines.len()));
 }
 
+/// The pairs of `benches/polyslice/compare.mjs`: a whole layer of each of Polyslice's
+/// patterns at 10, 20 and 40%, angle 45° (its grid's), at layer 40's height (z 8.1).
+#[divan::bench(consts = [0, 1, 2, 3, 4], args = COMPARED, max_time = 0.2)]
+fn compare<const S: usize>(bencher: Bencher, case: &str) {
+    let (pattern, density) = case.split_once(' ').expect("pattern density");
+    let pattern: Pattern = pattern.parse().expect("pattern");
+    let density: f64 = density.parse::<f64>().expect("density") / 100.0;
+    let region = shape(SHAPES[S]);
+    let params = Params::new(pattern, density, W).angle(45.0).z(8.1);
+    bencher.bench(|| infill::fill(black_box(&region), &params).map(|p| p.polylines.len()));
+}
+
+const COMPARED: [&str; 21] = [
+    "grid 10",
+    "grid 20",
+    "grid 40",
+    "triangles 10",
+    "triangles 20",
+    "triangles 40",
+    "hexagons 10",
+    "hexagons 20",
+    "hexagons 40",
+    "concentric 10",
+    "concentric 20",
+    "concentric 40",
+    "gyroid 10",
+    "gyroid 20",
+    "gyroid 40",
+    "spiral 10",
+    "spiral 20",
+    "spiral 40",
+    "lightning 10",
+    "lightning 20",
+    "lightning 40",
+];
+
 /// Filling a region that was inset once (a slicer reusing a layer's region).
 #[divan::bench(consts = [0, 1, 2, 3, 4], args = PATTERNS, max_time = 0.3)]
 fn fill<const S: usize>(bencher: Bencher, pattern: Pattern) {

@@ -211,6 +211,8 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     // offsets pile up the arcs at reflex corners.
     // The previous loops' distance and (perimeter, outline rings − hole rings).
     let mut previous: Option<(f64, f64, f64)> = None;
+    // The previous loops themselves (closed rings).
+    let mut last_loops: Vec<Vec<Coord>> = Vec::new();
     for k in 0.. {
         let mut d = (k as f64 + 0.5) * spacing;
         // From the region itself: the inset's offset by d is its offset by w/2 + d.
@@ -231,13 +233,14 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
             let expected = TAU * spacing * turns;
             if !current.0.is_empty() && length - shape.0 > expected + 4.0 * spacing {
                 let middle = shrink(region.outline(), region.nozzle() / 2.0 + d0 + spacing / 2.0);
-                uncovered(&middle, &current, 0.75 * spacing, out);
+                uncovered(&middle, &current, &last_loops, spacing, out);
             }
         }
         if current.0.is_empty() {
             break;
         }
         previous = Some((d, shape.0, shape.1));
+        last_loops.clear();
         for polygon in &current.0 {
             for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
                 let mut pts = ring.0.clone();
@@ -257,8 +260,77 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
                     .map_or(0, |(i, _)| i);
                 pts.rotate_left(start);
                 pts.push(pts[0]);
-                out.push(pts);
+                last_loops.push(pts);
             }
+        }
+        apart(&last_loops, 0.75 * spacing, out);
+    }
+}
+
+/// The loops of one distance, each less its stretches within `gap` of an earlier one.
+/// Where an outline's loop and a hole's approach (the band between them narrower than
+/// a spacing, before their offsets meet), both would be printed side by side, down to a
+/// fraction of a spacing apart: the later gives way to the earlier there.
+fn apart(loops: &[Vec<Coord>], gap: f64, out: &mut Vec<Vec<Coord>>) {
+    let boxes: Vec<(Coord, Coord)> = loops.iter().map(|l| super::travel::bounds(l)).collect();
+    for (j, ring) in loops.iter().enumerate() {
+        let (lo, hi) = boxes[j];
+        let near: Vec<&[Coord]> = (0..j)
+            .filter(|&i| {
+                let (a, b) = boxes[i];
+                a.x - gap <= hi.x && b.x + gap >= lo.x && a.y - gap <= hi.y && b.y + gap >= lo.y
+            })
+            .map(|i| loops[i].as_slice())
+            .collect();
+        if near.is_empty() {
+            out.push(ring.clone());
+            continue;
+        }
+        let flags: Vec<bool> = ring
+            .iter()
+            .map(|&p| near.iter().all(|l| distance_to(l, p) > gap))
+            .collect();
+        runs(ring, &flags, out);
+    }
+}
+
+/// The distance from `p` to the nearest segment of `path`.
+fn distance_to(path: &[Coord], p: Coord) -> f64 {
+    let mut best = f64::INFINITY;
+    for w in path.windows(2) {
+        let (a, e) = (w[0], w[1] - w[0]);
+        let len2 = e.x * e.x + e.y * e.y;
+        let t = if len2 > 0.0 {
+            (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = a + e * t;
+        best = best.min((p - q).x * (p - q).x + (p - q).y * (p - q).y);
+    }
+    best.sqrt()
+}
+
+/// The runs of a closed ring's vertices whose flag is set (the whole ring when all are).
+fn runs(pts: &[Coord], flags: &[bool], out: &mut Vec<Vec<Coord>>) {
+    if flags.iter().all(|&f| f) {
+        out.push(pts.to_vec());
+        return;
+    }
+    // Read from an unflagged vertex so that no run wraps.
+    let n = pts.len().saturating_sub(1);
+    let Some(start) = (0..n).find(|&i| !flags[i]) else {
+        return;
+    };
+    let mut run: Vec<Coord> = Vec::new();
+    for k in 1..=n {
+        let i = (start + k) % n;
+        if flags[i] {
+            run.push(pts[i]);
+        } else if run.len() >= 2 {
+            out.push(std::mem::take(&mut run));
+        } else {
+            run.clear();
         }
     }
 }
@@ -280,13 +352,19 @@ fn perimeter(area: &MultiPolygon<f64>) -> (f64, f64) {
     (length, turns)
 }
 
-/// The stretches of `middle`'s rings farther than `gap` from every ring of `covered`.
+/// The stretches of `middle`'s rings farther than ¾ `spacing` from every ring of
+/// `covered`, and farther than two spacings from every loop of `last` but the nearest
+/// (the one each middle stretch lies half a spacing inside of): where two loops of `last`
+/// close in on each other from both sides (an outline's and a hole's, about to meet),
+/// each side's middle stretch would be a second line in a band that wants less than two.
 fn uncovered(
     middle: &MultiPolygon<f64>,
     covered: &MultiPolygon<f64>,
-    gap: f64,
+    last: &[Vec<Coord>],
+    spacing: f64,
     out: &mut Vec<Vec<Coord>>,
 ) {
+    let gap = 0.75 * spacing;
     let segments: Vec<(Coord, Coord)> = covered
         .0
         .iter()
@@ -294,7 +372,7 @@ fn uncovered(
         .flat_map(|r| r.0.windows(2).map(|w| (w[0], w[1])))
         .collect();
     let far = |p: Coord| {
-        segments.iter().all(|&(a, b)| {
+        let clear = segments.iter().all(|&(a, b)| {
             let e = b - a;
             let len2 = e.x * e.x + e.y * e.y;
             let t = if len2 > 0.0 {
@@ -304,32 +382,19 @@ fn uncovered(
             };
             let q = a + e * t;
             (p - q).x * (p - q).x + (p - q).y * (p - q).y > gap * gap
-        })
+        });
+        // Near at most one of the last loops.
+        clear
+            && last
+                .iter()
+                .filter(|l| distance_to(l, p) <= 2.0 * spacing)
+                .count()
+                <= 1
     };
     for p in &middle.0 {
         for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
-            let pts = &ring.0;
-            let flags: Vec<bool> = pts.iter().map(|&c| far(c)).collect();
-            if flags.iter().all(|&f| f) {
-                out.push(pts.clone());
-                continue;
-            }
-            // Runs of far vertices, the ring read from a near one so no run wraps.
-            let n = pts.len().saturating_sub(1);
-            let Some(start) = (0..n).find(|&i| !flags[i]) else {
-                continue;
-            };
-            let mut run: Vec<Coord> = Vec::new();
-            for k in 1..=n {
-                let i = (start + k) % n;
-                if flags[i] {
-                    run.push(pts[i]);
-                } else if run.len() >= 2 {
-                    out.push(std::mem::take(&mut run));
-                } else {
-                    run.clear();
-                }
-            }
+            let flags: Vec<bool> = ring.0.iter().map(|&c| far(c)).collect();
+            runs(&ring.0, &flags, out);
         }
     }
 }

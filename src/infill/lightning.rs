@@ -26,7 +26,9 @@ pub(crate) fn lightning(
         x: theta.cos(),
         y: theta.sin(),
     };
-    let mut branches: Vec<Vec<Coord>> = Vec::new();
+    // Each branch, and whether it starts on the outline (a main branch; a twig starts at
+    // its fork).
+    let mut branches: Vec<(Vec<Coord>, bool)> = Vec::new();
     for ring in region.outlines() {
         let n = ring.len();
         let start = (0..n)
@@ -54,10 +56,10 @@ pub(crate) fn lightning(
                 let main = rotate(to_centre / dist, turn);
                 let reach = 0.8 * dist;
                 let fork = p + main * (0.4 * reach);
-                branches.push(vec![p, p + main * reach]);
+                branches.push((vec![p, p + main * reach], true));
                 for side in [45f64, -45.0] {
                     let twig = rotate(main, side.to_radians());
-                    branches.push(vec![fork, fork + twig * (0.4 * reach)]);
+                    branches.push((vec![fork, fork + twig * (0.4 * reach)], false));
                 }
             }
             k += 1;
@@ -65,8 +67,16 @@ pub(crate) fn lightning(
         }
     }
     let mut local = Vec::new();
-    for branch in branches {
+    // In a convex region a branch with both ends inside (or starting on the outline) is
+    // inside whole: no clipping, which is most of the work.
+    let convex = region.is_convex();
+    for (branch, main) in branches {
         let branch: Vec<Coord> = branch.into_iter().map(|p| frame.to_local(p)).collect();
+        if convex && (main || edges.contains(branch[0])) && edges.contains(branch[branch.len() - 1])
+        {
+            out.push(branch.into_iter().map(|q| frame.to_world(q)).collect());
+            continue;
+        }
         local.clear();
         edges.clip(&branch, &mut local);
         out.extend(

@@ -64,8 +64,9 @@ impl Region {
             }
         }
         let cleaned = clean(region);
-        let inset = convex_inset(&cleaned, nozzle / 2.0, 0.2)
-            .or_else(|| super::offset::raw_inset(&cleaned, nozzle / 2.0, 0.2))
+        let arc = arc_step(nozzle / 2.0);
+        let inset = convex_inset(&cleaned, nozzle / 2.0, arc)
+            .or_else(|| super::offset::raw_inset(&cleaned, nozzle / 2.0, arc))
             .unwrap_or_else(|| {
                 if cleaned.0.is_empty() {
                     cleaned.clone()
@@ -124,6 +125,11 @@ impl Region {
     /// The centre of the region's bounding box (the pattern centre of `Centring::Object`).
     pub fn centre(&self) -> Coord {
         (self.min + self.max) / 2.0
+    }
+
+    /// One convex outline and no hole.
+    pub(crate) fn is_convex(&self) -> bool {
+        self.convex
     }
 
     /// The rings of the inset: outlines first, then holes.
@@ -229,6 +235,18 @@ impl Region {
             if self.convex { &[] } else { &self.rings },
         ))
     }
+}
+
+/// The angle step (radians) of the arcs of an inset by `d`: chords that stray at most
+/// 5 µm from the arc (`d·(1 − cos(step/2))`), at least 0.2 rad, at most 0.8. At half a
+/// 0.4 mm nozzle that is 0.45 rad: a star's reflex corner gets 4 chords instead of 10, and
+/// every line family, clip and travel route after has fewer edges to test.
+fn arc_step(d: f64) -> f64 {
+    const CHORD: f64 = 0.005;
+    if d <= CHORD {
+        return 0.8;
+    }
+    (2.0 * (1.0 - CHORD / d).acos()).clamp(0.2, 0.8)
 }
 
 /// The region moved inward by `d` mm (the erosion by a disc; what walls leave to the
@@ -449,7 +467,7 @@ fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
 
 /// One convex ring grown outward by `d`: each edge moved out, each corner an arc of radius
 /// `d` about its vertex, with its points on the arc (so the chords cut in by at most
-/// `d·(1 − cos(arc/2))`).
+/// `d·(1 − cos(arc/2))`), or where the corner turns by little, the mitre (out by no more).
 fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
     let kept = convex_ring(ring)?;
     let n = kept.len();
@@ -473,6 +491,17 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
         } else {
             (sin.atan2(cos).max(0.0) / arc).ceil().max(1.0) as usize
         };
+        // A corner turning by little (a round hole's) gets one mitre point, no farther out
+        // than a chord cuts in (`1/cos(α/2) − 1 ≤ 1 − cos(arc/2)`): half the vertices of
+        // a 64-gon hole, for every pattern's clipping and routing after.
+        if steps == 1 && cos > 0.0 {
+            let half_cos = ((1.0 + cos) / 2.0).sqrt();
+            if 1.0 / half_cos - 1.0 <= 1.0 - (arc / 2.0).cos() {
+                let k = 1.0 + cos;
+                out.push(b + (n0 + n1) * (d / k));
+                continue;
+            }
+        }
         out.push(b + n0 * d);
         if steps > 1 {
             let (s, c) = (sin.atan2(cos).max(0.0) / steps as f64).sin_cos();

@@ -1,11 +1,15 @@
 //! Travel moves that stay inside the region, as slicers route them ("avoid crossing
 //! walls"): a straight move that would cross a hole, or leave a concave outline, goes
 //! around along that ring instead, the shorter way.
+//!
+//! Plain square roots, not `hypot` (several times slower; coordinates are bounded by
+//! `MAX_COORDINATE`, so nothing overflows).
 
 use geo::Coord;
 
-/// Where a move from `p` to `q` crosses ring `r`: the fractions along the move.
-fn hits(ring: &[Coord], r: usize, p: Coord, q: Coord, out: &mut Vec<(f64, usize)>) {
+/// Where a move from `p` to `q` crosses ring `r`: the fraction along the move, and where
+/// on the ring (its index, the edge's and the fraction along that edge).
+fn hits(ring: &[Coord], r: usize, p: Coord, q: Coord, out: &mut Vec<(f64, Cut)>) {
     let n = ring.len();
     let d = q - p;
     for i in 0..n {
@@ -19,9 +23,25 @@ fn hits(ring: &[Coord], r: usize, p: Coord, q: Coord, out: &mut Vec<(f64, usize)
         let t = (ap.x * e.y - ap.y * e.x) / denom;
         let u = (ap.x * d.y - ap.y * d.x) / denom;
         if (0.0..=1.0).contains(&t) && (0.0..1.0).contains(&u) {
-            out.push((t, r));
+            out.push((
+                t,
+                Cut {
+                    ring: r,
+                    edge: i,
+                    u,
+                },
+            ));
         }
     }
+}
+
+/// Where a move crosses a ring.
+#[derive(Clone, Copy, Debug)]
+struct Cut {
+    ring: usize,
+    edge: usize,
+    /// The fraction along the edge.
+    u: f64,
 }
 
 /// The rings with their cumulative lengths, ready for many moves.
@@ -43,7 +63,7 @@ impl<'a> Router<'a> {
                 c.push(0.0);
                 for i in 0..n {
                     let e = r[(i + 1) % n] - r[i];
-                    s += e.x.hypot(e.y);
+                    s += (e.x * e.x + e.y * e.y).sqrt();
                     c.push(s);
                 }
                 c
@@ -65,7 +85,7 @@ impl<'a> Router<'a> {
         if self.rings.iter().any(|r| r.len() < 3) || self.rings.is_empty() {
             return vec![p, q];
         }
-        let mut cuts: Vec<(f64, usize)> = Vec::new();
+        let mut cuts: Vec<(f64, Cut)> = Vec::new();
         let (lo, hi) = (
             Coord {
                 x: p.x.min(q.x),
@@ -93,29 +113,42 @@ impl<'a> Router<'a> {
         // stretch decides whether it is inside.
         cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let at = |t: f64| if t >= 1.0 { q } else { p + (q - p) * t };
-        let mut bounds: Vec<(f64, Option<usize>)> = vec![(0.0, None)];
-        bounds.extend(cuts.into_iter().map(|(t, r)| (t, Some(r))));
+        let mut bounds: Vec<(f64, Option<Cut>)> = vec![(0.0, None)];
+        bounds.extend(cuts.into_iter().map(|(t, c)| (t, Some(c))));
         bounds.push((1.0, None));
         let mut out = vec![p];
         for w in bounds.windows(2) {
             let ((ta, ra), (tb, rb)) = (w[0], w[1]);
             let (a, b) = (at(ta), at(tb));
-            if (tb - ta) * (q - p).x.hypot((q - p).y) < 1e-6 || self.inside(at((ta + tb) / 2.0)) {
+            let move2 = (q - p).x * (q - p).x + (q - p).y * (q - p).y;
+            if (tb - ta) * move2.sqrt() < 1e-6 || self.inside(at((ta + tb) / 2.0)) {
                 out.push(b);
                 continue;
             }
             let r = ra
                 .or(rb)
-                .unwrap_or_else(|| self.nearest(at((ta + tb) / 2.0)));
-            out.extend(self.walk(r, a, b));
+                .map_or_else(|| self.nearest(at((ta + tb) / 2.0)), |c| c.ring);
+            // Where each end is on ring r: known for a crossing, else projected.
+            let place = |cut: Option<Cut>, p: Coord| match cut {
+                Some(c) if c.ring == r => {
+                    let cumulative = &self.cumulative[r];
+                    let (s0, s1) = (cumulative[c.edge], cumulative[c.edge + 1]);
+                    (c.edge, s0 + c.u * (s1 - s0))
+                }
+                _ => self.project(r, p),
+            };
+            out.extend(self.walk(r, place(ra, a), place(rb, b)));
             out.push(b);
         }
         out.dedup();
         out
     }
 
-    /// Even-odd over every ring.
+    /// Even-odd over every ring; a point on an edge (within a nanometre) counts as
+    /// inside: a move along an edge (between two line ends on one side of the outline)
+    /// stays on the boundary, and need not be walked around.
     fn inside(&self, p: Coord) -> bool {
+        const ON: f64 = 1e-6 * 1e-6;
         let mut inside = false;
         for (ring, &(lo, hi)) in self.rings.iter().zip(&self.boxes) {
             if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
@@ -128,6 +161,17 @@ impl<'a> Router<'a> {
                     && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x
                 {
                     inside = !inside;
+                }
+                if p.y >= a.y.min(b.y) - 1e-6
+                    && p.y <= a.y.max(b.y) + 1e-6
+                    && p.x >= a.x.min(b.x) - 1e-6
+                    && p.x <= a.x.max(b.x) + 1e-6
+                {
+                    let e = b - a;
+                    let c = cross(e, p - a);
+                    if c * c <= ON * (e.x * e.x + e.y * e.y) {
+                        return true;
+                    }
                 }
             }
         }
@@ -162,7 +206,8 @@ impl<'a> Router<'a> {
                 0.0
             };
             let c = a + e * u;
-            let d = (p - c).x.hypot((p - c).y);
+            // Squared: the nearest is the same, without a root per edge.
+            let d = (p - c).x * (p - c).x + (p - c).y * (p - c).y;
             if d < best.0 {
                 best = (
                     d,
@@ -174,12 +219,12 @@ impl<'a> Router<'a> {
         (best.1, best.2)
     }
 
-    /// The vertices of ring `r` between the points nearest `a` and `b`, the shorter way.
-    fn walk(&self, r: usize, a: Coord, b: Coord) -> Vec<Coord> {
+    /// The vertices of ring `r` between two of its points (edge, distance along the ring),
+    /// the shorter way.
+    fn walk(&self, r: usize, (i0, s0): (usize, f64), (i1, s1): (usize, f64)) -> Vec<Coord> {
         let ring = &self.rings[r];
         let n = ring.len();
         let perimeter = self.cumulative[r][n];
-        let ((i0, s0), (i1, s1)) = (self.project(r, a), self.project(r, b));
         let forward = (s1 - s0).rem_euclid(perimeter);
         let mut walk = Vec::new();
         if forward <= perimeter - forward {
@@ -207,6 +252,10 @@ impl<'a> Router<'a> {
     }
 }
 
+fn cross(a: Coord, b: Coord) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
 fn segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
     let e = b - a;
     let len2 = e.x * e.x + e.y * e.y;
@@ -216,12 +265,15 @@ fn segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
         0.0
     };
     let c = a + e * u;
-    (p - c).x.hypot((p - c).y)
+    ((p - c).x * (p - c).x + (p - c).y * (p - c).y).sqrt()
 }
 
 pub(crate) fn length(path: &[Coord]) -> f64 {
     path.windows(2)
-        .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+        .map(|w| {
+            let d = w[1] - w[0];
+            (d.x * d.x + d.y * d.y).sqrt()
+        })
         .sum()
 }
 

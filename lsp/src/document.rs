@@ -3,7 +3,7 @@
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
-use rotlang::profile::ProfileModel;
+use rotlang_profile::profile::ProfileModel;
 use rotlang::{Instruction, Parse, Span, Target};
 
 use crate::json::{self, OffsetMap};
@@ -190,7 +190,7 @@ impl Document {
             for region in &mut regions {
                 region.profile = profile
                     .as_ref()
-                    .map(|p| p.model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT));
+                    .map(|p| p.model(region.target, None, rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT));
             }
         }
         // A JSON file that never names a template key is not a profile (an editor may hand
@@ -271,7 +271,7 @@ impl Document {
 
 /// The library's reading of a profile's text: its settings, with the `inherits` parents
 /// beside `path` when the document is a file. `None` when the library cannot read it.
-fn profile_of(text: &str, kind: Kind, path: Option<&Path>) -> Option<rotlang::profile::Profile> {
+fn profile_of(text: &str, kind: Kind, path: Option<&Path>) -> Option<rotlang_profile::profile::Profile> {
     // A name that says its kind: the library decides the format from it.
     let name = match kind {
         Kind::Rot => return None,
@@ -279,7 +279,7 @@ fn profile_of(text: &str, kind: Kind, path: Option<&Path>) -> Option<rotlang::pr
         Kind::Jsonc => "profile.jsonc",
         Kind::Ini => "profile.ini",
     };
-    let mut profile = rotlang::profile::parse(Path::new(name), text.as_bytes()).ok()?;
+    let mut profile = rotlang_profile::profile::parse(Path::new(name), text.as_bytes()).ok()?;
     if let Some(path) = path {
         profile.path = path.to_owned();
         profile.resolve_inherits();

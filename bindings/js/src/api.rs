@@ -228,15 +228,15 @@ pub fn compat(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Va
 
 #[cfg(feature = "full")]
 /// The templates and model of a profile file (`name` picks the kind by its extension:
-/// `.json`/`.jsonc` presets, `.ini` exports, `.rot` templates), read by `rotlang::profile`.
+/// `.json`/`.jsonc` presets, `.ini` exports, `.rot` templates), read by `rotlang_profile::profile`.
 pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
-    let p = rotlang::profile::parse(std::path::Path::new(name), bytes).map_err(|e| Failure {
+    let p = rotlang_profile::profile::parse(std::path::Path::new(name), bytes).map_err(|e| Failure {
         kind: "profile",
         message: e.message,
         diagnostics: None,
     })?;
     let target = p.templates.first().map_or(Target::Sparse, |t| t.target);
-    let pm = p.model(target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
+    let pm = p.model(target, None, rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT);
     let m = &pm.model;
     let first = m
         .layer_bounds(0)
@@ -255,7 +255,7 @@ pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
                 "text": t.text,
                 // What every tool adds to this template's angles: the profile's direction
                 // only where the template is empty, as OrcaSlicer reads a profile.
-                "base": p.model(t.target, t.object.as_deref(), rotlang::profile::DEFAULT_OBJECT_HEIGHT)
+                "base": p.model(t.target, t.object.as_deref(), rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT)
                     .options(&t.text)
                     .base,
             })
@@ -287,7 +287,7 @@ pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
     }))
 }
 
-/// The angle chart of the template on the model (`rotlang::plot::svg`, as `rotlang plot`
+/// The angle chart of the template on the model (`rotlang_geometry::plot::svg`, as `rotlang plot`
 /// draws it). In the full module: 20 KB the core's budget has no room for.
 #[cfg(feature = "full")]
 pub fn plot(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
@@ -299,13 +299,13 @@ pub fn plot(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Valu
     // phone-wide picture the rest would be clipped mid-letter): about 9 px a character of
     // its 15 px bold, right of a 72 px margin.
     let room = (((width - 96.0) / 9.0) as usize).saturating_sub(10).max(4);
-    let plot = rotlang::plot::PlotOptions {
+    let plot = rotlang_geometry::plot::PlotOptions {
         width,
         height: req.pixels(slot::PICTURE_HEIGHT, 560.0)?,
         title: Some(format!("template: {}", shorten(text.trim(), room))),
     };
     let parse = parse_clean(text, target)?;
-    Ok(obj!({ "svg": rotlang::plot::svg(&parse.template, &model, options, text, &plot) }))
+    Ok(obj!({ "svg": rotlang_geometry::plot::svg(&parse.template, &model, options, text, &plot) }))
 }
 
 /// At most `max` characters of `text`, with an ellipsis when cut.
@@ -324,11 +324,11 @@ fn shorten(text: &str, max: usize) -> String {
 #[cfg(feature = "full")]
 pub const SHAPES: [&str; 5] = ["square", "circle", "ring", "star", "l"];
 
-/// One layer's infill as printed, seen from above (`rotlang::infill::preview`, as
+/// One layer's infill as printed, seen from above (`rotlang_geometry::infill::preview`, as
 /// `rotlang preview` draws it).
 #[cfg(feature = "full")]
 pub fn preview(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
-    use rotlang::infill::{Pattern, Settings, preview, shapes};
+    use rotlang_geometry::infill::{Pattern, Settings, preview, shapes};
     let target = req.target()?;
     let options = req.eval_options()?;
     let model = req.model(heights)?;

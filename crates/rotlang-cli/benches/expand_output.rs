@@ -7,7 +7,7 @@
 use clap::Parser;
 use divan::counter::ItemsCount;
 use divan::{Bencher, black_box};
-use rotlang::cli::expand::{ExpandArgs, run};
+use rotlang_cli::cli::expand::{ExpandArgs, run};
 
 fn main() {
     divan::main();

@@ -96,7 +96,6 @@ fn write_wrapped(path: &std::path::Path, prefix: &str, unit: &str, len: usize, s
 
 /// A `.3mf` project whose `project_settings.config` holds the template, streamed into the
 /// archive a block at a time.
-#[cfg(feature = "3mf")]
 fn write_project(path: &std::path::Path, unit: &str, len: usize) {
     use std::io::Write;
     let file = std::fs::File::create(path).expect("create the input");
@@ -149,7 +148,6 @@ fn profile_runs(
     let ini = dir.join(format!("{name}-{mib}.ini"));
     write_wrapped(&ini, "sparse_infill_rotate_template = ", unit, len, "\n");
     runs.push(("check .ini".to_owned(), ini));
-    #[cfg(feature = "3mf")]
     {
         let project = dir.join(format!("{name}-{mib}.3mf"));
         write_project(&project, unit, len);

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use clap::Parser;
 use divan::counter::ItemsCount;
 use divan::{Bencher, black_box};
-use rotlang::cli::check::{CheckArgs, run};
+use rotlang_cli::cli::check::{CheckArgs, run};
 
 fn main() {
     divan::main();

@@ -4,7 +4,7 @@ use std::io::Write;
 use std::process::ExitCode;
 
 use clap::{CommandFactory, Parser, Subcommand};
-use rotlang::cli;
+use rotlang_cli::cli;
 
 /// rotlang: check, format and expand infill rotation templates.
 ///

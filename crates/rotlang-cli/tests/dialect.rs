@@ -15,7 +15,7 @@ use rotlang::eval::{Model, Options};
 use serde::Deserialize;
 use serde_json::Value;
 
-const DEFAULT_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/conformance/");
+const DEFAULT_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/conformance/");
 const TOLERANCE: f64 = 1e-4;
 
 fn dir() -> (String, bool) {
@@ -585,7 +585,7 @@ fn help_texts_about_orcaslicer_agree_with_the_dialect() {
     ]
     .map(str::to_owned)
     .to_vec();
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../corpus");
     for dir in ["valid", "warn", "invalid"] {
         for entry in std::fs::read_dir(root.join(dir)).unwrap().flatten() {
             if entry.path().extension().is_some_and(|e| e == "rot")

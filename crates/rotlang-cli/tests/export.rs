@@ -102,7 +102,7 @@ fn prusaslicer_ranges_and_its_project() {
         "{out}"
     );
     let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("target")
+        .join("../../target")
         .join("export-test");
     std::fs::create_dir_all(&dir).expect("dir");
     let stl = dir.join("tri.stl");

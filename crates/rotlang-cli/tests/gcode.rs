@@ -76,7 +76,7 @@ fn orca_file(name: &str, template: &str, layers: usize) -> PathBuf {
          ; sparse_infill_rotate_template = {template}\n; top_shell_layers = 4\n; CONFIG_BLOCK_END\n"
     ));
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("target")
+        .join("../../target")
         .join("gcode-test");
     std::fs::create_dir_all(&dir).expect("dir");
     let path = dir.join(name);
@@ -176,7 +176,7 @@ fn bad_files_are_usage_errors() {
     assert_eq!(code, 2);
     assert!(err.contains("cannot read /nonexistent/part.gcode"), "{err}");
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("target")
+        .join("../../target")
         .join("gcode-test");
     std::fs::create_dir_all(&dir).expect("dir");
     let plain = dir.join("plain.gcode");
@@ -205,10 +205,10 @@ fn the_library_reads_a_stream() {
     let file = orca_file("lib.gcode", "+45", 10);
     let bytes = std::fs::read(&file).expect("read");
     let mut seen = Vec::new();
-    let scan = rotlang::gcode::scan(&bytes[..], &Default::default(), |l| seen.push(l.index))
+    let scan = rotlang_profile::gcode::scan(&bytes[..], &Default::default(), |l| seen.push(l.index))
         .expect("scan");
     assert_eq!(seen, (0..10).collect::<Vec<_>>());
-    assert_eq!(scan.flavor, rotlang::gcode::Flavor::OrcaSlicer);
+    assert_eq!(scan.flavor, rotlang_profile::gcode::Flavor::OrcaSlicer);
     assert_eq!(
         scan.settings.get("sparse_infill_rotate_template"),
         Some("+45")
@@ -242,7 +242,7 @@ fn hostile_input_is_read_without_panic_and_within_bounds() {
         bytes.extend_from_slice(pieces[(x % 12) as usize]);
     }
     bytes.extend(std::iter::repeat_n(b'9', 3 << 20)); // a last line of 3 MB
-    let scan = rotlang::gcode::scan_all(&bytes[..], &Default::default()).expect("scan");
+    let scan = rotlang_profile::gcode::scan_all(&bytes[..], &Default::default()).expect("scan");
     for l in &scan.layers {
         for d in [l.sparse, l.solid].into_iter().flatten() {
             assert!(
@@ -254,8 +254,8 @@ fn hostile_input_is_read_without_panic_and_within_bounds() {
     }
     // Too many layers is an error, not a heap of them.
     let mut many = b"M83\n".to_vec();
-    many.extend(b";LAYER_CHANGE\nG1 X1 E1\n".repeat(rotlang::gcode::MAX_LAYERS + 1));
-    let err = rotlang::gcode::scan_all(&many[..], &Default::default()).expect_err("too many");
+    many.extend(b";LAYER_CHANGE\nG1 X1 E1\n".repeat(rotlang_profile::gcode::MAX_LAYERS + 1));
+    let err = rotlang_profile::gcode::scan_all(&many[..], &Default::default()).expect_err("too many");
     assert!(err.to_string().contains("layers"), "{err}");
 }
 

@@ -7,7 +7,7 @@
 //! build, so those inputs are parsed once (sparse target) and each has its own test to
 //! run in parallel; single-instruction megabytes are fast and get both targets.
 
-use rotlang::cli::{Input, render_human};
+use rotlang_cli::cli::{Input, render_human};
 use rotlang::{Parse, Span, Target};
 
 const MB: usize = 1 << 20;
@@ -364,13 +364,12 @@ fn huge_numbers_and_counts() {
 /// the file or a profile whose spans stay in its text, never a panic, a hang or an
 /// unbounded allocation. The archive cases that need a zip writer are in
 /// `tests/profiles.rs` too (bombs, 10,001 entries, lying sizes, truncated archives).
-#[cfg(feature = "3mf")]
 mod profiles {
     use std::io::Write;
     use std::path::{Path, PathBuf};
 
     use rotlang::Target;
-    use rotlang::profile::{self, Profile};
+    use rotlang_profile::profile::{self, Profile};
 
     /// Parsed, and every template and note span inside its source.
     fn read(name: &str, bytes: &[u8]) -> Result<Profile, String> {

@@ -4,7 +4,7 @@
 
 use resvg::tiny_skia::{Pixmap, Transform};
 use rotlang::eval::{Model, Options};
-use rotlang::plot::{self, PlotOptions};
+use rotlang_geometry::plot::{self, PlotOptions};
 
 fn render(svg: &str, name: &str) -> Pixmap {
     let tree =
@@ -253,13 +253,12 @@ fn plot_marks_solid_layers() {
     }
 }
 
-#[cfg(feature = "infill")]
 mod preview {
     use super::*;
-    use rotlang::infill::preview::{self, PreviewOptions};
-    use rotlang::infill::{Pattern, Settings, shapes};
+    use rotlang_geometry::infill::preview::{self, PreviewOptions};
+    use rotlang_geometry::infill::{Pattern, Settings, shapes};
 
-    fn inside(region: &rotlang::infill::MultiPolygon<f64>, x: f64, y: f64) -> bool {
+    fn inside(region: &rotlang_geometry::infill::MultiPolygon<f64>, x: f64, y: f64) -> bool {
         let mut inside = false;
         for p in &region.0 {
             for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
@@ -355,10 +354,9 @@ mod preview {
 /// temporary file) and the output compared byte for byte with the checked-in SVG, which
 /// must also render with something drawn in it. A change to the drawing code that is not
 /// followed by regenerating the pictures fails here.
-#[cfg(feature = "cli")]
 #[test]
 fn readme_pictures_are_what_its_commands_draw() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let readme = std::fs::read_to_string(root.join("README.md")).expect("README.md");
     let section = &readme[readme
         .find("## Pictures: `rotlang plot` and `rotlang preview`")
@@ -414,7 +412,6 @@ fn readme_pictures_are_what_its_commands_draw() {
 }
 
 /// Words of a shell command line: spaces separate them, single quotes hold spaces.
-#[cfg(feature = "cli")]
 fn shell_words(line: &str) -> Vec<String> {
     let mut words = Vec::new();
     let mut word = String::new();
@@ -446,7 +443,6 @@ fn shell_words(line: &str) -> Vec<String> {
 /// Every example in `rotlang plot --help` and `rotlang preview --help` runs and succeeds
 /// (two once failed with a parse error), in a directory holding the files they name, and
 /// `--size` resizes a shape file (it was silently ignored).
-#[cfg(feature = "cli")]
 #[test]
 fn every_help_example_of_plot_and_preview_runs() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("help-examples");
@@ -465,7 +461,7 @@ fn every_help_example_of_plot_and_preview_runs() {
     std::fs::write(dir.join("profile.rot"), "+10L25%, -10l25%\n").unwrap();
     std::fs::write(
         dir.join("part.stl"),
-        rotlang::mesh::shapes::tube(15.0, 5.0, 10.0, 64).to_binary_stl(),
+        rotlang_geometry::mesh::shapes::tube(15.0, 5.0, 10.0, 64).to_binary_stl(),
     )
     .unwrap();
     std::fs::write(
@@ -537,9 +533,12 @@ fn every_help_example_of_plot_and_preview_runs() {
 /// error, so its bench measured the instructions that were left).
 #[test]
 fn every_bench_template_parses() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("benches");
+    let crates = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let benches = std::fs::read_dir(&crates).unwrap().flat_map(|c| {
+        std::fs::read_dir(c.unwrap().path().join("benches")).into_iter().flatten()
+    });
     let mut seen = 0;
-    for entry in std::fs::read_dir(&root).unwrap() {
+    for entry in benches {
         let path = entry.unwrap().path();
         let text = std::fs::read_to_string(&path).unwrap();
         // Templates are the string constants and literals given to parse or parse_layers.
@@ -569,7 +568,6 @@ fn every_bench_template_parses() {
 /// `rotlang preview --shape part.stl`: every layer is the mesh's section at its middle
 /// (a tube's ring, with its hole), filled inside its walls, the shells solid; the summary
 /// covers the whole part, and two templates give two summaries to compare.
-#[cfg(feature = "cli")]
 #[test]
 fn preview_of_a_mesh_fills_its_sections() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh-preview");
@@ -577,7 +575,7 @@ fn preview_of_a_mesh_fills_its_sections() {
     let stl = dir.join("tube.stl");
     std::fs::write(
         &stl,
-        rotlang::mesh::shapes::tube(15.0, 5.0, 10.0, 64).to_binary_stl(),
+        rotlang_geometry::mesh::shapes::tube(15.0, 5.0, 10.0, 64).to_binary_stl(),
     )
     .unwrap();
     let run = |template: &str, pattern: &str| {
@@ -643,7 +641,6 @@ fn preview_of_a_mesh_fills_its_sections() {
 /// `preview --3d`: the part's layers stacked in an isometric SVG (or an HTML page holding
 /// it), one group per layer from the bottom up; rendered, the bottom layers' blue lies
 /// below the top layers' red.
-#[cfg(feature = "cli")]
 #[test]
 fn preview_3d_stacks_the_layers_of_a_mesh() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh-3d");
@@ -651,7 +648,7 @@ fn preview_3d_stacks_the_layers_of_a_mesh() {
     let stl = dir.join("cylinder.stl");
     std::fs::write(
         &stl,
-        rotlang::mesh::shapes::tube(10.0, 0.0, 8.0, 48).to_binary_stl(),
+        rotlang_geometry::mesh::shapes::tube(10.0, 0.0, 8.0, 48).to_binary_stl(),
     )
     .unwrap();
     for (file, html) in [("cylinder.svg", false), ("cylinder.html", true)] {
@@ -704,13 +701,12 @@ fn preview_3d_stacks_the_layers_of_a_mesh() {
 /// `rotlang preview project.3mf --object NAME` (the mesh in the template's place): the
 /// named object of a 3MF's build, placed as on the plate; a name it does not hold is a
 /// usage error listing those it holds.
-#[cfg(feature = "cli")]
 #[test]
 fn preview_of_a_3mf_object() {
     use std::io::Write;
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("mesh-3mf");
     std::fs::create_dir_all(&dir).unwrap();
-    let object = |id: u32, name: &str, mesh: &rotlang::mesh::Mesh| {
+    let object = |id: u32, name: &str, mesh: &rotlang_geometry::mesh::Mesh| {
         let mut s = format!(r#"<object id="{id}" name="{name}" type="model"><mesh><vertices>"#);
         for v in &mesh.vertices {
             s.push_str(&format!(
@@ -729,8 +725,8 @@ fn preview_of_a_3mf_object() {
     };
     let model = format!(
         r#"<?xml version="1.0"?><model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>{}{}</resources><build><item objectid="1" transform="1 0 0 0 1 0 0 0 1 50 0 0"/><item objectid="2"/></build></model>"#,
-        object(1, "Box", &rotlang::mesh::shapes::cuboid([20.0, 20.0, 6.0])),
-        object(2, "Tube", &rotlang::mesh::shapes::tube(8.0, 4.0, 6.0, 48)),
+        object(1, "Box", &rotlang_geometry::mesh::shapes::cuboid([20.0, 20.0, 6.0])),
+        object(2, "Tube", &rotlang_geometry::mesh::shapes::tube(8.0, 4.0, 6.0, 48)),
     );
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
     zip.start_file("3D/3dmodel.model", zip::write::SimpleFileOptions::default())
@@ -782,7 +778,6 @@ fn preview_of_a_3mf_object() {
 /// Issue 17: `rotlang preview` draws the layers a slicer prints solid as solid: the bottom
 /// and top shells of the model, where the template says sparse (the template still turns
 /// them), and says what the colours mean in a legend.
-#[cfg(feature = "cli")]
 #[test]
 fn preview_prints_shell_layers_solid_with_a_legend() {
     let run = |args: &[&str]| {

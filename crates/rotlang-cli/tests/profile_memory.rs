@@ -2,7 +2,7 @@
 //! item 1): at most 16× the file, as `check -f` keeps. A test binary of its own, so that
 //! no other test's memory is in the measure (a child spawned by `vfork` inherits its
 //! parent's peak RSS in `ru_maxrss`).
-#![cfg(all(unix, feature = "3mf"))]
+#![cfg(unix)]
 
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -2,7 +2,6 @@
 //! library and by `rotlang check` / `rotlang expand --profile`, and hostile files (corrupt,
 //! truncated and bomb archives, text that is not UTF-8, huge files, wrong JSON types): an
 //! error for that file, the other files still checked, never a panic.
-#![cfg(feature = "3mf")]
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -10,9 +9,9 @@ use std::process::Command;
 
 use proptest::prelude::*;
 use rotlang::Target;
-use rotlang::profile::{self, Kind};
+use rotlang_profile::profile::{self, Kind};
 
-const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/profiles");
+const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/fixtures/profiles");
 
 fn fixture(name: &str) -> PathBuf {
     Path::new(FIXTURES).join(name)
@@ -589,7 +588,7 @@ fn only_top_level_keys_are_preset_keys() {
     assert_eq!(found, ["+30/5"]);
     assert_eq!(p.settings.values["layer_height"].value, "0.16");
     assert!(
-        rotlang::profile::json::find_templates(r#"{"x":{"sparse_infill_rotate_template":"0"}}"#)
+        rotlang_profile::profile::json::find_templates(r#"{"x":{"sparse_infill_rotate_template":"0"}}"#)
             .is_empty()
     );
     // Arrays of values (per extruder) are still read.

@@ -19,7 +19,7 @@ const LAYERS: usize = 30;
 const HEIGHT: f64 = 6.0;
 
 fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
 }
 
 fn work() -> PathBuf {

@@ -9,7 +9,7 @@
 
 use divan::{Bencher, black_box};
 use rotlang::eval::{Model, Options};
-use rotlang::infill::{self, MultiPolygon, Params, Pattern, Region, Schedule, Settings, shapes};
+use rotlang_geometry::infill::{self, MultiPolygon, Params, Pattern, Region, Schedule, Settings, shapes};
 
 fn main() {
     divan::main();

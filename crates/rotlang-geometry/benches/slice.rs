@@ -8,9 +8,9 @@
 
 use divan::{Bencher, black_box};
 use rotlang::eval::Options;
-use rotlang::infill::Settings;
-use rotlang::mesh::{Mesh, shapes};
-use rotlang::slice::{Part, PartOptions, Slicer, part::model_for};
+use rotlang_geometry::infill::Settings;
+use rotlang_geometry::mesh::{Mesh, shapes};
+use rotlang_geometry::slice::{Part, PartOptions, Slicer, part::model_for};
 
 fn main() {
     divan::main();

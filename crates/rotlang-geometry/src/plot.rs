@@ -14,7 +14,7 @@
 //! use rotlang::eval::{Model, Options};
 //! let text = "+10L25%, -10l25%";
 //! let template = rotlang::parse(text, rotlang::Target::Sparse).template;
-//! let svg = rotlang::plot::svg(&template, &Model::cube20(), Options::default(), text, &Default::default());
+//! let svg = rotlang_geometry::plot::svg(&template, &Model::cube20(), Options::default(), text, &Default::default());
 //! assert!(svg.starts_with("<svg") && svg.contains("height (mm)"));
 //! ```
 
@@ -286,7 +286,7 @@ fn nice_step(raw: f64) -> f64 {
 }
 
 /// A number for a label: at most `decimals` decimals, no trailing zeros, no `-0`.
-pub(crate) fn num(x: f64, decimals: usize) -> String {
+pub fn num(x: f64, decimals: usize) -> String {
     let s = format!("{:.*}", decimals, x);
     let s = if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_owned()
@@ -297,7 +297,7 @@ pub(crate) fn num(x: f64, decimals: usize) -> String {
 }
 
 /// Text safe inside SVG elements and attributes.
-pub(crate) fn escape(text: &str) -> String {
+pub fn escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
         match c {
@@ -314,7 +314,7 @@ pub(crate) fn escape(text: &str) -> String {
 }
 
 /// At most `max` characters of `text`, with an ellipsis when cut.
-pub(crate) fn shorten(text: &str, max: usize) -> String {
+pub fn shorten(text: &str, max: usize) -> String {
     let text = text.trim();
     if text.chars().count() <= max {
         text.to_owned()

@@ -62,7 +62,7 @@ fn scan_200mb(bencher: divan::Bencher) {
         .counter(divan::counter::BytesCount::new(total))
         .bench(|| {
             let mut layers = 0usize;
-            let scan = rotlang::gcode::scan(
+            let scan = rotlang_profile::gcode::scan(
                 Repeat {
                     unit: unit.clone(),
                     at: 0,

@@ -2,20 +2,20 @@
 //! `fuzz/corpus/<target>/` runs through the target's body. Targets that need the language
 //! server are replayed by `lsp/tests/fuzz_replay.rs`.
 
-#[path = "../fuzz/bodies/dialect.rs"]
+#[path = "../../../fuzz/bodies/dialect.rs"]
 mod dialect;
-#[path = "../fuzz/bodies/eval.rs"]
+#[path = "../../../fuzz/bodies/eval.rs"]
 mod eval;
-#[path = "../fuzz/bodies/fmt.rs"]
+#[path = "../../../fuzz/bodies/fmt.rs"]
 mod fmt;
-#[path = "../fuzz/bodies/parse.rs"]
+#[path = "../../../fuzz/bodies/parse.rs"]
 mod parse;
-#[path = "../fuzz/bodies/profile.rs"]
+#[path = "../../../fuzz/bodies/profile.rs"]
 mod profile;
-#[path = "../fuzz/bodies/replay.rs"]
+#[path = "../../../fuzz/bodies/replay.rs"]
 mod replay;
 
-const DIR: &str = env!("CARGO_MANIFEST_DIR");
+const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
 
 /// Replayed here.
 const HERE: &[&str] = &["dialect", "eval", "fmt", "parse", "profile"];

@@ -6,9 +6,6 @@
 //! assert_eq!(parse.template.instructions.len(), 2);
 //! ```
 
-#[cfg(feature = "cli")]
-#[doc(hidden)]
-pub mod cli;
 // pest_derive without its "std" feature generates code that names `alloc`.
 extern crate alloc;
 
@@ -16,21 +13,11 @@ pub mod diagnostic;
 pub mod dialect;
 pub mod eval;
 pub mod explain;
-pub mod export;
 pub mod fix;
 pub mod format;
-pub mod gcode;
-#[cfg(feature = "infill")]
-pub mod infill;
 pub mod ir;
 mod lint;
-#[cfg(feature = "mesh")]
-pub mod mesh;
 pub mod number;
-pub mod plot;
-pub mod profile;
-#[cfg(feature = "mesh")]
-pub mod slice;
 mod syntax;
 
 pub use syntax::MAX_DIAGNOSTICS;

@@ -11,7 +11,7 @@ use rotlang::eval::{self, Evaluator, Layer, Model, Options};
 use rotlang::{Fill, Target, Template};
 use serde::Deserialize;
 
-const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/conformance/");
+const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/conformance/");
 const TOLERANCE: f64 = 1e-4;
 
 /// Random cases where some layer is random (min < max), so another seed must change it.

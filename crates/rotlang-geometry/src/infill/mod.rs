@@ -9,7 +9,7 @@
 //! segment-edge intersection for curves.
 //!
 //! ```
-//! use rotlang::infill::{self, Centring, Params, Pattern, Region};
+//! use rotlang_geometry::infill::{self, Centring, Params, Pattern, Region};
 //!
 //! let square = infill::shapes::square(20.0);
 //! let region = Region::new(&square, 0.4)?;
@@ -18,7 +18,7 @@
 //! // Covered length × nozzle ÷ area: the requested 20%.
 //! let density = paths.length * 0.4 / region.area();
 //! assert!((density - 0.2).abs() < 0.02, "{density}");
-//! # Ok::<(), rotlang::infill::Error>(())
+//! # Ok::<(), rotlang_geometry::infill::Error>(())
 //! ```
 //!
 //! The template drives it through [`Schedule`]: evaluate once, fill any layer.

@@ -71,7 +71,7 @@ pub struct LayerFill {
 /// to top costs O(1) evaluation per layer (see [`Evaluator`]).
 ///
 /// ```
-/// use rotlang::infill::{self, Pattern, Region, Schedule, Settings};
+/// use rotlang_geometry::infill::{self, Pattern, Region, Schedule, Settings};
 /// use rotlang::eval::{Model, Options};
 ///
 /// let template = rotlang::parse("+45", rotlang::Target::Sparse).template;
@@ -82,7 +82,7 @@ pub struct LayerFill {
 /// let layer = schedule.layer(3, &region)?.expect("the cube has 100 layers");
 /// assert_eq!(layer.params.angle, 180.0);
 /// assert!(!layer.paths.polylines.is_empty());
-/// # Ok::<(), rotlang::infill::Error>(())
+/// # Ok::<(), rotlang_geometry::infill::Error>(())
 /// ```
 #[derive(Clone, Debug)]
 pub struct Schedule<'a> {

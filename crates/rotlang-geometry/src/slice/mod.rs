@@ -12,8 +12,8 @@
 //! loops are read even-odd: a loop inside an odd number of others is a hole.
 //!
 //! ```
-//! use rotlang::mesh::shapes;
-//! use rotlang::slice::Slicer;
+//! use rotlang_geometry::mesh::shapes;
+//! use rotlang_geometry::slice::Slicer;
 //!
 //! let tube = shapes::tube(10.0, 5.0, 20.0, 64);
 //! let mut slicer = Slicer::new(&tube);

@@ -17,7 +17,7 @@
 //!   what no OrcaSlicer template expresses (solid signs).
 //!
 //! ```
-//! use rotlang::export::{Slicer, export};
+//! use rotlang_profile::export::{Slicer, export};
 //! let out = export("0, 90", Slicer::Cura, &rotlang::eval::Model::cube20(), Default::default())
 //!     .expect("a valid template");
 //! assert_eq!(out.setting("infill_angles"), Some("[90,0]"));

@@ -12,7 +12,7 @@
 //!
 //! ```
 //! let gcode = b";LAYER_CHANGE\n;Z:0.2\n;TYPE:Internal infill\nG1 X0 Y0\nG1 X10 Y10 E1\n";
-//! let scan = rotlang::gcode::scan_all(&gcode[..], &Default::default())?;
+//! let scan = rotlang_profile::gcode::scan_all(&gcode[..], &Default::default())?;
 //! let d = scan.layers[0].sparse.expect("the layer has sparse infill");
 //! assert!((d.direction - 45.0).abs() < 1e-9);
 //! # Ok::<(), std::io::Error>(())

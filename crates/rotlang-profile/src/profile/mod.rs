@@ -11,7 +11,7 @@
 //!
 //! ```
 //! use std::path::Path;
-//! use rotlang::profile;
+//! use rotlang_profile::profile;
 //!
 //! let preset = br#"{ "layer_height": "0.12", "sparse_infill_rotate_template": "0 90" }"#;
 //! let p = profile::parse(Path::new("fine.json"), preset).unwrap();

@@ -40,8 +40,11 @@ fn emitted_codes() -> BTreeSet<String> {
         }
     }
     let mut found = BTreeSet::new();
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    walk(&root.join("src"), &mut found);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    // Every crate's sources (the CLI, profile and geometry crates emit codes too).
+    for krate in std::fs::read_dir(root.join("crates")).expect("crates/ is readable") {
+        walk(&krate.expect("a crate").path().join("src"), &mut found);
+    }
     // The language server's own codes (`rotlang-lsp::`) are explained here too.
     walk(&root.join("lsp/src"), &mut found);
     found

@@ -4,7 +4,7 @@
 use pest_derive::Parser;
 
 #[derive(Parser)]
-#[grammar = "../grammar/rotlang.pest"]
+#[grammar = "../../../grammar/rotlang.pest"]
 pub(crate) struct RotParser;
 
 /// What a rule is called in an error message. Exhaustive on purpose: a new rule must get

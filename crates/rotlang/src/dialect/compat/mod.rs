@@ -12,7 +12,7 @@
 //!
 //! Both readings are evaluated with the same `options`: a base is added to every angle in
 //! both. A profile's infill direction is the base of an empty template only, in both
-//! readings, as OrcaSlicer decides it ([`crate::profile::ProfileModel::options`]), so the
+//! readings, as OrcaSlicer decides it (`rotlang_profile::profile::ProfileModel::options`), so the
 //! two never part on it and every angle a message names is one the slicer prints. (The
 //! finding `orcaslicer::direction-ignored`, which reported rotlang adding the direction to
 //! every angle, is retired with that reading.)
@@ -80,7 +80,7 @@ pub const CODES: [&str; 12] = [
 ];
 
 /// Compares rotlang's reading of `text` with OrcaSlicer's on `model` and by rule, both
-/// with `options` (for a profile's template: [`crate::profile::ProfileModel::compat`]).
+/// with `options` (for a profile's template: `rotlang_profile::profile::ProfileModel::compat`).
 /// Diagnostics are sorted by position; none of them is a syntax error (run `parse` for
 /// those: where the template has errors, only OrcaSlicer's own problems and the rules are
 /// reported).

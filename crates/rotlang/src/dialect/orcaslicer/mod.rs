@@ -66,7 +66,7 @@ pub fn is_list(text: &str) -> bool {
 /// `options.base`, in either reading. OrcaSlicer uses the direction only for an empty
 /// template: any other template's angles are the template's alone (SEMANTICS 10.2), so
 /// the base is dropped. rotlang reads a profile the same way
-/// ([`crate::profile::ProfileModel::options`] calls this), so one profile gives one set
+/// (`rotlang_profile::profile::ProfileModel::options` calls this), so one profile gives one set
 /// of angles.
 ///
 /// [`layers`] itself adds `options.base` to every angle (a base chosen on the command line

@@ -3,8 +3,8 @@
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
-use rotlang_profile::profile::ProfileModel;
 use rotlang::{Instruction, Parse, Span, Target};
+use rotlang_profile::profile::ProfileModel;
 
 use crate::json::{self, OffsetMap};
 use crate::preview::Preview;
@@ -188,9 +188,13 @@ impl Document {
         if kind != Kind::Rot && !regions.is_empty() {
             let profile = profile_of(&text, kind, path);
             for region in &mut regions {
-                region.profile = profile
-                    .as_ref()
-                    .map(|p| p.model(region.target, None, rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT));
+                region.profile = profile.as_ref().map(|p| {
+                    p.model(
+                        region.target,
+                        None,
+                        rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT,
+                    )
+                });
             }
         }
         // A JSON file that never names a template key is not a profile (an editor may hand
@@ -271,7 +275,11 @@ impl Document {
 
 /// The library's reading of a profile's text: its settings, with the `inherits` parents
 /// beside `path` when the document is a file. `None` when the library cannot read it.
-fn profile_of(text: &str, kind: Kind, path: Option<&Path>) -> Option<rotlang_profile::profile::Profile> {
+fn profile_of(
+    text: &str,
+    kind: Kind,
+    path: Option<&Path>,
+) -> Option<rotlang_profile::profile::Profile> {
     // A name that says its kind: the library decides the format from it.
     let name = match kind {
         Kind::Rot => return None,

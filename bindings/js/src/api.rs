@@ -230,13 +230,19 @@ pub fn compat(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Va
 /// The templates and model of a profile file (`name` picks the kind by its extension:
 /// `.json`/`.jsonc` presets, `.ini` exports, `.rot` templates), read by `rotlang_profile::profile`.
 pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
-    let p = rotlang_profile::profile::parse(std::path::Path::new(name), bytes).map_err(|e| Failure {
-        kind: "profile",
-        message: e.message,
-        diagnostics: None,
+    let p = rotlang_profile::profile::parse(std::path::Path::new(name), bytes).map_err(|e| {
+        Failure {
+            kind: "profile",
+            message: e.message,
+            diagnostics: None,
+        }
     })?;
     let target = p.templates.first().map_or(Target::Sparse, |t| t.target);
-    let pm = p.model(target, None, rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT);
+    let pm = p.model(
+        target,
+        None,
+        rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT,
+    );
     let m = &pm.model;
     let first = m
         .layer_bounds(0)

@@ -13,8 +13,8 @@ use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 
-use rotlang_cli::cli::{Input, render_human};
 use rotlang::{Diagnostic, Severity, Target};
+use rotlang_cli::cli::{Input, render_human};
 
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Kind {

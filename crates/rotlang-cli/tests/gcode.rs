@@ -205,8 +205,9 @@ fn the_library_reads_a_stream() {
     let file = orca_file("lib.gcode", "+45", 10);
     let bytes = std::fs::read(&file).expect("read");
     let mut seen = Vec::new();
-    let scan = rotlang_profile::gcode::scan(&bytes[..], &Default::default(), |l| seen.push(l.index))
-        .expect("scan");
+    let scan =
+        rotlang_profile::gcode::scan(&bytes[..], &Default::default(), |l| seen.push(l.index))
+            .expect("scan");
     assert_eq!(seen, (0..10).collect::<Vec<_>>());
     assert_eq!(scan.flavor, rotlang_profile::gcode::Flavor::OrcaSlicer);
     assert_eq!(
@@ -255,7 +256,8 @@ fn hostile_input_is_read_without_panic_and_within_bounds() {
     // Too many layers is an error, not a heap of them.
     let mut many = b"M83\n".to_vec();
     many.extend(b";LAYER_CHANGE\nG1 X1 E1\n".repeat(rotlang_profile::gcode::MAX_LAYERS + 1));
-    let err = rotlang_profile::gcode::scan_all(&many[..], &Default::default()).expect_err("too many");
+    let err =
+        rotlang_profile::gcode::scan_all(&many[..], &Default::default()).expect_err("too many");
     assert!(err.to_string().contains("layers"), "{err}");
 }
 

@@ -7,8 +7,8 @@
 //! build, so those inputs are parsed once (sparse target) and each has its own test to
 //! run in parallel; single-instruction megabytes are fast and get both targets.
 
-use rotlang_cli::cli::{Input, render_human};
 use rotlang::{Parse, Span, Target};
+use rotlang_cli::cli::{Input, render_human};
 
 const MB: usize = 1 << 20;
 /// `MAX_DIAGNOSTICS` (100) plus the one that counts the rest.

@@ -535,7 +535,9 @@ fn every_help_example_of_plot_and_preview_runs() {
 fn every_bench_template_parses() {
     let crates = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let benches = std::fs::read_dir(&crates).unwrap().flat_map(|c| {
-        std::fs::read_dir(c.unwrap().path().join("benches")).into_iter().flatten()
+        std::fs::read_dir(c.unwrap().path().join("benches"))
+            .into_iter()
+            .flatten()
     });
     let mut seen = 0;
     for entry in benches {
@@ -725,8 +727,16 @@ fn preview_of_a_3mf_object() {
     };
     let model = format!(
         r#"<?xml version="1.0"?><model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02"><resources>{}{}</resources><build><item objectid="1" transform="1 0 0 0 1 0 0 0 1 50 0 0"/><item objectid="2"/></build></model>"#,
-        object(1, "Box", &rotlang_geometry::mesh::shapes::cuboid([20.0, 20.0, 6.0])),
-        object(2, "Tube", &rotlang_geometry::mesh::shapes::tube(8.0, 4.0, 6.0, 48)),
+        object(
+            1,
+            "Box",
+            &rotlang_geometry::mesh::shapes::cuboid([20.0, 20.0, 6.0])
+        ),
+        object(
+            2,
+            "Tube",
+            &rotlang_geometry::mesh::shapes::tube(8.0, 4.0, 6.0, 48)
+        ),
     );
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
     zip.start_file("3D/3dmodel.model", zip::write::SimpleFileOptions::default())

@@ -588,8 +588,10 @@ fn only_top_level_keys_are_preset_keys() {
     assert_eq!(found, ["+30/5"]);
     assert_eq!(p.settings.values["layer_height"].value, "0.16");
     assert!(
-        rotlang_profile::profile::json::find_templates(r#"{"x":{"sparse_infill_rotate_template":"0"}}"#)
-            .is_empty()
+        rotlang_profile::profile::json::find_templates(
+            r#"{"x":{"sparse_infill_rotate_template":"0"}}"#
+        )
+        .is_empty()
     );
     // Arrays of values (per extruder) are still read.
     let p = profile::parse(

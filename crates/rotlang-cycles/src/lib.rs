@@ -31,7 +31,8 @@ pub fn cycles(graph: &Graph) -> Vec<Vec<String>> {
         .collect::<BTreeSet<_>>()
         .into_iter()
         .collect();
-    let index_of: BTreeMap<&String, usize> = names.iter().enumerate().map(|(i, n)| (*n, i)).collect();
+    let index_of: BTreeMap<&String, usize> =
+        names.iter().enumerate().map(|(i, n)| (*n, i)).collect();
     let succ: Vec<Vec<usize>> = names
         .iter()
         .map(|n| {
@@ -152,9 +153,7 @@ fn tokenize(text: &str) -> Vec<Tok> {
             }
         } else if c == '"' {
             i = skip_string(&b, i + 1, 0);
-        } else if (c == 'r' || c == 'b' || c == 'c')
-            && raw_string_start(&b, i).is_some()
-        {
+        } else if (c == 'r' || c == 'b' || c == 'c') && raw_string_start(&b, i).is_some() {
             let (start, hashes) = raw_string_start(&b, i).unwrap_or((i, 0));
             i = skip_string(&b, start, hashes);
         } else if c == '\'' {
@@ -266,7 +265,9 @@ struct Tree {
     references: Vec<Reference>,
 }
 
-const ITEM_KEYWORDS: [&str; 8] = ["fn", "struct", "enum", "trait", "type", "const", "static", "union"];
+const ITEM_KEYWORDS: [&str; 8] = [
+    "fn", "struct", "enum", "trait", "type", "const", "static", "union",
+];
 
 impl Tree {
     fn load(src: &Path, root: &Path) -> Result<Tree, String> {
@@ -280,9 +281,19 @@ impl Tree {
     }
 
     /// Reads `path` as the body of `module`, whose child files live in `dir`.
-    fn read_file(&mut self, src: &Path, path: &Path, module: usize, dir: PathBuf) -> Result<(), String> {
+    fn read_file(
+        &mut self,
+        src: &Path,
+        path: &Path,
+        module: usize,
+        dir: PathBuf,
+    ) -> Result<(), String> {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let name = path.strip_prefix(src).unwrap_or(path).to_string_lossy().replace('\\', "/");
+        let name = path
+            .strip_prefix(src)
+            .unwrap_or(path)
+            .to_string_lossy()
+            .replace('\\', "/");
         let file = self.files.len();
         self.files.push(name);
         self.modules[module].file = file;
@@ -291,7 +302,8 @@ impl Tree {
         let mut frames: Vec<Option<usize>> = vec![Some(module)];
         let mut pending_children: Vec<(usize, String, PathBuf)> = Vec::new();
         let mut i = 0;
-        let current = |frames: &[Option<usize>]| frames.iter().rev().find_map(|f| *f).unwrap_or(module);
+        let current =
+            |frames: &[Option<usize>]| frames.iter().rev().find_map(|f| *f).unwrap_or(module);
         while i < toks.len() {
             let at_module_level = frames.last().copied().flatten().is_some();
             let here = current(&frames);
@@ -321,7 +333,11 @@ impl Tree {
                                 // Files of `here`'s children: `dir/name.rs` or `dir/name/mod.rs`,
                                 // where `dir` is this file's directory for a mod.rs, lib.rs or
                                 // main.rs, else the directory named after this file.
-                                let base = if here == module { dir.clone() } else { dir.join(self.inline_path(here, module)) };
+                                let base = if here == module {
+                                    dir.clone()
+                                } else {
+                                    dir.join(self.inline_path(here, module))
+                                };
                                 pending_children.push((child, name.clone(), base));
                             }
                             _ => {}
@@ -331,9 +347,14 @@ impl Tree {
                     }
                 }
                 Tok::Ident(kw) if kw == "use" => {
-                    let end = toks[i..].iter().position(|t| *t == Tok::Punct(';')).map_or(toks.len(), |p| i + p);
+                    let end = toks[i..]
+                        .iter()
+                        .position(|t| *t == Tok::Punct(';'))
+                        .map_or(toks.len(), |p| i + p);
                     let public = i > 0 && matches!(toks[i - 1], Tok::Ident(ref p) if p == "pub")
-                        || i > 3 && toks[i - 1] == Tok::Punct(')') && matches!(toks[i - 4], Tok::Ident(ref p) if p == "pub");
+                        || i > 3
+                            && toks[i - 1] == Tok::Punct(')')
+                            && matches!(toks[i - 4], Tok::Ident(ref p) if p == "pub");
                     let mut trees = Vec::new();
                     use_tree(&toks[i + 1..end], &mut Vec::new(), &mut trees);
                     for (binding, path) in trees {
@@ -341,20 +362,31 @@ impl Tree {
                             self.modules[here].uses.insert(binding, path.clone());
                         }
                         if !public || !at_module_level {
-                            self.references.push(Reference { file, module: here, path });
+                            self.references.push(Reference {
+                                file,
+                                module: here,
+                                path,
+                            });
                         }
                     }
                     i = end + 1;
                     continue;
                 }
-                Tok::Ident(kw) if at_module_level && (ITEM_KEYWORDS.contains(&kw.as_str()) || kw == "macro_rules") => {
+                Tok::Ident(kw)
+                    if at_module_level
+                        && (ITEM_KEYWORDS.contains(&kw.as_str()) || kw == "macro_rules") =>
+                {
                     let mut j = i + 1;
                     if kw == "macro_rules" && toks.get(j) == Some(&Tok::Punct('!')) {
                         j += 1;
                     }
                     // `const fn name`, `unsafe fn`, `const _: () = …`.
                     while let Some(Tok::Ident(w)) = toks.get(j) {
-                        if ITEM_KEYWORDS.contains(&w.as_str()) || w == "unsafe" || w == "async" || w == "extern" {
+                        if ITEM_KEYWORDS.contains(&w.as_str())
+                            || w == "unsafe"
+                            || w == "async"
+                            || w == "extern"
+                        {
                             j += 1;
                         } else {
                             self.modules[here].items.insert(w.clone());
@@ -362,7 +394,10 @@ impl Tree {
                         }
                     }
                 }
-                Tok::Ident(first) if toks.get(i + 1) == Some(&Tok::PathSep) && !matches!(toks.get(i.wrapping_sub(1)), Some(Tok::PathSep)) => {
+                Tok::Ident(first)
+                    if toks.get(i + 1) == Some(&Tok::PathSep)
+                        && !matches!(toks.get(i.wrapping_sub(1)), Some(Tok::PathSep)) =>
+                {
                     // A path in code: `crate::a::b`, `super::x`, `self::x`, `child::x`.
                     let mut path = vec![first.clone()];
                     let mut j = i + 1;
@@ -373,7 +408,11 @@ impl Tree {
                         }
                         j += 2;
                     }
-                    self.references.push(Reference { file, module: here, path });
+                    self.references.push(Reference {
+                        file,
+                        module: here,
+                        path,
+                    });
                     i = j;
                     continue;
                 }
@@ -382,7 +421,10 @@ impl Tree {
             i += 1;
         }
         for (child, name, base) in pending_children {
-            let (flat, nested) = (base.join(format!("{name}.rs")), base.join(&name).join("mod.rs"));
+            let (flat, nested) = (
+                base.join(format!("{name}.rs")),
+                base.join(&name).join("mod.rs"),
+            );
             let (path, child_dir) = if flat.is_file() {
                 (flat, base.join(&name))
             } else if nested.is_file() {
@@ -401,7 +443,11 @@ impl Tree {
         let mut cur = m;
         while cur != top {
             let parent = self.modules[cur].parent.unwrap_or(top);
-            if let Some((name, _)) = self.modules[parent].children.iter().find(|(_, c)| **c == cur) {
+            if let Some((name, _)) = self.modules[parent]
+                .children
+                .iter()
+                .find(|(_, c)| **c == cur)
+            {
                 names.push(name.clone());
             }
             cur = parent;
@@ -486,8 +532,16 @@ fn use_tree(toks: &[Tok], prefix: &mut Vec<String>, out: &mut Vec<(Option<String
                 prefix.push(seg.clone());
                 let at_end = !matches!(toks.get(i + 1), Some(Tok::PathSep));
                 if at_end {
-                    let binding = if seg == "self" { prefix.iter().rev().nth(1).cloned() } else { Some(seg.clone()) };
-                    let path: Vec<String> = if seg == "self" { prefix[..prefix.len() - 1].to_vec() } else { prefix.clone() };
+                    let binding = if seg == "self" {
+                        prefix.iter().rev().nth(1).cloned()
+                    } else {
+                        Some(seg.clone())
+                    };
+                    let path: Vec<String> = if seg == "self" {
+                        prefix[..prefix.len() - 1].to_vec()
+                    } else {
+                        prefix.clone()
+                    };
                     out.push((binding, path));
                     prefix.truncate(len);
                 }

@@ -12,7 +12,14 @@ fn graph(edges: &[(&str, &str)]) -> Graph {
 fn a_cycle_is_found_and_a_chain_is_not() {
     let chain = graph(&[("a", "b"), ("b", "c"), ("a", "c")]);
     assert!(cycles(&chain).is_empty());
-    let looped = graph(&[("a", "b"), ("b", "c"), ("c", "a"), ("c", "d"), ("d", "e"), ("e", "d")]);
+    let looped = graph(&[
+        ("a", "b"),
+        ("b", "c"),
+        ("c", "a"),
+        ("c", "d"),
+        ("d", "e"),
+        ("e", "d"),
+    ]);
     assert_eq!(
         cycles(&looped),
         [vec!["a", "b", "c"], vec!["d", "e"]]
@@ -30,7 +37,9 @@ fn a_long_chain_does_not_overflow_the_stack() {
         g.entry(w[0].clone()).or_default().insert(w[1].clone());
     }
     assert!(cycles(&g).is_empty());
-    g.entry(names[99_999].clone()).or_default().insert(names[0].clone());
+    g.entry(names[99_999].clone())
+        .or_default()
+        .insert(names[0].clone());
     assert_eq!(cycles(&g)[0].len(), 100_000);
 }
 
@@ -61,10 +70,16 @@ fn modules_that_use_each_other_are_a_cycle() {
         &[
             ("lib.rs", "mod lint;\nmod syntax;\n"),
             ("lint.rs", "use crate::syntax::Sink;\npub fn lint() {}\n"),
-            ("syntax/mod.rs", "pub struct Sink;\nfn parse() { crate::lint::lint() }\n"),
+            (
+                "syntax/mod.rs",
+                "pub struct Sink;\nfn parse() { crate::lint::lint() }\n",
+            ),
         ],
     );
-    assert_eq!(found, [vec!["lint.rs".to_string(), "syntax/mod.rs".to_string()]]);
+    assert_eq!(
+        found,
+        [vec!["lint.rs".to_string(), "syntax/mod.rs".to_string()]]
+    );
 }
 
 #[test]
@@ -78,7 +93,10 @@ fn a_cycle_through_a_re_export_is_found() {
                 "infill/mod.rs",
                 "mod curves;\nmod region;\npub use region::Region;\npub struct Error;\n",
             ),
-            ("infill/curves.rs", "use super::Region;\npub(crate) fn spiral(r: &Region) {}\n"),
+            (
+                "infill/curves.rs",
+                "use super::Region;\npub(crate) fn spiral(r: &Region) {}\n",
+            ),
             (
                 "infill/region.rs",
                 "use super::{Error, curves};\npub struct Region;\nfn fill() { curves::spiral(&Region) }\n",
@@ -87,7 +105,10 @@ fn a_cycle_through_a_re_export_is_found() {
     );
     assert_eq!(
         found,
-        [vec!["infill/curves.rs".to_string(), "infill/region.rs".to_string()]]
+        [vec![
+            "infill/curves.rs".to_string(),
+            "infill/region.rs".to_string()
+        ]]
     );
 }
 

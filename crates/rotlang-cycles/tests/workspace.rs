@@ -12,7 +12,10 @@ fn crates(dir: &Path, found: &mut Vec<PathBuf>) {
         let path = entry.path();
         let name = entry.file_name();
         let skip = [".git", "target", "node_modules", "src", "tests", "benches"];
-        if path.is_dir() && !skip.iter().any(|s| name == *s) && !name.to_string_lossy().starts_with('.') {
+        if path.is_dir()
+            && !skip.iter().any(|s| name == *s)
+            && !name.to_string_lossy().starts_with('.')
+        {
             crates(&path, found);
         }
     }
@@ -27,12 +30,23 @@ fn no_crate_has_a_module_cycle() {
         .iter()
         .map(|c| c.strip_prefix(&root).unwrap_or(c).display().to_string())
         .collect();
-    for expected in ["crates/rotlang", "crates/rotlang-cli", "lsp", "capi", "bindings/js", "bindings/python"] {
-        assert!(names.iter().any(|n| n == expected), "{expected} not scanned: {names:?}");
+    for expected in [
+        "crates/rotlang",
+        "crates/rotlang-cli",
+        "lsp",
+        "capi",
+        "bindings/js",
+        "bindings/python",
+    ] {
+        assert!(
+            names.iter().any(|n| n == expected),
+            "{expected} not scanned: {names:?}"
+        );
     }
     let mut report = Vec::new();
     for (dir, name) in found.iter().zip(&names) {
-        let graph = rotlang_cycles::crate_graph(&dir.join("src")).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let graph =
+            rotlang_cycles::crate_graph(&dir.join("src")).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert!(!graph.is_empty(), "{name}: no files read");
         for cycle in rotlang_cycles::cycles(&graph) {
             report.push(format!("{name}/src: {}", cycle.join(" ↔ ")));

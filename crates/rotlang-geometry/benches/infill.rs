@@ -9,7 +9,9 @@
 
 use divan::{Bencher, black_box};
 use rotlang::eval::{Model, Options};
-use rotlang_geometry::infill::{self, MultiPolygon, Params, Pattern, Region, Schedule, Settings, shapes};
+use rotlang_geometry::infill::{
+    self, MultiPolygon, Params, Pattern, Region, Schedule, Settings, shapes,
+};
 
 fn main() {
     divan::main();

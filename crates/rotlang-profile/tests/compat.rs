@@ -5,7 +5,8 @@ use rotlang::Target;
 use rotlang::dialect::compat::{DIFFERS, SPACE_SEPARATED_LIST};
 
 fn preset(json: &str) -> rotlang_profile::profile::Profile {
-    rotlang_profile::profile::parse(std::path::Path::new("p.json"), json.as_bytes()).expect("a preset")
+    rotlang_profile::profile::parse(std::path::Path::new("p.json"), json.as_bytes())
+        .expect("a preset")
 }
 
 #[test]
@@ -79,4 +80,3 @@ fn the_direction_key_is_named_as_the_file_spells_it() {
         )
     );
 }
-

@@ -1,3 +1,4 @@
+#![warn(missing_docs)]
 //! rotlang: the infill rotation template language of 3D-printing slicers.
 //!
 //! ```

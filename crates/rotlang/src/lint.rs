@@ -3,12 +3,13 @@
 
 use crate::diagnostic::{Diagnostic, Span};
 use crate::ir::*;
-use crate::syntax::Sink;
 use crate::syntax::split::Chunk;
 
-/// The checks on one instruction, run as soon as it is lowered so that diagnostics reach
-/// the sink in source order (which is what lets the sink keep the first error).
-pub(crate) fn instruction(text: &str, ins: &Instruction, target: Target, out: &mut Sink) {
+/// The checks on one instruction of the IR, run as soon as it is lowered: the caller adds
+/// them to its diagnostics in source order (which is what lets it keep the first error).
+pub(crate) fn instruction(text: &str, ins: &Instruction, target: Target) -> Vec<Diagnostic> {
+    let mut found = Vec::new();
+    let out = &mut found;
     if target == Target::Solid
         && let Some(s) = ins.solid
     {
@@ -45,6 +46,7 @@ pub(crate) fn instruction(text: &str, ins: &Instruction, target: Target, out: &m
             )),
         );
     }
+    found
 }
 
 /// Warnings about separators (`+30/ 50%`, `+30 /50%`), on chunks as they stream by: a
@@ -56,7 +58,7 @@ pub(crate) struct Spacing<'a> {
 }
 
 impl<'a> Spacing<'a> {
-    pub fn push(&mut self, chunk: Chunk<'a>, valid: bool, out: &mut Sink) {
+    pub fn push(&mut self, chunk: Chunk<'a>, valid: bool, out: &mut Vec<Diagnostic>) {
         if let [Some(prev), Some(next)] = self.window {
             space_after_joint(prev, next, out);
             pair(prev.0, next.0, Some(chunk), out);
@@ -64,7 +66,7 @@ impl<'a> Spacing<'a> {
         self.window = [self.window[1], Some((chunk, valid))];
     }
 
-    pub fn finish(self, out: &mut Sink) {
+    pub fn finish(self, out: &mut Vec<Diagnostic>) {
         if let [Some(prev), Some(next)] = self.window {
             space_after_joint(prev, next, out);
             pair(prev.0, next.0, None, out);
@@ -74,7 +76,7 @@ impl<'a> Spacing<'a> {
 
 /// `+30 /50%`: a space splits what looks like one instruction into two. `after` is the
 /// chunk after `next`, if any.
-fn pair(prev: Chunk<'_>, next: Chunk<'_>, after: Option<Chunk<'_>>, out: &mut Sink) {
+fn pair(prev: Chunk<'_>, next: Chunk<'_>, after: Option<Chunk<'_>>, out: &mut Vec<Diagnostic>) {
     // A joint (`+30 /50%`), a lone `#` unit (`+30/5 #`) or a repeat count
     // (`+45/10 *2`) cut off by a space; `#14` on its own is a documented form.
     let cut_off = next
@@ -136,14 +138,15 @@ fn pair(prev: Chunk<'_>, next: Chunk<'_>, after: Option<Chunk<'_>>, out: &mut Si
 fn space_after_joint(
     (prev, prev_valid): (Chunk<'_>, bool),
     (next, next_valid): (Chunk<'_>, bool),
-    out: &mut Sink,
+    out: &mut Vec<Diagnostic>,
 ) {
     // `+30 / 50%`: the lone `/` is itself cut off; the check below joins all three.
     let lone_joint = prev.after_space_only
         && prev
             .text
             .starts_with(|c: char| Joint::from_symbol(c).is_some());
-    if lone_joint || !(crate::syntax::after_joint(&prev, &next) && prev_valid && next_valid) {
+    if lone_joint || !(crate::syntax::split::after_joint(&prev, &next) && prev_valid && next_valid)
+    {
         return;
     }
     let gap = Span::new(prev.span.end, next.span.start);
@@ -169,7 +172,7 @@ fn fmt_deg(d: f64) -> String {
     format!("{}°", (d * 1e6).round() / 1e6)
 }
 
-fn angle_range(ins: &Instruction, out: &mut Sink) {
+fn angle_range(ins: &Instruction, out: &mut Vec<Diagnostic>) {
     let Some(a) = &ins.angle else { return };
     let d = a.degrees();
     if a.sign.is_none() && !(0.0..=360.0).contains(&d) {
@@ -190,7 +193,7 @@ fn angle_range(ins: &Instruction, out: &mut Sink) {
     }
 }
 
-fn zero_count(ins: &Instruction, out: &mut Sink) {
+fn zero_count(ins: &Instruction, out: &mut Vec<Diagnostic>) {
     let Some(c) = ins.count else { return };
     let zero = match c.kind {
         CountKind::Layers(n) => n < 1.0,
@@ -207,7 +210,7 @@ fn zero_count(ins: &Instruction, out: &mut Sink) {
     }
 }
 
-fn dummy(text: &str, ins: &Instruction, out: &mut Sink) {
+fn dummy(text: &str, ins: &Instruction, out: &mut Vec<Diagnostic>) {
     let Some(star) = ins.dummy else { return };
     if let Some(r) = ins.repeat {
         out.push(

@@ -5,6 +5,8 @@ mod grammar;
 mod lower;
 pub(crate) mod split;
 
+pub(crate) use split::after_joint;
+
 use pest::Parser;
 use pest::error::{ErrorVariant, InputLocation};
 
@@ -261,7 +263,9 @@ pub(crate) fn parse_each(
                     };
                     match lowerer.instruction(pair) {
                         Some(ins) => {
-                            crate::lint::instruction(text, &ins, target, &mut sink);
+                            for d in crate::lint::instruction(text, &ins, target) {
+                                sink.push(d);
+                            }
                             emit(ins);
                             valid = true;
                         }
@@ -282,11 +286,15 @@ pub(crate) fn parse_each(
                 Err(_) if !sink.keeps(Severity::Error) => sink.count(Severity::Error),
                 Err(err) => sink.push(chunk_error(text, chunk, previous.as_ref(), err)),
             }
-            spacing.push(*chunk, valid, &mut sink);
+            let mut found = Vec::new();
+            spacing.push(*chunk, valid, &mut found);
+            found.into_iter().for_each(|d| sink.push(d));
             previous = Some(*chunk);
         }
     }
-    spacing.finish(&mut sink);
+    let mut found = Vec::new();
+    spacing.finish(&mut found);
+    found.into_iter().for_each(|d| sink.push(d));
     sink.finish()
 }
 
@@ -372,25 +380,6 @@ fn orcaslicer_on_empty(text: &str, span: Span, replacement: &str) -> &'static st
     } else {
         "rotlang ignores it, and so does OrcaSlicer here"
     }
-}
-
-/// Whether `text` is one instruction the grammar accepts.
-pub(crate) fn is_instruction(text: &str) -> bool {
-    RotParser::parse(Rule::instruction, text).is_ok()
-}
-
-/// `+30/ 5cm`: the previous instruction ends with a joint and this chunk, after a space
-/// alone, is the count it lost. The pair (not the chunk) is what was meant.
-pub(crate) fn after_joint(prev: &Chunk<'_>, chunk: &Chunk<'_>) -> bool {
-    chunk.after_space_only
-        && prev
-            .text
-            .ends_with(|c: char| crate::ir::Joint::from_symbol(c).is_some())
-        && chunk
-            .text
-            .starts_with(|c: char| c.is_ascii_digit() || matches!(c, 'B' | 'T' | '-'))
-        && is_instruction(prev.text)
-        && is_instruction(&format!("{}{}", prev.text, chunk.text))
 }
 
 /// The diagnostic for an instruction the grammar rejects.

@@ -1,5 +1,8 @@
 //! Splitting a template into instructions at runs of commas and whitespace.
 
+use pest::Parser;
+
+use super::grammar::{RotParser, Rule};
 use crate::diagnostic::Span;
 
 /// One instruction's text and where it is.
@@ -13,6 +16,25 @@ pub(crate) struct Chunk<'a> {
 }
 
 /// The whole split at once (for tests: the parser streams [`Pieces`]).
+/// Whether `text` is one instruction the grammar accepts.
+pub(crate) fn is_instruction(text: &str) -> bool {
+    RotParser::parse(Rule::instruction, text).is_ok()
+}
+
+/// `+30/ 5cm`: the previous instruction ends with a joint and this chunk, after a space
+/// alone, is the count it lost. The pair (not the chunk) is what was meant.
+pub(crate) fn after_joint(prev: &Chunk<'_>, chunk: &Chunk<'_>) -> bool {
+    chunk.after_space_only
+        && prev
+            .text
+            .ends_with(|c: char| crate::ir::Joint::from_symbol(c).is_some())
+        && chunk
+            .text
+            .starts_with(|c: char| c.is_ascii_digit() || matches!(c, 'B' | 'T' | '-'))
+        && is_instruction(prev.text)
+        && is_instruction(&format!("{}{}", prev.text, chunk.text))
+}
+
 #[cfg(test)]
 #[derive(Debug, Default)]
 pub(crate) struct Split<'a> {

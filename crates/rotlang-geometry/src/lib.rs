@@ -2,7 +2,7 @@
 //!
 //! - [`infill`]: nine infill patterns turned by a template's schedule, clipped to a region;
 //! - [`mesh`]: STL, OBJ and (feature `3mf`) 3MF meshes;
-//! - [`slice`]: a mesh cut into layer sections, each filled at its layer's angle;
+//! - [`slice`](mod@slice): a mesh cut into layer sections, each filled at its layer's angle;
 //! - [`plot`]: the angle chart (no geometry library: a pure function of its inputs); the
 //!   infill preview is [`infill::preview`].
 //!

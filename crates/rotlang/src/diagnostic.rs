@@ -6,19 +6,24 @@ use std::fmt;
 /// A half-open byte range into the template text. Always bytes, never chars.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Span {
+    /// The first byte.
     pub start: usize,
+    /// One past the last byte.
     pub end: usize,
 }
 
 impl Span {
+    /// The span `start..end`.
     pub const fn new(start: usize, end: usize) -> Self {
         Span { start, end }
     }
 
+    /// Its length in bytes.
     pub const fn len(self) -> usize {
         self.end - self.start
     }
 
+    /// Whether it covers no byte (an insertion point).
     pub const fn is_empty(self) -> bool {
         self.start == self.end
     }
@@ -33,10 +38,12 @@ impl Span {
         Span::new(self.start + offset, self.end + offset)
     }
 
+    /// Whether the byte at `offset` is inside.
     pub fn contains(self, offset: usize) -> bool {
         self.start <= offset && offset < self.end
     }
 
+    /// As a range, to slice the text: `&text[span.range()]`.
     pub fn range(self) -> std::ops::Range<usize> {
         self.start..self.end
     }
@@ -48,13 +55,18 @@ impl From<Span> for miette::SourceSpan {
     }
 }
 
+/// How bad a diagnostic is: an error stops the template from being used (a slicer must
+/// not print it); a warning marks a legal template that is likely a mistake.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Severity {
+    /// A legal template that likely does not do what was meant.
     Warning,
+    /// The template (or this instruction) cannot be read.
     Error,
 }
 
 impl Severity {
+    /// `"warning"` or `"error"`, as the JSON output and the LSP write it.
     pub fn as_str(self) -> &'static str {
         match self {
             Severity::Warning => "warning",
@@ -66,8 +78,11 @@ impl Severity {
 /// A labelled span. The primary label marks the characters at fault.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Label {
+    /// The characters it marks.
     pub span: Span,
+    /// What it says about them.
     pub message: String,
+    /// The primary label (the fault) rather than a secondary one (context).
     pub primary: bool,
 }
 
@@ -76,22 +91,38 @@ pub struct Label {
 pub struct Fix {
     /// What the fix does, e.g. "remove the space".
     pub title: String,
+    /// The bytes to replace.
     pub span: Span,
+    /// Their replacement.
     pub replacement: String,
 }
 
 /// One diagnostic. `code` is stable across releases (`rotlang::unknown-sign`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
+    /// The stable code, `prefix::kebab-case` (`rotlang explain CODE` explains it).
     pub code: &'static str,
+    /// Error or warning.
     pub severity: Severity,
+    /// One sentence: what is wrong.
     pub message: String,
+    /// The spans it marks (at most one primary).
     pub labels: Vec<Label>,
+    /// How to fix it, in words.
     pub help: Option<String>,
+    /// The edit that fixes it, when one is safe.
     pub fix: Option<Fix>,
 }
 
 impl Diagnostic {
+    /// An error with `code` and `message`, no labels yet.
+    ///
+    /// ```
+    /// let d = rotlang::Diagnostic::error("rotlang::unknown-sign", "unknown sign `X`")
+    ///     .with_primary(rotlang::Span::new(3, 4), "not a sign of the language");
+    /// assert!(d.is_error());
+    /// assert_eq!(d.primary_span(), rotlang::Span::new(3, 4));
+    /// ```
     pub fn error(code: &'static str, message: impl Into<String>) -> Self {
         Diagnostic {
             code,
@@ -103,6 +134,7 @@ impl Diagnostic {
         }
     }
 
+    /// A warning with `code` and `message`, no labels yet.
     pub fn warning(code: &'static str, message: impl Into<String>) -> Self {
         Diagnostic {
             severity: Severity::Warning,
@@ -110,6 +142,7 @@ impl Diagnostic {
         }
     }
 
+    /// Adds the primary label: the characters at fault.
     pub fn with_primary(mut self, span: Span, message: impl Into<String>) -> Self {
         self.labels.push(Label {
             span,
@@ -119,6 +152,7 @@ impl Diagnostic {
         self
     }
 
+    /// Adds a secondary label: context for the primary one.
     pub fn with_secondary(mut self, span: Span, message: impl Into<String>) -> Self {
         self.labels.push(Label {
             span,
@@ -128,11 +162,13 @@ impl Diagnostic {
         self
     }
 
+    /// Sets the help: how to fix it, in words.
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
         self.help = Some(help.into());
         self
     }
 
+    /// Sets the fix: replacing `span` by `replacement` (titled `title`).
     pub fn with_fix(
         mut self,
         title: impl Into<String>,
@@ -147,6 +183,7 @@ impl Diagnostic {
         self
     }
 
+    /// Whether it is an error.
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
     }
@@ -236,6 +273,13 @@ pub struct LineIndex<'a> {
 }
 
 impl<'a> LineIndex<'a> {
+    /// Indexes the line starts of `text` (lines end at `\n`, `\r\n` or `\r`).
+    ///
+    /// ```
+    /// let index = rotlang::LineIndex::new("0, 90\n+30");
+    /// assert_eq!(index.line_count(), 2);
+    /// assert_eq!(index.line_start(1), 6);
+    /// ```
     pub fn new(text: &'a str) -> Self {
         LineIndex {
             text,
@@ -249,6 +293,7 @@ impl<'a> LineIndex<'a> {
         self.line_starts.partition_point(|&s| s <= offset) - 1
     }
 
+    /// The byte offset where 0-based `line` starts (the text's length past the last line).
     pub fn line_start(&self, line: usize) -> usize {
         self.line_starts
             .get(line)
@@ -316,6 +361,7 @@ impl<'a> LineIndex<'a> {
         }
     }
 
+    /// How many lines the text has (an empty text has one).
     pub fn line_count(&self) -> usize {
         self.line_starts.len()
     }

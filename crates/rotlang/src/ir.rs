@@ -6,11 +6,14 @@ use crate::diagnostic::Span;
 /// A value with the span of the text it came from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Spanned<T> {
+    /// The value.
     pub value: T,
+    /// Where it was written.
     pub span: Span,
 }
 
 impl<T> Spanned<T> {
+    /// `value`, written at `span`.
     pub fn new(value: T, span: Span) -> Self {
         Spanned { value, span }
     }
@@ -19,14 +22,17 @@ impl<T> Spanned<T> {
 /// Which setting the template belongs to. Solid signs are legal only in sparse templates.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Target {
+    /// `sparse_infill_rotate_template`: solid signs are allowed.
     #[default]
     Sparse,
+    /// `solid_infill_rotate_template`: every layer is solid already.
     Solid,
 }
 
 /// A whole template: its instructions in order. An empty list means `0`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Template {
+    /// The instructions, in the order written.
     pub instructions: Vec<Instruction>,
 }
 
@@ -44,10 +50,13 @@ pub struct Instruction {
     pub dummy: Option<Span>,
     /// The first `!`: the instruction runs once for the whole model.
     pub one_time: Option<Span>,
+    /// The solid sign (`D S O M R`): the layers it governs are solid.
     pub solid: Option<Spanned<Solid>>,
+    /// The joint (`L l N n ...`): the shape of the turn over the count.
     pub joint: Option<Spanned<Joint>>,
     /// The `-` before the count: the shape runs from the end angle back to the start.
     pub flip: Option<Span>,
+    /// The count: how many layers (or how much height) the instruction takes.
     pub count: Option<Count>,
 }
 
@@ -62,10 +71,12 @@ impl Instruction {
         self.angle.as_ref().is_none_or(|a| a.sign.is_some())
     }
 
+    /// Whether it is a dummy (`*`): it sets an angle but takes no layers.
     pub fn is_dummy(&self) -> bool {
         self.dummy.is_some()
     }
 
+    /// Whether it runs once for the whole model (`!`).
     pub fn is_one_time(&self) -> bool {
         self.one_time.is_some()
     }
@@ -75,6 +86,7 @@ impl Instruction {
         self.repeat.map_or(1, |r| r.value.max(1))
     }
 
+    /// Whether the shape runs backwards (the `-` before the count).
     pub fn is_flipped(&self) -> bool {
         self.flip.is_some()
     }
@@ -90,17 +102,23 @@ impl Instruction {
     }
 }
 
+/// The sign of a relative angle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Sign {
+    /// `+`: a turn counter-clockwise.
     Plus,
+    /// `-`: a turn clockwise.
     Minus,
 }
 
+/// An angle as written: a turn (signed) or a direction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Angle {
+    /// Where it was written.
     pub span: Span,
     /// Present: a relative angle (a turn). Absent: an absolute direction.
     pub sign: Option<Sign>,
+    /// Its magnitude as written.
     pub value: AngleValue,
 }
 
@@ -116,6 +134,7 @@ impl Angle {
     }
 }
 
+/// The magnitude of an angle, in the form it was written.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum AngleValue {
     /// `α`
@@ -127,6 +146,7 @@ pub enum AngleValue {
 }
 
 impl AngleValue {
+    /// Degrees (not signed).
     pub fn degrees(self) -> f64 {
         match self {
             AngleValue::Degrees(d) => d,
@@ -136,12 +156,16 @@ impl AngleValue {
     }
 }
 
+/// A count: how far the instruction reaches.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Count {
+    /// Where it was written.
     pub span: Span,
+    /// What it counts.
     pub kind: CountKind,
 }
 
+/// What a count counts.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CountKind {
     /// `ℕ`: a number of layers (may be a decimal; the evaluator floors it).
@@ -151,11 +175,22 @@ pub enum CountKind {
     /// `T`: the top shell layer count.
     Top,
     /// `ℕ` with a length unit.
-    Length { value: f64, unit: Unit },
+    Length {
+        /// The number.
+        value: f64,
+        /// Its unit.
+        unit: Unit,
+    },
     /// `ℍ:ℕ`: the fraction ℍ/ℕ of the object height (ℕ ≠ 0).
-    HeightFraction { num: f64, den: f64 },
+    HeightFraction {
+        /// ℍ.
+        num: f64,
+        /// ℕ.
+        den: f64,
+    },
 }
 
+/// The unit of a length count.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Unit {
     /// `mm`
@@ -175,6 +210,7 @@ pub enum Unit {
 }
 
 impl Unit {
+    /// Its symbol as written in templates (`mm`, `#`, `%`, ...).
     pub fn symbol(self) -> &'static str {
         match self {
             Unit::Millimetre => "mm",
@@ -187,6 +223,7 @@ impl Unit {
         }
     }
 
+    /// The unit written `s`, if any.
     pub fn from_symbol(s: &str) -> Option<Unit> {
         Some(match s {
             "mm" => Unit::Millimetre,
@@ -213,6 +250,7 @@ impl Unit {
         }
     }
 
+    /// What it means, in words (for hovers and `rotlang explain`).
     pub fn meaning(self) -> &'static str {
         match self {
             Unit::Millimetre => "millimetres",
@@ -225,6 +263,7 @@ impl Unit {
         }
     }
 
+    /// Every unit.
     pub const ALL: [Unit; 7] = [
         Unit::Millimetre,
         Unit::Centimetre,
@@ -274,6 +313,7 @@ pub enum Joint {
 }
 
 impl Joint {
+    /// Every joint.
     pub const ALL: [Joint; 16] = [
         Joint::Linear,
         Joint::SineVertical,
@@ -293,6 +333,7 @@ impl Joint {
         Joint::Step,
     ];
 
+    /// Its letter in templates.
     pub fn symbol(self) -> char {
         match self {
             Joint::Linear => '/',
@@ -314,6 +355,7 @@ impl Joint {
         }
     }
 
+    /// The joint written `c`, if any.
     pub fn from_symbol(c: char) -> Option<Joint> {
         Joint::ALL.into_iter().find(|j| j.symbol() == c)
     }
@@ -362,6 +404,7 @@ pub enum Solid {
 }
 
 impl Solid {
+    /// Every solid sign.
     pub const ALL: [Solid; 5] = [
         Solid::Dense,
         Solid::Solid,
@@ -370,6 +413,7 @@ impl Solid {
         Solid::Rectilinear,
     ];
 
+    /// Its letter in templates.
     pub fn symbol(self) -> char {
         match self {
             Solid::Dense => 'D',
@@ -380,10 +424,12 @@ impl Solid {
         }
     }
 
+    /// The solid sign written `c`, if any.
     pub fn from_symbol(c: char) -> Option<Solid> {
         Solid::ALL.into_iter().find(|s| s.symbol() == c)
     }
 
+    /// The kind of fill it gives its layers.
     pub fn fill(self) -> Fill {
         match self {
             Solid::Dense => Fill::Dense,
@@ -394,6 +440,7 @@ impl Solid {
         }
     }
 
+    /// What it means, in words (for hovers and `rotlang explain`).
     pub fn meaning(self) -> &'static str {
         match self {
             Solid::Dense => "solid layers of the sparse pattern at 100% density",
@@ -408,12 +455,18 @@ impl Solid {
 /// The kind of fill a layer gets.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Fill {
+    /// Sparse infill, the profile's pattern.
     #[default]
     Sparse,
+    /// Solid infill in the sparse pattern (`D`).
     Dense,
+    /// Solid infill in the profile's solid pattern (`S`).
     Solid,
+    /// Concentric solid infill (`O`).
     Concentric,
+    /// Monotonic solid infill (`M`).
     Monotonic,
+    /// Rectilinear solid infill (`R`).
     Rectilinear,
 }
 

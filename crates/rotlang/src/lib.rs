@@ -30,6 +30,7 @@ pub use ir::*;
 /// every diagnostic found. Parsing never fails as a whole.
 #[derive(Clone, Debug, Default)]
 pub struct Parse {
+    /// The template: every instruction that could be read, in order.
     pub template: Template,
     /// At most `MAX_DIAGNOSTICS` (100), then one `rotlang::too-many-diagnostics` entry.
     /// Past the cap errors take precedence over warnings, so the first error is always

@@ -117,6 +117,7 @@ pub struct Decimal {
 }
 
 impl Decimal {
+    /// The text.
     pub fn as_str(&self) -> &str {
         // Only ASCII digits, signs, `.`, `e` and the words of non-finite values are written.
         std::str::from_utf8(&self.buf[..self.len as usize]).unwrap_or("NaN")

@@ -28,6 +28,7 @@ pub const NAN: &str = "orcaslicer::nan";
 pub struct Finding {
     /// [`HANGS`], [`UNDEFINED`] or [`NAN`].
     pub code: &'static str,
+    /// One sentence: what OrcaSlicer does there.
     pub message: String,
     /// The first layer concerned.
     pub first_layer: usize,
@@ -43,14 +44,18 @@ pub struct Finding {
 /// one (section 10). Also `rotlang::eval::Dialect`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Dialect {
+    /// rotlang's reading (SEMANTICS sections 1–9), the grammar's.
     #[default]
     Rotlang,
+    /// OrcaSlicer's own reading (section 10), with its hangs and NaN layers made finite.
     OrcaSlicer,
 }
 
 impl Dialect {
+    /// Both dialects, rotlang's first.
     pub const ALL: [Dialect; 2] = [Dialect::Rotlang, Dialect::OrcaSlicer];
 
+    /// Its name as options spell it: `rotlang` or `orcaslicer`.
     pub fn name(self) -> &'static str {
         match self {
             Dialect::Rotlang => "rotlang",

@@ -31,7 +31,9 @@ pub const MAX_SHELLS: u64 = u32::MAX as u64;
 /// A number as a binding received it: a float (JavaScript) or an integer (Python, C).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Given {
+    /// A floating-point number (JavaScript numbers).
     Float(f64),
+    /// An integer (Python ints, C integers), wide enough for any of them.
     Int(i128),
 }
 
@@ -76,6 +78,7 @@ impl fmt::Display for Shown {
 /// (Python's `ValueError`, a JavaScript `RotlangError`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LimitError {
+    /// What was refused and why, in one sentence.
     pub message: String,
 }
 

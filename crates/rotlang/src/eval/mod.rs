@@ -63,6 +63,7 @@ pub struct Options {
 /// One evaluated layer.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Layer {
+    /// The layer's index, 0 for the first layer.
     pub index: usize,
     /// Bottom height of the layer (mm above the object's bottom).
     pub bottom: f64,
@@ -71,6 +72,7 @@ pub struct Layer {
     /// The infill angle in degrees, base included, not wrapped (`+90` gives 90, 180,
     /// 270, 360, 450, ...). Always finite.
     pub angle: f64,
+    /// The kind of fill of the layer (sparse, or a solid kind).
     pub fill: Fill,
     /// The span of the instruction that governs the layer; `None` when the layer holds
     /// (every instruction spent) or the template is empty.
@@ -226,6 +228,7 @@ pub struct Evaluator<'a> {
 }
 
 impl<'a> Evaluator<'a> {
+    /// An evaluator of `template` on `model`, at its first layer.
     pub fn new(template: &'a Template, model: &'a Model, options: Options) -> Self {
         Evaluator {
             stream: layers(template, model, options),

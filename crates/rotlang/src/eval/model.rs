@@ -22,7 +22,12 @@ pub enum ModelError {
     /// The model has no layers.
     NoLayers,
     /// A layer height is zero, negative, not finite, or outside the sane range.
-    LayerHeight { index: usize, value: f64 },
+    LayerHeight {
+        /// The layer (0 for the first).
+        index: usize,
+        /// Its height as given.
+        value: f64,
+    },
     /// The standard layer height is zero, negative, not finite, or outside the sane range.
     StandardLayerHeight(f64),
     /// The first layer height is zero, negative, not finite, or outside the sane range.
@@ -230,6 +235,7 @@ impl Model {
         }
     }
 
+    /// How many layers the model has (at least one).
     pub fn len(&self) -> usize {
         match &self.heights {
             Heights::List(tops) => tops.len(),
@@ -247,10 +253,12 @@ impl Model {
         self.layer_height
     }
 
+    /// How many bottom shell layers (`B`).
     pub fn bottom_shells(&self) -> u32 {
         self.bottom_shells
     }
 
+    /// How many top shell layers (`T`).
     pub fn top_shells(&self) -> u32 {
         self.top_shells
     }

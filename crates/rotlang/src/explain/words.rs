@@ -168,7 +168,9 @@ fn range_words(ins: &Instruction, model: &Model) -> String {
 /// A contiguous block of layers governed by one instruction, with the angles around it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Run {
+    /// The first layer of the run.
     pub first_layer: usize,
+    /// How many layers it has.
     pub layers: usize,
     /// The angle of the layer below the run (0 below the first layer): where a turn starts.
     pub from: f64,

@@ -309,10 +309,8 @@ impl Tree {
             let here = current(&frames);
             match &toks[i] {
                 Tok::Punct('{') => frames.push(None),
-                Tok::Punct('}') => {
-                    if frames.len() > 1 {
-                        frames.pop();
-                    }
+                Tok::Punct('}') if frames.len() > 1 => {
+                    frames.pop();
                 }
                 Tok::Ident(kw) if kw == "mod" && at_module_level => {
                     if let Some(Tok::Ident(name)) = toks.get(i + 1) {
@@ -521,10 +519,8 @@ fn use_tree(toks: &[Tok], prefix: &mut Vec<String>, out: &mut Vec<(Option<String
     while i < toks.len() {
         match &toks[i] {
             Tok::Ident(seg) if seg == "as" => {
-                if let Some(Tok::Ident(alias)) = toks.get(i + 1) {
-                    if let Some(last) = out.last_mut() {
-                        last.0 = Some(alias.clone()).filter(|a| a != "_");
-                    }
+                if let (Some(Tok::Ident(alias)), Some(last)) = (toks.get(i + 1), out.last_mut()) {
+                    last.0 = Some(alias.clone()).filter(|a| a != "_");
                 }
                 i += 2;
             }

@@ -1,4 +1,4 @@
-//! Triangle meshes: reading STL (binary and ASCII) and OBJ files (feature `mesh`).
+//! Triangle meshes: reading STL (binary and ASCII) and OBJ files (crate `rotlang-geometry`).
 //!
 //! The readers are written here rather than taken from a crate: each format is a few
 //! dozen lines, and a reader of our own reports what it could not read with a position

@@ -1,4 +1,4 @@
-//! Slicing a mesh into layer sections (feature `mesh`): one layer at a time, memory
+//! Slicing a mesh into layer sections (crate `rotlang-geometry`): one layer at a time, memory
 //! bounded by the triangles that cross the current height and the section itself.
 //!
 //! Each layer is cut at its middle, as slicers do. A triangle with corners on both sides

@@ -299,30 +299,6 @@ fn excerpt(
     (text[start..end].to_owned(), (line - 1, col - 1), moved)
 }
 
-/// The text as shown under a diagnostic: control characters (a NUL, an escape) would be
-/// invisible or would drive the terminal, and zero-width ones invisible, so each becomes
-/// `?`s of the same byte length.
-pub(super) fn visible(text: &str) -> String {
-    // Zero-width characters (a byte-order mark, a zero-width space) would leave the caret
-    // under nothing.
-    let hidden = |c: char| {
-        (c.is_control() && !matches!(c, '\n' | '\t' | '\r'))
-            || matches!(c, '\u{feff}' | '\u{200b}'..='\u{200f}' | '\u{2060}')
-    };
-    if !text.contains(hidden) {
-        return text.to_owned();
-    }
-    text.chars()
-        .map(|c| {
-            if hidden(c) {
-                "?".repeat(c.len_utf8())
-            } else {
-                c.to_string()
-            }
-        })
-        .collect()
-}
-
 fn to_codespan(id: usize, d: &Diagnostic) -> cs::Diagnostic<usize> {
     let base = match d.severity {
         Severity::Error => cs::Diagnostic::error(),

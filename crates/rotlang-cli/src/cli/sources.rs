@@ -26,7 +26,7 @@ pub(super) struct Sources {
 impl Sources {
     /// Adds a text starting `at` = (lines, characters) into its input; returns its id.
     pub fn add(&mut self, name: String, original: &str, at: (usize, usize)) -> usize {
-        let mut text = super::visible(original);
+        let mut text = visible(original);
         // A lone `\r` ends a line (as in editors): shown as `\n`, byte for byte, so the
         // report draws two lines instead of sending the terminal's cursor back.
         if text.contains('\r') {
@@ -118,4 +118,28 @@ impl<'a> Files<'a> for Sources {
             .unwrap_or(source.text.len());
         Ok(start..end)
     }
+}
+
+/// The text as shown under a diagnostic: control characters (a NUL, an escape) would be
+/// invisible or would drive the terminal, and zero-width ones invisible, so each becomes
+/// `?`s of the same byte length.
+fn visible(text: &str) -> String {
+    // Zero-width characters (a byte-order mark, a zero-width space) would leave the caret
+    // under nothing.
+    let hidden = |c: char| {
+        (c.is_control() && !matches!(c, '\n' | '\t' | '\r'))
+            || matches!(c, '\u{feff}' | '\u{200b}'..='\u{200f}' | '\u{2060}')
+    };
+    if !text.contains(hidden) {
+        return text.to_owned();
+    }
+    text.chars()
+        .map(|c| {
+            if hidden(c) {
+                "?".repeat(c.len_utf8())
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }

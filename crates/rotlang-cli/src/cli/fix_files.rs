@@ -239,3 +239,57 @@ fn template(
     let span = found.span_in_source(Span::new(0, found.text.len()));
     Ok(Some((span, value)))
 }
+
+/// Why `check --fix` leaves `text` as it is, if it does: errors remain (an OrcaSlicer hang
+/// included), or, without --force, the fixes would make two agreeing readings part. One
+/// rule for templates, `--file` and the values in profiles.
+pub(crate) fn refusal(
+    args: &CheckArgs,
+    text: &str,
+    fixed: &crate::fix::Fixed,
+    target: crate::Target,
+    compat: &dyn Fn(&str) -> Vec<crate::Diagnostic>,
+) -> Option<String> {
+    let trim = |t: &str| t.strip_suffix('\n').unwrap_or(t).to_owned();
+    let (before, after) = (trim(text), trim(&fixed.text));
+    if fixed.parse.has_errors() || compat(&fixed.text).iter().any(|d| d.is_error()) {
+        Some("errors remain that have no automatic fix".to_owned())
+    } else if !args.force
+        && fixed.text != text
+        && !rotlang_change(text, &fixed.text, target)
+        && crate::dialect::compat::readings_agree(&before, target)
+        && !crate::dialect::compat::readings_agree(&after, target)
+    {
+        // A fix is what the user asked for when, afterwards, OrcaSlicer reads the
+        // template as rotlang does, or as it read it before: only a fix that makes
+        // two agreeing readings part needs --force. (Fixes that repair what rotlang
+        // reads, `+30/ 50%` into `+30/50%`, or what OrcaSlicer misreads, `10,,20`
+        // into `10, 20`, are what the warnings asked for.)
+        Some(format!(
+            "`{after}` would make OrcaSlicer read it differently from rotlang ({}); \
+             pass --force to fix anyway",
+            crate::dialect::compat::orcaslicer_change(&before, &after)
+                .unwrap_or_else(|| "on some layer".to_owned())
+        ))
+    } else {
+        None
+    }
+}
+
+/// Whether rotlang reads `fixed` differently from `text`, which has no errors (on the 20 mm
+/// cube and a model of other shell counts and heights). A text with errors has no reading
+/// to keep: `false`, so that the OrcaSlicer guard applies to its fixes.
+pub(crate) fn rotlang_change(text: &str, fixed: &str, target: crate::Target) -> bool {
+    let options = crate::eval::Options::default();
+    let mut models = vec![crate::eval::Model::cube20()];
+    models.extend(crate::eval::Model::uniform(75, 0.2, Some(0.3)).map(|m| m.with_shells(4, 5)));
+    models.iter().any(|model| {
+        let (parse, a) = crate::eval::parse_layers(text, target, model, options);
+        if parse.has_errors() {
+            return false;
+        }
+        let (_, b) = crate::eval::parse_layers(fixed, target, model, options);
+        a.zip(b)
+            .any(|(x, y)| x.fill != y.fill || crate::number::round_angle(x.angle - y.angle) != 0.0)
+    })
+}

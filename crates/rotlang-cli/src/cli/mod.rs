@@ -5,6 +5,7 @@
 
 pub mod args;
 pub mod check;
+mod check_args;
 pub mod completions;
 mod dialect;
 pub mod expand;
@@ -13,6 +14,7 @@ pub mod export;
 pub mod files;
 mod fix_files;
 pub mod fmt;
+mod from_profile;
 pub mod gcode;
 pub mod model;
 pub mod part;

@@ -250,6 +250,8 @@ struct Module {
     items: BTreeSet<String>,
     /// Names brought in by `use` (re-exports included): name → path as written.
     uses: BTreeMap<String, Vec<String>>,
+    /// Modules whose names `use path::*` brings in, as written.
+    globs: Vec<Vec<String>>,
 }
 
 /// A reference from a file: the path as written, read in `module`.
@@ -356,8 +358,12 @@ impl Tree {
                     let mut trees = Vec::new();
                     use_tree(&toks[i + 1..end], &mut Vec::new(), &mut trees);
                     for (binding, path) in trees {
-                        if let Some(binding) = binding.filter(|_| at_module_level) {
-                            self.modules[here].uses.insert(binding, path.clone());
+                        match binding {
+                            Some(binding) if at_module_level => {
+                                self.modules[here].uses.insert(binding, path.clone());
+                            }
+                            None if at_module_level => self.modules[here].globs.push(path.clone()),
+                            _ => {}
                         }
                         if !public || !at_module_level {
                             self.references.push(Reference {
@@ -489,10 +495,43 @@ impl Tree {
                 // A re-export of another crate's item (`pub use rotlang::*`) ends here.
                 return self.resolve(cur, &next, depth + 1).or(Some(m.file));
             } else {
-                return Some(m.file);
+                return self.through_globs(cur, &rest[k..], depth);
             }
         }
         Some(self.modules[cur].file)
+    }
+
+    /// A name `module` does not define nor import by name: the module of a glob import
+    /// that has it (`pub use ir::*` at a crate root), else nothing when a glob brings in
+    /// another crate (`use rotlang::*`: the name is that crate's), else `module`'s file.
+    fn through_globs(&self, module: usize, rest: &[String], depth: usize) -> Option<usize> {
+        let m = &self.modules[module];
+        let mut outside = false;
+        for glob in m.globs.iter().filter(|_| depth < 16) {
+            match self.start(module, glob) {
+                Some((from, within)) => {
+                    let mut target = from;
+                    for seg in within {
+                        match self.modules[target].children.get(seg) {
+                            Some(&child) => target = child,
+                            None => break,
+                        }
+                    }
+                    let t = &self.modules[target];
+                    let name = &rest[0];
+                    if t.children.contains_key(name)
+                        || t.items.contains(name)
+                        || t.uses.contains_key(name)
+                    {
+                        let mut path = glob.clone();
+                        path.extend(rest.iter().cloned());
+                        return self.resolve(module, &path, depth + 1);
+                    }
+                }
+                None => outside = true,
+            }
+        }
+        if outside { None } else { Some(m.file) }
     }
 
     /// Every edge `(from file, to file)` of the tree's references.

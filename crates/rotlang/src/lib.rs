@@ -21,36 +21,10 @@ mod lint;
 pub mod number;
 mod syntax;
 
-pub use syntax::MAX_DIAGNOSTICS;
+pub use syntax::{MAX_DIAGNOSTICS, Parse};
 
 pub use diagnostic::{Diagnostic, Fix, Label, LineIndex, Severity, Span};
 pub use ir::*;
-
-/// The result of parsing: the template (with every instruction that could be read) and
-/// every diagnostic found. Parsing never fails as a whole.
-#[derive(Clone, Debug, Default)]
-pub struct Parse {
-    /// The template: every instruction that could be read, in order.
-    pub template: Template,
-    /// At most `MAX_DIAGNOSTICS` (100), then one `rotlang::too-many-diagnostics` entry.
-    /// Past the cap errors take precedence over warnings, so the first error is always
-    /// in the list.
-    pub diagnostics: Vec<Diagnostic>,
-    /// How many diagnostics were found beyond the cap and not kept.
-    pub omitted: usize,
-    /// How many errors were found, kept or not (the "not shown" entry is not counted).
-    pub errors: usize,
-    /// How many warnings were found, kept or not.
-    pub warnings: usize,
-}
-
-impl Parse {
-    /// Whether any instruction failed to parse or validate: exact whatever the cap on
-    /// `diagnostics`. Formatters and anything that rewrites text must check this.
-    pub fn has_errors(&self) -> bool {
-        self.errors > 0 || self.diagnostics.iter().any(Diagnostic::is_error)
-    }
-}
 
 /// Parse a template for the given target (sparse or solid infill).
 pub fn parse(text: &str, target: Target) -> Parse {

@@ -36,48 +36,22 @@
 //! ```
 
 mod engine;
+mod layer;
 pub mod limits;
 mod model;
 mod random;
 mod shape;
 
 pub use crate::dialect::Dialect;
+// What the evaluator gives (in layer.rs, so that the engine does not name this module).
+pub use layer::{Layer, Options};
 pub use model::{MAX_LAYER_HEIGHT, MAX_LAYERS, MIN_LAYER_HEIGHT, Model, ModelError};
 // The OrcaSlicer reader (`crate::dialect`) walks the same layers with the same randomness.
 pub(crate) use model::Cursor;
 pub(crate) use random::unit as random_unit;
 
-use crate::diagnostic::Span;
 use crate::ir::{Fill, Template};
 use engine::Engine;
-
-/// Evaluation options.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Options {
-    /// The base direction (degrees) added to every angle: the profile's infill direction.
-    pub base: f64,
-    /// The seed of the random joints `~` and `^`.
-    pub seed: u64,
-}
-
-/// One evaluated layer.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Layer {
-    /// The layer's index, 0 for the first layer.
-    pub index: usize,
-    /// Bottom height of the layer (mm above the object's bottom).
-    pub bottom: f64,
-    /// Top height of the layer (mm).
-    pub top: f64,
-    /// The infill angle in degrees, base included, not wrapped (`+90` gives 90, 180,
-    /// 270, 360, 450, ...). Always finite.
-    pub angle: f64,
-    /// The kind of fill of the layer (sparse, or a solid kind).
-    pub fill: Fill,
-    /// The span of the instruction that governs the layer; `None` when the layer holds
-    /// (every instruction spent) or the template is empty.
-    pub instruction: Option<Span>,
-}
 
 /// The layers of `model` under `template`, bottom to top.
 pub fn layers<'a>(template: &'a Template, model: &'a Model, options: Options) -> Layers<'a> {

@@ -2,6 +2,7 @@
 //! of section 9, and the cost and finiteness guarantees.
 
 use super::*;
+use crate::diagnostic::Span;
 use crate::{Target, parse};
 
 fn template(text: &str) -> Template {

@@ -149,3 +149,29 @@ fn strings_comments_and_raw_strings_are_skipped() {
         .collect();
     assert_eq!(words, ["a", "e", "x", "m"]);
 }
+
+#[test]
+fn a_glob_re_export_leads_to_the_module_that_has_the_name() {
+    // `pub use ir::*` at the root: `crate::Template` is ir.rs's, not lib.rs's; a glob of
+    // another crate (`use other::*`) is outside, no edge.
+    let files = [
+        (
+            "lib.rs",
+            "use other::*;\nmod ir;\nmod syntax;\npub use ir::*;\npub fn parse() { syntax::run() }\n",
+        ),
+        ("ir.rs", "pub struct Template;\n"),
+        (
+            "syntax/mod.rs",
+            "use crate::Template;\nuse crate::Outside;\npub fn run() {}\n",
+        ),
+    ];
+    let dir = scratch("glob", &files);
+    let graph = crate_graph(&dir).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(
+        graph["syntax/mod.rs"].iter().collect::<Vec<_>>(),
+        ["ir.rs"],
+        "{graph:?}"
+    );
+    assert!(cycles(&graph).is_empty());
+}

@@ -312,7 +312,7 @@ fn core_profile(case: &Value) -> Value {
             .as_bytes()
             .to_vec(),
     };
-    match api::profile(case["file"].as_str().expect("file"), &bytes) {
+    match rotlang_profile::api::profile(case["file"].as_str().expect("file"), &bytes) {
         Err(e) => serde_json::json!({ "error": e.kind.as_str(), "message": e.message }),
         Ok(p) => serde_json::json!({
             "kind": p.kind,

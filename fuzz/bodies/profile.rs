@@ -1,4 +1,4 @@
-//! Fuzz target `profile`: any bytes as a profile (`rotlang::profile::parse`) under one of
+//! Fuzz target `profile`: any bytes as a profile (`rotlang_profile::profile::parse`) under one of
 //! the names the first byte chooses (`.json`, `.jsonc`, `.ini`, `.3mf`, `.rot`, none): an
 //! error or a profile whose templates map inside their source texts, and whose model can
 //! always be built; a repeated key keeps one value (the others are warnings, not errors),
@@ -14,7 +14,7 @@ pub fn run(data: &[u8]) {
         return;
     };
     let name = ["p.json", "p.jsonc", "p.ini", "p.3mf", "p.rot", "p"][usize::from(first % 6)];
-    let Ok(profile) = rotlang::profile::parse(Path::new(name), rest) else {
+    let Ok(profile) = rotlang_profile::profile::parse(Path::new(name), rest) else {
         return;
     };
     for found in &profile.templates {
@@ -47,7 +47,7 @@ pub fn run(data: &[u8]) {
         assert!(!note.error, "{note:?}");
     }
     // Outside a per-extruder array, one value per key: the last (as OrcaSlicer keeps).
-    if profile.kind == Some(rotlang::profile::Kind::Ini) {
+    if profile.kind == Some(rotlang_profile::profile::Kind::Ini) {
         let mut keys: Vec<&str> = profile
             .templates
             .iter()

@@ -1,5 +1,5 @@
 //! Replays a target's corpus through its body on stable Rust: used by the regular test
-//! suite (`tests/fuzz_replay.rs`, `lsp/tests/fuzz_replay.rs`), so CI needs no nightly.
+//! suite (`crates/rotlang-profile/tests/fuzz_replay.rs`, `lsp/tests/fuzz_replay.rs`), so CI needs no nightly.
 
 use std::path::{Path, PathBuf};
 

@@ -33,7 +33,7 @@ pub struct Input {
     index: usize,
     text: String,
     target: rotlang::Target,
-    profile: Option<rotlang::profile::ProfileModel>,
+    profile: Option<rotlang_profile::profile::ProfileModel>,
     reading: crate::reading::Reading,
 }
 

@@ -3,8 +3,8 @@
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
-use rotlang::profile::ProfileModel;
 use rotlang::{Instruction, Parse, Span, Target};
+use rotlang_profile::profile::ProfileModel;
 
 use crate::json::{self, OffsetMap};
 use crate::preview::Preview;
@@ -115,7 +115,7 @@ impl Region {
 }
 
 /// A template value that a later one of the same key replaces (OrcaSlicer's reader keeps
-/// the last; so does the library, `rotlang::profile`): it is not read, and gets the warning
+/// the last; so does the library, `rotlang_profile::profile`): it is not read, and gets the warning
 /// `rotlang check` gives it.
 #[derive(Debug)]
 pub struct Duplicate {
@@ -248,9 +248,13 @@ impl Document {
         if kind != Kind::Rot && !regions.is_empty() {
             let profile = profile_of(&text, kind, path);
             for region in &mut regions {
-                region.profile = profile
-                    .as_ref()
-                    .map(|p| p.model(region.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT));
+                region.profile = profile.as_ref().map(|p| {
+                    p.model(
+                        region.target,
+                        None,
+                        rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT,
+                    )
+                });
             }
         }
         // A JSON file that never names a template key is not a profile (an editor may hand
@@ -376,7 +380,7 @@ fn last_of_each_key(
         match later {
             None => used.push(t),
             Some(at) => {
-                // `rotlang::profile`'s words for the note `rotlang check` prints.
+                // `rotlang_profile::profile`'s words for the note `rotlang check` prints.
                 let line = index.line(at.start.min(doc.len())) + 1;
                 replaced.push(Duplicate {
                     message: format!(
@@ -397,7 +401,11 @@ fn last_of_each_key(
 
 /// The library's reading of a profile's text: its settings, with the `inherits` parents
 /// beside `path` when the document is a file. `None` when the library cannot read it.
-fn profile_of(text: &str, kind: Kind, path: Option<&Path>) -> Option<rotlang::profile::Profile> {
+fn profile_of(
+    text: &str,
+    kind: Kind,
+    path: Option<&Path>,
+) -> Option<rotlang_profile::profile::Profile> {
     // A name that says its kind: the library decides the format from it.
     let name = match kind {
         Kind::Rot => return None,
@@ -405,7 +413,7 @@ fn profile_of(text: &str, kind: Kind, path: Option<&Path>) -> Option<rotlang::pr
         Kind::Jsonc => "profile.jsonc",
         Kind::Ini => "profile.ini",
     };
-    let mut profile = rotlang::profile::parse(Path::new(name), text.as_bytes()).ok()?;
+    let mut profile = rotlang_profile::profile::parse(Path::new(name), text.as_bytes()).ok()?;
     if let Some(path) = path {
         profile.path = path.to_owned();
         profile.resolve_inherits();

@@ -1,8 +1,8 @@
 //! `.ini` slicer configs (OrcaSlicer's "export config"): `key = value` lines. The value of a
 //! template key is the template, verbatim to the end of its line.
 
-/// The library's reader (`rotlang::profile::ini`), shared with the CLI.
-pub use rotlang::profile::ini::find_templates;
+/// The library's reader (`rotlang_profile::profile::ini`), shared with the CLI.
+pub use rotlang_profile::profile::ini::find_templates;
 
 #[cfg(test)]
 mod tests {

@@ -4,9 +4,9 @@
 
 /// The document with `//` and `/* */` comments and trailing commas replaced by spaces
 /// (line breaks kept, so line numbers do not move). Strings are copied untouched. The
-/// library's reader (`rotlang::profile::json::strip_jsonc`), shared with the CLI.
+/// library's reader (`rotlang_profile::profile::json::strip_jsonc`), shared with the CLI.
 pub fn blank(doc: &str) -> String {
-    rotlang::profile::json::strip_jsonc(doc).into_owned()
+    rotlang_profile::profile::json::strip_jsonc(doc).into_owned()
 }
 
 #[cfg(test)]

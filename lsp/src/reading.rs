@@ -3,12 +3,12 @@
 //! here, so they never disagree on a layer.
 //!
 //! In a profile (JSON, `.ini`) the reading is the library's: the profile's own layer
-//! heights, shells and infill direction (`rotlang::profile::ProfileModel`), with the base
+//! heights, shells and infill direction (`rotlang_profile::profile::ProfileModel`), with the base
 //! the library decides (OrcaSlicer's rule: the direction turns an empty template only). In a
 //! `.rot` file it is the model of the client's settings, with no base.
 
 use rotlang::eval::{Model, Options};
-use rotlang::profile::ProfileModel;
+use rotlang_profile::profile::ProfileModel;
 
 use crate::settings::ModelSettings;
 
@@ -43,7 +43,7 @@ impl Reading {
             describe: format!(
                 "{}, from this profile (the object's height is not in a profile: {} mm assumed)",
                 rotlang::explain::model(&profile.model),
-                rotlang::explain::num(rotlang::profile::DEFAULT_OBJECT_HEIGHT)
+                rotlang::explain::num(rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT)
             ),
             model: profile.model.clone(),
             options,

@@ -187,19 +187,19 @@ impl ModelSettings {
         let mut s = format!(
             "{} layers × {} mm",
             self.layers,
-            crate::preview::fmt_num(self.layer_height)
+            rotlang::explain::num(self.layer_height)
         );
         if let Some(first) = self.first_layer_height
             && first != self.layer_height
         {
             s.push_str(&format!(
                 ", first layer {} mm",
-                crate::preview::fmt_num(first)
+                rotlang::explain::num(first)
             ));
         }
         s.push_str(&format!(
             " ({} mm tall)",
-            crate::preview::fmt_num(self.height())
+            rotlang::explain::num(self.height())
         ));
         if self.bottom_shell_layers > 0 || self.top_shell_layers > 0 {
             s.push_str(&format!(

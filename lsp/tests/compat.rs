@@ -20,10 +20,15 @@ fn codes(diags: &[serde_json::Value]) -> Vec<String> {
 /// What `rotlang check` reports for a profile's text with no file behind it: the parse of
 /// each template and the library's compat lint on the profile's model, codes sorted.
 fn library_codes(name: &str, text: &str) -> Vec<String> {
-    let profile = rotlang::profile::parse(std::path::Path::new(name), text.as_bytes()).unwrap();
+    let profile =
+        rotlang_profile::profile::parse(std::path::Path::new(name), text.as_bytes()).unwrap();
     let mut out = Vec::new();
     for found in &profile.templates {
-        let pm = profile.model(found.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
+        let pm = profile.model(
+            found.target,
+            None,
+            rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT,
+        );
         let parse = rotlang::parse(&found.text, found.target);
         out.extend(parse.diagnostics.iter().map(|d| d.code.to_owned()));
         out.extend(
@@ -123,9 +128,13 @@ fn inherited_settings_are_read_beside_the_file() {
     let h = hover_text(&mut lsp, &format!("file://{}", child.display()), 0, at);
     assert!(h.contains("Model: 200 layers × 0.1 mm"), "{h}");
     // What `rotlang check --compat orcaslicer child.json` reports.
-    let profile = rotlang::profile::read(&child).unwrap();
+    let profile = rotlang_profile::profile::read(&child).unwrap();
     let found = &profile.templates[0];
-    let pm = profile.model(found.target, None, rotlang::profile::DEFAULT_OBJECT_HEIGHT);
+    let pm = profile.model(
+        found.target,
+        None,
+        rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT,
+    );
     assert_eq!(pm.model.layer_height(), 0.1);
     let mut from_cli: Vec<String> = pm
         .compat(&found.text, found.target)

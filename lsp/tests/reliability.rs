@@ -371,7 +371,7 @@ fn storm_in_the_middle(uri: &str, language: &str, head: &str, tail: &str, len: u
 fn a_duplicate_template_key_is_read_as_check_reads_it() {
     let text = "{\n  \"sparse_infill_rotate_template\": \"0, 90X\",\n  \"layer_height\": \"0.2\",\n  \"sparse_infill_rotate_template\": \"+30/5cm, 45\"\n}\n";
     // What `rotlang check` reports: the library's reading of the file.
-    let profile = rotlang::profile::parse(std::path::Path::new("p.json"), text.as_bytes())
+    let profile = rotlang_profile::profile::parse(std::path::Path::new("p.json"), text.as_bytes())
         .expect("a profile");
     assert_eq!(profile.templates.len(), 1);
     assert_eq!(profile.templates[0].text, "+30/5cm, 45");

@@ -830,11 +830,12 @@ fn a_preset_reads_the_same_in_hover_inlay_hints_and_diagnostics() {
     let diags = lsp.open(uri, "json", doc);
     // The library's reading: the preset's model; no direction added to a non-empty template.
     let profile =
-        rotlang::profile::parse(std::path::Path::new("preset.json"), doc.as_bytes()).unwrap();
+        rotlang_profile::profile::parse(std::path::Path::new("preset.json"), doc.as_bytes())
+            .unwrap();
     let pm = profile.model(
         rotlang::Target::Sparse,
         None,
-        rotlang::profile::DEFAULT_OBJECT_HEIGHT,
+        rotlang_profile::profile::DEFAULT_OBJECT_HEIGHT,
     );
     let template = rotlang::parse("0 90", rotlang::Target::Sparse).template;
     let angles: Vec<f64> = rotlang::eval::layers(&template, &pm.model, Options::default())

@@ -229,9 +229,9 @@ pub fn compat(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Va
 #[cfg(feature = "full")]
 /// The templates and model of a profile file (`name` picks the kind by its extension:
 /// `.json`/`.jsonc` presets, `.ini` exports, `.rot` templates), read by
-/// `rotlang::api::profile` (what the Python binding's `read_profile` shows too).
+/// `rotlang_profile::api::profile` (what the Python binding's `read_profile` shows too).
 pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
-    let p = rotlang::api::profile(name, bytes)?;
+    let p = rotlang_profile::api::profile(name, bytes)?;
     let m = &p.model;
     let templates: Vec<Value> = p
         .templates
@@ -270,7 +270,7 @@ pub fn profile(name: &str, bytes: &[u8]) -> Result<Value, Failure> {
     }))
 }
 
-/// The angle chart of the template on the model (`rotlang::plot::svg`, as `rotlang plot`
+/// The angle chart of the template on the model (`rotlang_geometry::plot::svg`, as `rotlang plot`
 /// draws it). In the full module: 20 KB the core's budget has no room for.
 #[cfg(feature = "full")]
 pub fn plot(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
@@ -282,13 +282,13 @@ pub fn plot(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Valu
     // phone-wide picture the rest would be clipped mid-letter): about 9 px a character of
     // its 15 px bold, right of a 72 px margin.
     let room = (((width - 96.0) / 9.0) as usize).saturating_sub(10).max(4);
-    let plot = rotlang::plot::PlotOptions {
+    let plot = rotlang_geometry::plot::PlotOptions {
         width,
         height: req.pixels(slot::PICTURE_HEIGHT, 560.0)?,
         title: Some(format!("template: {}", shorten(text.trim(), room))),
     };
     let parse = parse_clean(text, target)?;
-    Ok(obj!({ "svg": rotlang::plot::svg(&parse.template, &model, options, text, &plot) }))
+    Ok(obj!({ "svg": rotlang_geometry::plot::svg(&parse.template, &model, options, text, &plot) }))
 }
 
 /// At most `max` characters of `text`, with an ellipsis when cut.
@@ -307,11 +307,11 @@ fn shorten(text: &str, max: usize) -> String {
 #[cfg(feature = "full")]
 pub const SHAPES: [&str; 5] = ["square", "circle", "ring", "star", "l"];
 
-/// One layer's infill as printed, seen from above (`rotlang::infill::preview`, as
+/// One layer's infill as printed, seen from above (`rotlang_geometry::infill::preview`, as
 /// `rotlang preview` draws it).
 #[cfg(feature = "full")]
 pub fn preview(text: &str, req: &Request, heights: Option<Vec<f64>>) -> Result<Value, Failure> {
-    use rotlang::infill::{Pattern, Settings, preview, shapes};
+    use rotlang_geometry::infill::{Pattern, Settings, preview, shapes};
     let target = req.target()?;
     let options = req.eval_options()?;
     let model = req.model(heights)?;

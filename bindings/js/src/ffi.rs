@@ -20,7 +20,7 @@ thread_local! {
     /// The mesh of the last `rotlang_mesh` (kept so that each template or slider change
     /// slices it again without copying the file in again).
     #[cfg(feature = "full")]
-    static MESH: RefCell<Option<rotlang::mesh::Mesh>> = const { RefCell::new(None) };
+    static MESH: RefCell<Option<rotlang_geometry::mesh::Mesh>> = const { RefCell::new(None) };
 }
 
 /// Inputs are aligned for f64 (the request slots and layer heights are f64 arrays, which
@@ -328,7 +328,7 @@ pub unsafe extern "C" fn rotlang_mesh(
 }
 
 #[cfg(feature = "full")]
-/// The kept mesh sliced and filled under the template (`rotlang::slice::Part`): every
+/// The kept mesh sliced and filled under the template (`rotlang_geometry::slice::Part`): every
 /// layer's section and infill paths (or those of `from`..`to`), as
 /// `rotlang preview --shape part.stl --format json`. `walls`: wall loops (NaN: 2).
 ///

@@ -3,9 +3,9 @@
 //! Plain C-ABI exports and a small hand-written JS wrapper (`rotlang.js`) rather than
 //! wasm-bindgen: no CLI tool whose version must match the crate, and a smaller module.
 //! The convention, for every call: JavaScript copies the template (UTF-8) and a JSON
-//! request into memory from [`rotlang_alloc`], calls the export, which returns 0 (success)
-//! or 1 (failure); the JSON answer (or the failure) is at [`rotlang_out_ptr`] /
-//! [`rotlang_out_len`] until the next call. `expand` also leaves its typed arrays at
+//! request into memory from `rotlang_alloc`, calls the export, which returns 0 (success)
+//! or 1 (failure); the JSON answer (or the failure) is at `rotlang_out_ptr` /
+//! `rotlang_out_len` until the next call. `expand` also leaves its typed arrays at
 //! `rotlang_angles_ptr` etc. Nothing panics on bad input; were something to, the wasm
 //! traps and the wrapper turns the trap into a JS exception and starts a fresh instance.
 

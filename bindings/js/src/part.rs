@@ -1,11 +1,11 @@
 //! A real part in the playground (the `full` module): a mesh file (STL, OBJ or the objects
 //! of a 3MF) read once and kept, then sliced and filled layer by layer under a template,
 //! with the same answers as `rotlang preview --shape part.stl --format json` (same model,
-//! walls, settings and JSON fields; `rotlang::slice::Part` does the work for both).
+//! walls, settings and JSON fields; `rotlang_geometry::slice::Part` does the work for both).
 
-use rotlang::infill::{Pattern, Settings};
-use rotlang::mesh::Mesh;
-use rotlang::slice::{Part, PartOptions, Summary};
+use rotlang_geometry::infill::{Pattern, Settings};
+use rotlang_geometry::mesh::Mesh;
+use rotlang_geometry::slice::{Part, PartOptions, Summary};
 
 use crate::Failure;
 use crate::json::Value;
@@ -25,11 +25,11 @@ const TRAVEL_SPEED: f64 = 200.0;
 /// A mesh file's triangles: an STL or OBJ by [`Mesh::read`], a 3MF's objects merged as
 /// `rotlang preview --shape project.3mf` merges them without `--object`.
 pub fn read_mesh(name: &str, bytes: &[u8]) -> Result<(Mesh, Vec<String>), Failure> {
-    let cannot = |e: rotlang::mesh::MeshError| {
+    let cannot = |e: rotlang_geometry::mesh::MeshError| {
         Failure::model(format!("cannot read a mesh from {name}: {e}"))
     };
     let (mesh, objects) = if name.to_ascii_lowercase().ends_with(".3mf") {
-        let objects = rotlang::mesh::read_3mf(bytes).map_err(cannot)?;
+        let objects = rotlang_geometry::mesh::read_3mf(bytes).map_err(cannot)?;
         let mut merged = Mesh::default();
         let mut names = Vec::new();
         for (n, m) in objects {
@@ -178,7 +178,7 @@ pub fn part(mesh: &Mesh, text: &str, req: &Request, walls: f64) -> Result<Value,
 }
 
 /// A section's polygons, each its outline then its holes, as `[x, y]` lists.
-fn rings(region: &rotlang::infill::MultiPolygon<f64>, points: &mut usize) -> Value {
+fn rings(region: &rotlang_geometry::infill::MultiPolygon<f64>, points: &mut usize) -> Value {
     region
         .0
         .iter()
@@ -199,7 +199,7 @@ fn rings(region: &rotlang::infill::MultiPolygon<f64>, points: &mut usize) -> Val
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rotlang::mesh::shapes;
+    use rotlang_geometry::mesh::shapes;
 
     fn field<'a>(v: &'a Value, key: &str) -> &'a Value {
         match v {

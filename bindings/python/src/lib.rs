@@ -494,7 +494,7 @@ fn explain_code<'py>(py: Python<'py>, code: &str) -> PyResult<Option<Bound<'py, 
     Ok(Some(dict))
 }
 
-/// The templates, model and direction of a profile file, read by `rotlang::api::profile`
+/// The templates, model and direction of a profile file, read by `rotlang_profile::api::profile`
 /// (what the JavaScript binding's `readProfile` shows): `name` picks the kind by its
 /// extension (`.json`/`.jsonc` presets, `.ini` exports, `.rot` templates); `content` is
 /// its text or bytes. A dict: `kind`, `templates` (dicts with `key`, `object`, `target`,
@@ -511,7 +511,7 @@ fn read_profile<'py>(
         Ok(text) => text.into_bytes(),
         Err(_) => content.extract::<Vec<u8>>()?,
     };
-    let p = py.detach(|| api::profile(name, &bytes)).map_err(refused)?;
+    let p = py.detach(|| rotlang_profile::api::profile(name, &bytes)).map_err(refused)?;
     let templates = PyList::empty(py);
     for t in &p.templates {
         let d = PyDict::new(py);

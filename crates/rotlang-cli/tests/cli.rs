@@ -1656,7 +1656,8 @@ fn preview_of_a_part_makes_its_top_surfaces_solid() {
     let stl = dir.0.join("step.stl");
     std::fs::write(
         &stl,
-        rotlang_geometry::mesh::shapes::step([30.0, 10.0, 10.0], [10.0, 10.0, 10.0]).to_binary_stl(),
+        rotlang_geometry::mesh::shapes::step([30.0, 10.0, 10.0], [10.0, 10.0, 10.0])
+            .to_binary_stl(),
     )
     .unwrap();
     let (v, stderr) = preview_json(

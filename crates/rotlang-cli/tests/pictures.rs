@@ -440,7 +440,6 @@ fn shell_words(line: &str) -> Vec<String> {
     words
 }
 
-#[cfg(feature = "cli")]
 #[path = "support/project.rs"]
 mod project;
 

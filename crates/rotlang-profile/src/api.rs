@@ -5,10 +5,10 @@
 
 use std::path::Path;
 
-use rotlang::api::{ApiError, ErrorKind};
 use crate::Target;
 use crate::eval::Model;
 use crate::profile::{self, DEFAULT_OBJECT_HEIGHT};
+use rotlang::api::{ApiError, ErrorKind};
 
 /// One template of the file.
 #[derive(Clone, Debug, PartialEq)]

@@ -10,6 +10,7 @@
 // pest_derive without its "std" feature generates code that names `alloc`.
 extern crate alloc;
 
+pub mod api;
 pub mod diagnostic;
 pub mod dialect;
 pub mod eval;

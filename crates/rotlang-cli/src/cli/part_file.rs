@@ -397,10 +397,5 @@ pub(super) fn orcaslicer_pattern(name: &str, solid: bool) -> Option<Pattern> {
 
 /// Whether a 3MF holds OrcaSlicer's settings (`Metadata/*.config`): a project.
 pub(super) fn is_project(bytes: &[u8]) -> bool {
-    let Ok(archive) = zip::ZipArchive::new(std::io::Cursor::new(bytes)) else {
-        return false;
-    };
-    archive
-        .file_names()
-        .any(|n| n == "Metadata/project_settings.config" || n == "Metadata/model_settings.config")
+    rotlang_profile::profile::is_project(bytes)
 }

@@ -40,7 +40,7 @@ pub use settings::{
     DEFAULT_OBJECT_HEIGHT, Direction, INFILL_KEYS, MODEL_KEYS, ProfileModel, Setting, Settings,
 };
 #[cfg(feature = "3mf")]
-pub use threemf::{MAX_ENTRIES, MAX_ENTRY_BYTES};
+pub use threemf::{MAX_ENTRIES, MAX_ENTRY_BYTES, is_project};
 
 use crate::{Span, Target};
 

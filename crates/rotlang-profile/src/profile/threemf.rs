@@ -429,3 +429,14 @@ pub(super) fn unescape_xml(raw: &str, doc: usize) -> (String, OffsetMap) {
     text.push_str(&raw[run..]);
     (text, map)
 }
+
+/// Whether a 3MF holds OrcaSlicer's settings (`Metadata/*.config`): a project, whose
+/// settings `rotlang preview project.3mf` takes, not only a mesh.
+pub fn is_project(bytes: &[u8]) -> bool {
+    let Ok(archive) = zip::ZipArchive::new(std::io::Cursor::new(bytes)) else {
+        return false;
+    };
+    archive
+        .file_names()
+        .any(|n| n == "Metadata/project_settings.config" || n == "Metadata/model_settings.config")
+}

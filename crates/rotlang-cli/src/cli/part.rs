@@ -12,7 +12,6 @@ use crate::plot::{num, shorten};
 use crate::slice::{FilledArea, Part, PartLayer, PartOptions, Summary};
 use geo::Area;
 
-#[path = "part_file.rs"]
 mod file;
 
 /// The most bytes a mesh file may have (a 25-million-triangle binary STL).

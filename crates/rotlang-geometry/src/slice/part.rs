@@ -389,5 +389,4 @@ impl Summary {
 }
 
 #[cfg(test)]
-#[path = "part_tests.rs"]
 mod tests;

@@ -28,6 +28,7 @@ use geo::{Coord, LineString, MultiPolygon, Polygon};
 
 use crate::mesh::Mesh;
 
+pub mod json;
 pub mod part;
 pub use part::{FilledArea, Part, PartLayer, PartOptions, Summary};
 

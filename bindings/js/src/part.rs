@@ -180,10 +180,7 @@ mod tests {
         let answer = parsed(part(&mesh, "+45", Some("90"), &Request::default(), 2.0).unwrap());
         assert_eq!(answer["solid_template"], "90");
         assert_eq!(answer["layers"][0]["areas"][0]["angle"], 90.0);
-        assert_eq!(
-            answer["layers"][10]["areas"][0]["angle"],
-            45.0 * 11.0
-        );
+        assert_eq!(answer["layers"][10]["areas"][0]["angle"], 45.0 * 11.0);
     }
 
     #[test]

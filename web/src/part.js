@@ -134,7 +134,7 @@ export class PartPanel {
     if (info.objects.length > 1) text += ` (${info.objects.length} objects: ${info.objects.join(', ')})`;
     if (answer) {
       const s = answer.summary;
-      text += ` · ${s.layers} layers, infill ${mm(s.extrusion_mm / 1000)} m, travel ${mm(s.travel_mm / 1000)} m, ${Math.round(s.time_s / 60)} min at ${s.speed} mm/s`;
+      text += ` · ${s.layers} layers, infill ${mm(s.extrusion_mm / 1000)} m (${mm(s.solid_extrusion_mm / 1000)} m solid), travel ${mm(s.travel_mm / 1000)} m, ${Math.round(s.time_s / 60)} min at ${s.speed} mm/s`;
       if (s.open_layers) text += ` · ${s.open_layers} layers have sections that could not be closed (holes in the mesh)`;
     }
     if (this.error) text += ` · not sliced: ${this.error}`;

@@ -76,14 +76,33 @@ export interface MeshInfo {
 export function readMesh(name: string, content: Uint8Array | ArrayBuffer | string): MeshInfo;
 
 export type Point = [number, number];
+/** One area of a layer: the sparse one, or the solid one (top and bottom surfaces). */
+export interface PartArea {
+  /** 'sparse', 'solid', or the template's solid sign that makes the layer solid. */
+  fill: string;
+  solid: boolean;
+  angle: number;
+  pattern: string;
+  density: number;
+  area_mm2: number;
+  /** The area: polygons, each its outline then its holes. */
+  region: Point[][][];
+  length: number;
+  travel: number;
+  polylines: Point[][];
+}
 export interface PartLayer {
   index: number;
   bottom: number;
   top: number;
   /** The height of the cut (the layer's middle) above the mesh's lowest point. */
   z: number;
+  /** The sparse template's angle, and the angle the solid area turns by. */
   angle: number;
+  solid_angle: number;
   fill: string;
+  /** 'sparse', 'sparse+solid', or the solid fill throughout ('solid' for a surface). */
+  printed: string;
   pattern: string;
   density: number;
   /** Infill extruded and travelled on this layer (mm). */
@@ -94,24 +113,41 @@ export interface PartLayer {
   bridged: number;
   /** The section: polygons, each its outline then its holes. */
   section: Point[][][];
+  /** The areas that are not empty: the sparse one, then the solid one. */
+  areas: PartArea[];
+  /** Every path of the layer (the areas' in turn). */
   polylines: Point[][];
 }
 export interface PartOptions extends Omit<PreviewOptions, 'shape' | 'layer' | 'width'> {
   /** Wall loops around the infill, each a 0.4 mm line (default 2). */
   walls?: number;
+  /**
+   * The solid infill's template (`solid_infill_rotate_template`, `--solid-template`): it
+   * turns the solid areas; without it they turn with the template. Their depth is the
+   * model's `bottomShells` and `topShells`.
+   */
+  solidTemplate?: string;
   /** The layers returned, `from` (included) to `to` (excluded); all by default. The summary counts every layer. */
   from?: number;
   to?: number;
 }
 /**
  * The mesh kept by `readMesh`, sliced at the middle of each layer and filled under the
- * template: what `rotlang preview --shape part.stl --format json` prints.
+ * template: what `rotlang preview --shape part.stl --format json` prints (the same code
+ * builds both).
  */
 export function part(text: string, options?: PartOptions): {
   template: string;
+  solid_template: string | null;
+  settings: {
+    pattern: string; density: number; solid_pattern: string; line_width: number; walls: number;
+    layer_height: number; layers: number; bottom_shell_layers: number; top_shell_layers: number;
+    base: number;
+  };
   summary: {
     layers: number; extrusion_mm: number; travel_mm: number; time_s: number;
-    speed: number; travel_speed: number; open_layers: number; bridged: number; walls: number;
+    speed: number; travel_speed: number; open_layers: number; bridged: number;
+    solid_extrusion_mm: number;
   };
   layers: PartLayer[];
 };

@@ -379,17 +379,25 @@ export async function bind(wasmModule) {
 
   /**
    * The kept mesh (`readMesh`) sliced at its layers and filled under the template, as
-   * `rotlang preview --shape part.stl --format json`: `{ summary, layers }`, each layer with
-   * its `z`, `angle`, `fill`, `section` (polygons: outline then holes, `[x, y]` points) and
-   * infill `polylines`. Options as expand's (the model is as tall as the mesh unless it
-   * gives `layers` or `height`; `from`/`to` pick the layers returned), plus `pattern`,
-   * `density` and `walls` (wall loops, 2 when absent).
+   * `rotlang preview --shape part.stl --format json`: `{ template, solid_template, settings,
+   * summary, layers }`, each layer with its `z`, `angle`, `fill`, `printed`, `section`
+   * (polygons: outline then holes, `[x, y]` points), `areas` (the sparse and the solid one,
+   * each with its region and paths) and infill `polylines`. Options as expand's (the model
+   * is as tall as the mesh unless it gives `layers` or `height`; its `bottomShells` and
+   * `topShells` are the solid surfaces' depths; `from`/`to` pick the layers returned), plus
+   * `pattern`, `density`, `walls` (wall loops, 2 when absent) and `solidTemplate` (turns
+   * the solid areas, as `--solid-template`; without it they turn with the template).
    */
   function part(text, options = {}) {
-    const { walls, ...rest } = options ?? {};
+    const { walls, solidTemplate, ...rest } = options ?? {};
     if (walls !== undefined && walls !== null) finite('options', 'walls', walls);
-    const [slots] = request(rest);
-    return withInputs('rotlang_part', [encoder.encode(textArg(text)), new Uint8Array(slots.buffer)], [walls ?? NaN], true);
+    const solid = solidTemplate !== undefined && solidTemplate !== null;
+    if (solid && typeof solidTemplate !== 'string') {
+      throw new RotlangError('options', `\`solidTemplate\` must be a string, not ${JSON.stringify(solidTemplate) ?? String(solidTemplate)}`);
+    }
+    const [slots] = request(exportsOrThrow(), rest);
+    const inputs = [encoder.encode(textArg(text)), encoder.encode(solid ? solidTemplate : ''), new Uint8Array(slots.buffer)];
+    return withInputs('rotlang_part', inputs, [walls ?? NaN, solid ? 1 : 0], true);
   }
 
   // Copies the byte inputs in, calls `name` with their (pointer, length) pairs (a request's

@@ -5,6 +5,12 @@
 // from above in the Layer panel.
 import { MAX_MESH } from './limits.js';
 
+/** A layer's paths: those of its sparse area and those of its solid area (top and bottom surfaces). */
+export function splitPaths(layer) {
+  const of = (solid) => (layer.areas ?? []).filter((a) => a.solid === solid).flatMap((a) => a.polylines);
+  return { sparse: of(false), solid: of(true) };
+}
+
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => `&#${c.charCodeAt(0)};`);
 const mm = (v) => `${Number(v.toFixed(2))}`;
@@ -13,7 +19,10 @@ const PART_TIMEOUT_MS = 60_000;
 
 export const isMesh = (name) => /\.(stl|3mf|obj)$/i.test(name);
 
-/** One layer of the part from above, as SVG: its section and infill, at the mesh's scale. */
+/**
+ * One layer of the part from above, as SVG, at the mesh's scale: its section, its solid
+ * area (tinted) and the paths of its sparse and solid areas in their own colours.
+ */
 export function layerSvg(info, layer, nozzle = 0.4, side = 320) {
   const [x0, y0] = info.min;
   const [x1, y1] = info.max;
@@ -23,11 +32,20 @@ export function layerSvg(info, layer, nozzle = 0.4, side = 320) {
   // y up, as seen from above (SVG's y goes down).
   const pt = ([x, y]) => `${mm(x - x0 + pad)},${mm(y1 + pad - y)}`;
   const section = layer.section.flat().map((r) => `M${r.map(pt).join('L')}Z`).join('');
-  const infill = layer.polylines.map((p) => `M${p.map(pt).join('L')}`).join('');
-  const label = `layer ${layer.index} of the part at z ${mm(layer.z)} mm: ${layer.fill} ${layer.pattern} at ${Number(layer.angle.toFixed(2))}°`;
+  const paths = splitPaths(layer);
+  const d = (lines) => lines.map((p) => `M${p.map(pt).join('L')}`).join('');
+  const solidArea = (layer.areas ?? []).filter((a) => a.solid).flatMap((a) => a.region.flat())
+    .map((r) => `M${r.map(pt).join('L')}Z`).join('');
+  const solid = (layer.areas ?? []).find((a) => a.solid);
+  const what = layer.printed === 'sparse+solid' ? `sparse ${layer.pattern} at ${Number(layer.angle.toFixed(2))}° with solid surfaces at ${Number(solid.angle.toFixed(2))}°`
+    : solid && layer.printed !== 'sparse' ? `${layer.printed} ${solid.pattern} at ${Number(solid.angle.toFixed(2))}°`
+      : `${layer.fill} ${layer.pattern} at ${Number(layer.angle.toFixed(2))}°`;
+  const label = `layer ${layer.index} of the part at z ${mm(layer.z)} mm: ${what}`;
   return `<svg class="part-layer" xmlns="http://www.w3.org/2000/svg" viewBox="0 0 ${mm(w)} ${mm(h)}" width="${side}" height="${Math.round((side * h) / w)}" role="img" aria-label="${esc(label)}">`
     + `<path class="section" d="${section}" stroke-width="${mm(nozzle / 2)}"/>`
-    + `<path class="infill" d="${infill}" stroke-width="${mm(nozzle)}"/></svg>`;
+    + `<path class="solid-area" d="${solidArea}"/>`
+    + `<path class="infill" d="${d(paths.sparse)}" stroke-width="${mm(nozzle)}"/>`
+    + `<path class="solid" d="${d(paths.solid)}" stroke-width="${mm(nozzle)}"/></svg>`;
 }
 
 export class PartPanel {
@@ -116,7 +134,7 @@ export class PartPanel {
     if (info.objects.length > 1) text += ` (${info.objects.length} objects: ${info.objects.join(', ')})`;
     if (answer) {
       const s = answer.summary;
-      text += ` · ${s.layers} layers, infill ${mm(s.extrusion_mm / 1000)} m, travel ${mm(s.travel_mm / 1000)} m, ${Math.round(s.time_s / 60)} min at ${s.speed} mm/s`;
+      text += ` · ${s.layers} layers, infill ${mm(s.extrusion_mm / 1000)} m (${mm(s.solid_extrusion_mm / 1000)} m solid), travel ${mm(s.travel_mm / 1000)} m, ${Math.round(s.time_s / 60)} min at ${s.speed} mm/s`;
       if (s.open_layers) text += ` · ${s.open_layers} layers have sections that could not be closed (holes in the mesh)`;
     }
     if (this.error) text += ` · not sliced: ${this.error}`;

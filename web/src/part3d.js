@@ -1,18 +1,22 @@
 // The part's layers stacked in 3D (three.js, WebGL): each layer's section outline and its
-// infill paths as line segments at the layer's height, the layers above the slider's
-// hidden (the slider cuts through the part) and the slider's own layer highlighted.
+// infill paths as line segments at the layer's height, the sparse infill in blue and the
+// solid areas' (top and bottom surfaces) in purple, the layers above the slider's hidden
+// (the slider cuts through the part) and the slider's own layer highlighted.
 // Loaded only when a mesh is opened, so the page's first load does not carry three.js.
 import {
   BufferGeometry, Color, Float32BufferAttribute, Group, LineBasicMaterial, LineSegments,
   PerspectiveCamera, Scene, Vector3, WebGLRenderer,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { splitPaths } from './part.js';
 
 const MATERIALS = {
   outline: new LineBasicMaterial({ color: 0x5b6577 }),
   infill: new LineBasicMaterial({ color: 0x2f7ed8, transparent: true, opacity: 0.55 }),
   currentOutline: new LineBasicMaterial({ color: 0x111111 }),
   currentInfill: new LineBasicMaterial({ color: 0xe8590c }),
+  solid: new LineBasicMaterial({ color: 0x9c36b5, transparent: true, opacity: 0.7 }),
+  currentSolid: new LineBasicMaterial({ color: 0x5f1d7a }),
 };
 
 // Segment pairs (x, y, z per corner) of a layer's section rings (closed) and polylines.
@@ -92,15 +96,18 @@ export class PartView {
     for (const l of this.layers) {
       l.outline.geometry.dispose();
       l.infill.geometry.dispose();
+      l.solid.geometry.dispose();
     }
     this.stack.clear();
     this.layers = partLayers.map((l) => {
       const group = new Group();
       const outline = lines(segments(l.section.flat(), l.z, true), MATERIALS.outline);
-      const infill = lines(segments(l.polylines, l.z, false), MATERIALS.infill);
-      group.add(outline, infill);
+      const paths = splitPaths(l);
+      const infill = lines(segments(paths.sparse, l.z, false), MATERIALS.infill);
+      const solid = lines(segments(paths.solid, l.z, false), MATERIALS.solid);
+      group.add(outline, infill, solid);
       this.stack.add(group);
-      return { index: l.index, z: l.z, group, outline, infill };
+      return { index: l.index, z: l.z, group, outline, infill, solid };
     });
     this.frame(info);
     this.current = -1;
@@ -114,6 +121,7 @@ export class PartView {
       const now = l.index === index;
       l.outline.material = now ? MATERIALS.currentOutline : MATERIALS.outline;
       l.infill.material = now ? MATERIALS.currentInfill : MATERIALS.infill;
+      l.solid.material = now ? MATERIALS.currentSolid : MATERIALS.solid;
     }
     this.render();
   }
@@ -124,8 +132,8 @@ export class PartView {
 
   /**
    * What is drawn, read back from the scene's geometry (for the browser tests): per
-   * layer, the vertex counts and bounding boxes of its outline and infill, and whether it
-   * is shown; and how many pixels of the canvas differ from the background.
+   * layer, the vertex counts and bounding boxes of its outline, sparse infill and solid
+   * infill, their colours, and whether it is shown; and how many pixels of the canvas differ from the background.
    */
   inspect() {
     const box = (o) => ({
@@ -141,7 +149,8 @@ export class PartView {
         visible: l.group.visible,
         current: l.index === this.current,
         outline: { ...box(l.outline), points: points(l.outline) },
-        infill: box(l.infill),
+        infill: { ...box(l.infill), color: l.infill.material.color.getHex() },
+        solid: { ...box(l.solid), color: l.solid.material.color.getHex() },
       })),
       current: this.current,
       drawnPixels: this.drawnPixels(),

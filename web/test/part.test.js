@@ -77,10 +77,27 @@ test('a cube STL from the file button: 50 square layers stacked, the slider cutt
     [20, 20].forEach((v, k) => near(l.outline.max[k], v, 1e-5, `layer ${i} max`));
     near(l.outline.min[2], l.z, 1e-5, `layer ${i}'s outline is drawn at its height`);
     near(l.outline.max[2], l.z, 1e-5, `layer ${i}'s outline is drawn at its height`);
-    // Infill inside the two 0.4 mm walls.
-    assert.ok(l.infill.vertices >= 4, `layer ${i} has infill`);
-    assert.ok(l.infill.min[0] >= 0.8 - 1e-4 && l.infill.max[0] <= 19.2 + 1e-4, `layer ${i}'s infill is inside the walls`);
+    // Infill inside the two 0.4 mm walls: solid on the form's 3 bottom and 4 top shell
+    // layers (purple), sparse between them (blue), never both on a cube.
+    const solid = i < 3 || i >= 46;
+    const [filled, empty] = solid ? [l.solid, l.infill] : [l.infill, l.solid];
+    assert.ok(filled.vertices >= 4, `layer ${i} has ${solid ? 'solid' : 'sparse'} infill`);
+    assert.equal(empty.vertices, 0, `layer ${i} has no ${solid ? 'sparse' : 'solid'} infill`);
+    assert.ok(filled.min[0] >= 0.8 - 1e-4 && filled.max[0] <= 19.2 + 1e-4, `layer ${i}'s infill is inside the walls`);
+    assert.notEqual(l.solid.color, l.infill.color, 'solid and sparse infill are told apart');
   });
+  // Solid infill is dense: a solid layer has more paths than a sparse one.
+  assert.ok(scene.layers[0].solid.vertices > 2 * scene.layers[20].infill.vertices);
+  // The top layer from above (the slider starts there): its solid area and paths drawn
+  // in their own colour, no sparse paths.
+  const top = page.locator('#preview svg.part-layer');
+  assert.match(await top.getAttribute('aria-label'), /layer 49 of the part .*: solid lines/);
+  assert.ok((await top.locator('path.solid').getAttribute('d')).length > 20);
+  assert.ok((await top.locator('path.solid-area').getAttribute('d')).length > 10);
+  assert.equal(await top.locator('path.infill').getAttribute('d'), '');
+  const colours = await top.evaluate((svg) => ['infill', 'solid']
+    .map((c) => getComputedStyle(svg.querySelector(`path.${c}`)).stroke));
+  assert.notEqual(colours[0], colours[1]);
   // Opened, the whole part shows (the slider at the top layer), and WebGL drew it.
   assert.equal(scene.current, 49);
   assert.ok(scene.layers.every((l) => l.visible));
@@ -95,6 +112,11 @@ test('a cube STL from the file button: 50 square layers stacked, the slider cutt
   const svg = page.locator('#preview svg.part-layer');
   assert.match(await svg.getAttribute('aria-label'), /layer 20 of the part at z 4\.1 mm/);
   assert.ok((await svg.locator('path.infill').getAttribute('d')).length > 20);
+  assert.equal(await svg.locator('path.solid').getAttribute('d'), '', 'layer 20 is sparse');
+  // The first layer from above is solid.
+  await slide(page, 0);
+  assert.equal(await page.locator('#preview svg.part-layer path.infill').getAttribute('d'), '');
+  assert.ok((await page.locator('#preview svg.part-layer path.solid').getAttribute('d')).length > 20);
   // A new template re-fills the same layers.
   await page.evaluate(() => {
     const v = window.rotlangPlayground.view;
@@ -134,8 +156,11 @@ test('a cylinder STL dropped on the page: circular sections of its radius', asyn
     near(l.outline.min[0], -8, 8 - inner + 1e-4, 'leftmost');
     near(l.outline.max[0], 8, 8 - inner + 1e-4, 'rightmost');
     // The infill inside the two 0.4 mm walls: within 7.2 mm of the axis.
+    // Solid on the 3 bottom and 4 top shell layers, sparse between.
+    const filled = l.index < 3 || l.index >= 16 ? l.solid : l.infill;
+    assert.ok(filled.vertices >= 4, `layer ${l.index} has infill`);
     for (let k = 0; k < 2; k += 1) {
-      assert.ok(l.infill.min[k] >= -7.2 - 1e-4 && l.infill.max[k] <= 7.2 + 1e-4, `layer ${l.index}'s infill: ${l.infill.min} to ${l.infill.max}`);
+      assert.ok(filled.min[k] >= -7.2 - 1e-4 && filled.max[k] <= 7.2 + 1e-4, `layer ${l.index}'s infill: ${filled.min} to ${filled.max}`);
     }
   }
   assert.ok(scene.drawnPixels > 2000);

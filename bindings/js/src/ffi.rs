@@ -329,23 +329,36 @@ pub unsafe extern "C" fn rotlang_mesh(
 
 #[cfg(feature = "full")]
 /// The kept mesh sliced and filled under the template (`rotlang_geometry::slice::Part`): every
-/// layer's section and infill paths (or those of `from`..`to`), as
-/// `rotlang preview --shape part.stl --format json`. `walls`: wall loops (NaN: 2).
+/// layer's section, areas and infill paths (or those of `from`..`to`), as
+/// `rotlang preview --shape part.stl --format json`. `walls`: wall loops (NaN: 2);
+/// `has_solid` (1 or 0): whether `solid` is the solid template (`--solid-template`).
 ///
 /// # Safety
-/// As [`rotlang_check`].
+/// As [`rotlang_check`]; `solid` as `text`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn rotlang_part(
     text: *const u8,
     text_len: usize,
+    solid: *const u8,
+    solid_len: usize,
     req: *const f64,
     req_len: usize,
     walls: f64,
+    has_solid: f64,
 ) -> i32 {
     // SAFETY: forwarded from this function's contract.
     let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        let solid = if has_solid == 1.0 {
+            // SAFETY: as above.
+            match unsafe { utf8(solid, solid_len) } {
+                Some(s) => Some(s),
+                None => return Err(Failure::options("the solid template is not UTF-8")),
+            }
+        } else {
+            None
+        };
         MESH.with_borrow(|m| match m {
-            Some(mesh) => crate::part::part(mesh, t, &r, walls),
+            Some(mesh) => crate::part::part(mesh, t, solid, &r, walls),
             None => Err(Failure::options("no mesh: read one with `readMesh` first")),
         })
     });

@@ -14,6 +14,9 @@ pub enum Value {
     Str(String),
     Array(Vec<Value>),
     Object(Vec<(&'static str, Value)>),
+    /// JSON text written as it is: an answer another crate built (the part's document,
+    /// `rotlang_geometry::slice::json`, which the CLI prints too).
+    Raw(String),
 }
 
 /// Builds a [`Value::Object`]: `obj!({ "key": expr, ... })`. Values are taken by
@@ -108,6 +111,7 @@ impl Value {
             }
             Value::Num(_) => out.push_str("null"),
             Value::Str(s) => string(s, out),
+            Value::Raw(text) => out.push_str(text),
             Value::Array(items) => {
                 out.push('[');
                 for (i, v) in items.iter().enumerate() {

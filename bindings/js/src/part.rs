@@ -3,9 +3,11 @@
 //! with the same answers as `rotlang preview --shape part.stl --format json` (same model,
 //! walls, settings and JSON fields; `rotlang_geometry::slice::Part` does the work for both).
 
+use rotlang::Target;
 use rotlang_geometry::infill::{Pattern, Settings};
 use rotlang_geometry::mesh::Mesh;
-use rotlang_geometry::slice::{Part, PartOptions, Summary};
+use rotlang_geometry::slice::json::{About, Document};
+use rotlang_geometry::slice::{Part, PartOptions};
 
 use crate::Failure;
 use crate::json::Value;
@@ -18,9 +20,6 @@ pub const MAX_LAYERS: usize = 20_000;
 /// Most points (section and infill) one answer holds, about 60 MB of JSON: a part beyond
 /// it is read in ranges (`from`/`to`).
 pub const MAX_POINTS: usize = 3_000_000;
-/// The CLI's default speeds (`--speed`, `--travel-speed`), for the summary's time.
-const SPEED: f64 = 100.0;
-const TRAVEL_SPEED: f64 = 200.0;
 
 /// A mesh file's triangles: an STL or OBJ by [`Mesh::read`], a 3MF's objects merged as
 /// `rotlang preview --shape project.3mf` merges them without `--object`.
@@ -62,9 +61,16 @@ pub fn mesh_json(mesh: &Mesh, objects: &[String]) -> Value {
     })
 }
 
-/// The part's layers (all, or `from`..`to`) under the template: each layer's section and
-/// infill paths, and the summary over every layer, as the CLI's JSON has them.
-pub fn part(mesh: &Mesh, text: &str, req: &Request, walls: f64) -> Result<Value, Failure> {
+/// The part's layers (all, or `from`..`to`) under the template (and the solid template,
+/// which turns the top and bottom surfaces): the document `rotlang preview --shape part.stl
+/// --format json` prints, built by the same code (`rotlang_geometry::slice::json`).
+pub fn part(
+    mesh: &Mesh,
+    text: &str,
+    solid: Option<&str>,
+    req: &Request,
+    walls: f64,
+) -> Result<Value, Failure> {
     let target = req.target()?;
     let options = req.eval_options()?;
     if !(walls.is_nan() || (walls.fract() == 0.0 && (0.0..=100.0).contains(&walls))) {
@@ -106,7 +112,15 @@ pub fn part(mesh: &Mesh, text: &str, req: &Request, walls: f64) -> Result<Value,
     let (from, to) = req.range()?;
     let shown = from.unwrap_or(0)..to.unwrap_or(model.len()).min(model.len());
     let parse = crate::api::parse_clean(text, target)?;
-    let layers = Part::new(
+    let solid_parse = solid
+        .map(|s| {
+            crate::api::parse_clean(s, Target::Solid).map_err(|mut f| {
+                f.message = f.message.replacen("the template", "the solid template", 1);
+                f
+            })
+        })
+        .transpose()?;
+    let mut layers = Part::new(
         mesh,
         &parse.template,
         &model,
@@ -117,83 +131,23 @@ pub fn part(mesh: &Mesh, text: &str, req: &Request, walls: f64) -> Result<Value,
             shells: true,
         },
     );
-    let mut summary = Summary::default();
-    let mut out = Vec::new();
-    let mut points = 0usize;
+    if let Some(p) = &solid_parse {
+        layers = layers.with_solid_template(&p.template, options);
+    }
+    let mut doc = Document::new(About {
+        solid_template: solid,
+        ..About::new(text, &model, settings, walls, options.base)
+    });
     for layer in layers {
         let l = layer.map_err(|e| Failure::options(e.to_string()))?;
-        summary.add(&l, SPEED, TRAVEL_SPEED);
-        if !shown.contains(&l.layer.index) {
-            continue;
-        }
-        let section = rings(&l.section.region, &mut points);
-        let polylines: Vec<Value> = l
-            .paths
-            .polylines
-            .iter()
-            .map(|p| {
-                points += p.0.len();
-                p.0.iter()
-                    .map(|c| Value::Array(vec![Value::Num(c.x), Value::Num(c.y)]))
-                    .collect()
-            })
-            .collect();
-        if points > MAX_POINTS {
+        doc.add(&l, shown.contains(&l.layer.index));
+        if doc.points() > MAX_POINTS {
             return Err(Failure::limit(format!(
                 "the part's layers hold more than {MAX_POINTS} points; ask for fewer layers (`from`/`to`)"
             )));
         }
-        out.push(obj!({
-            "index": l.layer.index,
-            "bottom": l.layer.bottom,
-            "top": l.layer.top,
-            "z": l.section.z,
-            "angle": l.layer.angle,
-            "fill": l.layer.fill.name(),
-            "pattern": l.params().pattern.name(),
-            "density": l.params().density,
-            "length": l.paths.length,
-            "travel": l.paths.travel,
-            "open": l.section.open,
-            "bridged": l.section.bridged,
-            "section": section,
-            "polylines": Value::Array(polylines),
-        }));
     }
-    Ok(obj!({
-        "template": text,
-        "summary": obj!({
-            "layers": summary.layers,
-            "extrusion_mm": summary.extrusion,
-            "travel_mm": summary.travel,
-            "time_s": summary.time,
-            "speed": SPEED,
-            "travel_speed": TRAVEL_SPEED,
-            "open_layers": summary.open_layers,
-            "bridged": summary.bridged,
-            "walls": walls,
-        }),
-        "layers": Value::Array(out),
-    }))
-}
-
-/// A section's polygons, each its outline then its holes, as `[x, y]` lists.
-fn rings(region: &rotlang_geometry::infill::MultiPolygon<f64>, points: &mut usize) -> Value {
-    region
-        .0
-        .iter()
-        .map(|p| {
-            std::iter::once(p.exterior())
-                .chain(p.interiors())
-                .map(|r| {
-                    *points += r.0.len();
-                    r.0.iter()
-                        .map(|c| Value::Array(vec![Value::Num(c.x), Value::Num(c.y)]))
-                        .collect()
-                })
-                .collect()
-        })
-        .collect()
+    Ok(Value::Raw(doc.finish().to_string()))
 }
 
 #[cfg(test)]
@@ -201,46 +155,53 @@ mod tests {
     use super::*;
     use rotlang_geometry::mesh::shapes;
 
-    fn field<'a>(v: &'a Value, key: &str) -> &'a Value {
-        match v {
-            Value::Object(f) => &f.iter().find(|(k, _)| *k == key).expect(key).1,
-            _ => panic!("not an object"),
-        }
+    fn parsed(v: Value) -> serde_json::Value {
+        let mut text = String::new();
+        v.write(&mut text);
+        serde_json::from_str(&text).unwrap()
     }
 
     #[test]
     fn a_cube_is_sliced_at_its_height_into_square_sections() {
         let stl = shapes::cuboid([20.0, 20.0, 10.0]).to_binary_stl();
         let (mesh, _) = read_mesh("cube.stl", &stl).unwrap();
-        let answer = part(&mesh, "+45", &Request::default(), f64::NAN).unwrap();
-        let Value::Array(layers) = field(&answer, "layers") else {
-            panic!()
-        };
+        let answer = parsed(part(&mesh, "+45", None, &Request::default(), f64::NAN).unwrap());
+        let layers = answer["layers"].as_array().unwrap();
         assert_eq!(layers.len(), 50);
-        let Value::Array(section) = field(&layers[10], "section") else {
-            panic!()
-        };
         // One polygon, no hole: a closed square of five points.
-        let Value::Array(rings) = &section[0] else {
-            panic!()
-        };
+        let rings = layers[10]["section"][0].as_array().unwrap();
         assert_eq!(rings.len(), 1);
-        assert!(matches!(&rings[0], Value::Array(r) if r.len() == 5));
+        assert_eq!(rings[0].as_array().unwrap().len(), 5);
+        // The first and last layers are solid, turned by the solid template when given.
+        assert_eq!(layers[0]["printed"], "solid");
+        assert_eq!(layers[49]["printed"], "solid");
+        assert_eq!(layers[10]["printed"], "sparse");
+        assert_eq!(answer["solid_template"], serde_json::Value::Null);
+        let answer = parsed(part(&mesh, "+45", Some("90"), &Request::default(), 2.0).unwrap());
+        assert_eq!(answer["solid_template"], "90");
+        assert_eq!(answer["layers"][0]["areas"][0]["angle"], 90.0);
+        assert_eq!(answer["layers"][10]["areas"][0]["angle"], 45.0 * 11.0);
     }
 
     #[test]
-    fn bad_meshes_and_walls_are_refused_with_a_reason() {
+    fn bad_meshes_walls_and_templates_are_refused_with_a_reason() {
         let e = read_mesh("x.stl", b"not a mesh").unwrap_err();
         assert_eq!(e.kind, "model");
         let e = read_mesh("x.3mf", b"PK not really").unwrap_err();
         assert!(e.message.contains("x.3mf"), "{}", e.message);
         let (mesh, _) =
             read_mesh("c.stl", &shapes::cuboid([1.0, 1.0, 1.0]).to_binary_stl()).unwrap();
-        let e = part(&mesh, "0", &Request::default(), 2.5).unwrap_err();
+        let e = part(&mesh, "0", None, &Request::default(), 2.5).unwrap_err();
         assert_eq!(e.kind, "options");
+        let e = part(&mesh, "0", Some("+"), &Request::default(), 2.0).unwrap_err();
+        assert_eq!(e.kind, "template");
+        assert!(e.message.starts_with("the solid template"), "{}", e.message);
         let tall = Request::default()
             .with(slot::LAYER_HEIGHT, 0.01)
             .with(slot::HEIGHT, 500.0);
-        assert_eq!(part(&mesh, "0", &tall, 2.0).unwrap_err().kind, "limit");
+        assert_eq!(
+            part(&mesh, "0", None, &tall, 2.0).unwrap_err().kind,
+            "limit"
+        );
     }
 }

@@ -41,6 +41,21 @@ test('a cube gives the CLI\'s layers, sections and paths', { skip }, () => {
     '--height', '10', '--layer-height', '0.25', '--first-layer-height', '0.3', '--top-shell-layers', '2', '--layers', '5..12']);
   assert.equal(js2.layers.length, 7);
   assert.deepEqual(js2, cli2);
+  // The solid template and the shells' depths: the first 2 and last 3 layers solid,
+  // turned by it; still the CLI's answer.
+  const js3 = part('+45', { solidTemplate: '90, 0', model: { bottomShells: 2, topShells: 3 } });
+  const cli3 = viaCli(stl, ['+45', '--solid-template', '90, 0', '--bottom-shell-layers', '2',
+    '--top-shell-layers', '3', '--layers', '0..50']);
+  assert.deepEqual(js3, cli3);
+  assert.equal(js3.solid_template, '90, 0');
+  assert.deepEqual(js3.layers.map((l) => l.printed),
+    js3.layers.map((l) => (l.index < 2 || l.index >= 47 ? 'solid' : 'sparse')));
+  assert.deepEqual(js3.layers[1].areas.map((a) => [a.solid, a.angle]), [[true, 0]]);
+  assert.deepEqual(js3.layers[10].areas.map((a) => [a.solid, a.angle]), [[false, 45 * 11]]);
+  assert.ok(js3.summary.solid_extrusion_mm > 0 && js3.summary.solid_extrusion_mm < js3.summary.extrusion_mm);
+  assert.throws(() => part('0', { solidTemplate: 90 }), (e) => e instanceof RotlangError && e.kind === 'options');
+  assert.throws(() => part('0', { solidTemplate: '+' }),
+    (e) => e instanceof RotlangError && e.kind === 'template' && /solid template/.test(e.message));
 });
 
 test('a cube\'s sections are its square; a cylinder\'s are circles of its radius', () => {

@@ -1953,3 +1953,36 @@ fn preview_of_a_project_with_bad_values() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("unknown sign `X`"), "{stderr}");
 }
+
+/// A mesh gives the model's height: `--layer-height` (and `--first-layer-height`) alone
+/// slice it in those layers, not refused for want of `--height`.
+#[test]
+fn preview_of_a_part_takes_its_height_from_the_mesh() {
+    let dir = TempDir::new("part-height");
+    std::fs::write(
+        dir.0.join("part.stl"),
+        rotlang_geometry::mesh::shapes::cuboid([20.0, 20.0, 10.0]).to_binary_stl(),
+    )
+    .unwrap();
+    let (v, _) = preview_json(
+        &dir.0,
+        &["0", "--shape", "part.stl", "--layer-height", "0.25"],
+    );
+    assert_eq!(v["settings"]["layers"], 40);
+    assert_eq!(v["settings"]["layer_height"], 0.25);
+    assert_eq!(v["summary"]["layers"], 40);
+    let (v, _) = preview_json(
+        &dir.0,
+        &[
+            "0",
+            "--shape",
+            "part.stl",
+            "--layer-height",
+            "0.25",
+            "--first-layer-height",
+            "0.5",
+        ],
+    );
+    assert_eq!(v["summary"]["layers"], 39);
+    assert_eq!(v["layers"][0]["top"], 0.5);
+}

@@ -4,7 +4,7 @@
 import { check, compare, compat, expand, explain, explainCode, FILLS, format, RotlangError, signs, version } from 'rotlang';
 import type { Diagnostic, ExpandResult, Fill, Model } from 'rotlang';
 import { part, plot, preview, readMesh, readProfile } from 'rotlang/full';
-import type { MeshInfo, PartLayer, Profile } from 'rotlang/full';
+import type { MeshInfo, PartArea, PartLayer, Profile } from 'rotlang/full';
 
 const v: string = version();
 const c = check('+30X5', { target: 'sparse' });
@@ -52,4 +52,10 @@ const sliced = part('+45', { pattern: 'gyroid', density: 0.15, walls: 2, from: 0
 const layer: PartLayer = sliced.layers[0];
 const outline: [number, number][] = layer.section[0][0];
 const minutes: number = sliced.summary.time_s / 60 + height + outline.length + layer.polylines.length;
-export const usedPart = [minutes];
+// Top and bottom surfaces turned by a solid template: each layer's areas say which is solid.
+const shelled = part('+45', { solidTemplate: '90', model: { topShells: 3, bottomShells: 2 } });
+const solidAreas: PartArea[] = shelled.layers[0].areas.filter((a) => a.solid);
+const printed: string = shelled.layers[0].printed;
+const solidShare: number = shelled.summary.solid_extrusion_mm / shelled.summary.extrusion_mm;
+const solidText: string | null = shelled.solid_template;
+export const usedPart = [minutes, solidAreas, printed, solidShare, solidText, shelled.settings.walls];

@@ -9,7 +9,8 @@ use crate::infill::preview::{self, Panel, PreviewOptions};
 use crate::ir::Fill;
 use crate::mesh::Mesh;
 use crate::plot::{num, shorten};
-use crate::slice::{FilledArea, Part, PartLayer, PartOptions, Summary};
+use crate::slice::json::{About, Document};
+use crate::slice::{Part, PartLayer, PartOptions};
 use geo::Area;
 
 mod file;
@@ -174,15 +175,23 @@ pub fn run(
     if let Some((_, solid)) = &plan.solid {
         part = part.with_solid_template(&solid.template, plan.solid_options);
     }
-    // Every layer is filled for the summary; only the shown ones are kept.
-    let mut summary = Summary::default();
+    // Every layer is filled for the summary; only the shown ones are kept (as JSON, by
+    // the document the playground's part() builds too).
+    let json = matches!(args.format, Format::Json);
+    let mut doc = Document::new(About {
+        solid_template: plan.solid.as_ref().map(|(i, _)| i.text.as_str()),
+        speed: args.part.speed,
+        travel_speed: args.part.travel_speed,
+        ..About::new(&input.text, model, settings, plan.walls, plan.options.base)
+    });
     let mut shown = Vec::new();
     // The layers of the 3D picture (every `step`-th): their sections and paths.
     let step = model.len().div_ceil(150).max(1);
     let mut stacked = Vec::new();
     for layer in part {
         let layer = layer.map_err(|e| UsageError(e.to_string()))?;
-        summary.add(&layer, args.part.speed, args.part.travel_speed);
+        let show = range.contains(&layer.layer.index);
+        doc.add(&layer, show && json);
         if args.part.three_d.is_some() && layer.layer.index % step == 0 {
             stacked.push((
                 layer.section.z,
@@ -190,7 +199,7 @@ pub fn run(
                 layer.paths.clone(),
             ));
         }
-        if range.contains(&layer.layer.index) {
+        if show && !json {
             shown.push(layer);
         }
     }
@@ -218,6 +227,7 @@ pub fn run(
         std::fs::write(path, text)
             .map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
     }
+    let summary = *doc.summary();
     let text = match args.format {
         Format::Svg => {
             let labels: Vec<(String, String)> = shown
@@ -257,38 +267,7 @@ pub fn run(
             preview::svg(&panels, settings.nozzle, &options)
         }
         Format::Json => {
-            let layers: Vec<serde_json::Value> = shown
-                .iter()
-                .map(|l| {
-                    serde_json::json!({
-                        "index": l.layer.index,
-                        "bottom": l.layer.bottom,
-                        "top": l.layer.top,
-                        "z": l.section.z,
-                        "angle": l.layer.angle,
-                        "solid_angle": l.solid_angle,
-                        "fill": l.layer.fill.name(),
-                        "printed": printed(l),
-                        "pattern": l.params().pattern.name(),
-                        "density": l.params().density,
-                        "length": l.paths.length,
-                        "travel": l.paths.travel,
-                        "open": l.section.open,
-                        "bridged": l.section.bridged,
-                        "section": rings(&l.section.region),
-                        "areas": areas_json(l),
-                        "polylines": polylines(&l.paths),
-                    })
-                })
-                .collect();
-            let mut text = serde_json::to_string(&serde_json::json!({
-                "template": input.text,
-                "solid_template": plan.solid.as_ref().map(|(i, _)| &i.text),
-                "settings": settings_json(&plan),
-                "summary": summary_json(&summary, args),
-                "layers": layers,
-            }))
-            .unwrap_or_default();
+            let mut text = serde_json::to_string(&doc.finish()).unwrap_or_default();
             text.push('\n');
             text
         }
@@ -315,47 +294,6 @@ pub fn run(
         }
     );
     Ok(0)
-}
-
-fn summary_json(s: &Summary, args: &PreviewArgs) -> serde_json::Value {
-    serde_json::json!({
-        "layers": s.layers,
-        "extrusion_mm": s.extrusion,
-        "travel_mm": s.travel,
-        "time_s": s.time,
-        "speed": args.part.speed,
-        "travel_speed": args.part.travel_speed,
-        "open_layers": s.open_layers,
-        "bridged": s.bridged,
-        "solid_extrusion_mm": s.solid_extrusion,
-    })
-}
-
-/// What the part was filled with (from the options, the profile or the project).
-fn settings_json(plan: &file::Plan) -> serde_json::Value {
-    let (s, m) = (&plan.settings, &plan.model);
-    serde_json::json!({
-        "pattern": s.pattern.name(),
-        "density": s.density,
-        "solid_pattern": s.solid_pattern.name(),
-        "line_width": s.nozzle,
-        "walls": plan.walls,
-        "layer_height": m.layer_height(),
-        "layers": m.len(),
-        "bottom_shell_layers": m.bottom_shells(),
-        "top_shell_layers": m.top_shells(),
-        "base": plan.options.base,
-    })
-}
-
-/// What a layer prints: `sparse`, a solid fill throughout (`solid` for shells and top
-/// and bottom surfaces, or the template's solid sign), or `sparse+solid`.
-fn printed(l: &PartLayer) -> String {
-    match (l.sparse.region.0.is_empty(), l.solid.region.0.is_empty()) {
-        (false, false) => "sparse+solid".into(),
-        (true, false) => l.solid.fill.name().into(),
-        _ => "sparse".into(),
-    }
 }
 
 /// The subtitle's fill: the sparse pattern and density, and the solid area's share.
@@ -387,51 +325,6 @@ fn kind(l: &PartLayer) -> String {
         solid.params.pattern,
         num(solid.params.angle, 2)
     )
-}
-
-/// The layer's areas that are not empty: the sparse one, then the solid one.
-fn areas_json(l: &PartLayer) -> Vec<serde_json::Value> {
-    [&l.sparse, &l.solid]
-        .into_iter()
-        .filter(|a| !a.region.0.is_empty())
-        .map(area_json)
-        .collect()
-}
-
-fn area_json(a: &FilledArea) -> serde_json::Value {
-    serde_json::json!({
-        "fill": a.fill.name(),
-        "solid": a.fill != Fill::Sparse,
-        "angle": a.params.angle,
-        "pattern": a.params.pattern.name(),
-        "density": a.params.density,
-        "area_mm2": a.region.unsigned_area(),
-        "region": rings(&a.region),
-        "length": a.paths.length,
-        "travel": a.paths.travel,
-        "polylines": polylines(&a.paths),
-    })
-}
-
-fn polylines(paths: &crate::infill::Toolpaths) -> Vec<Vec<[f64; 2]>> {
-    paths
-        .polylines
-        .iter()
-        .map(|p| p.0.iter().map(|c| [c.x, c.y]).collect())
-        .collect()
-}
-
-fn rings(region: &geo::MultiPolygon<f64>) -> Vec<Vec<Vec<[f64; 2]>>> {
-    region
-        .0
-        .iter()
-        .map(|p| {
-            std::iter::once(p.exterior())
-                .chain(p.interiors())
-                .map(|r| r.0.iter().map(|c| [c.x, c.y]).collect())
-                .collect()
-        })
-        .collect()
 }
 
 fn duration(seconds: f64) -> String {

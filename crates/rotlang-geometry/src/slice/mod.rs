@@ -28,6 +28,7 @@ use geo::{Coord, LineString, MultiPolygon, Polygon};
 
 use crate::mesh::Mesh;
 
+pub mod json;
 pub mod part;
 pub use part::{FilledArea, Part, PartLayer, PartOptions, Summary};
 
@@ -303,37 +304,76 @@ pub fn nest(mut loops: Vec<Vec<Coord>>) -> MultiPolygon<f64> {
     MultiPolygon::new(polygons.into_iter().map(|(_, p)| p).collect())
 }
 
-/// Drops the vertices within a micrometre of the line through their neighbours (a plane
-/// crossing a flat quad cuts both its triangles: the point on the diagonal between them
-/// is in line), and repeated points: half the vertices for the infill to clip against.
+/// How far (mm) a dropped vertex may lie from the edge that replaces it.
+pub const TOLERANCE: f64 = 1e-3;
+
+/// Drops repeated points and the vertices that lie within [`TOLERANCE`] of the edge that
+/// replaces them (a plane crossing a flat quad cuts both its triangles: the point on the
+/// diagonal between them is in line): half the vertices for the infill to clip against.
+///
+/// Douglas-Peucker on the closed ring, so that every dropped vertex is measured against
+/// the final edge over it (a vertex dropped against a chord that then keeps growing, one
+/// step at a time, let a fine circle's section drift far from the circle). The ring is
+/// split at its lowest-leftmost point (a corner of its hull, kept) and the point farthest
+/// from it; each part keeps its farthest vertex from its chord while that is beyond the
+/// tolerance. An explicit stack: no recursion as deep as the ring is long.
 fn drop_inline(ring: &mut Vec<Coord>) {
-    // Twice, the second time from the middle: a point in line next to where the ring
-    // starts is seen with both neighbours.
-    for _ in 0..2 {
-        let mut kept: Vec<Coord> = Vec::with_capacity(ring.len());
-        for &c in ring.iter() {
-            if kept.last() == Some(&c) {
-                continue;
-            }
-            while kept.len() >= 2 && in_line(kept[kept.len() - 2], kept[kept.len() - 1], c) {
-                kept.pop();
-            }
-            kept.push(c);
-        }
-        while kept.len() > 1 && kept.first() == kept.last() {
-            kept.pop();
-        }
-        let half = kept.len() / 2;
-        kept.rotate_left(half);
-        *ring = kept;
+    ring.dedup();
+    while ring.len() > 1 && ring.first() == ring.last() {
+        ring.pop();
     }
+    let n = ring.len();
+    if n < 4 {
+        return;
+    }
+    let a = (0..n)
+        .min_by(|&i, &j| {
+            (ring[i].x, ring[i].y)
+                .partial_cmp(&(ring[j].x, ring[j].y))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+        .unwrap_or(0);
+    ring.rotate_left(a);
+    let d2 = |p: Coord| (p - ring[0]).x.powi(2) + (p - ring[0]).y.powi(2);
+    let b = (1..n)
+        .max_by(|&i, &j| d2(ring[i]).total_cmp(&d2(ring[j])))
+        .unwrap_or(n / 2);
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[b] = true;
+    // Spans (start, end) of indices into the ring, `end` may be `n` (the start again).
+    let mut stack = vec![(0usize, b), (b, n)];
+    while let Some((i, j)) = stack.pop() {
+        if j - i < 2 {
+            continue;
+        }
+        let (p, q) = (ring[i], ring[j % n]);
+        let (far, dist) = (i + 1..j)
+            .map(|k| (k, segment_distance(ring[k], p, q)))
+            .fold((i + 1, -1.0), |best, c| if c.1 > best.1 { c } else { best });
+        if dist > TOLERANCE {
+            keep[far] = true;
+            stack.push((i, far));
+            stack.push((far, j));
+        }
+    }
+    let mut k = 0;
+    ring.retain(|_| {
+        k += 1;
+        keep[k - 1]
+    });
 }
 
-/// Whether `b` lies within a micrometre of the line from `a` to `c`, between them.
-fn in_line(a: Coord, b: Coord, c: Coord) -> bool {
-    let (u, v) = (b - a, c - a);
-    let len = v.x.hypot(v.y);
-    len > 0.0 && (u.x * v.y - u.y * v.x).abs() / len < 1e-3 && u.x * v.x + u.y * v.y > 0.0
+/// The distance from `p` to the segment from `a` to `b`.
+fn segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
+    let (v, u) = (b - a, p - a);
+    let len2 = v.x * v.x + v.y * v.y;
+    let t = if len2 > 0.0 {
+        ((u.x * v.x + u.y * v.y) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (u.x - t * v.x).hypot(u.y - t * v.y)
 }
 
 fn area(ring: &[Coord]) -> f64 {

@@ -113,6 +113,31 @@ pub fn crate_graph(src: &Path) -> Result<Graph, String> {
     Ok(graph)
 }
 
+/// Why each edge of the crate in `src` is there: `(from, to)` → the paths as written in
+/// `from` that resolve to `to`. For finding the back-edge of a cycle
+/// (`cargo run -p rotlang-cycles --example graph -- DIR/src` prints them per cycle).
+pub fn crate_reasons(src: &Path) -> Result<BTreeMap<(String, String), BTreeSet<String>>, String> {
+    let mut reasons: BTreeMap<(String, String), BTreeSet<String>> = BTreeMap::new();
+    for root in ["lib.rs", "main.rs"] {
+        let path = src.join(root);
+        if path.is_file() {
+            let tree = Tree::load(src, &path)?;
+            for r in &tree.references {
+                if let Some(to) = tree
+                    .resolve(r.module, &r.path, 0)
+                    .filter(|&to| to != r.file)
+                {
+                    reasons
+                        .entry((tree.files[r.file].clone(), tree.files[to].clone()))
+                        .or_default()
+                        .insert(r.path.join("::"));
+                }
+            }
+        }
+    }
+    Ok(reasons)
+}
+
 // ---------------------------------------------------------------------------------------
 // Tokens
 

@@ -16,6 +16,7 @@ pub mod ini;
 pub mod inlay_hints;
 pub mod json;
 pub mod jsonc;
+mod kind;
 pub mod markup;
 pub mod memory;
 pub mod position;

@@ -112,6 +112,21 @@ pub fn model_of(model: &ModelSettings) -> Model {
         .unwrap_or_else(|_| Model::cube20())
 }
 
+// Here rather than in `reading.rs`, beside the model it makes: the reading names no
+// preview, the preview names the reading.
+impl Reading {
+    /// The reading of a `.rot` template (or of a profile the library cannot read): the
+    /// settings' model, no base.
+    pub fn of_settings(settings: &ModelSettings) -> Reading {
+        let model = model_of(settings);
+        Reading {
+            describe: rotlang::explain::model(&model),
+            model,
+            options: eval::Options::default(),
+        }
+    }
+}
+
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct InstructionPreview {
     /// Layers governed in the whole model.

@@ -10,8 +10,6 @@
 use rotlang::eval::{Model, Options};
 use rotlang_profile::profile::ProfileModel;
 
-use crate::settings::ModelSettings;
-
 #[derive(Clone, Debug)]
 pub struct Reading {
     pub model: Model,
@@ -21,17 +19,6 @@ pub struct Reading {
 }
 
 impl Reading {
-    /// The reading of a `.rot` template (or of a profile the library cannot read): the
-    /// settings' model, no base.
-    pub fn of_settings(settings: &ModelSettings) -> Reading {
-        let model = crate::preview::model_of(settings);
-        Reading {
-            describe: rotlang::explain::model(&model),
-            model,
-            options: Options::default(),
-        }
-    }
-
     /// The reading of `text`, a template of a profile whose model the library gave: the one
     /// place the server takes a profile's base from.
     pub fn of_profile(profile: &ProfileModel, text: &str) -> Reading {

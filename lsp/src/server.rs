@@ -485,8 +485,9 @@ const TAKE_WAIT: std::time::Duration = std::time::Duration::from_millis(50);
 /// Closing a document this large (bytes) hands its memory back to the system.
 const LARGE: usize = 1 << 20;
 
-/// A `didChange` the framing guard could not read, forwarded under this name.
-pub const INVALID_CHANGE: &str = "rotlang-lsp/invalidChange";
+/// A `didChange` the framing guard could not read, forwarded under this name (the
+/// transport's, which forwards it).
+pub use crate::transport::INVALID_CHANGE;
 
 /// The parameters of `rotlang-lsp/invalidChange` (see `crate::transport`).
 #[derive(serde::Deserialize)]

@@ -16,6 +16,10 @@ use tower_lsp_server::ls_types::DidChangeTextDocumentParams;
 
 /// Larger messages are refused: no real document comes close, and the limit bounds memory.
 pub const MAX_MESSAGE: usize = 64 << 20;
+
+/// A `didChange` the framing guard could not read, forwarded under this name
+/// (`crate::server` handles it).
+pub const INVALID_CHANGE: &str = "rotlang-lsp/invalidChange";
 /// Header lines longer than this are garbage, not headers.
 const MAX_HEADER_LINE: u64 = 8 << 10;
 
@@ -212,7 +216,7 @@ fn unreadable_change(request: &Request) -> Option<Vec<u8>> {
     let uri = params.pointer("/textDocument/uri").cloned();
     let message = json!({
         "jsonrpc": "2.0",
-        "method": crate::server::INVALID_CHANGE,
+        "method": INVALID_CHANGE,
         "params": {"uri": uri, "reason": format!("an edit the server cannot read: {reason}")},
     });
     Some(message.to_string().into_bytes())
@@ -370,7 +374,7 @@ mod tests {
             br#"{"jsonrpc":"2.0","method":"textDocument/didChange","params":{"textDocument":{"uri":"file:///a.rot","version":2},"contentChanges":[{"range":{"start":{"line":0,"character":-1},"end":{"line":0,"character":0}},"text":"x"}]}}"#,
         );
         let forwarded: Value = serde_json::from_slice(&unreadable_change(&bad).unwrap()).unwrap();
-        assert_eq!(forwarded["method"], crate::server::INVALID_CHANGE);
+        assert_eq!(forwarded["method"], INVALID_CHANGE);
         assert_eq!(forwarded["params"]["uri"], "file:///a.rot");
         let good = request(
             br#"{"jsonrpc":"2.0","method":"textDocument/didChange","params":{"textDocument":{"uri":"file:///a.rot","version":2},"contentChanges":[{"text":"x"}]}}"#,

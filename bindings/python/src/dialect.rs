@@ -7,7 +7,7 @@ use rotlang_core::eval::{Model, Options};
 
 use rotlang_core::dialect::orcaslicer;
 
-use crate::{Evaluated, Finding};
+use crate::evaluated::{Evaluated, Finding};
 
 pub const NAMES: [&str; 2] = rotlang_core::api::DIALECTS;
 
@@ -18,8 +18,9 @@ pub enum Dialect {
 }
 
 impl Dialect {
-    pub fn from_name(name: &str) -> PyResult<Dialect> {
-        match rotlang_core::api::dialect(name).map_err(crate::refused)? {
+    /// The dialect named `name`; the caller turns a refusal into Python's exception.
+    pub fn from_name(name: &str) -> Result<Dialect, rotlang_core::api::ApiError> {
+        match rotlang_core::api::dialect(name)? {
             rotlang_core::dialect::Dialect::OrcaSlicer => Ok(Dialect::OrcaSlicer),
             rotlang_core::dialect::Dialect::Rotlang => Ok(Dialect::Rotlang),
         }

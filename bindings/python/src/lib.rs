@@ -14,6 +14,9 @@ use rotlang_core::eval::{self, Model as RustModel, Options};
 use rotlang_core::{Diagnostic as RustDiagnostic, Target};
 
 mod dialect;
+mod evaluated;
+
+use evaluated::{Evaluated, Finding};
 
 pyo3::create_exception!(
     rotlang,
@@ -280,40 +283,12 @@ impl Model {
     }
 }
 
-/// A defect of OrcaSlicer's reading found by the OrcaSlicer dialect.
-#[pyclass(frozen, get_all, skip_from_py_object, module = "rotlang")]
-#[derive(Clone)]
-struct Finding {
-    /// `orcaslicer::hangs`, `orcaslicer::undefined` or `orcaslicer::nan`.
-    code: String,
-    message: String,
-    first_layer: usize,
-    layers: usize,
-}
-
-#[pymethods]
-impl Finding {
-    fn __repr__(&self) -> String {
-        format!(
-            "Finding({:?}, first_layer={}, layers={})",
-            self.code, self.first_layer, self.layers
-        )
-    }
-}
-
 /// Every layer's angle, fill and the dialect's findings.
 #[pyclass(frozen, get_all, skip_from_py_object, module = "rotlang")]
 struct Expansion {
     /// Degrees, base included, not wrapped.
     angles: Py<PyAny>,
     /// `"sparse"`, `"dense"`, `"solid"`, `"concentric"`, `"monotonic"`, `"rectilinear"`.
-    fills: Vec<&'static str>,
-    findings: Vec<Finding>,
-}
-
-/// What one evaluation computes, before it becomes Python objects.
-struct Evaluated {
-    angles: Vec<f64>,
     fills: Vec<&'static str>,
     findings: Vec<Finding>,
 }
@@ -328,7 +303,7 @@ fn evaluate(
     want_fills: bool,
 ) -> PyResult<Evaluated> {
     let target = target(target_name)?;
-    let dialect = dialect::Dialect::from_name(dialect_name)?;
+    let dialect = dialect::Dialect::from_name(dialect_name).map_err(refused)?;
     let cube;
     let model = match model {
         Some(m) => &m.inner,

@@ -12,7 +12,11 @@
 //! to their file.
 //!
 //! It reads the text with a small tokenizer of its own (comments, strings and character
-//! literals skipped), not a Rust parser: macros and `#[path]` attributes are not followed.
+//! literals skipped), not a Rust parser: macros are not followed. `#[path = "file.rs"]` on
+//! `mod NAME;` is followed as rustc does (the path relative to the directory of the file
+//! that declares it, or of the inline module it is in; the file's own `mod` children are
+//! its siblings); on an inline module (`#[path = "dir"] mod m { … }`) it is an error, as
+//! is a `mod` whose file is missing.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -113,6 +117,31 @@ pub fn crate_graph(src: &Path) -> Result<Graph, String> {
     Ok(graph)
 }
 
+/// Why each edge of the crate in `src` is there: `(from, to)` → the paths as written in
+/// `from` that resolve to `to`. For finding the back-edge of a cycle
+/// (`cargo run -p rotlang-cycles --example graph -- DIR/src` prints them per cycle).
+pub fn crate_reasons(src: &Path) -> Result<BTreeMap<(String, String), BTreeSet<String>>, String> {
+    let mut reasons: BTreeMap<(String, String), BTreeSet<String>> = BTreeMap::new();
+    for root in ["lib.rs", "main.rs"] {
+        let path = src.join(root);
+        if path.is_file() {
+            let tree = Tree::load(src, &path)?;
+            for r in &tree.references {
+                if let Some(to) = tree
+                    .resolve(r.module, &r.path, 0)
+                    .filter(|&to| to != r.file)
+                {
+                    reasons
+                        .entry((tree.files[r.file].clone(), tree.files[to].clone()))
+                        .or_default()
+                        .insert(r.path.join("::"));
+                }
+            }
+        }
+    }
+    Ok(reasons)
+}
+
 // ---------------------------------------------------------------------------------------
 // Tokens
 
@@ -121,10 +150,12 @@ enum Tok {
     Ident(String),
     PathSep,
     Punct(char),
+    /// A string literal's text as written (escapes not read): for `#[path = "…"]`.
+    Str(String),
 }
 
-/// The identifiers and punctuation of Rust source, without comments, strings, characters
-/// and lifetimes (enough to read `mod`, `use`, item names and paths).
+/// The identifiers, punctuation and string literals of Rust source, without comments,
+/// characters and lifetimes (enough to read `mod`, `use`, `#[path]`, item names and paths).
 fn tokenize(text: &str) -> Vec<Tok> {
     let b: Vec<char> = text.chars().collect();
     let mut out = Vec::new();
@@ -152,10 +183,16 @@ fn tokenize(text: &str) -> Vec<Tok> {
                 }
             }
         } else if c == '"' {
-            i = skip_string(&b, i + 1, 0);
+            let start = i + 1;
+            i = skip_string(&b, start, 0);
+            out.push(Tok::Str(
+                b[start..i.saturating_sub(1).max(start)].iter().collect(),
+            ));
         } else if (c == 'r' || c == 'b' || c == 'c') && raw_string_start(&b, i).is_some() {
             let (start, hashes) = raw_string_start(&b, i).unwrap_or((i, 0));
             i = skip_string(&b, start, hashes);
+            let end = i.saturating_sub(hashes.max(1)).max(start);
+            out.push(Tok::Str(b[start..end].iter().collect()));
         } else if c == '\'' {
             // A character literal ('a', '\n', '\u{1F600}') or a lifetime ('a): skip either.
             if b.get(i + 1) == Some(&'\\') {
@@ -291,9 +328,11 @@ impl Tree {
         dir: PathBuf,
     ) -> Result<(), String> {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let name = path
-            .strip_prefix(src)
-            .unwrap_or(path)
+        // Named relative to `src`, both without `..` (a `#[path]` may climb out and back).
+        let (full, root) = (normalize(path), normalize(src));
+        let name = full
+            .strip_prefix(&root)
+            .unwrap_or(&full)
             .to_string_lossy()
             .replace('\\', "/");
         let file = self.files.len();
@@ -302,7 +341,10 @@ impl Tree {
         let toks = tokenize(&text);
         // Frames of braces: Some(module) for a module body, None for any other block.
         let mut frames: Vec<Option<usize>> = vec![Some(module)];
-        let mut pending_children: Vec<(usize, String, PathBuf)> = Vec::new();
+        // (child, its name, the folder of its default file, its `#[path]` file if any).
+        let mut pending_children: Vec<(usize, String, PathBuf, Option<PathBuf>)> = Vec::new();
+        // A `#[path = "…"]` read, for the `mod` that follows it.
+        let mut path_attribute: Option<String> = None;
         let mut i = 0;
         let current =
             |frames: &[Option<usize>]| frames.iter().rev().find_map(|f| *f).unwrap_or(module);
@@ -310,6 +352,21 @@ impl Tree {
             let at_module_level = frames.last().copied().flatten().is_some();
             let here = current(&frames);
             match &toks[i] {
+                Tok::Punct('#') if at_module_level => {
+                    if let [
+                        Tok::Punct('['),
+                        Tok::Ident(attr),
+                        Tok::Punct('='),
+                        Tok::Str(value),
+                        Tok::Punct(']'),
+                    ] = toks.get(i + 1..i + 6).unwrap_or_default()
+                        && attr == "path"
+                    {
+                        path_attribute = Some(value.clone());
+                        i += 6;
+                        continue;
+                    }
+                }
                 Tok::Punct('{') => frames.push(None),
                 Tok::Punct('}') if frames.len() > 1 => {
                     frames.pop();
@@ -323,8 +380,15 @@ impl Tree {
                             ..Module::default()
                         });
                         self.modules[here].children.insert(name.clone(), child);
+                        let attribute = path_attribute.take();
                         match toks.get(i + 2) {
                             Some(Tok::Punct('{')) => {
+                                if let Some(p) = attribute {
+                                    return Err(format!(
+                                        "{}: `#[path = {p:?}]` on the inline `mod {name}` is not followed",
+                                        self.files[file]
+                                    ));
+                                }
                                 frames.push(Some(child));
                                 i += 3;
                                 continue;
@@ -338,7 +402,17 @@ impl Tree {
                                 } else {
                                     dir.join(self.inline_path(here, module))
                                 };
-                                pending_children.push((child, name.clone(), base));
+                                // `#[path]` at the file's level is relative to the file's
+                                // folder; inside an inline module, to that module's folder.
+                                let explicit = attribute.map(|p| {
+                                    let from = if here == module {
+                                        path.parent().unwrap_or(src).to_path_buf()
+                                    } else {
+                                        base.clone()
+                                    };
+                                    normalize(&from.join(p))
+                                });
+                                pending_children.push((child, name.clone(), base, explicit));
                             }
                             _ => {}
                         }
@@ -347,6 +421,7 @@ impl Tree {
                     }
                 }
                 Tok::Ident(kw) if kw == "use" => {
+                    path_attribute = None;
                     let end = toks[i..]
                         .iter()
                         .position(|t| *t == Tok::Punct(';'))
@@ -380,6 +455,7 @@ impl Tree {
                     if at_module_level
                         && (ITEM_KEYWORDS.contains(&kw.as_str()) || kw == "macro_rules") =>
                 {
+                    path_attribute = None;
                     let mut j = i + 1;
                     if kw == "macro_rules" && toks.get(j) == Some(&Tok::Punct('!')) {
                         j += 1;
@@ -424,12 +500,23 @@ impl Tree {
             }
             i += 1;
         }
-        for (child, name, base) in pending_children {
+        for (child, name, base, explicit) in pending_children {
             let (flat, nested) = (
                 base.join(format!("{name}.rs")),
                 base.join(&name).join("mod.rs"),
             );
-            let (path, child_dir) = if flat.is_file() {
+            let (path, child_dir) = if let Some(path) = explicit {
+                // As rustc reads a `#[path]` file: like a mod.rs, its children are siblings.
+                if !path.is_file() {
+                    return Err(format!(
+                        "{}: no file {} for `#[path] mod {name};`",
+                        self.files[file],
+                        path.display()
+                    ));
+                }
+                let dir = path.parent().unwrap_or(src).to_path_buf();
+                (path, dir)
+            } else if flat.is_file() {
                 (flat, base.join(&name))
             } else if nested.is_file() {
                 (nested, base.join(&name))
@@ -544,6 +631,27 @@ impl Tree {
         }
         edges
     }
+}
+
+/// `a/b/../c` as `a/c`, without touching the file system (a `#[path]` may climb out of
+/// the folder that declares it).
+fn normalize(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for part in path.components() {
+        match part {
+            std::path::Component::CurDir => {}
+            std::path::Component::ParentDir
+                if matches!(
+                    out.components().next_back(),
+                    Some(std::path::Component::Normal(_))
+                ) =>
+            {
+                out.pop();
+            }
+            other => out.push(other),
+        }
+    }
+    out
 }
 
 /// Reads a use tree (`a::{b, c::d as e, f::*}`) into (binding, full path) pairs; a glob

@@ -175,3 +175,88 @@ fn a_glob_re_export_leads_to_the_module_that_has_the_name() {
     );
     assert!(cycles(&graph).is_empty());
 }
+
+#[test]
+fn path_attributes_are_followed_as_rustc_reads_them() {
+    let files = [
+        (
+            "lib.rs",
+            "#[path = \"other/thing.rs\"]\nmod thing;\nmod a;\nmod outer {\n    #[path = \"deep.rs\"]\n    mod d;\n}\n",
+        ),
+        // From a non-mod-rs file, relative to its folder; stacked attributes.
+        (
+            "a.rs",
+            "pub struct A;\nfn f() { crate::thing::g() }\n#[cfg(test)]\n#[path = \"a_tests.rs\"]\nmod tests;\n",
+        ),
+        ("a_tests.rs", "use crate::outer::D;\n"),
+        // A #[path] file's children are its siblings; `..` climbs back to src/.
+        (
+            "other/thing.rs",
+            "mod inner;\n#[path = \"../up.rs\"]\nmod up;\nuse crate::a::A;\npub fn g() {}\n",
+        ),
+        ("other/inner.rs", "pub struct I;\n"),
+        ("up.rs", "use crate::thing::inner::I;\n"),
+        // Inside an inline module: relative to that module's folder.
+        ("outer/deep.rs", "pub struct D;\n"),
+    ];
+    let dir = scratch("path", &files);
+    let graph = crate_graph(&dir).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let read: Vec<&str> = graph.keys().map(String::as_str).collect();
+    assert_eq!(
+        read,
+        [
+            "a.rs",
+            "a_tests.rs",
+            "lib.rs",
+            "other/inner.rs",
+            "other/thing.rs",
+            "outer/deep.rs",
+            "up.rs"
+        ],
+        "{graph:?}"
+    );
+    assert_eq!(
+        graph["up.rs"].iter().collect::<Vec<_>>(),
+        ["other/inner.rs"]
+    );
+    assert_eq!(graph["a_tests.rs"].iter().collect::<Vec<_>>(), ["lib.rs"]);
+    assert_eq!(
+        cycles(&graph),
+        [vec!["a.rs".to_string(), "other/thing.rs".to_string()]]
+    );
+}
+
+#[test]
+fn a_path_attribute_without_its_file_or_on_an_inline_module_is_an_error() {
+    let dir = scratch(
+        "path-missing",
+        &[("lib.rs", "#[path = \"elsewhere/x.rs\"]\nmod x;\n")],
+    );
+    let err = crate_graph(&dir).unwrap_err();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(
+        err.contains("elsewhere/x.rs") && err.contains("mod x"),
+        "{err}"
+    );
+    let dir = scratch(
+        "path-inline",
+        &[("lib.rs", "#[path = \"d\"]\nmod m {\n    mod n;\n}\n")],
+    );
+    let err = crate_graph(&dir).unwrap_err();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(err.contains("inline `mod m`"), "{err}");
+}
+
+#[test]
+fn string_literals_are_tokens_of_their_own() {
+    let toks = tokenize("#[path = \"a/b.rs\"] r#\"c\"d\"# b\"e\"");
+    let strings: Vec<_> = toks
+        .iter()
+        .filter_map(|t| match t {
+            Tok::Str(s) => Some(s.as_str()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(strings, ["a/b.rs", "c\"d", "e"]);
+}

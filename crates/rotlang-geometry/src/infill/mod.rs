@@ -95,6 +95,7 @@ mod curves;
 mod lightning;
 mod offset;
 mod order;
+mod patterns;
 pub mod preview;
 mod region;
 mod schedule;
@@ -103,6 +104,7 @@ mod straight;
 pub(crate) mod travel;
 
 pub use geo::{Coord, LineString, MultiPolygon, Polygon};
+pub use patterns::fill;
 pub use region::{Region, inset};
 pub use schedule::{LayerFill, Schedule, Settings};
 
@@ -332,12 +334,6 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
-
-/// Fills `region` (inset by half a nozzle first) with one layer's pattern.
-/// For many layers of the same region, build the [`Region`] once and call [`Region::fill`].
-pub fn fill(region: &MultiPolygon<f64>, params: &Params) -> Result<Toolpaths, Error> {
-    Region::new(region, params.nozzle)?.fill(params)
-}
 
 fn check(params: &Params) -> Result<(), Error> {
     if !(params.density > 0.0 && params.density <= 1.0) {

@@ -9,8 +9,6 @@
 
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 
-use super::region::{cross, signed_area};
-
 /// Rings longer than this go to the buffer: the crossing check sorts the edges and sweeps,
 /// but a pathological ring (a comb) could still make it quadratic.
 const MAX_POINTS: usize = 20_000;
@@ -220,4 +218,16 @@ fn segments_meet(p: Coord, q: Coord, r: Coord, s: Coord) -> bool {
             && c.y <= a.y.max(b.y)
     };
     on(p, q, r, d1) || on(p, q, s, d2) || on(r, s, p, d3) || on(r, s, q, d4)
+}
+
+pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+pub(crate) fn signed_area(ring: &[Coord]) -> f64 {
+    let n = ring.len();
+    (0..n)
+        .map(|i| cross(ring[i], ring[(i + 1) % n]))
+        .sum::<f64>()
+        / 2.0
 }

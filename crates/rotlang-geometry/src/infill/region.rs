@@ -2,9 +2,9 @@
 
 use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
-use super::clip::Frame;
-use super::{Error, MAX_COORDINATE, MAX_VERTICES, Order, Params, Pattern, Toolpaths};
-use super::{check, curves, lightning, order, straight};
+use super::{Error, MAX_COORDINATE};
+// Where they were (`super::region::cross`): ring helpers the offset shares.
+pub(crate) use super::offset::{cross, signed_area};
 
 /// The infill area of a layer: the region inset by half a nozzle.
 #[derive(Clone, Debug)]
@@ -15,16 +15,16 @@ pub struct Region {
     /// it (it has fewer vertices than the inset, whose holes have grown arcs).
     outline: MultiPolygon<f64>,
     /// Its rings (outlines and holes) without the repeated closing point.
-    rings: Vec<Vec<Coord>>,
+    pub(super) rings: Vec<Vec<Coord>>,
     /// How many of `rings` are outlines (they come first).
     outlines: usize,
     /// The bounding box of the region as given (the object centre is its centre).
-    min: Coord,
-    max: Coord,
-    area: f64,
+    pub(super) min: Coord,
+    pub(super) max: Coord,
+    pub(super) area: f64,
     nozzle: f64,
     /// One convex outline, no hole: every straight travel stays inside, none is routed.
-    convex: bool,
+    pub(super) convex: bool,
 }
 
 impl Region {
@@ -139,101 +139,6 @@ impl Region {
 
     pub(crate) fn outlines(&self) -> &[Vec<Coord>] {
         &self.rings[..self.outlines.min(self.rings.len())]
-    }
-
-    /// Fills the inset with one layer's pattern. `params.nozzle` should be the one the
-    /// region was inset for; a different one is used for the lines but not re-inset.
-    pub fn fill(&self, params: &Params) -> Result<Toolpaths, Error> {
-        check(params)?;
-        if self.rings.is_empty() || self.area <= 0.0 {
-            return Ok(Toolpaths::default());
-        }
-        let w = params.nozzle;
-        let rho = params.density;
-        // Every pattern puts about `area·ρ/w` mm of line in the region, curves with a
-        // vertex at least every quarter nozzle; and each of the (at most three families
-        // of) lines is tested against every edge of the outline.
-        let extent = (self.max - self.min).x.hypot((self.max - self.min).y);
-        let edges: usize = self.rings.iter().map(Vec::len).sum();
-        let length = self.area * rho / w;
-        let lines = 3.0 * extent * rho / w;
-        let estimate = length / (w / 4.0) + lines * edges as f64 / 8.0;
-        if estimate > MAX_VERTICES {
-            return Err(Error::TooLarge { estimate });
-        }
-        let centre = match params.centring {
-            super::Centring::Object => self.centre(),
-            super::Centring::Global => Coord::zero(),
-        };
-        let theta = params.angle.rem_euclid(360.0).to_radians();
-        let mut paths: Vec<Vec<Coord>> = Vec::new();
-        match params.pattern {
-            Pattern::Lines => {
-                straight::families(self, centre, theta, &[0.0], w / rho, 0.0, &mut paths)
-            }
-            Pattern::Grid => straight::families(
-                self,
-                centre,
-                theta,
-                &[0.0, 90.0],
-                2.0 * w / rho,
-                0.0,
-                &mut paths,
-            ),
-            Pattern::Triangles => straight::families(
-                self,
-                centre,
-                theta,
-                &[0.0, 60.0, 120.0],
-                3.0 * w / rho,
-                0.0,
-                &mut paths,
-            ),
-            Pattern::Cubic => straight::families(
-                self,
-                centre,
-                theta,
-                &[0.0, 120.0, 240.0],
-                3.0 * w / rho,
-                params.z / std::f64::consts::SQRT_2,
-                &mut paths,
-            ),
-            Pattern::Hexagons => {
-                let side = 2.0 * w / (3f64.sqrt() * rho);
-                straight::hexagons(self, centre, theta, side, &mut paths);
-            }
-            Pattern::Concentric => curves::concentric(self, theta, w / rho, &mut paths),
-            Pattern::Gyroid => {
-                let scale = w * super::GYROID_LAMBDA / rho;
-                curves::gyroid(self, centre, theta, scale, params.z, &mut paths);
-            }
-            Pattern::Spiral => curves::spiral(self, centre, theta, w / rho, &mut paths),
-            Pattern::Lightning => {
-                // Branches are spaced along the outline, so how much they cover depends on
-                // the shape (a star's long outline gets more): measure a first tree and
-                // space the branches again so that the density printed is the one asked.
-                let mut spacing = 2.0 * w / rho;
-                for _ in 0..2 {
-                    paths.clear();
-                    lightning::lightning(self, centre, theta, spacing, &mut paths);
-                    let length: f64 = paths.iter().map(|p| super::travel::length(p)).sum();
-                    let printed = length * w / self.area;
-                    if printed.is_nan() || printed <= 0.0 || (printed / rho - 1.0).abs() < 0.03 {
-                        break;
-                    }
-                    spacing *= (printed / rho).clamp(0.25, 4.0);
-                }
-            }
-        }
-        let min_segment = w / 10.0;
-        paths.retain_mut(|p| order::simplify(p, min_segment));
-        let monotonic = params.order == Order::Monotonic;
-        Ok(order::order(
-            paths,
-            monotonic,
-            Frame::new(centre, theta),
-            if self.convex { &[] } else { &self.rings },
-        ))
     }
 }
 
@@ -536,16 +441,4 @@ fn separated(a: &[Coord], b: &[Coord]) -> bool {
         })
     };
     outside(a, b) || outside(b, a)
-}
-
-pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
-pub(crate) fn signed_area(ring: &[Coord]) -> f64 {
-    let n = ring.len();
-    (0..n)
-        .map(|i| cross(ring[i], ring[(i + 1) % n]))
-        .sum::<f64>()
-        / 2.0
 }

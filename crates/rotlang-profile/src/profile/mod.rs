@@ -26,16 +26,17 @@
 
 pub mod ini;
 pub mod json;
+mod read;
 mod settings;
 #[cfg(feature = "3mf")]
 mod threemf;
 
 use std::collections::BTreeSet;
 use std::fmt;
-use std::io::Read;
 use std::path::{Path, PathBuf};
 
 pub use json::OffsetMap;
+pub use read::{parse, read, read_with_bytes};
 pub use settings::{
     DEFAULT_OBJECT_HEIGHT, Direction, INFILL_KEYS, MODEL_KEYS, ProfileModel, Setting, Settings,
 };
@@ -84,26 +85,6 @@ impl Kind {
             "3mf" => Kind::ThreeMf,
             _ => return None,
         })
-    }
-
-    /// By content first where it is unambiguous (a zip, a JSON object), then extension,
-    /// then `key = value` lines; anything else is a template.
-    pub fn detect(path: &Path, bytes: &[u8]) -> Kind {
-        if bytes.starts_with(b"PK\x03\x04") || bytes.starts_with(b"PK\x05\x06") {
-            return Kind::ThreeMf;
-        }
-        let body = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
-        let first = body.iter().find(|b| !b.is_ascii_whitespace());
-        if let Some(kind) = Kind::from_extension(path) {
-            return kind;
-        }
-        if first == Some(&b'{') {
-            return Kind::Json;
-        }
-        if ini::looks_like_ini(body) {
-            return Kind::Ini;
-        }
-        Kind::Template
     }
 }
 
@@ -216,16 +197,6 @@ impl Profile {
         }
     }
 
-    /// For a JSON preset with `inherits`: the model keys it lacks, taken from its parent
-    /// presets beside [`Profile::path`] (`<inherits>.json` in the same folder, recursively),
-    /// as [`read`] does. For a text read some other way (an editor's buffer), set `path` to
-    /// the file's place first, so that its parents are found as the CLI finds them.
-    pub fn resolve_inherits(&mut self) {
-        if self.kind == Some(Kind::Json) {
-            settings::resolve_inherits(&mut self.settings, &self.path);
-        }
-    }
-
     /// Whether any note is an error.
     pub fn has_errors(&self) -> bool {
         self.notes.iter().any(|n| n.error)
@@ -247,82 +218,11 @@ impl fmt::Display for ProfileError {
 
 impl std::error::Error for ProfileError {}
 
-fn error(path: &Path, message: impl Into<String>) -> ProfileError {
+pub(super) fn error(path: &Path, message: impl Into<String>) -> ProfileError {
     ProfileError {
         path: path.to_owned(),
         message: message.into(),
     }
-}
-
-/// Reads a file (at most [`MAX_FILE_BYTES`]) and what it holds; for a JSON preset with
-/// `inherits`, missing model keys are looked up in the parent preset beside it
-/// (`<inherits>.json` in the same folder), recursively.
-pub fn read(path: &Path) -> Result<Profile, ProfileError> {
-    read_with_bytes(path).map(|(profile, _)| profile)
-}
-
-/// [`read`], with the bytes read (what a rewrite of the file edits, and compares the file
-/// with before writing).
-pub fn read_with_bytes(path: &Path) -> Result<(Profile, Vec<u8>), ProfileError> {
-    let bytes = read_bounded(path)?;
-    let mut profile = parse(path, &bytes)?;
-    profile.resolve_inherits();
-    Ok((profile, bytes))
-}
-
-fn read_bounded(path: &Path) -> Result<Vec<u8>, ProfileError> {
-    let file = std::fs::File::open(path).map_err(|e| error(path, format!("cannot read: {e}")))?;
-    let mut bytes = Vec::new();
-    file.take(MAX_FILE_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| error(path, format!("cannot read: {e}")))?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(error(
-            path,
-            format!(
-                "larger than {} MiB: not a profile or project",
-                MAX_FILE_BYTES >> 20
-            ),
-        ));
-    }
-    Ok(bytes)
-}
-
-/// What `bytes` (the content of `path`) holds, without touching the file system.
-pub fn parse(path: &Path, bytes: &[u8]) -> Result<Profile, ProfileError> {
-    let kind = Kind::detect(path, bytes);
-    let name = path.display().to_string();
-    let mut profile = Profile {
-        path: path.to_owned(),
-        kind: Some(kind),
-        ..Profile::default()
-    };
-    match kind {
-        Kind::ThreeMf => {
-            #[cfg(feature = "3mf")]
-            threemf::read(&name, bytes, &mut profile).map_err(|m| error(path, m))?;
-            #[cfg(not(feature = "3mf"))]
-            return Err(error(
-                path,
-                "a 3mf project: this build of rotlang reads them only with the `3mf` feature",
-            ));
-        }
-        Kind::Template | Kind::Json | Kind::Ini => {
-            let text = utf8(bytes).map_err(|m| error(path, m))?;
-            profile.sources.push(Source { name, text });
-            match kind {
-                Kind::Template => template_file(&mut profile),
-                Kind::Json => {
-                    let jsonc = path
-                        .extension()
-                        .is_some_and(|e| e.eq_ignore_ascii_case("jsonc"));
-                    json_file(&mut profile, 0, None, jsonc)
-                }
-                _ => ini::read(&mut profile),
-            }
-        }
-    }
-    Ok(profile)
 }
 
 /// The text of a file, or where it stops being UTF-8.
@@ -336,7 +236,7 @@ pub(crate) fn utf8(bytes: &[u8]) -> Result<String, String> {
 }
 
 /// A `.rot` file: one template, the whole text after a byte-order mark.
-fn template_file(profile: &mut Profile) {
+pub(super) fn template_file(profile: &mut Profile) {
     let text = &profile.sources[0].text;
     let start = if text.starts_with('\u{feff}') { 3 } else { 0 };
     let mut map = OffsetMap::starting_at(start);

@@ -2,7 +2,7 @@
 //! where a key is missing (with a note saying so).
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::eval::{Model, Options};
 use crate::{Span, Target};
@@ -49,9 +49,6 @@ const DEFAULT_FIRST_LAYER: f64 = 0.2;
 const DEFAULT_BOTTOM: u32 = 3;
 const DEFAULT_TOP: u32 = 4;
 const DEFAULT_DIRECTION: f64 = 45.0;
-
-/// How deep `inherits` chains are followed (OrcaSlicer's own are 2–4 deep).
-const MAX_INHERITS: usize = 16;
 
 /// One setting as written, and where.
 #[derive(Clone, Debug, PartialEq)]
@@ -296,37 +293,4 @@ fn parse_number(text: &str) -> Option<f64> {
     let t = text.trim();
     let v: f64 = t.parse().ok()?;
     v.is_finite().then_some(v)
-}
-
-/// Fills the keys `settings` lacks from its parent presets: `<inherits>.json` in the
-/// folder of `path` (OrcaSlicer's own preset folders are laid out so), then its parent.
-pub(crate) fn resolve_inherits(settings: &mut Settings, path: &Path) {
-    let Some(dir) = path.parent() else { return };
-    let mut seen = vec![path.to_owned()];
-    let mut parent = settings.inherits().map(str::to_owned);
-    while let Some(name) = parent.take() {
-        if seen.len() > MAX_INHERITS || name.contains(['/', '\\']) {
-            break;
-        }
-        let file = dir.join(format!("{name}.json"));
-        if seen.contains(&file) || !file.is_file() {
-            break;
-        }
-        seen.push(file.clone());
-        let Ok(profile) = super::read_bounded(&file).and_then(|b| super::parse(&file, &b)) else {
-            break;
-        };
-        parent = profile.settings.inherits().map(str::to_owned);
-        for (key, mut setting) in profile.settings.values {
-            if key == "inherits" {
-                continue;
-            }
-            setting.inherited_from = Some(file.clone());
-            settings.values.entry(key).or_insert(setting);
-        }
-    }
-    // Resolved: the note about a missing parent no longer applies.
-    if seen.len() > 1 {
-        settings.values.remove("inherits");
-    }
 }

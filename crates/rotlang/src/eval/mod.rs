@@ -35,6 +35,7 @@
 //! # Ok::<(), rotlang::eval::ModelError>(())
 //! ```
 
+mod cycle;
 mod engine;
 mod layer;
 pub mod limits;
@@ -44,13 +45,14 @@ mod shape;
 
 pub use crate::dialect::Dialect;
 // What the evaluator gives (in layer.rs, so that the engine does not name this module).
+pub use cycle::Cycle;
 pub use layer::{Layer, Options};
 pub use model::{MAX_LAYER_HEIGHT, MAX_LAYERS, MIN_LAYER_HEIGHT, Model, ModelError};
 // The OrcaSlicer reader (`crate::dialect`) walks the same layers with the same randomness.
 pub(crate) use model::Cursor;
 pub(crate) use random::unit as random_unit;
 
-use crate::ir::{Fill, Template};
+use crate::ir::Template;
 use engine::Engine;
 
 /// The layers of `model` under `template`, bottom to top.
@@ -107,40 +109,6 @@ pub struct Layers<'a> {
     model: &'a Model,
     engine: Engine,
     at: Cursor,
-}
-
-/// A template that gives layer `k` the angle and fill `cycle[k mod n]`, whatever the
-/// model: see [`Layers::plain_cycle`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct Cycle {
-    /// Angle (degrees, base included) and fill of each entry.
-    pub entries: Vec<(f64, Fill)>,
-}
-
-impl Cycle {
-    /// Layer `index`'s angle and fill.
-    #[inline]
-    pub fn at(&self, index: usize) -> (f64, Fill) {
-        self.entries[index % self.entries.len()]
-    }
-
-    /// The angles (and fills) of layers `first..first + angles.len()`, written in turn:
-    /// copies of the cycle, no per-layer arithmetic but the wrap.
-    pub fn write(&self, first: usize, angles: &mut [f64], mut fills: Option<&mut [Fill]>) {
-        let n = self.entries.len();
-        let mut k = first % n;
-        for (i, slot) in angles.iter_mut().enumerate() {
-            let (angle, fill) = self.entries[k];
-            *slot = angle;
-            if let Some(f) = fills.as_deref_mut().and_then(|f| f.get_mut(i)) {
-                *f = fill;
-            }
-            k += 1;
-            if k == n {
-                k = 0;
-            }
-        }
-    }
 }
 
 impl Layers<'_> {

@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::diagnostic::Span;
+use crate::ir::Fill;
 use crate::{Target, parse};
 
 fn template(text: &str) -> Template {

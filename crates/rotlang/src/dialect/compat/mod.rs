@@ -20,64 +20,27 @@
 //! A fix is attached only where it keeps rotlang's meaning (checked by evaluating the fixed
 //! text on reference models) and removes what OrcaSlicer misreads.
 
+mod codes;
+mod readings;
 mod rules;
 
 use rules::MAX_FIXED_TEXT;
 #[cfg(test)]
 mod tests;
 
-use super::orcaslicer::{self, is_list};
+use super::orcaslicer;
 use super::{HANGS, NAN, UNDEFINED};
 use crate::diagnostic::{Diagnostic, Span};
 use crate::eval::{self, Layer, Model, Options};
-use crate::ir::{AngleValue, CountKind, Fill, Instruction, Joint, Sign, Target};
+use crate::ir::{Fill, Target};
+use readings::{degrees, reference_models, same_angle};
 use rules::{instruction_rules, rules, text_rules};
 
-/// OrcaSlicer's angle or fill differs from rotlang's on some layer of the model.
-pub const DIFFERS: &str = "orcaslicer::differs";
-/// `0 90`: OrcaSlicer reads a plain list only at commas (`0`).
-pub const SPACE_SEPARATED_LIST: &str = "orcaslicer::space-separated-list";
-/// `α:β` or `ℍ:ℕ`: OrcaSlicer reads the first number only.
-pub const FRACTION: &str = "orcaslicer::fraction";
-/// `D S O M R`: OrcaSlicer has no solid signs; the layers stay sparse.
-pub const SOLID_SIGN: &str = "orcaslicer::solid-sign";
-/// `+10/B`: OrcaSlicer reads no count after a joint's `B`/`T`.
-pub const SHELLS_AFTER_JOINT: &str = "orcaslicer::shells-after-joint";
-/// `+7!B`: OrcaSlicer ignores everything after a `!` that follows the angle.
-pub const TEXT_AFTER_BANG: &str = "orcaslicer::text-after-bang";
-/// `, +10`, `10,,20`: OrcaSlicer reads an empty instruction as 0°.
-pub const EMPTY_INSTRUCTION: &str = "orcaslicer::empty-instruction";
-/// `10!, 20`: in a plain list OrcaSlicer ignores `!`, `B` and `T`.
-pub const IGNORED_IN_LIST: &str = "orcaslicer::ignored-in-list";
-/// `~`, `^`: OrcaSlicer's random numbers differ from run to run.
-pub const RANDOM: &str = "orcaslicer::random";
-/// The codes of the findings that hold on every model (the rule-based ones).
-pub const RULES: [&str; 8] = [
-    SPACE_SEPARATED_LIST,
-    FRACTION,
-    SOLID_SIGN,
-    SHELLS_AFTER_JOINT,
-    TEXT_AFTER_BANG,
-    EMPTY_INSTRUCTION,
-    IGNORED_IN_LIST,
-    RANDOM,
-];
-
-/// Every code the lint can report.
-pub const CODES: [&str; 12] = [
-    DIFFERS,
-    HANGS,
-    UNDEFINED,
-    NAN,
-    SPACE_SEPARATED_LIST,
-    FRACTION,
-    SOLID_SIGN,
-    SHELLS_AFTER_JOINT,
-    TEXT_AFTER_BANG,
-    EMPTY_INSTRUCTION,
-    IGNORED_IN_LIST,
-    RANDOM,
-];
+pub use codes::{
+    CODES, DIFFERS, EMPTY_INSTRUCTION, FRACTION, IGNORED_IN_LIST, RANDOM, RULES,
+    SHELLS_AFTER_JOINT, SOLID_SIGN, SPACE_SEPARATED_LIST, TEXT_AFTER_BANG,
+};
+pub use readings::orcaslicer_change;
 
 /// Compares rotlang's reading of `text` with OrcaSlicer's on `model` and by rule, both
 /// with `options` (for a profile's template: `rotlang_profile::profile::ProfileModel::compat`).
@@ -114,22 +77,6 @@ pub fn compat(text: &str, target: Target, model: &Model, options: Options) -> Ve
     }
     out.sort_by_key(|d| (d.primary_span(), d.code));
     out
-}
-
-/// Equal directions: modulo 360 within 1e-4°, relatively within 1e-9 above 1e9 (the
-/// conformance README's comparison).
-fn same_angle(a: f64, b: f64) -> bool {
-    if a.abs().max(b.abs()) > 1e9 {
-        return (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
-    }
-    let diff = (a - b).rem_euclid(360.0);
-    diff <= 1e-4 || diff >= 360.0 - 1e-4
-}
-
-/// Angles without float noise: `47.25°`, `33.333333°`.
-fn degrees(d: f64) -> String {
-    let rounded = (d * 1e6).round() / 1e6;
-    format!("{}°", rounded + 0.0)
 }
 
 fn whole(text: &str) -> Span {
@@ -237,32 +184,6 @@ fn on_model(
     }
 }
 
-/// Whether `fixed` means what `text` means for rotlang: no errors, and the same angles and
-/// fills on reference models (the cube, a thicker first layer, fine layers).
-fn keeps_meaning(text: &str, fixed: &str, target: Target) -> bool {
-    let (a, b) = (crate::parse(text, target), crate::parse(fixed, target));
-    if a.has_errors() || b.has_errors() {
-        return false;
-    }
-    reference_models().iter().all(|model| {
-        let options = Options::default();
-        eval::layers(&a.template, model, options)
-            .zip(eval::layers(&b.template, model, options))
-            .all(|(x, y)| {
-                x.fill == y.fill && (x.angle - y.angle).abs() <= 1e-9 * x.angle.abs().max(1.0)
-            })
-    })
-}
-
-fn reference_models() -> [Model; 3] {
-    let uniform = |n, h, first| Model::uniform(n, h, first).expect("valid reference model");
-    [
-        Model::cube20(),
-        uniform(75, 0.2, Some(0.3)).with_shells(4, 5),
-        uniform(167, 0.12, None).with_shells(2, 3),
-    ]
-}
-
 /// Whether OrcaSlicer reads `text` as rotlang does: no errors, and on reference models
 /// the same angles, sparse fills and no hang, crash or NaN. `check --fix` applies a fix
 /// that gets there whatever it changes in OrcaSlicer's reading.
@@ -279,33 +200,4 @@ pub fn readings_agree(text: &str, target: Target) -> bool {
             .all(|(r, o)| r.fill == Fill::Sparse && same_angle(r.angle, o.angle));
         agree && theirs.findings().is_empty()
     })
-}
-
-/// What OrcaSlicer does differently after `text` becomes `changed` (on reference models),
-/// or `None` when it reads both alike. The formatter asks before rewriting a template.
-pub fn orcaslicer_change(text: &str, changed: &str) -> Option<String> {
-    // Formatting changes separators only: most texts keep OrcaSlicer's tokens exactly.
-    if orcaslicer::same_reading(text, changed) {
-        return None;
-    }
-    for model in reference_models() {
-        let options = Options::default();
-        let mut a = orcaslicer::layers(text, &model, options);
-        let mut b = orcaslicer::layers(changed, &model, options);
-        for (x, y) in a.by_ref().zip(b.by_ref()) {
-            if x.angle.to_bits() != y.angle.to_bits() && !same_angle(x.angle, y.angle) {
-                return Some(format!(
-                    "OrcaSlicer would turn layer {} to {} instead of {}",
-                    x.index,
-                    degrees(y.angle),
-                    degrees(x.angle)
-                ));
-            }
-        }
-        let codes = |f: &[super::Finding]| f.iter().map(|f| f.code).collect::<Vec<_>>();
-        if codes(a.findings()) != codes(b.findings()) {
-            return Some("OrcaSlicer would hang, crash or compute NaN angles differently".into());
-        }
-    }
-    None
 }

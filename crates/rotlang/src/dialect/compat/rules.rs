@@ -1,6 +1,31 @@
 //! The findings that hold on every model: constructs OrcaSlicer reads differently.
 
-use super::*;
+use super::codes::{
+    EMPTY_INSTRUCTION, FRACTION, IGNORED_IN_LIST, RANDOM, SHELLS_AFTER_JOINT, SOLID_SIGN,
+    SPACE_SEPARATED_LIST, TEXT_AFTER_BANG,
+};
+use super::readings::{degrees, reference_models};
+use crate::diagnostic::{Diagnostic, Span};
+use crate::dialect::orcaslicer::is_list;
+use crate::eval::{self, Options};
+use crate::ir::{AngleValue, CountKind, Instruction, Joint, Sign, Target};
+
+/// Whether `fixed` means what `text` means for rotlang: no errors, and the same angles and
+/// fills on reference models (the cube, a thicker first layer, fine layers).
+pub(super) fn keeps_meaning(text: &str, fixed: &str, target: Target) -> bool {
+    let (a, b) = (crate::parse(text, target), crate::parse(fixed, target));
+    if a.has_errors() || b.has_errors() {
+        return false;
+    }
+    reference_models().iter().all(|model| {
+        let options = Options::default();
+        eval::layers(&a.template, model, options)
+            .zip(eval::layers(&b.template, model, options))
+            .all(|(x, y)| {
+                x.fill == y.fill && (x.angle - y.angle).abs() <= 1e-9 * x.angle.abs().max(1.0)
+            })
+    })
+}
 
 fn splice(text: &str, span: Span, with: &str) -> String {
     format!("{}{with}{}", &text[..span.start], &text[span.end..])

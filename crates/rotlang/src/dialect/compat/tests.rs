@@ -182,7 +182,7 @@ fn every_fix_keeps_rotlang_meaning() {
                     &text[f.span.end..]
                 );
                 assert!(
-                    keeps_meaning(text, &after, Target::Sparse),
+                    rules::keeps_meaning(text, &after, Target::Sparse),
                     "{text:?} -> {after:?}"
                 );
                 assert!(

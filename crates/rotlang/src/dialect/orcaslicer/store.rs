@@ -9,7 +9,8 @@
 //! number read on every layer is not read again each time. The live tokens are found by a
 //! union-find over the spent ones (path halving), one more offset per token.
 
-use super::{Token, scan};
+use super::scan;
+use super::token::Token;
 use crate::diagnostic::Span;
 
 /// Tokens longer than this are decoded once and kept (at most one per `LONG + 1` bytes of

@@ -1,0 +1,113 @@
+//! Filling a region with one layer's pattern: the patterns (straight, curves, lightning)
+//! called for the region, their lines simplified and ordered. Apart from the region
+//! (`region.rs`, which the patterns read) so that no pattern's file and the region's name
+//! each other.
+
+use geo::{Coord, MultiPolygon};
+
+use super::clip::Frame;
+use super::{Error, MAX_VERTICES, Order, Params, Pattern, Region, Toolpaths};
+use super::{check, curves, lightning, order, straight};
+
+/// Fills `region` (inset by half a nozzle first) with one layer's pattern.
+/// For many layers of the same region, build the [`Region`] once and call [`Region::fill`].
+pub fn fill(region: &MultiPolygon<f64>, params: &Params) -> Result<Toolpaths, Error> {
+    Region::new(region, params.nozzle)?.fill(params)
+}
+
+impl Region {
+    /// Fills the inset with one layer's pattern. `params.nozzle` should be the one the
+    /// region was inset for; a different one is used for the lines but not re-inset.
+    pub fn fill(&self, params: &Params) -> Result<Toolpaths, Error> {
+        check(params)?;
+        if self.rings.is_empty() || self.area <= 0.0 {
+            return Ok(Toolpaths::default());
+        }
+        let w = params.nozzle;
+        let rho = params.density;
+        // Every pattern puts about `area·ρ/w` mm of line in the region, curves with a
+        // vertex at least every quarter nozzle; and each of the (at most three families
+        // of) lines is tested against every edge of the outline.
+        let extent = (self.max - self.min).x.hypot((self.max - self.min).y);
+        let edges: usize = self.rings.iter().map(Vec::len).sum();
+        let length = self.area * rho / w;
+        let lines = 3.0 * extent * rho / w;
+        let estimate = length / (w / 4.0) + lines * edges as f64 / 8.0;
+        if estimate > MAX_VERTICES {
+            return Err(Error::TooLarge { estimate });
+        }
+        let centre = match params.centring {
+            super::Centring::Object => self.centre(),
+            super::Centring::Global => Coord::zero(),
+        };
+        let theta = params.angle.rem_euclid(360.0).to_radians();
+        let mut paths: Vec<Vec<Coord>> = Vec::new();
+        match params.pattern {
+            Pattern::Lines => {
+                straight::families(self, centre, theta, &[0.0], w / rho, 0.0, &mut paths)
+            }
+            Pattern::Grid => straight::families(
+                self,
+                centre,
+                theta,
+                &[0.0, 90.0],
+                2.0 * w / rho,
+                0.0,
+                &mut paths,
+            ),
+            Pattern::Triangles => straight::families(
+                self,
+                centre,
+                theta,
+                &[0.0, 60.0, 120.0],
+                3.0 * w / rho,
+                0.0,
+                &mut paths,
+            ),
+            Pattern::Cubic => straight::families(
+                self,
+                centre,
+                theta,
+                &[0.0, 120.0, 240.0],
+                3.0 * w / rho,
+                params.z / std::f64::consts::SQRT_2,
+                &mut paths,
+            ),
+            Pattern::Hexagons => {
+                let side = 2.0 * w / (3f64.sqrt() * rho);
+                straight::hexagons(self, centre, theta, side, &mut paths);
+            }
+            Pattern::Concentric => curves::concentric(self, theta, w / rho, &mut paths),
+            Pattern::Gyroid => {
+                let scale = w * super::GYROID_LAMBDA / rho;
+                curves::gyroid(self, centre, theta, scale, params.z, &mut paths);
+            }
+            Pattern::Spiral => curves::spiral(self, centre, theta, w / rho, &mut paths),
+            Pattern::Lightning => {
+                // Branches are spaced along the outline, so how much they cover depends on
+                // the shape (a star's long outline gets more): measure a first tree and
+                // space the branches again so that the density printed is the one asked.
+                let mut spacing = 2.0 * w / rho;
+                for _ in 0..2 {
+                    paths.clear();
+                    lightning::lightning(self, centre, theta, spacing, &mut paths);
+                    let length: f64 = paths.iter().map(|p| super::travel::length(p)).sum();
+                    let printed = length * w / self.area;
+                    if printed.is_nan() || printed <= 0.0 || (printed / rho - 1.0).abs() < 0.03 {
+                        break;
+                    }
+                    spacing *= (printed / rho).clamp(0.25, 4.0);
+                }
+            }
+        }
+        let min_segment = w / 10.0;
+        paths.retain_mut(|p| order::simplify(p, min_segment));
+        let monotonic = params.order == Order::Monotonic;
+        Ok(order::order(
+            paths,
+            monotonic,
+            Frame::new(centre, theta),
+            if self.convex { &[] } else { &self.rings },
+        ))
+    }
+}

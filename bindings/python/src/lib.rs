@@ -486,7 +486,9 @@ fn read_profile<'py>(
         Ok(text) => text.into_bytes(),
         Err(_) => content.extract::<Vec<u8>>()?,
     };
-    let p = py.detach(|| rotlang_profile::api::profile(name, &bytes)).map_err(refused)?;
+    let p = py
+        .detach(|| rotlang_profile::api::profile(name, &bytes))
+        .map_err(refused)?;
     let templates = PyList::empty(py);
     for t in &p.templates {
         let d = PyDict::new(py);

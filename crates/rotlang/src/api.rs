@@ -39,7 +39,7 @@ pub enum ErrorKind {
     Options,
     /// The model: its layers, heights or shell counts.
     Model,
-    /// A profile file that cannot be read at all ([`profile()`]).
+    /// A profile file that cannot be read at all (`rotlang_profile::api::profile`).
     Profile,
 }
 

@@ -218,7 +218,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         // From the region itself: the inset's offset by d is its offset by w/2 + d.
         let mut current = shrink(region.outline(), region.nozzle() / 2.0 + d);
         // A region thinner than a spacing still gets one loop, as far in as it can be.
-        while k == 0 && current.0.is_empty() && d > region.nozzle() / 4.0 {
+        while k == 0 && current.rings.is_empty() && d > region.nozzle() / 4.0 {
             d /= 2.0;
             current = shrink(region.outline(), region.nozzle() / 2.0 + d);
         }
@@ -231,37 +231,35 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         // a larger drop says a part ended.
         if let Some((d0, length, turns)) = previous {
             let expected = TAU * spacing * turns;
-            if !current.0.is_empty() && length - shape.0 > expected + 4.0 * spacing {
+            if !current.rings.is_empty() && length - shape.0 > expected + 4.0 * spacing {
                 let middle = shrink(region.outline(), region.nozzle() / 2.0 + d0 + spacing / 2.0);
                 uncovered(&middle, &current, &last_loops, spacing, out);
             }
         }
-        if current.0.is_empty() {
+        if current.rings.is_empty() {
             break;
         }
         previous = Some((d, shape.0, shape.1));
         last_loops.clear();
-        for polygon in &current.0 {
-            for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
-                let mut pts = ring.0.clone();
-                if pts.len() > 1 && pts.first() == pts.last() {
-                    pts.pop();
-                }
-                if pts.len() < 3 {
-                    continue;
-                }
-                let start = pts
-                    .iter()
-                    .enumerate()
-                    .max_by(|(_, a), (_, b)| {
-                        (a.x * direction.x + a.y * direction.y)
-                            .total_cmp(&(b.x * direction.x + b.y * direction.y))
-                    })
-                    .map_or(0, |(i, _)| i);
-                pts.rotate_left(start);
-                pts.push(pts[0]);
-                last_loops.push(pts);
+        for ring in current.rings {
+            let mut pts = ring;
+            if pts.len() > 1 && pts.first() == pts.last() {
+                pts.pop();
             }
+            if pts.len() < 3 {
+                continue;
+            }
+            let start = pts
+                .iter()
+                .enumerate()
+                .max_by(|(_, a), (_, b)| {
+                    (a.x * direction.x + a.y * direction.y)
+                        .total_cmp(&(b.x * direction.x + b.y * direction.y))
+                })
+                .map_or(0, |(i, _)| i);
+            pts.rotate_left(start);
+            pts.push(pts[0]);
+            last_loops.push(pts);
         }
         apart(&last_loops, 0.75 * spacing, out);
     }
@@ -336,20 +334,17 @@ fn runs(pts: &[Coord], flags: &[bool], out: &mut Vec<Vec<Coord>>) {
 }
 
 /// The total length of a region's rings, and its outline rings less its hole rings.
-fn perimeter(area: &MultiPolygon<f64>) -> (f64, f64) {
-    let mut length = 0.0;
-    let mut turns = 0.0;
-    for p in &area.0 {
-        turns += 1.0 - p.interiors().len() as f64;
-        for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
-            length += ring
-                .0
-                .windows(2)
+fn perimeter(area: &Loops) -> (f64, f64) {
+    let length = area
+        .rings
+        .iter()
+        .map(|ring| {
+            ring.windows(2)
                 .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
-                .sum::<f64>();
-        }
-    }
-    (length, turns)
+                .sum::<f64>()
+        })
+        .sum();
+    (length, area.turns)
 }
 
 /// The stretches of `middle`'s rings farther than ¾ `spacing` from every ring of
@@ -358,18 +353,17 @@ fn perimeter(area: &MultiPolygon<f64>) -> (f64, f64) {
 /// close in on each other from both sides (an outline's and a hole's, about to meet),
 /// each side's middle stretch would be a second line in a band that wants less than two.
 fn uncovered(
-    middle: &MultiPolygon<f64>,
-    covered: &MultiPolygon<f64>,
+    middle: &Loops,
+    covered: &Loops,
     last: &[Vec<Coord>],
     spacing: f64,
     out: &mut Vec<Vec<Coord>>,
 ) {
     let gap = 0.75 * spacing;
     let segments: Vec<(Coord, Coord)> = covered
-        .0
+        .rings
         .iter()
-        .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
-        .flat_map(|r| r.0.windows(2).map(|w| (w[0], w[1])))
+        .flat_map(|r| r.windows(2).map(|w| (w[0], w[1])))
         .collect();
     let far = |p: Coord| {
         let clear = segments.iter().all(|&(a, b)| {
@@ -391,20 +385,64 @@ fn uncovered(
                 .count()
                 <= 1
     };
-    for p in &middle.0 {
-        for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
-            let flags: Vec<bool> = ring.0.iter().map(|&c| far(c)).collect();
-            runs(&ring.0, &flags, out);
-        }
+    for ring in &middle.rings {
+        let flags: Vec<bool> = ring.iter().map(|&c| far(c)).collect();
+        runs(ring, &flags, out);
     }
 }
 
+/// A region's rings (closed), and its outline rings less its hole rings.
+struct Loops {
+    rings: Vec<Vec<Coord>>,
+    turns: f64,
+}
+
 /// The loops' offsets: arcs in steps of 0.5 rad (not geo's 0.2): the loops are far from
-/// the outline, and a third of the vertices makes the offset three times quicker.
-fn shrink(area: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
-    super::region::convex_inset(area, d, 0.5)
-        .or_else(|| super::offset::raw_inset(area, d, 0.5))
-        .unwrap_or_else(|| {
-            area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
-        })
+/// the outline, and a third of the vertices makes the offset three times quicker. Where
+/// the region is not convex, the raw offset cut where it crosses itself
+/// (`loops::eroded_rings`): parts pinching off and holes meeting the outline cost no
+/// polygon rebuilt.
+fn shrink(area: &MultiPolygon<f64>, d: f64) -> Loops {
+    // A convex region without holes: its exact inset is cheapest. With holes, that
+    // inset takes geo's boolean difference once a hole meets the outline.
+    let holes = area.0.iter().any(|p| !p.interiors().is_empty());
+    let convex = if holes {
+        None
+    } else {
+        super::region::convex_inset(area, d, 0.5)
+    };
+    if convex.is_none()
+        && let Some(rings) = super::loops::eroded_rings(area, d, 0.5)
+    {
+        let turns = rings
+            .iter()
+            .map(|r| {
+                let twice: f64 = r
+                    .windows(2)
+                    .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
+                    .sum();
+                twice.signum()
+            })
+            .sum();
+        return Loops { rings, turns };
+    }
+    let polygons = convex.unwrap_or_else(|| {
+        if holes && let Some(inset) = super::region::convex_inset(area, d, 0.5) {
+            return inset;
+        }
+        area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
+    });
+    Loops {
+        turns: polygons
+            .0
+            .iter()
+            .map(|p| 1.0 - p.interiors().len() as f64)
+            .sum(),
+        rings: polygons
+            .0
+            .iter()
+            .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+            .map(|r| r.0.clone())
+            .collect(),
+    }
 }

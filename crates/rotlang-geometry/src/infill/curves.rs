@@ -273,12 +273,12 @@ fn apart(loops: &[Vec<Coord>], gap: f64, out: &mut Vec<Vec<Coord>>) {
     let boxes: Vec<(Coord, Coord)> = loops.iter().map(|l| super::travel::bounds(l)).collect();
     for (j, ring) in loops.iter().enumerate() {
         let (lo, hi) = boxes[j];
-        let near: Vec<&[Coord]> = (0..j)
+        let near: Vec<(&[Coord], (Coord, Coord))> = (0..j)
             .filter(|&i| {
                 let (a, b) = boxes[i];
                 a.x - gap <= hi.x && b.x + gap >= lo.x && a.y - gap <= hi.y && b.y + gap >= lo.y
             })
-            .map(|i| loops[i].as_slice())
+            .map(|i| (loops[i].as_slice(), boxes[i]))
             .collect();
         if near.is_empty() {
             out.push(ring.clone());
@@ -286,16 +286,22 @@ fn apart(loops: &[Vec<Coord>], gap: f64, out: &mut Vec<Vec<Coord>>) {
         }
         let flags: Vec<bool> = ring
             .iter()
-            .map(|&p| near.iter().all(|l| distance_to(l, p) > gap))
+            .map(|&p| !near.iter().any(|&(l, b)| within(l, b, p, gap)))
             .collect();
         runs(ring, &flags, out);
     }
 }
 
-/// The distance from `p` to the nearest segment of `path`.
-fn distance_to(path: &[Coord], p: Coord) -> f64 {
-    let mut best = f64::INFINITY;
-    for w in path.windows(2) {
+/// Whether `p` is within `r` of a segment of `path` (whose bounds are `bounds`): the
+/// same answer as measuring the distance to its nearest segment, without measuring every segment (a point
+/// outside the bounds grown by `r` measures none, the first near segment ends it).
+fn within(path: &[Coord], bounds: (Coord, Coord), p: Coord, r: f64) -> bool {
+    let (lo, hi) = bounds;
+    if p.x < lo.x - r || p.x > hi.x + r || p.y < lo.y - r || p.y > hi.y + r {
+        return false;
+    }
+    let r2 = r * r;
+    path.windows(2).any(|w| {
         let (a, e) = (w[0], w[1] - w[0]);
         let len2 = e.x * e.x + e.y * e.y;
         let t = if len2 > 0.0 {
@@ -304,9 +310,8 @@ fn distance_to(path: &[Coord], p: Coord) -> f64 {
             0.0
         };
         let q = a + e * t;
-        best = best.min((p - q).x * (p - q).x + (p - q).y * (p - q).y);
-    }
-    best.sqrt()
+        (p - q).x * (p - q).x + (p - q).y * (p - q).y <= r2
+    })
 }
 
 /// The runs of a closed ring's vertices whose flag is set (the whole ring when all are).
@@ -360,30 +365,24 @@ fn uncovered(
     out: &mut Vec<Vec<Coord>>,
 ) {
     let gap = 0.75 * spacing;
-    let segments: Vec<(Coord, Coord)> = covered
+    let covered: Vec<(&[Coord], (Coord, Coord))> = covered
         .rings
         .iter()
-        .flat_map(|r| r.windows(2).map(|w| (w[0], w[1])))
+        .map(|r| (r.as_slice(), super::travel::bounds(r)))
+        .collect();
+    let last: Vec<(&[Coord], (Coord, Coord))> = last
+        .iter()
+        .map(|r| (r.as_slice(), super::travel::bounds(r)))
         .collect();
     let far = |p: Coord| {
-        let clear = segments.iter().all(|&(a, b)| {
-            let e = b - a;
-            let len2 = e.x * e.x + e.y * e.y;
-            let t = if len2 > 0.0 {
-                (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let q = a + e * t;
-            (p - q).x * (p - q).x + (p - q).y * (p - q).y > gap * gap
-        });
-        // Near at most one of the last loops.
-        clear
+        // Farther than `gap` from every covered ring (exactly: within is `<=`), and
+        // near at most one of the last loops.
+        !covered.iter().any(|&(r, b)| within(r, b, p, gap))
             && last
                 .iter()
-                .filter(|l| distance_to(l, p) <= 2.0 * spacing)
-                .count()
-                <= 1
+                .filter(|&&(l, b)| within(l, b, p, 2.0 * spacing))
+                .nth(1)
+                .is_none()
     };
     for ring in &middle.rings {
         let flags: Vec<bool> = ring.iter().map(|&c| far(c)).collect();

@@ -145,6 +145,7 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
     let mut out = Vec::with_capacity(n + n / 2);
     let mut centres = Vec::with_capacity(n + n / 2);
+    let cos_arc = arc.cos();
     for i in 0..n {
         let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
         let (u, v) = (unit(b - a), unit(c - b));
@@ -167,7 +168,7 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
                 out.push(b + nv * d);
                 centres.push(None);
             }
-        } else if -turn.atan2(dot) <= arc {
+        } else if dot >= cos_arc {
             // A reflex corner within one step (a round hole's): the mitre, which strays
             // outside the arc no more than a chord inside it, and is one point, not two.
             let k = 1.0 + nu.x * nv.x + nu.y * nv.y;

@@ -385,8 +385,25 @@ fn uncovered(
                 .is_none()
     };
     for ring in &middle.rings {
-        let flags: Vec<bool> = ring.iter().map(|&c| far(c)).collect();
-        runs(ring, &flags, out);
+        // Points every quarter spacing at least: a ring cut from the raw offset has
+        // long edges, and a stretch is kept from vertex to vertex.
+        let mut dense = Vec::with_capacity(ring.len());
+        for w in ring.windows(2) {
+            let e = w[1] - w[0];
+            let steps = ((e.x.hypot(e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
+            dense.extend((0..steps).map(|i| w[0] + e * (i as f64 / steps as f64)));
+        }
+        dense.extend(ring.last().copied());
+        let flags: Vec<bool> = dense.iter().map(|&c| far(c)).collect();
+        let mut pieces = Vec::new();
+        runs(&dense, &flags, &mut pieces);
+        // A stretch shorter than a spacing (a star's tip) leaves no gap worth a line.
+        out.extend(pieces.into_iter().filter(|p| {
+            p.windows(2)
+                .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+                .sum::<f64>()
+                >= spacing
+        }));
     }
 }
 

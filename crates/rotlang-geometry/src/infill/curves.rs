@@ -218,7 +218,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         // From the region itself: the inset's offset by d is its offset by w/2 + d.
         let mut current = shrink(region.outline(), region.nozzle() / 2.0 + d);
         // A region thinner than a spacing still gets one loop, as far in as it can be.
-        while k == 0 && current.0.is_empty() && d > region.nozzle() / 4.0 {
+        while k == 0 && current.rings.is_empty() && d > region.nozzle() / 4.0 {
             d /= 2.0;
             current = shrink(region.outline(), region.nozzle() / 2.0 + d);
         }
@@ -231,37 +231,35 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         // a larger drop says a part ended.
         if let Some((d0, length, turns)) = previous {
             let expected = TAU * spacing * turns;
-            if !current.0.is_empty() && length - shape.0 > expected + 4.0 * spacing {
+            if !current.rings.is_empty() && length - shape.0 > expected + 4.0 * spacing {
                 let middle = shrink(region.outline(), region.nozzle() / 2.0 + d0 + spacing / 2.0);
                 uncovered(&middle, &current, &last_loops, spacing, out);
             }
         }
-        if current.0.is_empty() {
+        if current.rings.is_empty() {
             break;
         }
         previous = Some((d, shape.0, shape.1));
         last_loops.clear();
-        for polygon in &current.0 {
-            for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
-                let mut pts = ring.0.clone();
-                if pts.len() > 1 && pts.first() == pts.last() {
-                    pts.pop();
-                }
-                if pts.len() < 3 {
-                    continue;
-                }
-                let start = pts
-                    .iter()
-                    .enumerate()
-                    .max_by(|(_, a), (_, b)| {
-                        (a.x * direction.x + a.y * direction.y)
-                            .total_cmp(&(b.x * direction.x + b.y * direction.y))
-                    })
-                    .map_or(0, |(i, _)| i);
-                pts.rotate_left(start);
-                pts.push(pts[0]);
-                last_loops.push(pts);
+        for ring in current.rings {
+            let mut pts = ring;
+            if pts.len() > 1 && pts.first() == pts.last() {
+                pts.pop();
             }
+            if pts.len() < 3 {
+                continue;
+            }
+            let start = pts
+                .iter()
+                .enumerate()
+                .max_by(|(_, a), (_, b)| {
+                    (a.x * direction.x + a.y * direction.y)
+                        .total_cmp(&(b.x * direction.x + b.y * direction.y))
+                })
+                .map_or(0, |(i, _)| i);
+            pts.rotate_left(start);
+            pts.push(pts[0]);
+            last_loops.push(pts);
         }
         apart(&last_loops, 0.75 * spacing, out);
     }
@@ -275,12 +273,12 @@ fn apart(loops: &[Vec<Coord>], gap: f64, out: &mut Vec<Vec<Coord>>) {
     let boxes: Vec<(Coord, Coord)> = loops.iter().map(|l| super::travel::bounds(l)).collect();
     for (j, ring) in loops.iter().enumerate() {
         let (lo, hi) = boxes[j];
-        let near: Vec<&[Coord]> = (0..j)
+        let near: Vec<(&[Coord], (Coord, Coord))> = (0..j)
             .filter(|&i| {
                 let (a, b) = boxes[i];
                 a.x - gap <= hi.x && b.x + gap >= lo.x && a.y - gap <= hi.y && b.y + gap >= lo.y
             })
-            .map(|i| loops[i].as_slice())
+            .map(|i| (loops[i].as_slice(), boxes[i]))
             .collect();
         if near.is_empty() {
             out.push(ring.clone());
@@ -288,16 +286,22 @@ fn apart(loops: &[Vec<Coord>], gap: f64, out: &mut Vec<Vec<Coord>>) {
         }
         let flags: Vec<bool> = ring
             .iter()
-            .map(|&p| near.iter().all(|l| distance_to(l, p) > gap))
+            .map(|&p| !near.iter().any(|&(l, b)| within(l, b, p, gap)))
             .collect();
         runs(ring, &flags, out);
     }
 }
 
-/// The distance from `p` to the nearest segment of `path`.
-fn distance_to(path: &[Coord], p: Coord) -> f64 {
-    let mut best = f64::INFINITY;
-    for w in path.windows(2) {
+/// Whether `p` is within `r` of a segment of `path` (whose bounds are `bounds`): the
+/// same answer as measuring the distance to its nearest segment, without measuring every segment (a point
+/// outside the bounds grown by `r` measures none, the first near segment ends it).
+fn within(path: &[Coord], bounds: (Coord, Coord), p: Coord, r: f64) -> bool {
+    let (lo, hi) = bounds;
+    if p.x < lo.x - r || p.x > hi.x + r || p.y < lo.y - r || p.y > hi.y + r {
+        return false;
+    }
+    let r2 = r * r;
+    path.windows(2).any(|w| {
         let (a, e) = (w[0], w[1] - w[0]);
         let len2 = e.x * e.x + e.y * e.y;
         let t = if len2 > 0.0 {
@@ -306,9 +310,8 @@ fn distance_to(path: &[Coord], p: Coord) -> f64 {
             0.0
         };
         let q = a + e * t;
-        best = best.min((p - q).x * (p - q).x + (p - q).y * (p - q).y);
-    }
-    best.sqrt()
+        (p - q).x * (p - q).x + (p - q).y * (p - q).y <= r2
+    })
 }
 
 /// The runs of a closed ring's vertices whose flag is set (the whole ring when all are).
@@ -336,20 +339,17 @@ fn runs(pts: &[Coord], flags: &[bool], out: &mut Vec<Vec<Coord>>) {
 }
 
 /// The total length of a region's rings, and its outline rings less its hole rings.
-fn perimeter(area: &MultiPolygon<f64>) -> (f64, f64) {
-    let mut length = 0.0;
-    let mut turns = 0.0;
-    for p in &area.0 {
-        turns += 1.0 - p.interiors().len() as f64;
-        for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
-            length += ring
-                .0
-                .windows(2)
+fn perimeter(area: &Loops) -> (f64, f64) {
+    let length = area
+        .rings
+        .iter()
+        .map(|ring| {
+            ring.windows(2)
                 .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
-                .sum::<f64>();
-        }
-    }
-    (length, turns)
+                .sum::<f64>()
+        })
+        .sum();
+    (length, area.turns)
 }
 
 /// The stretches of `middle`'s rings farther than ¾ `spacing` from every ring of
@@ -358,53 +358,107 @@ fn perimeter(area: &MultiPolygon<f64>) -> (f64, f64) {
 /// close in on each other from both sides (an outline's and a hole's, about to meet),
 /// each side's middle stretch would be a second line in a band that wants less than two.
 fn uncovered(
-    middle: &MultiPolygon<f64>,
-    covered: &MultiPolygon<f64>,
+    middle: &Loops,
+    covered: &Loops,
     last: &[Vec<Coord>],
     spacing: f64,
     out: &mut Vec<Vec<Coord>>,
 ) {
     let gap = 0.75 * spacing;
-    let segments: Vec<(Coord, Coord)> = covered
-        .0
+    let covered: Vec<(&[Coord], (Coord, Coord))> = covered
+        .rings
         .iter()
-        .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
-        .flat_map(|r| r.0.windows(2).map(|w| (w[0], w[1])))
+        .map(|r| (r.as_slice(), super::travel::bounds(r)))
+        .collect();
+    let last: Vec<(&[Coord], (Coord, Coord))> = last
+        .iter()
+        .map(|r| (r.as_slice(), super::travel::bounds(r)))
         .collect();
     let far = |p: Coord| {
-        let clear = segments.iter().all(|&(a, b)| {
-            let e = b - a;
-            let len2 = e.x * e.x + e.y * e.y;
-            let t = if len2 > 0.0 {
-                (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let q = a + e * t;
-            (p - q).x * (p - q).x + (p - q).y * (p - q).y > gap * gap
-        });
-        // Near at most one of the last loops.
-        clear
+        // Farther than `gap` from every covered ring (exactly: within is `<=`), and
+        // near at most one of the last loops.
+        !covered.iter().any(|&(r, b)| within(r, b, p, gap))
             && last
                 .iter()
-                .filter(|l| distance_to(l, p) <= 2.0 * spacing)
-                .count()
-                <= 1
+                .filter(|&&(l, b)| within(l, b, p, 2.0 * spacing))
+                .nth(1)
+                .is_none()
     };
-    for p in &middle.0 {
-        for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
-            let flags: Vec<bool> = ring.0.iter().map(|&c| far(c)).collect();
-            runs(&ring.0, &flags, out);
+    for ring in &middle.rings {
+        // Points every quarter spacing at least: a ring cut from the raw offset has
+        // long edges, and a stretch is kept from vertex to vertex.
+        let mut dense = Vec::with_capacity(ring.len());
+        for w in ring.windows(2) {
+            let e = w[1] - w[0];
+            let steps = ((e.x.hypot(e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
+            dense.extend((0..steps).map(|i| w[0] + e * (i as f64 / steps as f64)));
         }
+        dense.extend(ring.last().copied());
+        let flags: Vec<bool> = dense.iter().map(|&c| far(c)).collect();
+        let mut pieces = Vec::new();
+        runs(&dense, &flags, &mut pieces);
+        // A stretch shorter than a spacing (a star's tip) leaves no gap worth a line.
+        out.extend(pieces.into_iter().filter(|p| {
+            p.windows(2)
+                .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+                .sum::<f64>()
+                >= spacing
+        }));
     }
 }
 
+/// A region's rings (closed), and its outline rings less its hole rings.
+struct Loops {
+    rings: Vec<Vec<Coord>>,
+    turns: f64,
+}
+
 /// The loops' offsets: arcs in steps of 0.5 rad (not geo's 0.2): the loops are far from
-/// the outline, and a third of the vertices makes the offset three times quicker.
-fn shrink(area: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
-    super::region::convex_inset(area, d, 0.5)
-        .or_else(|| super::offset::raw_inset(area, d, 0.5))
-        .unwrap_or_else(|| {
-            area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
-        })
+/// the outline, and a third of the vertices makes the offset three times quicker. Where
+/// the region is not convex, the raw offset cut where it crosses itself
+/// (`loops::eroded_rings`): parts pinching off and holes meeting the outline cost no
+/// polygon rebuilt.
+fn shrink(area: &MultiPolygon<f64>, d: f64) -> Loops {
+    // A convex region without holes: its exact inset is cheapest. With holes, that
+    // inset takes geo's boolean difference once a hole meets the outline.
+    let holes = area.0.iter().any(|p| !p.interiors().is_empty());
+    let convex = if holes {
+        None
+    } else {
+        super::region::convex_inset(area, d, 0.5)
+    };
+    if convex.is_none()
+        && let Some(rings) = super::loops::eroded_rings(area, d, 0.5)
+    {
+        let turns = rings
+            .iter()
+            .map(|r| {
+                let twice: f64 = r
+                    .windows(2)
+                    .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
+                    .sum();
+                twice.signum()
+            })
+            .sum();
+        return Loops { rings, turns };
+    }
+    let polygons = convex.unwrap_or_else(|| {
+        if holes && let Some(inset) = super::region::convex_inset(area, d, 0.5) {
+            return inset;
+        }
+        area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
+    });
+    Loops {
+        turns: polygons
+            .0
+            .iter()
+            .map(|p| 1.0 - p.interiors().len() as f64)
+            .sum(),
+        rings: polygons
+            .0
+            .iter()
+            .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+            .map(|r| r.0.clone())
+            .collect(),
+    }
 }

@@ -93,6 +93,7 @@
 mod clip;
 mod curves;
 mod lightning;
+mod loops;
 mod offset;
 mod order;
 mod patterns;

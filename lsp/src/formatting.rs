@@ -45,7 +45,7 @@ pub fn formatted_keeping(doc: &Document, keep_orcaslicer: bool) -> Option<String
             if region.parse.has_errors() {
                 return None;
             }
-            let formatted = rot_layout(&region.text, &region.parse.template);
+            let formatted = rot_layout(&region.text, &region.template(0..region.spans.len()));
             if keep_orcaslicer && orcaslicer_reads_differently(&region.text, &formatted) {
                 return Some(doc.text.clone());
             }

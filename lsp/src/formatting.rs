@@ -45,7 +45,7 @@ pub fn formatted_keeping(doc: &Document, keep_orcaslicer: bool) -> Option<String
             if region.parse.has_errors() {
                 return None;
             }
-            let formatted = rot_layout(&region.text, &region.template(0..region.spans.len()));
+            let formatted = rot_layout(&region.text, &region.spans);
             if keep_orcaslicer && orcaslicer_reads_differently(&region.text, &formatted) {
                 return Some(doc.text.clone());
             }
@@ -76,7 +76,7 @@ pub fn formatted_keeping(doc: &Document, keep_orcaslicer: bool) -> Option<String
 /// A `.rot` file in canonical form that keeps its lines: instructions the file puts on
 /// separate lines stay on separate lines (one line break, in the file's own style), those
 /// on one line are joined with `, `. The file's final line break is kept, nothing else.
-fn rot_layout(text: &str, template: &rotlang::Template) -> String {
+fn rot_layout(text: &str, spans: &crate::instructions::Spans) -> String {
     let newline = match text.find(['\r', '\n']) {
         Some(i) if text[i..].starts_with("\r\n") => "\r\n",
         Some(i) => &text[i..i + 1],
@@ -84,17 +84,17 @@ fn rot_layout(text: &str, template: &rotlang::Template) -> String {
     };
     let mut out = String::with_capacity(text.len());
     let mut previous_end = None;
-    for ins in &template.instructions {
+    for span in spans.iter() {
         if let Some(end) = previous_end {
-            let gap: &str = &text[end..ins.span.start];
+            let gap: &str = &text[end..span.start];
             out.push_str(if gap.contains(['\r', '\n']) {
                 newline
             } else {
                 ", "
             });
         }
-        out.push_str(&text[ins.span.range()]);
-        previous_end = Some(ins.span.end);
+        out.push_str(&text[span.range()]);
+        previous_end = Some(span.end);
     }
     if !out.is_empty() && text.ends_with(['\r', '\n']) {
         out.push_str(newline);

@@ -179,6 +179,52 @@ fn memory_returns_to_idle_after_closing_a_large_document() {
     lsp.shutdown();
 }
 
+/// Peak resident memory of a process so far (kB: `VmHWM`), from /proc.
+fn peak_kb(pid: u32) -> Option<u64> {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// Issue 22 items 1 and 3: a document costs the server at most 16× its text, as `check -f`
+/// costs the CLI, on the input with the most instructions per byte (`0,0,0…`: one per two
+/// bytes, where the library's IR takes hundreds of bytes per instruction; the server keeps
+/// their spans only). Opened, diagnosed, hovered at its end and formatted (which reads all
+/// of it again), the server's peak RSS stays within 16× the text over its peak before.
+#[test]
+fn a_document_of_minimal_instructions_costs_at_most_16_times_its_text() {
+    let mut lsp = Lsp::start();
+    lsp.open(
+        JSON,
+        "json",
+        "{\"sparse_infill_rotate_template\": \"0, 90\"}",
+    );
+    let pid = lsp.pid();
+    let Some(before) = peak_kb(pid) else {
+        eprintln!("no /proc: peak RSS not measured");
+        return;
+    };
+    let len = 4 * MIB - 64 * 1024;
+    let text = "0,".repeat(len / 2 - 1) + "0";
+    assert!(lsp.open(ROT, "rotlang", &text).is_empty());
+    let h = hover_text(&mut lsp, ROT, 0, (text.len() - 1) as u32);
+    assert!(h.starts_with("`0` sets"), "{}", &h[..h.len().min(300)]);
+    let h = hover_text(&mut lsp, ROT, 0, 1);
+    assert!(h.contains("Governs 1 of the"), "{}", &h[..h.len().min(300)]);
+    // Formatted: `0, 0, 0…`, a whole-document edit half again as long as the text.
+    let edits = format(&mut lsp, ROT);
+    assert_eq!(edits.as_array().map(Vec::len), Some(1), "formatting");
+    let peak = peak_kb(pid).unwrap();
+    let bound = before + 16 * (text.len() as u64) / 1024;
+    eprintln!(
+        "peak RSS {before} kB before, {peak} kB with {} bytes of `0,0,0…` open ({:.1}× the text over the peak before)",
+        text.len(),
+        (peak - before) as f64 * 1024.0 / text.len() as f64
+    );
+    assert!(peak <= bound, "peak RSS {peak} kB, bound {bound} kB");
+    lsp.shutdown();
+}
+
 // ── edit storms (issue 22 item 3) ───────────────────────────────────────────────────────
 
 /// 500 edits of a 3 MB template sent as fast as the pipe takes them: the server analyses

@@ -66,8 +66,9 @@ pub struct Region {
     /// The key's span in the document (JSON only).
     pub key_span: Option<Span>,
     pub target: Target,
-    /// The template text (unescaped for JSON).
-    pub text: String,
+    /// The template text (unescaped for JSON). In a `.rot` file, the document's own text,
+    /// shared.
+    pub text: Arc<String>,
     /// Where the template's text lies in the document.
     pub contents: Span,
     pub map: OffsetMap,
@@ -188,7 +189,8 @@ pub type Findings = Arc<Vec<(usize, rotlang::Diagnostic)>>;
 
 #[derive(Debug)]
 pub struct Document {
-    pub text: String,
+    /// The text, shared with the server's store of open documents (not a copy of it).
+    pub text: Arc<String>,
     pub kind: Kind,
     pub version: i32,
     pub regions: Vec<Region>,
@@ -211,8 +213,13 @@ pub struct Document {
 impl Document {
     /// Parse a document. `path`: the file's place, where a JSON preset's `inherits`
     /// parents are found (as the CLI finds them).
-    pub fn new(text: String, kind: Kind, version: i32, path: Option<&Path>) -> Document {
-        Document::build(text, kind, version, path, None)
+    pub fn new(
+        text: impl Into<Arc<String>>,
+        kind: Kind,
+        version: i32,
+        path: Option<&Path>,
+    ) -> Document {
+        Document::build(text.into(), kind, version, path, None)
     }
 
     /// The document's next version, from the analysis of its previous one: each template
@@ -220,16 +227,16 @@ impl Document {
     /// edit touched it (`crate::incremental`), with the same result as `new`.
     pub fn update(
         previous: Document,
-        text: String,
+        text: impl Into<Arc<String>>,
         kind: Kind,
         version: i32,
         path: Option<&Path>,
     ) -> Document {
-        Document::build(text, kind, version, path, Some(previous))
+        Document::build(text.into(), kind, version, path, Some(previous))
     }
 
     fn build(
-        text: String,
+        text: Arc<String>,
         kind: Kind,
         version: i32,
         path: Option<&Path>,
@@ -295,7 +302,7 @@ impl Document {
                             key: Some(t.key),
                             key_span: Some(t.key_span),
                             target: t.target,
-                            text: t.text,
+                            text: Arc::new(t.text),
                             contents: t.contents,
                             map: t.map,
                             profile: None,
@@ -340,7 +347,7 @@ impl Document {
     /// instructions costs far less than parsing them again.
     pub fn copy_for_update(&self) -> Document {
         Document {
-            text: String::new(),
+            text: Arc::default(),
             kind: self.kind,
             version: self.version,
             regions: self.regions.clone(),
@@ -355,7 +362,7 @@ impl Document {
     /// A document of `len` bytes, over the `limit`: not parsed, its text dropped.
     pub fn too_large(len: usize, limit: usize, kind: Kind, version: i32) -> Document {
         Document {
-            text: String::new(),
+            text: Arc::default(),
             kind,
             version,
             regions: Vec::new(),

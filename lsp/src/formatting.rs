@@ -13,7 +13,7 @@ use crate::position::Positions;
 /// formatted; otherwise a single whole-document edit.
 pub fn formatting(doc: &Document, pos: &Positions, keep_orcaslicer: bool) -> Option<Vec<TextEdit>> {
     let formatted = formatted_keeping(doc, keep_orcaslicer)?;
-    if formatted == doc.text {
+    if formatted == *doc.text {
         return Some(Vec::new());
     }
     let whole = rotlang::Span::new(0, doc.text.len());
@@ -47,7 +47,7 @@ pub fn formatted_keeping(doc: &Document, keep_orcaslicer: bool) -> Option<String
             }
             let formatted = rot_layout(&region.text, &region.spans);
             if keep_orcaslicer && orcaslicer_reads_differently(&region.text, &formatted) {
-                return Some(doc.text.clone());
+                return Some(doc.text.to_string());
             }
             Some(formatted)
         }
@@ -57,7 +57,7 @@ pub fn formatted_keeping(doc: &Document, keep_orcaslicer: bool) -> Option<String
             for region in &doc.regions {
                 let body = rotlang::format::format(&region.text, region.target)?;
                 out.push_str(doc.text.get(copied..region.contents.start)?);
-                if body == region.text
+                if body == *region.text
                     || (keep_orcaslicer && orcaslicer_reads_differently(&region.text, &body))
                 {
                     // Unchanged templates keep their original escapes byte for byte.

@@ -341,9 +341,7 @@ impl Backend {
                 let large = previous.as_ref().is_some_and(|d| d.text.len() > LARGE);
                 let doc = guard(|| match text {
                     Some(text) if text.len() <= limit => {
-                        // The text is shared with the store; the document owns a copy only
-                        // while it is the latest analysis.
-                        let text = String::clone(&text);
+                        // The text is shared with the store, not copied.
                         match previous {
                             Some(previous) => {
                                 Document::update(previous, text, kind, version, path.as_deref())

@@ -338,7 +338,12 @@ impl Backend {
                 // request being answered on it, or its diagnostics being made, let go of it
                 // within milliseconds. Should one not, what it parsed is copied.
                 let previous = previous.map(take_when_free);
-                let large = previous.as_ref().is_some_and(|d| d.text.len() > LARGE);
+                // A large text, new or previous: what its analysis left free in this
+                // worker's arena (the profile read, the unescaped copy, the grown vectors)
+                // goes back to the system once it is in place, before the OrcaSlicer lint
+                // allocates in another thread's arena beside it.
+                let large = previous.as_ref().is_some_and(|d| d.text.len() > LARGE)
+                    || text.as_ref().is_some_and(|t| t.len() > LARGE);
                 let doc = guard(|| match text {
                     Some(text) if text.len() <= limit => {
                         // The text is shared with the store, not copied.
@@ -396,8 +401,9 @@ impl Backend {
             if large {
                 // What was left of the previous analysis (freed on a worker thread) handed
                 // back to the system, or each worker's arena would keep a document's worth;
-                // after the new analysis is in place, so no hover waits for it.
-                tokio::task::spawn_blocking(crate::memory::release);
+                // after the new analysis is in place, so no hover waits for it, and before
+                // the diagnostics' lint starts, so its memory comes from what was freed.
+                let _ = tokio::task::spawn_blocking(crate::memory::release).await;
             }
             if latest {
                 self.schedule_publish(uri.clone());

@@ -13,63 +13,86 @@
 
 use rotlang::{Instruction, Parse, Span, Target, Template};
 
-/// The spans of a template's instructions, in text order.
+/// The spans of a template's instructions, in text order: per instruction its start
+/// (`u32`) and length (`u16`), 6 bytes; the rare instruction of 64 KiB or more keeps its
+/// span in `long` as well.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Spans {
-    spans: Vec<[u32; 2]>,
+    starts: Vec<u32>,
+    lens: Vec<u16>,
+    /// The spans (start, end) of the instructions whose length is `u16::MAX` or more, in
+    /// order.
+    long: Vec<[u32; 2]>,
 }
 
 /// The leading instruction that keeps a re-read text from being read as quoted.
 const LEAD: &str = "0 ";
 
-fn narrow(span: Span) -> [u32; 2] {
+fn narrow(x: usize) -> u32 {
     // Documents are far below 4 GiB (the server's size limit); saturate rather than wrap.
-    let n = |x: usize| u32::try_from(x).unwrap_or(u32::MAX);
-    [n(span.start), n(span.end)]
+    u32::try_from(x).unwrap_or(u32::MAX)
 }
 
 impl Spans {
     /// The parse of `text` (its diagnostics and counts; no `template`) and its spans.
     pub fn read(text: &str, target: Target) -> (Parse, Spans) {
-        let mut spans = Vec::new();
-        let parse = rotlang::parse_each(text, target, |i| spans.push(narrow(i.span)));
-        spans.shrink_to_fit();
-        (parse, Spans { spans })
+        let mut spans = Spans::default();
+        let parse = rotlang::parse_each(text, target, |i| spans.push(i.span));
+        spans.starts.shrink_to_fit();
+        spans.lens.shrink_to_fit();
+        (parse, spans)
+    }
+
+    fn push(&mut self, span: Span) {
+        let len = span.end - span.start;
+        self.starts.push(narrow(span.start));
+        match u16::try_from(len) {
+            Ok(l) if l < u16::MAX => self.lens.push(l),
+            _ => {
+                self.lens.push(u16::MAX);
+                self.long.push([narrow(span.start), narrow(span.end)]);
+            }
+        }
     }
 
     /// The spans of a template read whole (its `template` is dropped).
     pub fn of_parse(parse: &mut Parse) -> Spans {
         let instructions = std::mem::take(&mut parse.template.instructions);
-        Spans {
-            spans: instructions.iter().map(|i| narrow(i.span)).collect(),
+        let mut spans = Spans::default();
+        for i in &instructions {
+            spans.push(i.span);
         }
+        spans
     }
 
     pub fn len(&self) -> usize {
-        self.spans.len()
+        self.starts.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.spans.is_empty()
+        self.starts.is_empty()
     }
 
     /// The span of instruction `i`.
     pub fn span(&self, i: usize) -> Option<Span> {
-        self.spans
-            .get(i)
-            .map(|&[a, b]| Span::new(a as usize, b as usize))
+        let start = *self.starts.get(i)? as usize;
+        let len = *self.lens.get(i)?;
+        if len < u16::MAX {
+            return Some(Span::new(start, start + usize::from(len)));
+        }
+        let k = self.long.partition_point(|s| (s[0] as usize) < start);
+        let [a, b] = *self.long.get(k)?;
+        Some(Span::new(a as usize, b as usize))
     }
 
     /// Every span, in order.
-    pub fn iter(&self) -> impl DoubleEndedIterator<Item = Span> + ExactSizeIterator + '_ {
-        self.spans
-            .iter()
-            .map(|&[a, b]| Span::new(a as usize, b as usize))
+    pub fn iter(&self) -> impl Iterator<Item = Span> + '_ {
+        (0..self.len()).filter_map(|i| self.span(i))
     }
 
     /// The index of the first instruction that starts at or after `offset`.
     pub fn first_starting_at(&self, offset: usize) -> usize {
-        self.spans.partition_point(|s| (s[0] as usize) < offset)
+        self.starts.partition_point(|&s| (s as usize) < offset)
     }
 
     /// The instruction with exactly this span.
@@ -81,14 +104,13 @@ impl Spans {
     /// The instruction under a template offset (its end included, where a cursor rests
     /// after typing it). A binary search, not a walk through half a million spans.
     pub fn index_at(&self, offset: usize) -> Option<usize> {
-        let first = self.spans.partition_point(|s| (s[1] as usize) < offset);
-        (first..self.spans.len())
-            .map_while(|i| {
-                let s = self.span(i)?;
-                (s.start <= offset).then_some((i, s))
-            })
-            .find(|(_, s)| offset <= s.end && !s.is_empty())
-            .map(|(i, _)| i)
+        // Instructions do not overlap: the last one starting at or before `offset`.
+        let i = self
+            .starts
+            .partition_point(|&s| (s as usize) <= offset)
+            .checked_sub(1)?;
+        let s = self.span(i)?;
+        (offset <= s.end && !s.is_empty()).then_some(i)
     }
 
     /// Replace the spans `range` with `with`, and move those after by `delta` (wrapping).
@@ -98,15 +120,29 @@ impl Spans {
         with: impl IntoIterator<Item = Span>,
         delta: usize,
     ) {
-        let with: Vec<[u32; 2]> = with.into_iter().map(narrow).collect();
-        let after = range.start + with.len();
-        self.spans.splice(range, with);
+        let mut middle = Spans::default();
+        for s in with {
+            middle.push(s);
+        }
+        let moved = |x: u32| narrow((x as usize).wrapping_add(delta));
+        // The long spans: those before the range stay, those in it go, those after move.
+        let from = self.starts.get(range.start).copied().unwrap_or(u32::MAX);
+        let past = self.starts.get(range.end).copied().unwrap_or(u32::MAX);
+        let before = self.long.partition_point(|s| s[0] < from);
+        let after = self.long.partition_point(|s| s[0] < past);
+        let mut long: Vec<[u32; 2]> = self.long[after..]
+            .iter()
+            .map(|&[a, b]| [moved(a), moved(b)])
+            .collect();
+        self.long.truncate(before);
+        self.long.append(&mut middle.long);
+        self.long.append(&mut long);
+        let shifted = range.start + middle.len();
+        self.starts.splice(range.clone(), middle.starts);
+        self.lens.splice(range, middle.lens);
         if delta != 0 {
-            for s in &mut self.spans[after..] {
-                *s = narrow(Span::new(
-                    (s[0] as usize).wrapping_add(delta),
-                    (s[1] as usize).wrapping_add(delta),
-                ));
+            for s in &mut self.starts[shifted..] {
+                *s = moved(*s);
             }
         }
     }
@@ -174,13 +210,15 @@ mod tests {
     /// starts with a quote it does not close.
     #[test]
     fn instructions_read_again_are_the_whole_parses() {
-        for text in [
-            "0, 90, +10L25%, -10l25%, #14, +15R, +30/5cm*, B!, +5*3",
-            "\"0, 90, +30/5mm\"",
-            "  «45, +5*2*» ",
-            "\"5\", X, +30/ 5cm, 1,5mm, 45 deg, é°, +30/50 %, 1:4",
-            "'0, 90, 5' ",
-            ",,0 90\n+30\r\n-45\t5\"",
+        for text in &[
+            "0, 90, +10L25%, -10l25%, #14, +15R, +30/5cm*, B!, +5*3".to_owned(),
+            "\"0, 90, +30/5mm\"".to_owned(),
+            "  «45, +5*2*» ".to_owned(),
+            "\"5\", X, +30/ 5cm, 1,5mm, 45 deg, é°, +30/50 %, 1:4".to_owned(),
+            "'0, 90, 5' ".to_owned(),
+            ",,0 90\n+30\r\n-45\t5\"".to_owned(),
+            // An instruction longer than 64 KiB (a decimal of 70,000 digits).
+            format!("0, +0.{}1, +30", "0".repeat(70_000)),
         ] {
             for target in [Target::Sparse, Target::Solid] {
                 let full = rotlang::parse(text, target);
@@ -199,5 +237,29 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// An edit between instructions longer than 64 KiB: the long ones before and after it
+    /// keep their spans (those after moved), as a new reading has them.
+    #[test]
+    fn a_splice_keeps_the_long_spans() {
+        let long = format!("+0.{}1", "0".repeat(70_000));
+        let before = format!("0, {long}, 5, {long}, 9");
+        let (_, mut spans) = Spans::read(&before, Target::Sparse);
+        assert_eq!(spans.long.len(), 2, "{:?}", spans.span(1));
+        let at = before.find(", 5, ").unwrap() + 2;
+        let five = spans.index_of(Span::new(at, at + 1)).unwrap();
+        let after = before.replacen(", 5, ", ", 77, 8, ", 1);
+        spans.splice(
+            five..five + 1,
+            [Span::new(at, at + 2), Span::new(at + 4, at + 5)],
+            4,
+        );
+        assert_eq!(spans, Spans::read(&after, Target::Sparse).1);
+        let last = spans.len() - 1;
+        assert_eq!(
+            spans.span(last),
+            Some(Span::new(after.len() - 1, after.len()))
+        );
     }
 }

@@ -483,7 +483,7 @@ fn take_when_free(mut doc: Arc<Document>) -> Document {
 }
 
 /// How long an analysis waits for others to let go of the previous one (a copy of a 4 MB
-/// template's instructions is 190 MB and takes about as long).
+/// template's spans is a few MB: copying is cheap too).
 const TAKE_WAIT: std::time::Duration = std::time::Duration::from_millis(50);
 
 /// Closing a document this large (bytes) hands its memory back to the system.

@@ -23,7 +23,7 @@
 //! than the library keeps (100: which ones it keeps depends on all of them).
 //! `tests::matches_a_full_parse` compares the two on random edits.
 
-use rotlang::{Diagnostic, Instruction, MAX_DIAGNOSTICS, Parse, Span, Target};
+use rotlang::{Diagnostic, MAX_DIAGNOSTICS, Parse, Span, Target};
 
 use crate::instructions::Spans;
 
@@ -222,32 +222,6 @@ fn forward(text: &[u8], at: usize, chunks: usize) -> usize {
         }
     }
     i
-}
-
-/// Every span of an instruction, moved by `f`.
-pub(crate) fn shift_instruction(i: &mut Instruction, f: impl Fn(Span) -> Span) {
-    i.span = f(i.span);
-    if let Some(a) = &mut i.angle {
-        a.span = f(a.span);
-    }
-    if let Some(r) = &mut i.repeat {
-        r.span = f(r.span);
-    }
-    for s in [&mut i.dummy, &mut i.one_time, &mut i.flip]
-        .into_iter()
-        .flatten()
-    {
-        *s = f(*s);
-    }
-    if let Some(s) = &mut i.solid {
-        s.span = f(s.span);
-    }
-    if let Some(j) = &mut i.joint {
-        j.span = f(j.span);
-    }
-    if let Some(c) = &mut i.count {
-        c.span = f(c.span);
-    }
 }
 
 /// Every span of a diagnostic (its labels and its fix), moved by `f`.

@@ -181,7 +181,7 @@ impl Spans {
                 });
             if moved {
                 for i in &mut read {
-                    crate::incremental::shift_instruction(i, shift);
+                    shift_instruction(i, shift);
                 }
                 return read;
             }
@@ -198,6 +198,32 @@ impl Spans {
         Template {
             instructions: self.get(text, target, range),
         }
+    }
+}
+
+/// Every span of an instruction, moved by `f`.
+fn shift_instruction(i: &mut Instruction, f: impl Fn(Span) -> Span) {
+    i.span = f(i.span);
+    if let Some(a) = &mut i.angle {
+        a.span = f(a.span);
+    }
+    if let Some(r) = &mut i.repeat {
+        r.span = f(r.span);
+    }
+    for s in [&mut i.dummy, &mut i.one_time, &mut i.flip]
+        .into_iter()
+        .flatten()
+    {
+        *s = f(*s);
+    }
+    if let Some(s) = &mut i.solid {
+        s.span = f(s.span);
+    }
+    if let Some(j) = &mut i.joint {
+        j.span = f(j.span);
+    }
+    if let Some(c) = &mut i.count {
+        c.span = f(c.span);
     }
 }
 

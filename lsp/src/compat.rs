@@ -31,7 +31,7 @@ pub fn findings(doc: &Document, settings: &ModelSettings) -> Vec<(usize, Finding
 /// from it in place).
 pub struct Input {
     index: usize,
-    text: String,
+    text: Arc<String>,
     target: rotlang::Target,
     profile: Option<rotlang_profile::profile::ProfileModel>,
     reading: crate::reading::Reading,

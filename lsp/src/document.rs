@@ -3,9 +3,10 @@
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
-use rotlang::{Instruction, Parse, Span, Target};
+use rotlang::{Instruction, Parse, Span, Target, Template};
 use rotlang_profile::profile::ProfileModel;
 
+use crate::instructions::Spans;
 use crate::json::{self, OffsetMap};
 use crate::preview::Preview;
 use crate::reading::Reading;
@@ -22,12 +23,17 @@ pub struct Region {
     /// The key's span in the document (JSON only).
     pub key_span: Option<Span>,
     pub target: Target,
-    /// The template text (unescaped for JSON).
-    pub text: String,
+    /// The template text (unescaped for JSON). In a `.rot` file, the document's own text,
+    /// shared.
+    pub text: Arc<String>,
     /// Where the template's text lies in the document.
     pub contents: Span,
     pub map: OffsetMap,
+    /// The library's diagnostics and counts. Its `template` is empty: the instructions are
+    /// kept as `spans` and read again where a feature needs them (`Region::instructions`).
     pub parse: Parse,
+    /// The instructions' spans (8 bytes each, where the library's IR takes hundreds).
+    pub spans: Spans,
     /// In a profile the library can read: the model it gives this template's target (its
     /// layer heights, shells and direction). `None` in `.rot` files.
     pub profile: Option<ProfileModel>,
@@ -56,18 +62,64 @@ impl Region {
     }
 
     /// The instruction under a template offset (its end included, where a cursor rests
-    /// after typing it).
-    pub fn instruction_at(&self, offset: usize) -> Option<(usize, &Instruction)> {
-        // Instructions are in text order: a binary search, not a walk through the half
-        // million of a 3 MB template on every hover.
-        let instructions = &self.parse.template.instructions;
-        let first = instructions.partition_point(|i| i.span.end < offset);
-        instructions
-            .iter()
-            .enumerate()
-            .skip(first)
-            .take_while(|(_, i)| i.span.start <= offset)
-            .find(|(_, i)| offset <= i.span.end && !i.span.is_empty())
+    /// after typing it), read again from the text.
+    pub fn instruction_at(&self, offset: usize) -> Option<(usize, Instruction)> {
+        let i = self.spans.index_at(offset)?;
+        Some((i, self.instructions(i..i + 1).pop()?))
+    }
+
+    /// Instructions `range`, as the library's parse gives them (read again from the text).
+    pub fn instructions(&self, range: std::ops::Range<usize>) -> Vec<Instruction> {
+        self.spans.get(&self.text, self.target, range)
+    }
+
+    /// The template of instructions `range` (`0..self.spans.len()`: the whole template).
+    pub fn template(&self, range: std::ops::Range<usize>) -> Template {
+        self.spans.template(&self.text, self.target, range)
+    }
+
+    /// Each of instructions `range` with its index, in order, while `f` returns `true`: read
+    /// again a batch at a time, so a walk that stops early reads little.
+    pub fn each_instruction(
+        &self,
+        range: std::ops::Range<usize>,
+        mut f: impl FnMut(usize, Instruction) -> bool,
+    ) {
+        const BATCH: usize = 4096;
+        let end = range.end.min(self.spans.len());
+        let mut at = range.start;
+        while at < end {
+            let next = (at + BATCH).min(end);
+            for (i, ins) in (at..next).zip(self.instructions(at..next)) {
+                if !f(i, ins) {
+                    return;
+                }
+            }
+            at = next;
+        }
+    }
+
+    /// The first index in `0..len` where `pred` turns false (`pred` holds on a prefix).
+    pub fn partition(len: usize, pred: impl Fn(usize) -> bool) -> usize {
+        let (mut lo, mut hi) = (0, len);
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            if pred(mid) {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    }
+
+    /// What previews and first runs read of this template.
+    pub fn source(&self) -> crate::preview::Source<'_> {
+        crate::preview::Source {
+            text: &self.text,
+            target: self.target,
+            spans: &self.spans,
+        }
     }
 }
 
@@ -94,7 +146,8 @@ pub type Findings = Arc<Vec<(usize, rotlang::Diagnostic)>>;
 
 #[derive(Debug)]
 pub struct Document {
-    pub text: String,
+    /// The text, shared with the server's store of open documents (not a copy of it).
+    pub text: Arc<String>,
     pub kind: Kind,
     pub version: i32,
     pub regions: Vec<Region>,
@@ -117,8 +170,13 @@ pub struct Document {
 impl Document {
     /// Parse a document. `path`: the file's place, where a JSON preset's `inherits`
     /// parents are found (as the CLI finds them).
-    pub fn new(text: String, kind: Kind, version: i32, path: Option<&Path>) -> Document {
-        Document::build(text, kind, version, path, None)
+    pub fn new(
+        text: impl Into<Arc<String>>,
+        kind: Kind,
+        version: i32,
+        path: Option<&Path>,
+    ) -> Document {
+        Document::build(text.into(), kind, version, path, None)
     }
 
     /// The document's next version, from the analysis of its previous one: each template
@@ -126,16 +184,16 @@ impl Document {
     /// edit touched it (`crate::incremental`), with the same result as `new`.
     pub fn update(
         previous: Document,
-        text: String,
+        text: impl Into<Arc<String>>,
         kind: Kind,
         version: i32,
         path: Option<&Path>,
     ) -> Document {
-        Document::build(text, kind, version, path, Some(previous))
+        Document::build(text.into(), kind, version, path, Some(previous))
     }
 
     fn build(
-        text: String,
+        text: Arc<String>,
         kind: Kind,
         version: i32,
         path: Option<&Path>,
@@ -153,23 +211,27 @@ impl Document {
             .and_then(Option::take)
         {
             Some(old) if old.key.as_deref() == key && old.target == target => {
-                crate::incremental::reparse(&old.text, old.parse, new, target)
+                crate::incremental::reparse(&old.text, (old.parse, old.spans), new, target)
             }
-            _ => rotlang::parse(new, target),
+            _ => Spans::read(new, target),
         };
         let mut json_error = None;
         let mut duplicates = Vec::new();
         let mut regions = match kind {
-            Kind::Rot => vec![Region {
-                key: None,
-                key_span: None,
-                target: Target::Sparse,
-                parse: parse(0, None, Target::Sparse, &text),
-                map: OffsetMap::identity(text.len()),
-                contents: Span::new(0, text.len()),
-                text: text.clone(),
-                profile: None,
-            }],
+            Kind::Rot => {
+                let (parse, spans) = parse(0, None, Target::Sparse, &text);
+                vec![Region {
+                    key: None,
+                    key_span: None,
+                    target: Target::Sparse,
+                    parse,
+                    spans,
+                    map: OffsetMap::identity(text.len()),
+                    contents: Span::new(0, text.len()),
+                    text: text.clone(),
+                    profile: None,
+                }]
+            }
             Kind::Json | Kind::Jsonc | Kind::Ini => {
                 let found = match kind {
                     Kind::Ini => ini::find_templates(&text),
@@ -189,15 +251,19 @@ impl Document {
                 found
                     .into_iter()
                     .enumerate()
-                    .map(|(i, t)| Region {
-                        parse: parse(i, Some(&t.key), t.target, &t.text),
-                        key: Some(t.key),
-                        key_span: Some(t.key_span),
-                        target: t.target,
-                        text: t.text,
-                        contents: t.contents,
-                        map: t.map,
-                        profile: None,
+                    .map(|(i, t)| {
+                        let (parse, spans) = parse(i, Some(&t.key), t.target, &t.text);
+                        Region {
+                            parse,
+                            spans,
+                            key: Some(t.key),
+                            key_span: Some(t.key_span),
+                            target: t.target,
+                            text: Arc::new(t.text),
+                            contents: t.contents,
+                            map: t.map,
+                            profile: None,
+                        }
                     })
                     .collect()
             }
@@ -238,7 +304,7 @@ impl Document {
     /// instructions costs far less than parsing them again.
     pub fn copy_for_update(&self) -> Document {
         Document {
-            text: String::new(),
+            text: Arc::default(),
             kind: self.kind,
             version: self.version,
             regions: self.regions.clone(),
@@ -253,7 +319,7 @@ impl Document {
     /// A document of `len` bytes, over the `limit`: not parsed, its text dropped.
     pub fn too_large(len: usize, limit: usize, kind: Kind, version: i32) -> Document {
         Document {
-            text: String::new(),
+            text: Arc::default(),
             kind,
             version,
             regions: Vec::new(),
@@ -276,10 +342,7 @@ impl Document {
         {
             return Some(preview.clone());
         }
-        let preview = Arc::new(Preview::compute(
-            &region.parse.template,
-            &region.reading(settings),
-        ));
+        let preview = Arc::new(Preview::compute(region.source(), &region.reading(settings)));
         let mut previews = lock();
         if previews.len() < self.regions.len() {
             previews.resize(self.regions.len(), None);

@@ -13,7 +13,7 @@ use crate::position::Positions;
 /// formatted; otherwise a single whole-document edit.
 pub fn formatting(doc: &Document, pos: &Positions, keep_orcaslicer: bool) -> Option<Vec<TextEdit>> {
     let formatted = formatted_keeping(doc, keep_orcaslicer)?;
-    if formatted == doc.text {
+    if formatted == *doc.text {
         return Some(Vec::new());
     }
     let whole = rotlang::Span::new(0, doc.text.len());
@@ -45,9 +45,9 @@ pub fn formatted_keeping(doc: &Document, keep_orcaslicer: bool) -> Option<String
             if region.parse.has_errors() {
                 return None;
             }
-            let formatted = rot_layout(&region.text, &region.parse.template);
+            let formatted = rot_layout(&region.text, &region.spans);
             if keep_orcaslicer && orcaslicer_reads_differently(&region.text, &formatted) {
-                return Some(doc.text.clone());
+                return Some(doc.text.to_string());
             }
             Some(formatted)
         }
@@ -57,7 +57,7 @@ pub fn formatted_keeping(doc: &Document, keep_orcaslicer: bool) -> Option<String
             for region in &doc.regions {
                 let body = rotlang::format::format(&region.text, region.target)?;
                 out.push_str(doc.text.get(copied..region.contents.start)?);
-                if body == region.text
+                if body == *region.text
                     || (keep_orcaslicer && orcaslicer_reads_differently(&region.text, &body))
                 {
                     // Unchanged templates keep their original escapes byte for byte.
@@ -76,7 +76,7 @@ pub fn formatted_keeping(doc: &Document, keep_orcaslicer: bool) -> Option<String
 /// A `.rot` file in canonical form that keeps its lines: instructions the file puts on
 /// separate lines stay on separate lines (one line break, in the file's own style), those
 /// on one line are joined with `, `. The file's final line break is kept, nothing else.
-fn rot_layout(text: &str, template: &rotlang::Template) -> String {
+fn rot_layout(text: &str, spans: &crate::instructions::Spans) -> String {
     let newline = match text.find(['\r', '\n']) {
         Some(i) if text[i..].starts_with("\r\n") => "\r\n",
         Some(i) => &text[i..i + 1],
@@ -84,17 +84,17 @@ fn rot_layout(text: &str, template: &rotlang::Template) -> String {
     };
     let mut out = String::with_capacity(text.len());
     let mut previous_end = None;
-    for ins in &template.instructions {
+    for span in spans.iter() {
         if let Some(end) = previous_end {
-            let gap: &str = &text[end..ins.span.start];
+            let gap: &str = &text[end..span.start];
             out.push_str(if gap.contains(['\r', '\n']) {
                 newline
             } else {
                 ", "
             });
         }
-        out.push_str(&text[ins.span.range()]);
-        previous_end = Some(ins.span.end);
+        out.push_str(&text[span.range()]);
+        previous_end = Some(span.end);
     }
     if !out.is_empty() && text.ends_with(['\r', '\n']) {
         out.push_str(newline);

@@ -64,7 +64,7 @@ pub fn hover(
     let preview = doc.preview(doc.index_of(region)?, model)?;
     let (markdown, span) = match region.instruction_at(at) {
         Some((i, ins)) => (
-            instruction_hover(region, i, ins, &reading, &preview),
+            instruction_hover(region, i, &ins, &reading, &preview),
             region.doc_span(ins.span),
         ),
         None => (template_hover(region, &preview), region.contents),
@@ -96,11 +96,12 @@ pub fn instruction_hover(
             ));
             let mut budget = crate::preview::FIRST_RUN_BUDGET;
             let run = crate::preview::first_run(
-                &region.parse.template,
+                region.source(),
                 index,
                 reading,
                 &mut budget,
                 preview.reach,
+                &mut None,
             );
             if let Some(run) = run.or(p.first_block) {
                 let last = run.first_layer + run.layers - 1;
@@ -134,7 +135,7 @@ pub fn instruction_hover(
 
 /// The whole-template hover as Markdown.
 pub fn template_hover(region: &Region, preview: &Preview) -> String {
-    let count = region.parse.template.instructions.len();
+    let count = region.spans.len();
     let text = quote(&region.text);
     // An empty code span would show as a literal "``".
     let shown = if text.is_empty() {

@@ -23,7 +23,9 @@
 //! than the library keeps (100: which ones it keeps depends on all of them).
 //! `tests::matches_a_full_parse` compares the two on random edits.
 
-use rotlang::{Diagnostic, Instruction, MAX_DIAGNOSTICS, Parse, Span, Target};
+use rotlang::{Diagnostic, MAX_DIAGNOSTICS, Parse, Span, Target};
+
+use crate::instructions::Spans;
 
 /// Below this many bytes a template is parsed whole (a few milliseconds at most).
 pub const MIN_INCREMENTAL: usize = 32 * 1024;
@@ -40,10 +42,15 @@ const OPENING_QUOTES: [char; 7] = ['"', '\'', '`', '\u{201C}', '\u{2018}', '«',
 
 /// The parse of `new`, given the parse of `old` (both read for `target`). `old` is taken
 /// by value: its instructions are reused in place.
-pub fn reparse(old_text: &str, old: Parse, new_text: &str, target: Target) -> Parse {
+pub fn reparse(
+    old_text: &str,
+    old: (Parse, Spans),
+    new_text: &str,
+    target: Target,
+) -> (Parse, Spans) {
     match splice(old_text, old, new_text, target, MIN_INCREMENTAL) {
         Ok(parse) => parse,
-        Err(()) => rotlang::parse(new_text, target),
+        Err(()) => Spans::read(new_text, target),
     }
 }
 
@@ -53,11 +60,11 @@ pub fn reparse(old_text: &str, old: Parse, new_text: &str, target: Target) -> Pa
 /// 4 KiB the library's wording depends on).
 fn splice(
     old_text: &str,
-    mut old: Parse,
+    (mut old, mut spans): (Parse, Spans),
     new_text: &str,
     target: Target,
     shortest: usize,
-) -> Result<Parse, ()> {
+) -> Result<(Parse, Spans), ()> {
     if old_text.len().min(new_text.len()) < shortest
         || old.omitted > 0
         || old.diagnostics.len() > MAX_DIAGNOSTICS
@@ -77,7 +84,7 @@ fn splice(
         .take_while(|(a, b)| a == b)
         .count();
     if prefix == old_b.len() && prefix == new_b.len() {
-        return Ok(old); // the same text
+        return Ok((old, spans)); // the same text
     }
     // The edit: old[prefix..old_end] became new[prefix..new_end].
     let new_end = new_b.len() - suffix;
@@ -143,39 +150,31 @@ fn splice(
 
     // Instructions: the old ones before and after the core stay (those after moved), the
     // core's come from the window.
-    let instructions = &mut old.template.instructions;
-    let first = instructions.partition_point(|i| i.span.start < core_start);
+    let first = spans.first_starting_at(core_start);
     let past = if at_end {
-        instructions.len()
+        spans.len()
     } else {
-        instructions.partition_point(|i| i.span.start < old_core_end)
+        spans.first_starting_at(old_core_end)
     };
-    let core: Vec<Instruction> = window
+    let core = window
         .template
         .instructions
-        .into_iter()
-        .map(|mut i| {
-            shift_instruction(&mut i, moved);
-            i
-        })
-        .filter(|i| in_core(i.span))
-        .collect();
-    let core_len = core.len();
-    instructions.splice(first..past, core);
-    if new_b.len() != old_b.len() {
-        for i in &mut instructions[first + core_len..] {
-            shift_instruction(i, delta);
-        }
-    }
+        .iter()
+        .map(|i| moved(i.span))
+        .filter(|&s| in_core(s));
+    spans.splice(first..past, core, change);
 
     let errors = diagnostics.iter().filter(|d| d.is_error()).count();
-    Ok(Parse {
-        warnings: diagnostics.len() - errors,
-        errors,
-        omitted: 0,
-        diagnostics,
-        template: old.template,
-    })
+    Ok((
+        Parse {
+            warnings: diagnostics.len() - errors,
+            errors,
+            omitted: 0,
+            diagnostics,
+            template: old.template,
+        },
+        spans,
+    ))
 }
 
 fn is_separator(b: u8) -> bool {
@@ -223,32 +222,6 @@ fn forward(text: &[u8], at: usize, chunks: usize) -> usize {
         }
     }
     i
-}
-
-/// Every span of an instruction, moved by `f`.
-fn shift_instruction(i: &mut Instruction, f: impl Fn(Span) -> Span) {
-    i.span = f(i.span);
-    if let Some(a) = &mut i.angle {
-        a.span = f(a.span);
-    }
-    if let Some(r) = &mut i.repeat {
-        r.span = f(r.span);
-    }
-    for s in [&mut i.dummy, &mut i.one_time, &mut i.flip]
-        .into_iter()
-        .flatten()
-    {
-        *s = f(*s);
-    }
-    if let Some(s) = &mut i.solid {
-        s.span = f(s.span);
-    }
-    if let Some(j) = &mut i.joint {
-        j.span = f(j.span);
-    }
-    if let Some(c) = &mut i.count {
-        c.span = f(c.span);
-    }
 }
 
 /// Every span of a diagnostic (its labels and its fix), moved by `f`.
@@ -306,14 +279,33 @@ mod tests {
         prop::collection::vec((0usize..21_000, 0usize..12, piece()), 1..24)
     }
 
-    fn same(a: &Parse, b: &Parse) -> Result<(), TestCaseError> {
-        prop_assert_eq!(&a.template, &b.template);
+    /// The incremental result is the full parse's: the same diagnostics and counts, the
+    /// same instruction spans, and the instructions read again from them are the same.
+    fn same(
+        a: &(Parse, Spans),
+        b: &Parse,
+        text: &str,
+        target: Target,
+    ) -> Result<(), TestCaseError> {
+        let (a, spans) = a;
+        let full: Vec<Span> = b.template.instructions.iter().map(|i| i.span).collect();
+        prop_assert_eq!(spans.iter().collect::<Vec<_>>(), full);
+        prop_assert_eq!(
+            &spans.get(text, target, 0..spans.len()),
+            &b.template.instructions
+        );
         prop_assert_eq!(&a.diagnostics, &b.diagnostics);
         prop_assert_eq!(
             (a.errors, a.warnings, a.omitted),
             (b.errors, b.warnings, b.omitted)
         );
         Ok(())
+    }
+
+    /// A full parse as the server keeps it: spans, no IR.
+    fn compact(mut parse: Parse) -> (Parse, Spans) {
+        let spans = Spans::of_parse(&mut parse);
+        (parse, spans)
     }
 
     proptest! {
@@ -337,8 +329,8 @@ mod tests {
                 let full = rotlang::parse(&next, target);
                 // (Whether edits are spliced at all, rather than parsed whole:
                 // `an_edit_in_a_long_template_is_spliced`.)
-                if let Ok(incremental) = splice(&text, parse.clone(), &next, target, 5000) {
-                    same(&incremental, &full)?;
+                if let Ok(incremental) = splice(&text, compact(parse), &next, target, 5000) {
+                    same(&incremental, &full, &next, target)?;
                 }
                 text = next;
                 parse = full;
@@ -353,10 +345,14 @@ mod tests {
         let mut next = text.clone();
         next.replace_range(50_000..50_002, "+30/ 5cm,,X");
         let full = rotlang::parse(&next, Target::Sparse);
-        let incremental = splice(&text, old, &next, Target::Sparse, MIN_INCREMENTAL)
-            .expect("spliced, not parsed whole");
+        let (incremental, spans) =
+            splice(&text, compact(old), &next, Target::Sparse, MIN_INCREMENTAL)
+                .expect("spliced, not parsed whole");
         assert!(incremental.errors > 0);
-        assert_eq!(incremental.template, full.template);
+        assert_eq!(
+            spans.get(&next, Target::Sparse, 0..spans.len()),
+            full.template.instructions
+        );
         assert_eq!(incremental.diagnostics, full.diagnostics);
         assert_eq!(
             (incremental.errors, incremental.warnings),

@@ -4,7 +4,7 @@
 use rotlang::Span;
 use tower_lsp_server::ls_types::{InlayHint, InlayHintKind, InlayHintLabel, InlayHintTooltip};
 
-use crate::document::Document;
+use crate::document::{Document, Region};
 use crate::hover::turn_words;
 use crate::position::{Cursor, Positions};
 use crate::preview::{FIRST_RUN_BUDGET, first_run};
@@ -31,24 +31,34 @@ pub fn inlay_hints(
         let Some(preview) = doc.preview(index, model) else {
             continue;
         };
-        for (i, ins) in region.parse.template.instructions.iter().enumerate() {
+        // The instructions whose end is in the range (spans are in text order), read
+        // again from the text; the template the first runs evaluate is read once.
+        let ends = |i: usize| region.spans.span(i).map(|s| region.doc_span(s).end);
+        let n = region.spans.len();
+        let first = Region::partition(n, |i| ends(i) < Some(range.start));
+        let past = Region::partition(n, |i| ends(i) <= Some(range.end));
+        let mut evaluated = None;
+        let mut full = false;
+        region.each_instruction(first..past, |i, ins| {
             let end = region.doc_span(ins.span).end;
             if end < range.start || end > range.end || ins.is_dummy() {
-                continue;
+                return true;
             }
             if hints.len() >= MAX_HINTS {
-                return hints;
+                full = true;
+                return false;
             }
             let run = first_run(
-                &region.parse.template,
+                region.source(),
                 i,
                 &reading,
                 &mut budget,
                 preview.reach,
+                &mut evaluated,
             )
             .or_else(|| preview.instructions.get(&i).and_then(|p| p.first_block));
             let label = match run {
-                Some(run) => turn_words(ins, &run),
+                Some(run) => turn_words(&ins, &run),
                 None => "not reached".to_string(),
             };
             hints.push(InlayHint {
@@ -64,6 +74,10 @@ pub fn inlay_hints(
                 padding_right: Some(false),
                 data: None,
             });
+            true
+        });
+        if full {
+            return hints;
         }
     }
     hints

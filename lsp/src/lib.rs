@@ -14,6 +14,7 @@ pub mod hover;
 pub mod incremental;
 pub mod ini;
 pub mod inlay_hints;
+pub mod instructions;
 pub mod json;
 pub mod jsonc;
 mod kind;

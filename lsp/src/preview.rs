@@ -8,7 +8,9 @@
 use std::collections::BTreeMap;
 
 use rotlang::eval::{self, Model};
-use rotlang::{Fill, Span, Template};
+use rotlang::{Fill, Span, Target, Template};
+
+use crate::instructions::Spans;
 
 use crate::reading::Reading;
 use crate::settings::ModelSettings;
@@ -29,21 +31,59 @@ pub struct PreviewLayer {
     pub instruction: Option<Span>,
 }
 
-/// Evaluate `template` in its reading (model and base) with the library's evaluator, layer
-/// by layer, bottom to top, while `f` returns `true`. The only function here that knows how
-/// evaluation is called.
+/// The template a preview reads: its text and target, and its instructions' spans.
+#[derive(Clone, Copy)]
+pub struct Source<'a> {
+    pub text: &'a str,
+    pub target: Target,
+    pub spans: &'a Spans,
+}
+
+impl Source<'_> {
+    /// The template of instructions `range` (the library's IR, read again).
+    pub fn template(&self, range: std::ops::Range<usize>) -> Template {
+        self.spans.template(self.text, self.target, range)
+    }
+}
+
+/// Evaluate the first `m` instructions of `source` (all of them: `m = len`) in its reading
+/// with the library's evaluator, layer by layer, bottom to top, while `f` returns `true`;
+/// each layer names the index of its instruction. The only function here that knows how
+/// evaluation is called: on the evaluator's compact form of the text
+/// (`eval::parse_layers`), never on the IR of half a million instructions. The text from
+/// the first instruction to the `m`-th one's end holds exactly those instructions (a
+/// template is its chunks, each read on its own; none starts with a quote, so the text is
+/// not read as a quoted template), so its layers are those of the first `m` alone.
 pub fn for_each_layer(
-    template: &Template,
+    source: Source<'_>,
+    m: usize,
     reading: &Reading,
-    mut f: impl FnMut(PreviewLayer) -> bool,
+    mut f: impl FnMut(PreviewLayer, Option<usize>) -> bool,
 ) {
-    for layer in eval::layers(template, &reading.model, reading.options) {
-        let go_on = f(PreviewLayer {
-            index: layer.index,
-            angle: layer.angle,
-            fill: layer.fill,
-            instruction: layer.instruction,
-        });
+    let m = m.min(source.spans.len());
+    let (start, end) = match (
+        source.spans.span(0),
+        m.checked_sub(1).and_then(|l| source.spans.span(l)),
+    ) {
+        (Some(first), Some(last)) => (first.start, last.end),
+        _ => (0, 0),
+    };
+    let text = source.text.get(start..end).unwrap_or("");
+    let (_, layers) = eval::parse_layers(text, source.target, &reading.model, reading.options);
+    for layer in layers {
+        let instruction = layer.instruction.map(|s| s.shift(start));
+        let which = instruction
+            .and_then(|span| source.spans.index_of(span))
+            .filter(|&i| i < m);
+        let go_on = f(
+            PreviewLayer {
+                index: layer.index,
+                angle: layer.angle,
+                fill: layer.fill,
+                instruction,
+            },
+            which,
+        );
         if !go_on {
             return;
         }
@@ -62,21 +102,31 @@ pub const FIRST_RUN_BUDGET: usize = 2_000_000;
 /// the first instructions, the run is found on those alone, with the same result and the
 /// same charge to the budget (the whole template's length), in time independent of the
 /// template's length.
+///
+/// `cache`: the template evaluated (the first `reach` instructions, or all), read again
+/// from the text on the first call and kept by the caller for the next ones.
 pub fn first_run(
-    template: &Template,
+    source: Source<'_>,
     index: usize,
     reading: &Reading,
     budget: &mut usize,
     reach: Option<usize>,
+    cache: &mut Option<Template>,
 ) -> Option<Run> {
+    let n = source.spans.len();
     // As the library: a dummy has no run, and costs nothing.
-    if template.instructions.get(index)?.is_dummy() {
+    if source
+        .spans
+        .get(source.text, source.target, index..index + 1)
+        .first()?
+        .is_dummy()
+    {
         return None;
     }
     let run = match reach {
-        Some(m) if m < template.instructions.len() => {
+        Some(m) if m < n => {
             // The library charges the template's length first: the rest of it here.
-            *budget = budget.checked_sub(template.instructions.len() - m)?;
+            *budget = budget.checked_sub(n - m)?;
             if index >= m {
                 // Never set up on this model (every layer is governed before `m - 1`), so
                 // marking it once changes nothing and it has no run; the library would
@@ -85,12 +135,17 @@ pub fn first_run(
                 *budget = budget.saturating_sub(reading.layers());
                 return None;
             }
-            let prefix = Template {
-                instructions: template.instructions[..m].to_vec(),
-            };
-            rotlang::explain::first_run(&prefix, index, &reading.model, budget)?
+            let prefix = cache.get_or_insert_with(|| source.template(0..m));
+            rotlang::explain::first_run(prefix, index, &reading.model, budget)?
         }
-        _ => rotlang::explain::first_run(template, index, &reading.model, budget)?,
+        _ => {
+            // The library would refuse before evaluating: refused before reading it all.
+            if *budget < n {
+                return None;
+            }
+            let whole = cache.get_or_insert_with(|| source.template(0..n));
+            rotlang::explain::first_run(whole, index, &reading.model, budget)?
+        }
     };
     let base = reading.options.base;
     Some(Run {
@@ -174,14 +229,11 @@ impl Preview {
     /// The preview of `template` in its reading. On a long template it is computed on its
     /// first instructions where that is provably the same (see `reach`): preparing the
     /// evaluator for half a million instructions takes longer than a hover may.
-    pub fn compute(template: &Template, reading: &Reading) -> Preview {
-        let n = template.instructions.len();
+    pub fn compute(source: Source<'_>, reading: &Reading) -> Preview {
+        let n = source.spans.len();
         let mut m = FIRST_PREFIX;
         while m < n {
-            let prefix = Template {
-                instructions: template.instructions[..m].to_vec(),
-            };
-            let preview = Preview::compute_on(&prefix, reading);
+            let preview = Preview::compute_on(source, m, reading);
             // Every layer governed, each by one of the first `m - 1`: the walk never stood
             // on the last of the prefix, where it would have cycled (or gone on).
             let governed: usize = preview.instructions.values().map(|p| p.layers).sum();
@@ -194,10 +246,11 @@ impl Preview {
             }
             m = m.saturating_mul(PREFIX_GROWTH);
         }
-        Preview::compute_on(template, reading)
+        Preview::compute_on(source, n, reading)
     }
 
-    fn compute_on(template: &Template, reading: &Reading) -> Preview {
+    /// The preview of the first `m` instructions of `source`.
+    fn compute_on(source: Source<'_>, m: usize, reading: &Reading) -> Preview {
         let mut instructions: BTreeMap<usize, InstructionPreview> = BTreeMap::new();
         let mut first = Vec::new();
         let mut head = Vec::new();
@@ -206,7 +259,7 @@ impl Preview {
         let layers = reading.layers().max(1);
         let mut buckets = vec![(f64::INFINITY, f64::NEG_INFINITY); SPARKLINE_WIDTH.min(layers)];
         let mut previous: (f64, Option<usize>) = (0.0, None);
-        for_each_layer(template, reading, |layer| {
+        for_each_layer(source, m, reading, |layer, which| {
             let angle = if layer.angle.is_finite() {
                 layer.angle
             } else {
@@ -226,7 +279,6 @@ impl Preview {
             }
             min = min.min(angle);
             max = max.max(angle);
-            let which = layer.instruction.and_then(|span| index_of(template, span));
             if let Some(i) = which {
                 let p = instructions.entry(i).or_default();
                 p.layers += 1;
@@ -289,14 +341,6 @@ impl Preview {
     }
 }
 
-/// The instruction with exactly this span (instructions are in text order).
-fn index_of(template: &Template, span: Span) -> Option<usize> {
-    let i = template
-        .instructions
-        .partition_point(|ins| ins.span.start < span.start);
-    (template.instructions.get(i)?.span == span).then_some(i)
-}
-
 pub fn sparkline(values: &[f64], min: f64, max: f64) -> String {
     const BARS: [char; 8] = ['▁', '▂', '▃', '▄', '▅', '▆', '▇', '█'];
     let range = max - min;
@@ -346,9 +390,15 @@ mod tests {
         ] {
             for count in [3, 400, 3000] {
                 let text = body.repeat(count) + "+7";
-                let template = rotlang::parse(&text, rotlang::Target::Sparse).template;
-                let fast = Preview::compute(&template, &reading);
-                let full = Preview::compute_on(&template, &reading);
+                let (_, spans) = Spans::read(&text, Target::Sparse);
+                let source = Source {
+                    text: &text,
+                    target: Target::Sparse,
+                    spans: &spans,
+                };
+                let template = rotlang::parse(&text, Target::Sparse).template;
+                let fast = Preview::compute(source, &reading);
+                let full = Preview::compute_on(source, spans.len(), &reading);
                 from_a_prefix += usize::from(fast.reach.is_some());
                 assert_eq!(
                     Preview {
@@ -358,14 +408,30 @@ mod tests {
                     full,
                     "{body} × {count}"
                 );
+                let (mut prefix, mut whole) = (None, None);
                 for index in [0, 1, 2, 5, 900, template.instructions.len() - 1] {
                     let (mut a, mut b) = (FIRST_RUN_BUDGET, FIRST_RUN_BUDGET);
+                    let expected =
+                        rotlang::explain::first_run(&template, index, &reading.model, &mut b).map(
+                            |run| Run {
+                                from: run.from + reading.options.base,
+                                first: run.first + reading.options.base,
+                                to: run.to + reading.options.base,
+                                ..run
+                            },
+                        );
                     assert_eq!(
-                        first_run(&template, index, &reading, &mut a, fast.reach),
-                        first_run(&template, index, &reading, &mut b, None),
+                        first_run(source, index, &reading, &mut a, fast.reach, &mut prefix),
+                        expected,
                         "{body} × {count}, instruction {index}"
                     );
                     assert_eq!(a, b);
+                    let mut c = FIRST_RUN_BUDGET;
+                    assert_eq!(
+                        first_run(source, index, &reading, &mut c, None, &mut whole),
+                        expected,
+                    );
+                    assert_eq!(c, b);
                 }
             }
         }

@@ -150,13 +150,19 @@ pub fn parts(text: &str, ins: &Instruction) -> Vec<(Span, Part)> {
 pub fn tokens(doc: &Document, pos: &Positions) -> SemanticTokens {
     let mut absolute: Vec<(Span, Part)> = Vec::new();
     'regions: for region in &doc.regions {
-        for ins in &region.parse.template.instructions {
-            for (span, part) in parts(&region.text, ins) {
+        let mut full = false;
+        region.each_instruction(0..region.spans.len(), |_, ins| {
+            for (span, part) in parts(&region.text, &ins) {
                 if absolute.len() >= MAX_TOKENS {
-                    break 'regions;
+                    full = true;
+                    return false;
                 }
                 absolute.push((region_span(region, span), part));
             }
+            true
+        });
+        if full {
+            break 'regions;
         }
     }
     absolute.sort_by_key(|(s, _)| s.start);

@@ -338,12 +338,15 @@ impl Backend {
                 // request being answered on it, or its diagnostics being made, let go of it
                 // within milliseconds. Should one not, what it parsed is copied.
                 let previous = previous.map(take_when_free);
-                let large = previous.as_ref().is_some_and(|d| d.text.len() > LARGE);
+                // A large text, new or previous: what its analysis left free in this
+                // worker's arena (the profile read, the unescaped copy, the grown vectors)
+                // goes back to the system once it is in place, before the OrcaSlicer lint
+                // allocates in another thread's arena beside it.
+                let large = previous.as_ref().is_some_and(|d| d.text.len() > LARGE)
+                    || text.as_ref().is_some_and(|t| t.len() > LARGE);
                 let doc = guard(|| match text {
                     Some(text) if text.len() <= limit => {
-                        // The text is shared with the store; the document owns a copy only
-                        // while it is the latest analysis.
-                        let text = String::clone(&text);
+                        // The text is shared with the store, not copied.
                         match previous {
                             Some(previous) => {
                                 Document::update(previous, text, kind, version, path.as_deref())
@@ -398,8 +401,9 @@ impl Backend {
             if large {
                 // What was left of the previous analysis (freed on a worker thread) handed
                 // back to the system, or each worker's arena would keep a document's worth;
-                // after the new analysis is in place, so no hover waits for it.
-                tokio::task::spawn_blocking(crate::memory::release);
+                // after the new analysis is in place, so no hover waits for it, and before
+                // the diagnostics' lint starts, so its memory comes from what was freed.
+                let _ = tokio::task::spawn_blocking(crate::memory::release).await;
             }
             if latest {
                 self.schedule_publish(uri.clone());
@@ -479,7 +483,7 @@ fn take_when_free(mut doc: Arc<Document>) -> Document {
 }
 
 /// How long an analysis waits for others to let go of the previous one (a copy of a 4 MB
-/// template's instructions is 190 MB and takes about as long).
+/// template's spans is a few MB: copying is cheap too).
 const TAKE_WAIT: std::time::Duration = std::time::Duration::from_millis(50);
 
 /// Closing a document this large (bytes) hands its memory back to the system.

@@ -44,9 +44,9 @@ fn instructions(
     let mut out = Vec::new();
     // Instructions come in text order: the cursor keeps a one-line 1 MB template linear.
     let mut cursor = Cursor::new(pos);
-    for ins in &region.parse.template.instructions {
+    region.each_instruction(0..region.spans.len(), |_, ins| {
         if *budget == 0 || ins.span.is_empty() {
-            break;
+            return false;
         }
         *budget -= 1;
         let span = region.doc_span(ins.span);
@@ -57,13 +57,14 @@ fn instructions(
         let name = region.text.get(ins.span.range()).unwrap_or("?").to_string();
         out.push(symbol(
             name,
-            Some(describe(ins, reading)),
+            Some(describe(&ins, reading)),
             SymbolKind::OPERATOR,
             range,
             range,
             None,
         ));
-    }
+        true
+    });
     out
 }
 

@@ -38,3 +38,17 @@ pub fn parse(text: &str, target: Target) -> Parse {
 pub fn check(text: &str, target: Target) -> Parse {
     syntax::parse_each(text, target, drop).into_parse(Template::default())
 }
+
+/// [`check`], handing each instruction to `emit` in text order as it is read: the
+/// instructions of [`parse`] without a `Template` holding them all (a consumer keeps what it
+/// needs of each; the language server keeps their spans).
+///
+/// ```
+/// let mut spans = Vec::new();
+/// let parse = rotlang::parse_each("0, +30/5", rotlang::Target::Sparse, |i| spans.push(i.span));
+/// assert_eq!(spans, [rotlang::Span::new(0, 1), rotlang::Span::new(3, 8)]);
+/// assert!(parse.template.instructions.is_empty() && !parse.has_errors());
+/// ```
+pub fn parse_each(text: &str, target: Target, emit: impl FnMut(Instruction)) -> Parse {
+    syntax::parse_each(text, target, emit).into_parse(Template::default())
+}

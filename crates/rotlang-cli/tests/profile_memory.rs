@@ -131,3 +131,27 @@ fn the_orcaslicer_lint_costs_at_most_16_times_the_template() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Issue 22 item 1: a template full of one-time instructions and dummies (`+1!, 0*0, …`,
+/// the memory bench's `dummies`) keeps the bound in `expand -f` and in the OrcaSlicer
+/// lint. The evaluator kept a remembered walk (64 bytes) and two `usize` links for every
+/// instruction, written whether used or not: 20× and 22× the text.
+#[test]
+fn one_time_instructions_and_dummies_cost_at_most_16_times_the_template() {
+    let dir = std::env::temp_dir().join(format!("rotlang-memory-dummies-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let unit = "+1!, 0*0, ";
+    let template = unit.repeat((4 << 20) / unit.len());
+    let len = template.len() as u64;
+    let rot = dir.join("dummies.rot");
+    std::fs::write(&rot, &template).unwrap();
+    let rot = rot.display().to_string();
+    for args in [
+        vec!["expand", "-f", &rot],
+        vec!["check", "--compat", "orcaslicer", "-f", &rot],
+    ] {
+        let peak = peak_rss(&args, None);
+        assert!(peak <= 16 * len, "{args:?}: {peak} bytes for {len}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -75,6 +75,44 @@ fn stream_listed_heights(bencher: Bencher, layers: usize) {
     });
 }
 
+/// Walks over dummies (SEMANTICS.md section 4) on 100k layers: short walks (a dummy or
+/// two between set-ups), one-time dummies spent as the model rises, and a long run of
+/// dummies crossed on every other layer (the walk is remembered, not walked again).
+#[divan::bench(args = [
+    "+5, 10*, +20, -3*, +1*, 30",
+    "+1!, 0*0, +2!, 5*, +3",
+    "+1, +1*, +1*, +1*, +1*, +1*, +1*, +1*, +1*, +1*, +1*, -1*!, 5",
+])]
+fn stream_walks(bencher: Bencher, template: &str) {
+    let layers = 100_000;
+    let model = Model::uniform(layers, 0.2, Some(0.3)).expect("model");
+    let template = rotlang::parse(template, Target::Sparse).template;
+    bencher.counter(ItemsCount::new(layers)).bench(|| {
+        checksum(eval::layers(
+            black_box(&template),
+            &model,
+            Options::default(),
+        ))
+    });
+}
+
+/// The memory bench's `dummies` input (`+1!, 0*0, ` repeated, 20,000 instructions) on
+/// 100k layers: every one-time instruction spent, then walks over the dummies left.
+#[divan::bench]
+fn stream_spent_dummies(bencher: Bencher) {
+    let layers = 100_000;
+    let model = Model::uniform(layers, 0.2, Some(0.3)).expect("model");
+    let text = "+1!, 0*0, ".repeat(10_000);
+    let template = rotlang::parse(&text, Target::Sparse).template;
+    bencher.counter(ItemsCount::new(layers)).bench(|| {
+        checksum(eval::layers(
+            black_box(&template),
+            &model,
+            Options::default(),
+        ))
+    });
+}
+
 /// Time to the first layer on the largest model (1e8 uniform layers) and on 1e6 listed
 /// heights, with ranges that reach the top: target under 1 ms (range ends come from
 /// arithmetic on the running sums, not from walking the layers).

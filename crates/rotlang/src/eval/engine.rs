@@ -308,9 +308,8 @@ pub(crate) struct Engine {
     /// position `c` is followed by `c + 1`, and a template without `!` costs nothing here).
     links: Option<Box<Links>>,
     cursor: usize,
-    /// What walks over dummies need; `None` until the first such walk.
+    /// The walks over dummies remembered; `None` until the first long one.
     walks: Option<Box<Walks>>,
-    walk: u64,
     /// How many one-time instructions are spent.
     spent: usize,
     base: f64,
@@ -344,7 +343,6 @@ impl Engine {
             links: None,
             cursor: 0,
             walks: None,
-            walk: 0,
             spent: 0,
             steps,
             base: finite(options.base),
@@ -422,15 +420,15 @@ impl Engine {
         self.joint = Joint::Linear;
         self.flipped = false;
         let start = self.cursor;
-        let cached = self.walks.as_ref().and_then(|w| w.chains.get(start));
-        let chain = match cached {
+        let chain = if self.steps.at(start).dummy {
+            let remembered = self.walks.as_ref().and_then(|w| w.get(start, self.spent));
+            remembered.unwrap_or_else(|| self.walk_dummies(start))
+        } else {
             // The common walk: one instruction that sets a range.
-            _ if self.steps.get(start).is_some_and(|s| !s.dummy) => Chain {
+            Chain {
                 dummies: None,
                 then: Then::SetUp(start),
-            },
-            Some(&Some((spent, chain))) if spent == self.spent => chain,
-            _ => self.walk_dummies(start),
+            }
         };
         if let Some(effect) = chain.dummies {
             self.a0 = finite(match effect.reset {
@@ -452,26 +450,29 @@ impl Engine {
         }
     }
 
-    /// Walks from `start` over the dummies (section 4), spending the one-time ones, and
-    /// returns their combined effect and how the walk ends. Remembers the result when no
-    /// dummy was spent, since the same walk will then happen again.
+    /// Walks from `start` (live) over the dummies (section 4), spending the one-time ones,
+    /// and returns their combined effect and how the walk ends. Remembers a long walk that
+    /// spent no dummy, since the same walk will then happen again.
     fn walk_dummies(&mut self, start: usize) -> Chain {
-        self.walk += 1;
         let spent_before = self.spent;
         let mut dummies: Option<Dummies> = None;
+        // Section 4's "already set up" rule, which makes every walk end, without marking
+        // positions: the walk follows the cycle of live positions, and the dummies it has
+        // set up and left live form an arc of that cycle, so the first position it comes
+        // back to is the first of them.
+        let mut first_kept: Option<usize> = None;
+        let mut crossed = 0usize;
         let mut c = start;
         let then = loop {
             // `c` is live here.
-            let n = self.steps.len();
-            let walks = self.walks.get_or_insert_with(|| Box::new(Walks::new(n)));
-            if walks.stamp[c] == self.walk {
+            if first_kept == Some(c) {
                 break Then::Stop(c);
             }
             let step = self.steps.at(c);
             if !step.dummy {
                 break Then::SetUp(c);
             }
-            walks.stamp[c] = self.walk;
+            crossed += 1;
             // Each dummy commits (`a0 += d`), then sets `a0` (absolute) or `d` (relative).
             let effect = dummies.get_or_insert(Dummies {
                 reset: None,
@@ -499,6 +500,8 @@ impl Engine {
                 if self.all_spent() {
                     break Then::Exhausted;
                 }
+            } else if first_kept.is_none() {
+                first_kept = Some(c);
             }
             c = self.next(c);
             // After a dummy the walk goes on, but not past the wrap to a live first position.
@@ -507,10 +510,11 @@ impl Engine {
             }
         };
         let chain = Chain { dummies, then };
-        if self.spent == spent_before
-            && let Some(slot) = self.walks.as_mut().and_then(|w| w.chains.get_mut(start))
-        {
-            *slot = Some((spent_before, chain));
+        if self.spent == spent_before && crossed >= REMEMBERED_WALK {
+            let n = self.steps.len();
+            self.walks
+                .get_or_insert_with(|| Box::new(Walks::new(n)))
+                .remember(start, spent_before, chain);
         }
         chain
     }
@@ -574,10 +578,9 @@ impl Engine {
 
     fn spend(&mut self, c: usize) {
         let len = self.steps.len();
-        let links = self.links.get_or_insert_with(|| Box::new(Links::new(len)));
-        let (p, n) = (links.prev[c], links.next[c]);
-        links.next[p] = n;
-        links.prev[n] = p;
+        self.links
+            .get_or_insert_with(|| Box::new(Links::new(len)))
+            .remove(c);
         self.spent += 1;
     }
 
@@ -585,7 +588,7 @@ impl Engine {
     #[inline]
     fn next(&self, c: usize) -> usize {
         match &self.links {
-            Some(links) => links.next[c],
+            Some(links) => links.next(c),
             None if c + 1 < self.steps.len() => c + 1,
             None => 0,
         }
@@ -594,39 +597,104 @@ impl Engine {
 
 /// The live (not spent) positions form a circular doubly linked list: a walk skips spent
 /// one-time instructions in O(1). A removed position keeps its `next`, so the walk can
-/// still step off an instruction it has just spent.
+/// still step off an instruction it has just spent. In `u32` while positions fit (8 bytes
+/// an instruction, against 16 in `usize`: the links of a template full of `!` are most of
+/// what evaluating it costs).
 #[derive(Clone, Debug)]
-struct Links {
-    next: Vec<usize>,
-    prev: Vec<usize>,
+enum Links {
+    Narrow { next: Vec<u32>, prev: Vec<u32> },
+    Wide { next: Vec<usize>, prev: Vec<usize> },
 }
 
 impl Links {
     fn new(n: usize) -> Links {
-        Links {
-            next: (0..n).map(|c| (c + 1) % n).collect(),
-            prev: (0..n).map(|c| (c + n - 1) % n).collect(),
+        match u32::try_from(n) {
+            Ok(m) => Links::Narrow {
+                next: (0..m).map(|c| (c + 1) % m).collect(),
+                prev: (0..m).map(|c| (c + m - 1) % m).collect(),
+            },
+            Err(_) => Links::Wide {
+                next: (0..n).map(|c| (c + 1) % n).collect(),
+                prev: (0..n).map(|c| (c + n - 1) % n).collect(),
+            },
+        }
+    }
+
+    #[inline]
+    fn next(&self, c: usize) -> usize {
+        match self {
+            Links::Narrow { next, .. } => next[c] as usize,
+            Links::Wide { next, .. } => next[c],
+        }
+    }
+
+    fn remove(&mut self, c: usize) {
+        match self {
+            Links::Narrow { next, prev } => {
+                let (p, n) = (prev[c], next[c]);
+                next[p as usize] = n;
+                prev[n as usize] = p;
+            }
+            Links::Wide { next, prev } => {
+                let (p, n) = (prev[c], next[c]);
+                next[p] = n;
+                prev[n] = p;
+            }
         }
     }
 }
 
-/// The state of walks over dummies (section 4).
+/// A walk is remembered when it crosses at least this many dummies: a shorter one costs
+/// about what looking it up does, and each remembered walk costs memory.
+const REMEMBERED_WALK: usize = 4;
+
+/// The walks over dummies remembered (section 4). A walk is a function of the cursor and
+/// of which instructions are live, so a long run of dummies is crossed once, not on every
+/// layer.
 #[derive(Clone, Debug)]
 struct Walks {
-    /// `stamp[c] == walk`: position `c` was set up by the current walk (section 4's
-    /// "already set up" rule, which makes every walk end).
-    stamp: Vec<u64>,
-    /// `chains[c]`: what a walk starting at position `c` does, valid while `spent` is the
-    /// one recorded with it. A walk is a function of the cursor and of which instructions
-    /// are live, so a long run of dummies is crossed once, not on every layer.
-    chains: Vec<Option<(usize, Chain)>>,
+    /// `index[c]`: 1 + the entry of the walk from position `c`, or 0. Allocated zeroed, so
+    /// its pages cost nothing until a walk from one of their positions is remembered
+    /// (a long template on a short model touches few).
+    index: Vec<u32>,
+    /// The remembered walks, each with the `spent` count it is valid for (it is replaced
+    /// when the walk from its position is taken again after a spend).
+    entries: Vec<(usize, Chain)>,
 }
 
 impl Walks {
     fn new(n: usize) -> Walks {
         Walks {
-            stamp: vec![0; n],
-            chains: vec![None; n],
+            index: vec![0; n],
+            entries: Vec::new(),
+        }
+    }
+
+    /// The walk from `start`, if it is remembered for `spent`.
+    #[inline]
+    fn get(&self, start: usize, spent: usize) -> Option<Chain> {
+        let entry = (*self.index.get(start)? as usize).checked_sub(1)?;
+        let &(valid, chain) = self.entries.get(entry)?;
+        (valid == spent).then_some(chain)
+    }
+
+    fn remember(&mut self, start: usize, spent: usize, chain: Chain) {
+        let Some(slot) = self.index.get_mut(start) else {
+            return;
+        };
+        match (*slot as usize).checked_sub(1) {
+            Some(entry) => {
+                if let Some(kept) = self.entries.get_mut(entry) {
+                    *kept = (spent, chain);
+                }
+            }
+            // Past 4e9 remembered walks (never, in memory), walks are walked again.
+            None => {
+                if let Ok(next) = u32::try_from(self.entries.len() + 1) {
+                    self.entries.push((spent, chain));
+                    *slot = next;
+                }
+            }
         }
     }
 }

@@ -412,8 +412,9 @@ fn naive_walk(template: &Template, layers: usize) -> Vec<f64> {
     out
 }
 
-#[test]
-fn walks_match_the_literal_rules() {
+/// Random templates of up to `len` instructions (`+`/`-`/absolute, with one of the
+/// `suffixes`) evaluated by the engine and by [`naive_walk`] on 60 layers.
+fn walks_match_naive(len: u64, suffixes: &[&str], templates: usize) {
     let mut state = 0x2545_f491_4f6c_dd1du64;
     let mut next = |m: u64| {
         state ^= state << 13;
@@ -422,15 +423,15 @@ fn walks_match_the_literal_rules() {
         state % m
     };
     let model = Model::uniform(60, 0.2, None).unwrap();
-    for _ in 0..3000 {
+    for _ in 0..templates {
         let mut text = String::new();
-        for k in 0..1 + next(9) {
+        for k in 0..1 + next(len) {
             if k > 0 {
                 text.push_str(", ");
             }
             text.push_str(["", "+", "-"][next(3) as usize]);
             text.push_str(&(next(50) * 5).to_string());
-            text.push_str(["", "", "*", "*", "*!", "!", "*2", "*3"][next(8) as usize]);
+            text.push_str(suffixes[next(suffixes.len() as u64) as usize]);
         }
         let t = template(&text);
         let expected = naive_walk(&t, model.len());
@@ -442,6 +443,18 @@ fn walks_match_the_literal_rules() {
             "{text:?}:\n got {got:?}\n expected {expected:?}"
         );
     }
+}
+
+#[test]
+fn walks_match_the_literal_rules() {
+    walks_match_naive(9, &["", "", "*", "*", "*!", "!", "*2", "*3"], 3000);
+}
+
+#[test]
+fn long_walks_match_the_literal_rules() {
+    // Mostly dummies, some spent as they are crossed: walks long enough to be remembered,
+    // remembered walks made stale by a spend, walks that come back to where they began.
+    walks_match_naive(40, &["", "!", "*", "*", "*", "*", "*!", "*!", "*2"], 3000);
 }
 
 #[test]

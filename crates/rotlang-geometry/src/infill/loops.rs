@@ -9,6 +9,8 @@
 
 use geo::{Coord, MultiPolygon};
 
+use super::offset::{cross, inside_left};
+
 /// More raw segments than this go to the buffer (the crossing sweep could go quadratic).
 const MAX_SEGMENTS: usize = 20_000;
 
@@ -120,26 +122,9 @@ struct Cut {
     at: Coord,
 }
 
-fn cross(a: Coord, b: Coord) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
 /// The raw offset of one ring toward the region's inside (`exterior`: an outline).
 fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
-    let mut pts: Vec<Coord> = ring.to_vec();
-    pts.dedup();
-    while pts.len() > 1 && pts.first() == pts.last() {
-        pts.pop();
-    }
-    let twice_area: f64 = (0..pts.len())
-        .map(|i| cross(pts[i], pts[(i + 1) % pts.len()]))
-        .sum();
-    if pts.len() < 3 || twice_area == 0.0 {
-        return None;
-    }
-    if (twice_area > 0.0) != exterior {
-        pts.reverse();
-    }
+    let pts = inside_left(ring, exterior)?;
     let n = pts.len();
     let unit = |e: Coord| e / e.x.hypot(e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };

@@ -60,22 +60,7 @@ pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<
 /// else a hole), without its closing point; `None` when an edge turns around or the ring
 /// turns inside out.
 fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<Coord>> {
-    let mut pts: Vec<Coord> = ring.to_vec();
-    if pts.len() > 1 && pts.first() == pts.last() {
-        pts.pop();
-    }
-    pts.dedup();
-    while pts.len() > 1 && pts.first() == pts.last() {
-        pts.pop();
-    }
-    let area = signed_area(&pts);
-    if pts.len() < 3 || area == 0.0 {
-        return None;
-    }
-    // The inside on the left: outlines counter-clockwise, holes clockwise.
-    if (area > 0.0) != exterior {
-        pts.reverse();
-    }
+    let pts = inside_left(ring, exterior)?;
     let n = pts.len();
     let unit = |e: Coord| e / e.x.hypot(e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
@@ -218,6 +203,25 @@ fn segments_meet(p: Coord, q: Coord, r: Coord, s: Coord) -> bool {
             && c.y <= a.y.max(b.y)
     };
     on(p, q, r, d1) || on(p, q, s, d2) || on(r, s, p, d3) || on(r, s, q, d4)
+}
+
+/// A ring's distinct points without its closing one, turned so the region's inside is on
+/// the left (`exterior`: an outline, counter-clockwise; else a hole, clockwise); `None`
+/// for a ring of no area. What every ring offset starts from.
+pub(crate) fn inside_left(ring: &[Coord], exterior: bool) -> Option<Vec<Coord>> {
+    let mut pts: Vec<Coord> = ring.to_vec();
+    pts.dedup();
+    while pts.len() > 1 && pts.first() == pts.last() {
+        pts.pop();
+    }
+    let area = signed_area(&pts);
+    if pts.len() < 3 || area == 0.0 {
+        return None;
+    }
+    if (area > 0.0) != exterior {
+        pts.reverse();
+    }
+    Some(pts)
 }
 
 pub(crate) fn cross(a: Coord, b: Coord) -> f64 {

@@ -19,24 +19,24 @@ fn digits(s: &[u8], from: usize, radix: u32) -> usize {
         .count()
 }
 
-/// `strtod(s)`: the value and the number of bytes read, or `None` when no number can be
-/// read (C then returns 0 and leaves the position where it was).
-pub(crate) fn strtod(s: &[u8]) -> Option<(f64, usize)> {
+/// What C's number readers skip first: leading white space, then one optional sign. The
+/// position after them, and whether the sign was `-`.
+fn sign(s: &[u8]) -> (usize, bool) {
     let mut i = 0;
     while i < s.len() && is_space(s[i]) {
         i += 1;
     }
-    let negative = match s.get(i) {
-        Some(b'-') => {
-            i += 1;
-            true
-        }
-        Some(b'+') => {
-            i += 1;
-            false
-        }
-        _ => false,
-    };
+    match s.get(i) {
+        Some(b'-') => (i + 1, true),
+        Some(b'+') => (i + 1, false),
+        _ => (i, false),
+    }
+}
+
+/// `strtod(s)`: the value and the number of bytes read, or `None` when no number can be
+/// read (C then returns 0 and leaves the position where it was).
+pub(crate) fn strtod(s: &[u8]) -> Option<(f64, usize)> {
+    let (i, negative) = sign(s);
     let rest = &s[i..];
     let (magnitude, len) = if starts_with_ignore_case(rest, b"inf") {
         let len = if starts_with_ignore_case(rest, b"infinity") {
@@ -225,21 +225,7 @@ fn ldexp(mut x: f64, mut k: i64) -> f64 {
 /// no digits were read: C then leaves the position where it was). Beyond 64 bits the value
 /// saturates to `LONG_MAX`/`LONG_MIN`; the conversion to `int` keeps the low 32 bits.
 pub(crate) fn strtol(s: &[u8]) -> (i32, usize) {
-    let mut i = 0;
-    while i < s.len() && is_space(s[i]) {
-        i += 1;
-    }
-    let negative = match s.get(i) {
-        Some(b'-') => {
-            i += 1;
-            true
-        }
-        Some(b'+') => {
-            i += 1;
-            false
-        }
-        _ => false,
-    };
+    let (mut i, negative) = sign(s);
     let hex_digit = |at: usize| s.get(at).is_some_and(u8::is_ascii_hexdigit);
     let radix =
         if s.get(i) == Some(&b'0') && matches!(s.get(i + 1), Some(b'x' | b'X')) && hex_digit(i + 2)

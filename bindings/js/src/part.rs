@@ -32,11 +32,7 @@ pub fn read_mesh(name: &str, bytes: &[u8]) -> Result<(Mesh, Vec<String>), Failur
         let mut merged = Mesh::default();
         let mut names = Vec::new();
         for (n, m) in objects {
-            let base = merged.vertices.len() as u32;
-            merged.vertices.extend(&m.vertices);
-            merged
-                .triangles
-                .extend(m.triangles.iter().map(|t| t.map(|i| i + base)));
+            merged.append(&m);
             names.push(n);
         }
         (merged, names)

@@ -52,11 +52,7 @@ fn read_mesh(name: &str, object: Option<&str>) -> Result<(Mesh, bool), UsageErro
         for (n, m) in &objects {
             if object.is_none_or(|o| o == n) {
                 found = true;
-                let base = merged.vertices.len() as u32;
-                merged.vertices.extend(&m.vertices);
-                merged
-                    .triangles
-                    .extend(m.triangles.iter().map(|t| t.map(|i| i + base)));
+                merged.append(m);
             }
         }
         if !found {

@@ -190,6 +190,15 @@ impl Mesh {
         out
     }
 
+    /// Adds `other`'s triangles to this mesh (its vertices after this mesh's): how a
+    /// 3MF's objects are merged into one part and how test meshes are built of blocks.
+    pub fn append(&mut self, other: &Mesh) {
+        let base = self.vertices.len() as u32;
+        self.vertices.extend(&other.vertices);
+        self.triangles
+            .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
+    }
+
     /// Moves every vertex by `offset`.
     pub fn translate(&mut self, offset: [f64; 3]) {
         for v in &mut self.vertices {
@@ -428,10 +437,7 @@ pub mod shapes {
         let mut m = cuboid(base);
         let mut top = cuboid(tower);
         top.translate([0.0, 0.0, base[2]]);
-        let first = m.vertices.len() as u32;
-        m.vertices.extend(top.vertices);
-        m.triangles
-            .extend(top.triangles.iter().map(|t| t.map(|i| i + first)));
+        m.append(&top);
         m
     }
 
@@ -441,10 +447,7 @@ pub mod shapes {
         let mut m = cuboid([foot, foot, height]);
         let mut top = cuboid([slab, foot, thickness]);
         top.translate([(foot - slab) / 2.0, 0.0, height]);
-        let base = m.vertices.len() as u32;
-        m.vertices.extend(top.vertices);
-        m.triangles
-            .extend(top.triangles.iter().map(|t| t.map(|i| i + base)));
+        m.append(&top);
         m
     }
 }

@@ -1226,6 +1226,34 @@ fn check_lints_for_orcaslicer_by_default() {
     assert!(golden.contains(r#""code":"orcaslicer::hangs""#), "{golden}");
 }
 
+/// The OrcaSlicer lint runs on a template of any size, as the language server's does: a
+/// 200 KiB template ending in `0 90` (OrcaSlicer reads `0`) gets the warning from stdin, a
+/// `.rot` file and a preset alike (it used to be skipped above 64 KiB, with a note).
+#[test]
+fn check_lints_a_long_template_as_the_editor_does() {
+    let long = format!("{}0 90", "15, ".repeat(50_000));
+    let dir = TempDir::new("long-lint");
+    let rot = dir.file("long.rot", &long);
+    let preset = dir.file(
+        "long.json",
+        &format!(r#"{{"sparse_infill_rotate_template": "{long}"}}"#),
+    );
+    for args in [
+        vec!["check", "--format", "json", "-f", "-"],
+        vec!["check", "--format", "json", rot.to_str().unwrap()],
+        vec!["check", "--format", "json", preset.to_str().unwrap()],
+    ] {
+        let stdin = (args.last() == Some(&"-")).then_some(long.as_str());
+        let (out, code) = run(&args, stdin);
+        assert_eq!(code, 0, "{args:?}: {out}");
+        assert!(
+            out.contains(r#""code":"orcaslicer::space-separated-list""#),
+            "{args:?}: {out}"
+        );
+        assert!(!out.contains("lint is skipped"), "{args:?}: {out}");
+    }
+}
+
 /// Issue 16.4: the command `fmt` suggests for a profile is one a shell runs.
 #[test]
 fn fmt_quotes_the_path_it_suggests() {

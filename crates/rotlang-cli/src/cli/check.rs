@@ -37,11 +37,7 @@ pub fn run(args: &CheckArgs, out: &mut dyn Write, err: &mut dyn Write) -> Result
         if parse.has_errors() {
             continue;
         }
-        if let Some(note) = super::files::compat_skipped(args.compat, &input.name, input.text.len())
-        {
-            writeln!(err, "note: {note}").map_err(io)?;
-        }
-        if super::files::compat_on(args.compat, input.text.len()) {
+        if super::files::compat_on(args.compat) {
             let found = crate::dialect::compat::compat(
                 &input.text,
                 target,
@@ -106,7 +102,7 @@ fn fix(
     let target = args.target.into();
     // The compat lint on the model `check --compat` uses for templates.
     let compat = |text: &str| {
-        if super::files::compat_on(args.compat, text.len()) {
+        if super::files::compat_on(args.compat) {
             crate::dialect::compat::compat(
                 text,
                 target,

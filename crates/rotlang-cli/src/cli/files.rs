@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 use super::check::{CheckArgs, Format};
 // `--compat` is a check option; its rules are here for the files that use them.
-pub(crate) use super::check_args::{CompatArg, compat_on, compat_skipped};
+pub(crate) use super::check_args::{CompatArg, compat_on};
 // What `--profile PATH` reads, for expand, plot, preview, explain and export.
 pub(crate) use super::from_profile::{ProfileTemplate, printable, profile_template};
 use super::{Input, UsageError, diagnostic_json, render_human};
@@ -158,11 +158,8 @@ impl Run {
         compat: Option<CompatArg>,
     ) {
         let parse = crate::check(&text, target);
-        if let Some(note) = compat_skipped(compat, &name, text.len()) {
-            self.notes.push(note);
-        }
         // A template with errors gets those alone (as in the language server).
-        let found = if compat_on(compat, text.len()) && !parse.has_errors() {
+        let found = if compat_on(compat) && !parse.has_errors() {
             compat::compat(&text, target, &Model::cube20(), Options::default())
         } else {
             Vec::new()
@@ -249,7 +246,7 @@ impl Run {
         for found in &profile.templates {
             let parse = crate::check(&found.text, found.target);
             let mut lint = Vec::new();
-            if compat_on(compat, found.text.len()) && !parse.has_errors() {
+            if compat_on(compat) && !parse.has_errors() {
                 let pm =
                     profile.model(found.target, found.object.as_deref(), DEFAULT_OBJECT_HEIGHT);
                 let found_here = pm.compat(&found.text, found.target);

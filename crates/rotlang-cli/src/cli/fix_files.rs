@@ -94,7 +94,7 @@ fn fix_text(
     model: Option<&profile::ProfileModel>,
 ) -> (String, Result<usize, String>) {
     let compat = |t: &str| {
-        if !super::files::compat_on(args.compat, t.len()) {
+        if !super::files::compat_on(args.compat) {
             return Vec::new();
         }
         match model {

@@ -266,16 +266,6 @@ pub fn part(
     let model = &plan.model;
     let (from, to) = req.range()?;
     let shown = from.unwrap_or(0)..to.unwrap_or(model.len()).min(model.len());
-    let parse = crate::api::parse_clean(plan.text, target)?;
-    let solid_parse = plan
-        .solid
-        .map(|s| {
-            crate::api::parse_clean(s, Target::Solid).map_err(|mut f| {
-                f.message = f.message.replacen("the template", "the solid template", 1);
-                f
-            })
-        })
-        .transpose()?;
     let mut doc = Document::new(About {
         solid_template: plan.solid,
         ..About::new(
@@ -286,12 +276,24 @@ pub fn part(
             plan.options.base,
         )
     });
+    // What the part is filled with, even where a template has errors (the page shows
+    // them in its editor).
     if settings_only {
         let mut json = doc.finish();
         json["first_layer_height"] = model.layer_bounds(0).map(|(_, t)| t).into();
         json["solid_base"] = plan.solid_options.base.into();
         return Ok(Value::Raw(json.to_string()));
     }
+    let parse = crate::api::parse_clean(plan.text, target)?;
+    let solid_parse = plan
+        .solid
+        .map(|s| {
+            crate::api::parse_clean(s, Target::Solid).map_err(|mut f| {
+                f.message = f.message.replacen("the template", "the solid template", 1);
+                f
+            })
+        })
+        .transpose()?;
     let mut layers = Part::new(
         &plan.mesh,
         &parse.template,

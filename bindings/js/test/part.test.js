@@ -179,6 +179,9 @@ test('part({object}) is the CLI\'s --object: that object alone, with its overrid
   assert.deepEqual([Tall.template, Tall.solid_template, Tall.settings.pattern, Tall.settings.density, Tall.settings.walls, Tall.settings.layer_height, Tall.settings.top_shell_layers],
     ['0, 90', '90, 0', 'concentric', 0.15, 2, 0.25, 6]);
   assert.equal(partSettings('', { object: 'Tall' }).first_layer_height, 0.25);
+  // A template with errors: the settings still (the part itself is refused).
+  assert.equal(partSettings('+', { object: 'Tall' }).settings.layer_height, 0.25);
+  assert.throws(() => part('+', { object: 'Tall' }), (e) => e.kind === 'template');
   // Each object's sections are its own box, where the build put it.
   for (const [answer, x0, x1] of [[Low, 0, 12], [Tall, 30, 38]]) {
     for (const l of answer.layers.filter((l) => l.section.length)) {

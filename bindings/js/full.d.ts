@@ -66,8 +66,14 @@ export interface MeshInfo {
   /** The mesh's bounding box corners, [x, y, z] in mm. */
   min: [number, number, number];
   max: [number, number, number];
-  /** A 3MF's object names (all are merged); empty for STL and OBJ. */
+  /** A 3MF's object names (`part` merges them, or takes one: `object`); empty for STL and OBJ. */
   objects: string[];
+  /**
+   * An OrcaSlicer project (a 3MF with settings): `part` takes its templates and settings
+   * (an object's overrides first) where its options do not say, as `rotlang preview
+   * project.3mf` does.
+   */
+  project: boolean;
 }
 /**
  * Reads a mesh file (the name's extension picks `.stl` (binary or ASCII), `.obj` or
@@ -127,27 +133,50 @@ export interface PartOptions extends Omit<PreviewOptions, 'shape' | 'layer' | 'w
    * model's `bottomShells` and `topShells`.
    */
   solidTemplate?: string;
+  /**
+   * A 3MF's object (`--object NAME`): that object alone, with its own settings in a
+   * project; all objects merged by default. A name the file does not hold throws
+   * RotlangError (kind 'options') listing its objects, with the CLI's message.
+   */
+  object?: string;
   /** The layers returned, `from` (included) to `to` (excluded); all by default. The summary counts every layer. */
   from?: number;
   to?: number;
 }
+export interface PartSettings {
+  pattern: string; density: number; solid_pattern: string; line_width: number; walls: number;
+  layer_height: number; layers: number; bottom_shell_layers: number; top_shell_layers: number;
+  base: number;
+}
 /**
- * The mesh kept by `readMesh`, sliced at the middle of each layer and filled under the
- * template: what `rotlang preview --shape part.stl --format json` prints (the same code
- * builds both).
+ * The mesh kept by `readMesh` (all its objects, or `object`), sliced at the middle of each
+ * layer and filled under the template: what `rotlang preview --shape part.stl [--object
+ * NAME] --format json` prints (the same code builds both). For an OrcaSlicer project, what
+ * the options do not give is the project's (the object's overrides first), and an empty
+ * template is the project's template, as the CLI reads them.
  */
 export function part(text: string, options?: PartOptions): {
   template: string;
   solid_template: string | null;
-  settings: {
-    pattern: string; density: number; solid_pattern: string; line_width: number; walls: number;
-    layer_height: number; layers: number; bottom_shell_layers: number; top_shell_layers: number;
-    base: number;
-  };
+  settings: PartSettings;
   summary: {
     layers: number; extrusion_mm: number; travel_mm: number; time_s: number;
     speed: number; travel_speed: number; open_layers: number; bridged: number;
     solid_extrusion_mm: number;
   };
   layers: PartLayer[];
+};
+
+/**
+ * What `part(text, options)` would fill the part with, without slicing it: the template,
+ * the solid template (null: the solid areas turn with the template), the settings, the
+ * first layer's height and the solid template's base. For a project, its (or its object's)
+ * own; the playground fills its editor and form with them.
+ */
+export function partSettings(text: string, options?: PartOptions): {
+  template: string;
+  solid_template: string | null;
+  settings: PartSettings;
+  first_layer_height: number | null;
+  solid_base: number;
 };

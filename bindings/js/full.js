@@ -9,5 +9,5 @@ const api = await bind(await compile(new URL('./rotlang-full.wasm', import.meta.
 
 export const {
   version, signs, check, format, explain, explainCode, compare, compat, expand, plot, readProfile,
-  preview, readMesh, part,
+  preview, readMesh, part, partSettings,
 } = api;

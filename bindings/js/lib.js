@@ -385,19 +385,42 @@ export async function bind(wasmModule) {
    * each with its region and paths) and infill `polylines`. Options as expand's (the model
    * is as tall as the mesh unless it gives `layers` or `height`; its `bottomShells` and
    * `topShells` are the solid surfaces' depths; `from`/`to` pick the layers returned), plus
-   * `pattern`, `density`, `walls` (wall loops, 2 when absent) and `solidTemplate` (turns
-   * the solid areas, as `--solid-template`; without it they turn with the template).
+   * `pattern`, `density`, `walls` (wall loops, 2 when absent), `solidTemplate` (turns
+   * the solid areas, as `--solid-template`; without it they turn with the template) and
+   * `object` (a 3MF's object, as `--object`: that object alone, with its overrides; all
+   * objects merged when absent). For an OrcaSlicer project, what the options do not give
+   * is the project's (the object's overrides first), and an empty template is its
+   * template, as `rotlang preview project.3mf` reads it.
    */
   function part(text, options = {}) {
-    const { walls, solidTemplate, ...rest } = options ?? {};
+    return partCall(text, options, false);
+  }
+
+  /**
+   * What `part(text, options)` fills the part with, without slicing it: `{ template,
+   * solid_template, settings, first_layer_height, solid_base }` (an OrcaSlicer project's
+   * templates and settings, `object`'s overrides first, where the options do not say).
+   */
+  function partSettings(text, options = {}) {
+    const { template, solid_template, settings, first_layer_height, solid_base } = partCall(text, options, true);
+    return { template, solid_template, settings, first_layer_height, solid_base };
+  }
+
+  function partCall(text, options, settingsOnly) {
+    const { walls, solidTemplate, object, ...rest } = options ?? {};
     if (walls !== undefined && walls !== null) finite('options', 'walls', walls);
     const solid = solidTemplate !== undefined && solidTemplate !== null;
     if (solid && typeof solidTemplate !== 'string') {
       throw new RotlangError('options', `\`solidTemplate\` must be a string, not ${JSON.stringify(solidTemplate) ?? String(solidTemplate)}`);
     }
+    const named = object !== undefined && object !== null;
+    if (named && typeof object !== 'string') {
+      throw new RotlangError('options', `\`object\` must be a string (a 3MF object's name), not ${JSON.stringify(object) ?? String(object)}`);
+    }
     const [slots] = request(exportsOrThrow(), rest);
-    const inputs = [encoder.encode(textArg(text)), encoder.encode(solid ? solidTemplate : ''), new Uint8Array(slots.buffer)];
-    return withInputs('rotlang_part', inputs, [walls ?? NaN, solid ? 1 : 0], true);
+    const inputs = [encoder.encode(textArg(text)), encoder.encode(solid ? solidTemplate : ''),
+      encoder.encode(named ? object : ''), new Uint8Array(slots.buffer)];
+    return withInputs('rotlang_part', inputs, [walls ?? NaN, solid ? 1 : 0, named ? 1 : 0, settingsOnly ? 1 : 0], true);
   }
 
   // Copies the byte inputs in, calls `name` with their (pointer, length) pairs (a request's
@@ -429,6 +452,6 @@ export async function bind(wasmModule) {
   // In rotlang-full.wasm only.
   if (instance.exports.rotlang_profile) api.readProfile = readProfile;
   if (instance.exports.rotlang_preview) Object.assign(api, { plot, preview });
-  if (instance.exports.rotlang_part) Object.assign(api, { readMesh, part });
+  if (instance.exports.rotlang_part) Object.assign(api, { readMesh, part, partSettings });
   return api;
 }

@@ -441,6 +441,19 @@ const part = new PartPanel(engine, {
   },
   onClose: () => renderLayer(),
   onFile: (f) => loadMesh(f),
+  // A project's (or its chosen object's) templates and settings, as rotlang reads them
+  // for the part (the CLI's reading): into the editor and the form, as a profile's are.
+  onSettings: (s) => {
+    const t = s.settings;
+    $('walls').value = String(t.walls);
+    applyState({
+      target: 'sparse', text: s.template, base: t.base,
+      layerHeight: t.layer_height, firstLayerHeight: s.first_layer_height ?? '',
+      bottomShells: t.bottom_shell_layers, topShells: t.top_shell_layers,
+      pattern: PATTERN_NAMES.includes(t.pattern) ? t.pattern : undefined,
+      density: Number((t.density * 100).toFixed(4)),
+    });
+  },
 });
 
 $('plot').addEventListener('mousemove', (e) => {

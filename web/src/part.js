@@ -51,11 +51,14 @@ export function layerSvg(info, layer, nozzle = 0.4, side = 320) {
 export class PartPanel {
   /**
    * `engine`: the worker; `request()`: what a part is sliced with now (template, model,
-   * pattern, density, walls); `layer()`: the slider's layer; `onAnswer(answer)`: a new
-   * part was drawn (the page matches its model's layer count to it); `onClose()`.
+   * pattern, density, walls; the panel adds its object and solid template); `layer()`:
+   * the slider's layer; `onAnswer(answer)`: a new part was drawn (the page matches its
+   * model's layer count to it); `onSettings(s)`: an OrcaSlicer project (or its chosen
+   * object) gives these templates and settings (`partSettings`), for the page's editor
+   * and model form; `onClose()`.
    */
-  constructor(engine, { request, layer, onAnswer, onClose, onFile }) {
-    Object.assign(this, { engine, request, layer, onAnswer, onClose });
+  constructor(engine, { request, layer, onAnswer, onClose, onFile, onSettings }) {
+    Object.assign(this, { engine, request, layer, onAnswer, onClose, onSettings });
     this.file = null; // { name, bytes }
     this.info = null;
     this.loaded = false; // the worker holds this file's mesh
@@ -67,6 +70,9 @@ export class PartPanel {
     this.seq = 0;
     this.view = null;
     this.drawn = null; // the answer the 3D view shows
+    // The solid template's check (rotlang::check, solid target): the text last checked,
+    // the checks under way, and the newest one's number.
+    this.solid = { checked: '', inFlight: 0, seq: 0, diagnostics: [], refused: null };
     $('mesh').addEventListener('change', async (e) => {
       const file = e.target.files?.[0];
       if (file) await (onFile ?? ((f) => this.open(f)))(file);
@@ -74,6 +80,98 @@ export class PartPanel {
     });
     $('mesh-close').addEventListener('click', () => this.close());
     $('walls').addEventListener('input', () => this.schedule());
+    $('object').addEventListener('change', () => this.chooseObject());
+    $('solid-template').addEventListener('input', () => {
+      this.checkSolid();
+      this.schedule();
+    });
+  }
+
+  /** What the part is sliced with now: the page's request, this panel's object and solid template. */
+  current() {
+    const r = this.request();
+    const object = $('object').value;
+    const solid = $('solid-template').value;
+    if (object) r.object = object;
+    if (solid) r.solidTemplate = solid;
+    return r;
+  }
+
+  // The 3MF's objects in the chooser: all of them (what `rotlang preview project.3mf`
+  // slices without --object), or one.
+  listObjects(info) {
+    const select = $('object');
+    const options = [new Option('all objects', ''), ...info.objects.map((n) => new Option(n, n))];
+    select.replaceChildren(...options);
+    select.value = '';
+    $('object-choice').hidden = info.objects.length < 2;
+  }
+
+  // An OrcaSlicer project gives the part (of the chosen object) its templates and
+  // settings, as the CLI reads them: they fill the editor, the model form and the solid
+  // template, where the user can change them.
+  async fromProject() {
+    if (!this.info?.project) return;
+    this.inFlight++;
+    try {
+      const s = await this.engine.request('partSettings', { object: $('object').value });
+      $('solid-template').value = s.solid_template ?? '';
+      this.checkSolid();
+      this.onSettings?.(s);
+    } catch (e) {
+      this.message(`refused: ${e.message}`, true);
+    } finally {
+      this.inFlight--;
+    }
+  }
+
+  async chooseObject() {
+    this.fresh = true;
+    await this.fromProject();
+    this.schedule(0);
+  }
+
+  /** Checks the solid template as typed; its diagnostics go below it. */
+  checkSolid() {
+    const text = $('solid-template').value;
+    const id = ++this.solid.seq;
+    this.solid.inFlight++;
+    this.engine.request('checkSolid', { text })
+      .then((check) => { if (id === this.solid.seq) Object.assign(this.solid, { diagnostics: check.diagnostics, refused: null }); })
+      .catch((e) => { if (id === this.solid.seq) Object.assign(this.solid, { diagnostics: [], refused: e.message }); })
+      .finally(() => {
+        this.solid.inFlight--;
+        if (id !== this.solid.seq) return;
+        this.solid.checked = text;
+        this.describeSolid();
+      });
+  }
+
+  // Under the solid template: its errors and warnings, each with its column and its span
+  // marked in the text; else what turns the solid areas.
+  describeSolid() {
+    const text = $('solid-template').value;
+    const msg = $('solid-message');
+    const shown = this.solid.checked === text ? this.solid.diagnostics : [];
+    const errors = shown.filter((d) => d.severity === 'error');
+    $('solid-template').setAttribute('aria-invalid', String(errors.length > 0 || Boolean(this.solid.refused)));
+    msg.classList.toggle('error', errors.length > 0 || Boolean(this.solid.refused));
+    if (this.solid.refused) {
+      msg.textContent = `refused: ${this.solid.refused}`;
+      return;
+    }
+    if (shown.length) {
+      msg.innerHTML = shown.slice(0, 3).map((d) => {
+        const [a, b] = [d.startUtf16, Math.max(d.endUtf16, d.startUtf16)];
+        const marked = `${esc(text.slice(0, a))}<mark>${esc(text.slice(a, b) || ' ')}</mark>${esc(text.slice(b))}`;
+        return `${d.severity} at column ${d.column}: ${esc(d.message)}${d.help ? ` (${esc(d.help)})` : ''} <code>${marked}</code>`;
+      }).join('<br>') + (errors.length ? '<br>The part keeps its last good solid template until this one is fixed.' : '');
+      return;
+    }
+    const used = this.answer?.solid_template;
+    msg.textContent = text ? ''
+      : typeof used === 'string' ? `The project's solid template \`${used}\` turns the solid areas; type one to override it.`
+        : 'No solid template: the solid areas (top and bottom surfaces) turn with the template.';
   }
 
   active() {
@@ -104,6 +202,9 @@ export class PartPanel {
       this.fresh = true; // the slider goes to the top layer: the whole part is seen
       $('mesh-close').hidden = false;
       $('view3d').hidden = false;
+      $('solid-row').hidden = false;
+      this.listObjects(info);
+      await this.fromProject();
       $('shape').disabled = true;
       // The part's height over the layer height gives the count (onAnswer in main.js).
       $('layers').disabled = true;
@@ -121,6 +222,9 @@ export class PartPanel {
     this.seq++;
     $('mesh-close').hidden = true;
     $('view3d').hidden = true;
+    $('solid-row').hidden = true;
+    $('object-choice').hidden = true;
+    $('object').replaceChildren(new Option('all objects', ''));
     $('shape').disabled = false;
     $('layers').disabled = false;
     this.message('');
@@ -132,6 +236,8 @@ export class PartPanel {
     const size = info.max.map((v, i) => mm(v - info.min[i])).join(' × ');
     let text = `${file.name}: ${info.triangles.toLocaleString('en')} triangles, ${size} mm`;
     if (info.objects.length > 1) text += ` (${info.objects.length} objects: ${info.objects.join(', ')})`;
+    const object = $('object').value;
+    if (object) text += ` · object ${object} alone${info.project ? ', with its own settings' : ''}`;
     if (answer) {
       const s = answer.summary;
       text += ` · ${s.layers} layers, infill ${mm(s.extrusion_mm / 1000)} m (${mm(s.solid_extrusion_mm / 1000)} m solid), travel ${mm(s.travel_mm / 1000)} m, ${Math.round(s.time_s / 60)} min at ${s.speed} mm/s`;
@@ -139,6 +245,7 @@ export class PartPanel {
     }
     if (this.error) text += ` · not sliced: ${this.error}`;
     this.message(text, Boolean(this.error));
+    this.describeSolid();
   }
 
   schedule(delay = 60) {
@@ -148,7 +255,7 @@ export class PartPanel {
   }
 
   async run() {
-    const req = this.request();
+    const req = this.current();
     const key = JSON.stringify(req);
     if (key === this.answerKey) return;
     const id = ++this.seq;
@@ -166,7 +273,10 @@ export class PartPanel {
       this.onAnswer(answer);
     } catch (e) {
       if (id !== this.seq) return;
-      Object.assign(this, { answerKey: key, error: e.kind === 'template' ? 'fix the template first' : e.message });
+      const solid = e.kind === 'template' && /solid template/.test(e.message);
+      const error = solid ? 'the solid template has errors (below); the view shows the last good part'
+        : e.kind === 'template' ? 'fix the template first' : e.message;
+      Object.assign(this, { answerKey: key, error });
     } finally {
       this.inFlight--;
       if (id === this.seq && this.file) this.describe();
@@ -194,9 +304,10 @@ export class PartPanel {
 
   /** Nothing waiting or under way, and the view shows the answer for the page as it is. */
   idle() {
-    if (this.timer !== null || this.inFlight > 0) return false;
+    if (this.timer !== null || this.inFlight > 0 || this.solid.inFlight > 0) return false;
     if (!this.file) return true;
-    if (this.answerKey !== JSON.stringify(this.request())) return false;
+    if (this.solid.checked !== $('solid-template').value) return false;
+    if (this.answerKey !== JSON.stringify(this.current())) return false;
     return Boolean(this.error) || (this.drawn === this.answer && this.view.current === Math.min(this.layer(), this.answer.layers.length - 1));
   }
 
@@ -205,6 +316,9 @@ export class PartPanel {
     return {
       name: this.file?.name ?? null,
       info: this.info,
+      object: $('object').value || null,
+      template: this.answer?.template ?? null,
+      solidTemplate: this.answer?.solid_template ?? null,
       summary: this.answer?.summary ?? null,
       error: this.error,
       scene: this.view && this.drawn ? this.view.inspect() : null,

@@ -133,7 +133,7 @@ export class PartView {
   /**
    * What is drawn, read back from the scene's geometry (for the browser tests): per
    * layer, the vertex counts and bounding boxes of its outline, sparse infill and solid
-   * infill, their colours, and whether it is shown; and how many pixels of the canvas differ from the background.
+   * infill, their colours and main directions, and whether it is shown; and how many pixels of the canvas differ from the background.
    */
   inspect() {
     const box = (o) => ({
@@ -142,6 +142,19 @@ export class PartView {
       max: o.geometry.boundingBox ? o.geometry.boundingBox.max.toArray() : null,
     });
     const points = (o) => Array.from(o.geometry.getAttribute('position').array);
+    // The direction (degrees, 0 to 180, whole) holding the most length of the segments.
+    const direction = (o) => {
+      const a = o.geometry.getAttribute('position').array;
+      const length = new Map();
+      for (let i = 0; i + 5 < a.length; i += 6) {
+        const [dx, dy] = [a[i + 3] - a[i], a[i + 4] - a[i + 1]];
+        const d = Math.round(((Math.atan2(dy, dx) * 180) / Math.PI + 360) % 180) % 180;
+        length.set(d, (length.get(d) ?? 0) + Math.hypot(dx, dy));
+      }
+      let best = null;
+      for (const [d, l] of length) if (best === null || l > length.get(best)) best = d;
+      return best;
+    };
     return {
       layers: this.layers.map((l) => ({
         index: l.index,
@@ -149,8 +162,8 @@ export class PartView {
         visible: l.group.visible,
         current: l.index === this.current,
         outline: { ...box(l.outline), points: points(l.outline) },
-        infill: { ...box(l.infill), color: l.infill.material.color.getHex() },
-        solid: { ...box(l.solid), color: l.solid.material.color.getHex() },
+        infill: { ...box(l.infill), color: l.infill.material.color.getHex(), direction: direction(l.infill) },
+        solid: { ...box(l.solid), color: l.solid.material.color.getHex(), direction: direction(l.solid) },
       })),
       current: this.current,
       drawnPixels: this.drawnPixels(),

@@ -18,6 +18,20 @@ function options(state) {
   return o;
 }
 
+function partOptions(state) {
+  const { layers, ...model } = state.model;
+  const o = {
+    target: state.target, model, base: state.base, seed: state.seed,
+    pattern: state.pattern, density: state.density, walls: state.walls,
+  };
+  if (state.object) o.object = state.object;
+  if (state.solidTemplate) {
+    if (state.solidTemplate.length > MAX_TEMPLATE) throw refuse('limit', 'the solid template is longer than the playground takes');
+    o.solidTemplate = state.solidTemplate;
+  }
+  return o;
+}
+
 const ops = {
   async analyse(state) {
     const r = await rotlang;
@@ -116,16 +130,27 @@ const ops = {
     }
     return r.readMesh(name, new Uint8Array(bytes));
   },
-  // The kept mesh sliced and filled, every layer (rotlang::slice::Part, as
-  // `rotlang preview --shape part.stl --format json`): as tall as the mesh, so the
-  // model's layer count is left out.
+  // The kept mesh (all its objects, or `state.object`) sliced and filled, every layer
+  // (rotlang::slice::Part, as `rotlang preview --shape part.stl --format json`): as tall
+  // as the mesh, so the model's layer count is left out. `solidTemplate` turns the solid
+  // areas (absent: a project's, else they turn with the template).
   async part(state) {
     const r = await rotlang;
-    const { layers, ...model } = state.model;
-    return r.part(state.text, {
-      target: state.target, model, base: state.base, seed: state.seed,
-      pattern: state.pattern, density: state.density, walls: state.walls,
-    });
+    return r.part(state.text, partOptions(state));
+  },
+  // What a project gives the part (of `object`): its templates and settings, the object's
+  // overrides first (rotlang's reading, the CLI's), without slicing.
+  async partSettings({ object }) {
+    const r = await rotlang;
+    return r.partSettings('', { object: object || undefined });
+  },
+  // The solid template's diagnostics (rotlang::check for solid_infill_rotate_template).
+  async checkSolid({ text }) {
+    const r = await rotlang;
+    if (text.length > MAX_TEMPLATE) {
+      throw refuse('limit', `the solid template has ${text.length.toLocaleString('en')} characters; the playground takes up to ${MAX_TEMPLATE.toLocaleString('en')}`);
+    }
+    return r.check(text, { target: 'solid' });
   },
   async signs() {
     return (await rotlang).signs();

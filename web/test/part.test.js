@@ -8,7 +8,7 @@ import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { artifacts, launch, serve } from './harness.js';
-import { box, boxTriangles, cylinder, threeMf } from '../../bindings/js/test/meshes.js';
+import { box, boxTriangles, cylinder, modelSettings, threeMf } from '../../bindings/js/test/meshes.js';
 
 let server;
 let browser;
@@ -211,6 +211,129 @@ test('a 3MF project from the file button: both objects, where its build puts the
     assert.deepEqual([l.outline.min[0], l.outline.min[1], l.outline.max[0], l.outline.max[1]], [0, 0, 40, 15]);
   }
   assert.match(await page.textContent('#part-info'), /plate\.3mf: 24 triangles, 40 × 15 × 4 mm \(2 objects: left, right\)/);
+  assert.deepEqual(page.errors, []);
+  await page.close();
+});
+
+// The drawn outline's x and y extent of every layer that has a section.
+function extents(scene) {
+  return scene.layers.filter((l) => l.outline.vertices > 0)
+    .map((l) => [l.outline.min[0], l.outline.min[1], l.outline.max[0], l.outline.max[1]].map((v) => Number(v.toFixed(4))));
+}
+
+test('a 3MF project\'s object chosen: only its geometry drawn, with its own settings', async () => {
+  const page = await open();
+  const settings = JSON.stringify({
+    layer_height: '0.2', initial_layer_print_height: '0.2', sparse_infill_density: '15%',
+    sparse_infill_pattern: 'zig-zag', wall_loops: '2', bottom_shell_layers: '3', top_shell_layers: '4',
+    sparse_infill_rotate_template: '0, 90', solid_infill_rotate_template: '+30',
+  });
+  const project = threeMf([
+    { name: 'Low', triangles: boxTriangles([12, 12, 3]), at: [0, 0, 0] },
+    { name: 'Tall', triangles: boxTriangles([8, 10, 5]), at: [30, 0, 0] },
+  ], {
+    'Metadata/project_settings.config': settings,
+    'Metadata/model_settings.config': modelSettings({
+      Low: { sparse_infill_rotate_template: '+45', sparse_infill_pattern: 'grid', sparse_infill_density: '40%', wall_loops: '3' },
+      Tall: { layer_height: '0.25', initial_layer_print_height: '0.25', solid_infill_rotate_template: '90, 0' },
+    }),
+  });
+  await page.locator('#mesh').setInputFiles({ name: 'plate.3mf', mimeType: 'model/3mf', buffer: Buffer.from(project) });
+  let p = await shown(page, 'plate.3mf');
+  // All objects at first (what `rotlang preview plate.3mf` slices): both boxes, the
+  // project's templates and settings in the editor, the form and the solid template.
+  assert.equal(p.error, null);
+  assert.ok(await page.isVisible('#object'));
+  assert.deepEqual(await page.$$eval('#object option', (o) => o.map((e) => [e.value, e.textContent])),
+    [['', 'all objects'], ['Low', 'Low'], ['Tall', 'Tall']]);
+  assert.equal(p.object, null);
+  assert.equal(await page.inputValue('#solid-template'), '+30');
+  assert.equal(p.solidTemplate, '+30');
+  assert.equal(p.template, '0, 90');
+  const both = (scene) => {
+    // Both boxes up to the low one's 3 mm, the tall one alone above.
+    const e = extents(scene).map((x) => x.join());
+    return e.length === 25 && e.slice(0, 15).every((x) => x === '0,0,38,12') && e.slice(15).every((x) => x === '30,0,38,10');
+  };
+  assert.ok(both(p.scene), JSON.stringify(extents(p.scene)));
+  // The tall box alone: its outline only, at its own 0.25 mm layers, with its own solid template.
+  await page.selectOption('#object', 'Tall');
+  await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().object === 'Tall'
+    && window.rotlangPlayground.part().summary?.layers === 20);
+  p = await page.evaluate(() => window.rotlangPlayground.part());
+  assert.equal(p.error, null);
+  assert.equal(p.scene.layers.length, 20);
+  assert.ok(extents(p.scene).length >= 19);
+  assert.ok(extents(p.scene).every((e) => e.join() === '30,0,38,10'), JSON.stringify(extents(p.scene)));
+  assert.equal(await page.inputValue('#layer-height'), '0.25');
+  assert.equal(await page.inputValue('#solid-template'), '90, 0');
+  assert.equal(p.solidTemplate, '90, 0');
+  assert.match(await page.textContent('#part-info'), /object Tall alone, with its own settings/);
+  // The low box: its own template, pattern, density and walls; the project's solid template.
+  await page.selectOption('#object', 'Low');
+  await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().object === 'Low'
+    && window.rotlangPlayground.part().summary?.layers === 15);
+  p = await page.evaluate(() => window.rotlangPlayground.part());
+  assert.ok(extents(p.scene).every((e) => e.join() === '0,0,12,12'), JSON.stringify(extents(p.scene)));
+  assert.equal(p.template, '+45');
+  assert.equal(await page.evaluate(() => window.rotlangPlayground.analysedText()), '+45');
+  assert.deepEqual([await page.inputValue('#pattern'), await page.inputValue('#density'), await page.inputValue('#walls')], ['grid', '40', '3']);
+  assert.equal(await page.inputValue('#solid-template'), '+30');
+  // Back to all objects: both boxes again.
+  await page.selectOption('#object', '');
+  await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().object === null
+    && window.rotlangPlayground.part().template === '0, 90');
+  p = await page.evaluate(() => window.rotlangPlayground.part());
+  assert.ok(both(p.scene), JSON.stringify(extents(p.scene)));
+  assert.deepEqual(page.errors, []);
+  await page.screenshot({ path: join(artifacts, 'part-object.png'), fullPage: true });
+  await page.close();
+});
+
+test('a solid template typed turns the solid layers; a bad one is shown with its span and the last good view stays', async () => {
+  const page = await open();
+  await page.locator('#mesh').setInputFiles({ name: 'cube.stl', mimeType: 'model/stl', buffer: Buffer.from(box([20, 20, 10])) });
+  let p = await shown(page, 'cube.stl');
+  assert.ok(await page.isVisible('#solid-template'));
+  assert.match(await page.textContent('#solid-message'), /No solid template/);
+  // The three bottom layers are solid: their main direction, read from the scene.
+  const solidDirections = (q) => q.scene.layers.slice(0, 3).map((l) => l.solid.direction);
+  const typed = async (text) => {
+    await page.fill('#solid-template', text);
+    await page.waitForFunction((t) => {
+      const r = window.rotlangPlayground;
+      return r.idle() && document.getElementById('solid-template').value === t;
+    }, text);
+    return page.evaluate(() => window.rotlangPlayground.part());
+  };
+  p = await typed('0');
+  assert.equal(p.solidTemplate, '0');
+  const flat = solidDirections(p);
+  assert.equal(new Set(flat).size, 1, `all at the solid template's 0°: ${flat}`);
+  p = await typed('+30');
+  assert.equal(p.error, null);
+  const turned = solidDirections(p);
+  // +30° a layer: 30, 60 and 90° from the 0° ones, in the 3D view...
+  assert.deepEqual(turned.map((d) => (d - flat[0] + 360) % 180), [30, 60, 90]);
+  // ... and in the Layer panel (layer 1: 60°).
+  await slide(page, 1);
+  assert.match(await page.getAttribute('#preview svg.part-layer', 'aria-label'), /layer 1 .*solid lines at 60°/);
+  assert.equal(await page.textContent('#solid-message'), '');
+  // A bad one: its error with the column and the span marked, the input marked invalid,
+  // and the view as it was (the last good solid template's).
+  p = await typed('+30X');
+  assert.match(p.error, /solid template has errors/);
+  assert.deepEqual(solidDirections(p), turned);
+  assert.equal(await page.getAttribute('#solid-template', 'aria-invalid'), 'true');
+  assert.ok(await page.$eval('#solid-message', (m) => m.classList.contains('error')));
+  assert.match(await page.textContent('#solid-message'), /error at column 4: /);
+  assert.equal(await page.textContent('#solid-message mark'), 'X');
+  assert.match(await page.getAttribute('#preview svg.part-layer', 'aria-label'), /solid lines at 60°/);
+  // Another good one: sliced again by it (-30° a layer).
+  p = await typed('-30');
+  assert.equal(p.error, null);
+  assert.deepEqual(solidDirections(p).map((d) => (d - flat[0] + 360) % 180), [150, 120, 90]);
+  assert.equal(await page.getAttribute('#solid-template', 'aria-invalid'), 'false');
   assert.deepEqual(page.errors, []);
   await page.close();
 });

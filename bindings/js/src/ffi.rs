@@ -20,7 +20,7 @@ thread_local! {
     /// The mesh of the last `rotlang_mesh` (kept so that each template or slider change
     /// slices it again without copying the file in again).
     #[cfg(feature = "full")]
-    static MESH: RefCell<Option<rotlang_geometry::mesh::Mesh>> = const { RefCell::new(None) };
+    static MESH: RefCell<Option<crate::part::Kept>> = const { RefCell::new(None) };
 }
 
 /// Inputs are aligned for f64 (the request slots and layer heights are f64 arrays, which
@@ -319,32 +319,40 @@ pub unsafe extern "C" fn rotlang_mesh(
         unsafe { std::slice::from_raw_parts(bytes, bytes_len) }
     };
     MESH.with_borrow_mut(|m| *m = None);
-    let result = crate::part::read_mesh(name, bytes).map(|(mesh, objects)| {
-        let answer = crate::part::mesh_json(&mesh, &objects);
-        MESH.with_borrow_mut(|m| *m = Some(mesh));
+    let result = crate::part::read_mesh(name, bytes).map(|kept| {
+        let answer = crate::part::mesh_json(&kept);
+        MESH.with_borrow_mut(|m| *m = Some(kept));
         answer
     });
     finish(result)
 }
 
 #[cfg(feature = "full")]
-/// The kept mesh sliced and filled under the template (`rotlang_geometry::slice::Part`): every
-/// layer's section, areas and infill paths (or those of `from`..`to`), as
-/// `rotlang preview --shape part.stl --format json`. `walls`: wall loops (NaN: 2);
-/// `has_solid` (1 or 0): whether `solid` is the solid template (`--solid-template`).
+/// The kept mesh (all its objects, or the 3MF object `object`) sliced and filled under
+/// the template (`rotlang_geometry::slice::Part`): every layer's section, areas and infill
+/// paths (or those of `from`..`to`), as `rotlang preview --shape part.stl [--object NAME]
+/// --format json`. `walls`: wall loops (NaN: the project's, else 2); `has_solid` (1 or 0):
+/// whether `solid` is the solid template (`--solid-template`); `has_object` likewise for
+/// `object`; `settings_only` (1 or 0): the answer without slicing (what the part is filled
+/// with).
 ///
 /// # Safety
-/// As [`rotlang_check`]; `solid` as `text`.
+/// As [`rotlang_check`]; `solid` and `object` as `text`.
 #[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn rotlang_part(
     text: *const u8,
     text_len: usize,
     solid: *const u8,
     solid_len: usize,
+    object: *const u8,
+    object_len: usize,
     req: *const f64,
     req_len: usize,
     walls: f64,
     has_solid: f64,
+    has_object: f64,
+    settings_only: f64,
 ) -> i32 {
     // SAFETY: forwarded from this function's contract.
     let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
@@ -357,8 +365,19 @@ pub unsafe extern "C" fn rotlang_part(
         } else {
             None
         };
+        let object = if has_object == 1.0 {
+            // SAFETY: as above.
+            match unsafe { utf8(object, object_len) } {
+                Some(s) => Some(s),
+                None => return Err(Failure::options("the object's name is not UTF-8")),
+            }
+        } else {
+            None
+        };
         MESH.with_borrow(|m| match m {
-            Some(mesh) => crate::part::part(mesh, t, solid, &r, walls),
+            Some(kept) => {
+                crate::part::part(kept, t, solid, &r, (walls, object, settings_only == 1.0))
+            }
             None => Err(Failure::options("no mesh: read one with `readMesh` first")),
         })
     });

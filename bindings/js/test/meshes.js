@@ -82,6 +82,19 @@ export function threeMf(objects, entries = {}) {
   return storedZip(Object.entries(files).map(([n, text]) => [n, new TextEncoder().encode(text)]));
 }
 
+/**
+ * OrcaSlicer's `Metadata/model_settings.config` giving each object of `overrides`
+ * (`{ name: { key: value } }`) its own settings, as a project saved with per-object
+ * settings holds them.
+ */
+export function modelSettings(overrides) {
+  const objects = Object.entries(overrides).map(([name, values], k) => `  <object id="${k + 1}">\n`
+    + `    <metadata key="name" value="${name}"/>\n`
+    + Object.entries(values).map(([key, v]) => `    <metadata key="${key}" value="${v}"/>\n`).join('')
+    + '  </object>\n');
+  return `<?xml version="1.0" encoding="UTF-8"?>\n<config>\n${objects.join('')}</config>\n`;
+}
+
 const CRC_TABLE = Array.from({ length: 256 }, (_, n) => {
   let c = n;
   for (let k = 0; k < 8; k += 1) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;

@@ -8,8 +8,8 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { RotlangError, part, readMesh } from '../full.js';
-import { box, boxTriangles, cylinder, threeMf } from './meshes.js';
+import { RotlangError, part, partSettings, readMesh } from '../full.js';
+import { box, boxTriangles, cylinder, modelSettings, threeMf } from './meshes.js';
 
 const cli = process.env.ROTLANG_CLI;
 const skip = !cli && 'ROTLANG_CLI names the rotlang binary (tests/node.rs sets it)';
@@ -121,4 +121,124 @@ test('a 3MF project: its objects placed by the build and merged, as the CLI read
   const r = spawnSync(cli, ['preview', '+45', '--shape', join(dir, 'plate.3mf'), '--format', 'json', '--layers', '0..20'], { encoding: 'utf8' });
   assert.equal(r.status, 0, r.stderr);
   assert.deepEqual(js, JSON.parse(r.stdout));
+});
+
+// A project of two objects, each with its own overrides (model_settings.config) over the
+// project's settings: a box with its own template, pattern, density and walls, and a
+// taller box with its own layer height, shells and solid template.
+function twoObjectProject() {
+  const settings = JSON.stringify({
+    layer_height: '0.2', initial_layer_print_height: '0.2', sparse_infill_density: '15%',
+    sparse_infill_pattern: 'zig-zag', internal_solid_infill_pattern: 'concentric', wall_loops: '2',
+    line_width: '0.45', nozzle_diameter: ['0.4'], bottom_shell_layers: '3', top_shell_layers: '4',
+    sparse_infill_rotate_template: '0, 90', solid_infill_rotate_template: '+30',
+  });
+  return threeMf([
+    { name: 'Low', triangles: boxTriangles([12, 12, 3]), at: [0, 0, 0] },
+    { name: 'Tall', triangles: boxTriangles([8, 10, 5]), at: [30, 0, 0] },
+  ], {
+    'Metadata/project_settings.config': settings,
+    'Metadata/model_settings.config': modelSettings({
+      Low: { sparse_infill_rotate_template: '+45', sparse_infill_pattern: 'grid', sparse_infill_density: '40%', wall_loops: '3' },
+      Tall: { layer_height: '0.25', initial_layer_print_height: '0.25', sparse_infill_pattern: 'concentric', top_shell_layers: '6', solid_infill_rotate_template: '90, 0' },
+    }),
+  });
+}
+
+// `rotlang preview ARGS --format json` in `dir` (the file named as JS names it), or its
+// failure.
+function cliIn(dir, args) {
+  return spawnSync(cli, ['preview', ...args, '--format', 'json'], { encoding: 'utf8', cwd: dir });
+}
+
+test('part({object}) is the CLI\'s --object: that object alone, with its overrides', { skip }, () => {
+  const project = twoObjectProject();
+  const dir = mkdtempSync(join(tmpdir(), 'rotlang-part-'));
+  writeFileSync(join(dir, 'plate.3mf'), project);
+  const info = readMesh('plate.3mf', project);
+  assert.deepEqual(info.objects, ['Low', 'Tall']);
+  assert.equal(info.project, true);
+  const answers = {};
+  for (const name of info.objects) {
+    // The file's template (an empty one given), and one given: both the CLI's answer.
+    for (const text of ['', '+10']) {
+      const js = part(text, { object: name });
+      const r = cliIn(dir, [text, '--shape', 'plate.3mf', '--object', name, '--layers', `0..${js.settings.layers}`]);
+      assert.equal(r.status, 0, r.stderr);
+      assert.deepEqual(js, JSON.parse(r.stdout), `${name}, template '${text}'`);
+      if (text === '') answers[name] = js;
+    }
+    // The settings alone, without slicing: those the part was filled with.
+    const s = partSettings('', { object: name });
+    assert.deepEqual([s.template, s.solid_template, s.settings], [answers[name].template, answers[name].solid_template, answers[name].settings]);
+  }
+  // Each object's own overrides, the rest the project's.
+  const { Low, Tall } = answers;
+  assert.deepEqual([Low.template, Low.solid_template, Low.settings.pattern, Low.settings.density, Low.settings.walls, Low.settings.layer_height],
+    ['+45', '+30', 'grid', 0.4, 3, 0.2]);
+  assert.deepEqual([Tall.template, Tall.solid_template, Tall.settings.pattern, Tall.settings.density, Tall.settings.walls, Tall.settings.layer_height, Tall.settings.top_shell_layers],
+    ['0, 90', '90, 0', 'concentric', 0.15, 2, 0.25, 6]);
+  assert.equal(partSettings('', { object: 'Tall' }).first_layer_height, 0.25);
+  // A template with errors: the settings still (the part itself is refused).
+  assert.equal(partSettings('+', { object: 'Tall' }).settings.layer_height, 0.25);
+  assert.throws(() => part('+', { object: 'Tall' }), (e) => e.kind === 'template');
+  // Each object's sections are its own box, where the build put it.
+  for (const [answer, x0, x1] of [[Low, 0, 12], [Tall, 30, 38]]) {
+    for (const l of answer.layers.filter((l) => l.section.length)) {
+      assert.equal(l.section.length, 1);
+      const xs = l.section.flat(2).map((p) => p[0]);
+      assert.deepEqual([Math.min(...xs), Math.max(...xs)], [x0, x1]);
+    }
+  }
+  // All objects (no object): the project's settings, both boxes; the CLI's answer too.
+  const all = part('', {});
+  const r = cliIn(dir, ['', '--shape', 'plate.3mf', '--layers', `0..${all.settings.layers}`]);
+  assert.equal(r.status, 0, r.stderr);
+  assert.deepEqual(all, JSON.parse(r.stdout));
+  assert.deepEqual([all.template, all.settings.pattern, all.settings.density], ['0, 90', 'lines', 0.15]);
+  assert.equal(all.layers[5].section.length, 2);
+  // The options win over the file, as the command line does.
+  const given = part('+10', { object: 'Low', density: 0.1, walls: 1, pattern: 'grid', solidTemplate: '0' });
+  const r2 = cliIn(dir, ['+10', '--shape', 'plate.3mf', '--object', 'Low', '--density', '10', '--walls', '1',
+    '--pattern', 'grid', '--solid-template', '0', '--layers', `0..${given.settings.layers}`]);
+  assert.equal(r2.status, 0, r2.stderr);
+  assert.deepEqual(given, JSON.parse(r2.stdout));
+  assert.deepEqual([given.settings.density, given.settings.walls, given.solid_template], [0.1, 1, '0']);
+});
+
+test('an unknown object is refused with the CLI\'s message, naming the objects', { skip }, () => {
+  const project = twoObjectProject();
+  const dir = mkdtempSync(join(tmpdir(), 'rotlang-part-'));
+  writeFileSync(join(dir, 'plate.3mf'), project);
+  readMesh('plate.3mf', project);
+  const r = cliIn(dir, ['0', '--shape', 'plate.3mf', '--object', 'Middle']);
+  assert.notEqual(r.status, 0);
+  const cliMessage = r.stderr.trim().replace(/^rotlang: /, '');
+  assert.equal(cliMessage, 'plate.3mf has no object "Middle"; its objects: Low, Tall');
+  assert.throws(() => part('0', { object: 'Middle' }),
+    (e) => e instanceof RotlangError && e.kind === 'options' && e.message === cliMessage);
+  assert.throws(() => partSettings('0', { object: 'Middle' }), (e) => e.message === cliMessage);
+  assert.throws(() => part('0', { object: 3 }), (e) => e.kind === 'options' && /`object` must be a string/.test(e.message));
+  // An STL has no objects to pick.
+  readMesh('cube.stl', box([5, 5, 5]));
+  assert.throws(() => part('0', { object: 'Low' }), (e) => e.kind === 'options' && /cube\.stl is not one/.test(e.message));
+});
+
+test('a solid template given turns the solid layers as the CLI\'s --solid-template, over a project\'s', { skip }, () => {
+  const project = twoObjectProject();
+  const dir = mkdtempSync(join(tmpdir(), 'rotlang-part-'));
+  writeFileSync(join(dir, 'plate.3mf'), project);
+  readMesh('plate.3mf', project);
+  const js = part('0', { object: 'Tall', solidTemplate: '+15' });
+  const r = cliIn(dir, ['0', '--shape', 'plate.3mf', '--object', 'Tall', '--solid-template', '+15', '--layers', `0..${js.settings.layers}`]);
+  assert.equal(r.status, 0, r.stderr);
+  assert.deepEqual(js, JSON.parse(r.stdout));
+  // The bottom layers (3, the project's) turn by +15 a layer, not by the object's `90, 0`.
+  assert.deepEqual(js.layers.slice(0, 3).map((l) => l.areas.find((a) => a.solid).angle), [15, 30, 45]);
+  // A bad one: the same refusal as the CLI's, with its span.
+  assert.throws(() => part('0', { object: 'Tall', solidTemplate: '+15X' }), (e) => e.kind === 'template'
+    && /solid template/.test(e.message) && e.diagnostics.some((d) => d.severity === 'error' && d.start === 3));
+  const bad = cliIn(dir, ['0', '--shape', 'plate.3mf', '--object', 'Tall', '--solid-template', '+15X']);
+  assert.equal(bad.status, 1);
+  assert.match(bad.stderr, /--solid-template/);
 });

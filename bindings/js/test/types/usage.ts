@@ -3,7 +3,7 @@
 // the Node suite. Never run: types only.
 import { check, compare, compat, expand, explain, explainCode, FILLS, format, RotlangError, signs, version } from 'rotlang';
 import type { Diagnostic, ExpandResult, Fill, Model } from 'rotlang';
-import { part, plot, preview, readMesh, readProfile } from 'rotlang/full';
+import { part, partSettings, plot, preview, readMesh, readProfile } from 'rotlang/full';
 import type { MeshInfo, PartArea, PartLayer, Profile } from 'rotlang/full';
 
 const v: string = version();
@@ -59,3 +59,8 @@ const printed: string = shelled.layers[0].printed;
 const solidShare: number = shelled.summary.solid_extrusion_mm / shelled.summary.extrusion_mm;
 const solidText: string | null = shelled.solid_template;
 export const usedPart = [minutes, solidAreas, printed, solidShare, solidText, shelled.settings.walls];
+// One object of a 3MF project, and what the project gives it, without slicing.
+const objectName: string | undefined = mesh.objects[0];
+const fromProject = mesh.project ? partSettings('', { object: objectName }) : null;
+const one = part('', { object: objectName, solidTemplate: fromProject?.solid_template ?? undefined });
+export const usedObject = [one.settings.layer_height, fromProject?.first_layer_height, fromProject?.settings.walls];

@@ -47,23 +47,7 @@ fn read_mesh(name: &str, object: Option<&str>) -> Result<(Mesh, bool), UsageErro
     let project = name.to_ascii_lowercase().ends_with(".3mf") && file::is_project(&bytes);
     let mesh = if name.to_ascii_lowercase().ends_with(".3mf") {
         let objects = crate::mesh::read_3mf(&bytes).map_err(cannot)?;
-        let mut merged = Mesh::default();
-        let mut found = false;
-        for (n, m) in &objects {
-            if object.is_none_or(|o| o == n) {
-                found = true;
-                merged.append(m);
-            }
-        }
-        if !found {
-            let names: Vec<&str> = objects.iter().map(|(n, _)| n.as_str()).collect();
-            return Err(UsageError(format!(
-                "{name} has no object {:?}; its objects: {}",
-                object.unwrap_or_default(),
-                names.join(", ")
-            )));
-        }
-        merged
+        Mesh::pick(name, &objects, object).map_err(|e| UsageError(e.0))?
     } else {
         Mesh::read(name, &bytes).map_err(cannot)?
     };

@@ -199,6 +199,33 @@ impl Mesh {
             .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
     }
 
+    /// The part of a 3MF's `objects` (as `read_3mf` gives them) that `object` names: all
+    /// of them merged (`None`), or the one named. An unknown name is an error naming the
+    /// file's objects. One choice for `rotlang preview --object` and the playground.
+    pub fn pick(
+        file: &str,
+        objects: &[(String, Mesh)],
+        object: Option<&str>,
+    ) -> Result<Mesh, MeshError> {
+        let mut merged = Mesh::default();
+        let mut found = false;
+        for (n, m) in objects {
+            if object.is_none_or(|o| o == n) {
+                found = true;
+                merged.append(m);
+            }
+        }
+        if !found {
+            let names: Vec<&str> = objects.iter().map(|(n, _)| n.as_str()).collect();
+            return Err(MeshError(format!(
+                "{file} has no object {:?}; its objects: {}",
+                object.unwrap_or_default(),
+                names.join(", ")
+            )));
+        }
+        Ok(merged)
+    }
+
     /// Moves every vertex by `offset`.
     pub fn translate(&mut self, offset: [f64; 3]) {
         for v in &mut self.vertices {

@@ -26,6 +26,7 @@
 
 pub mod ini;
 pub mod json;
+mod part;
 mod read;
 mod settings;
 #[cfg(feature = "3mf")]
@@ -36,6 +37,7 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 pub use json::OffsetMap;
+pub use part::{PartInfill, orcaslicer_pattern};
 pub use read::{parse, read, read_with_bytes};
 pub use settings::{
     DEFAULT_OBJECT_HEIGHT, Direction, INFILL_KEYS, MODEL_KEYS, ProfileModel, Setting, Settings,

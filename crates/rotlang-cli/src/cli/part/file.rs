@@ -59,9 +59,7 @@ pub(super) fn plan(
         None => None,
     };
     let object = args.profile.object.as_deref();
-    let own = file
-        .as_ref()
-        .and_then(|f| object.and_then(|o| f.objects.iter().find(|(n, _)| n == o).map(|(_, s)| s)));
+    let own = file.as_ref().and_then(|f| f.object_settings(object));
     let mut notes = Vec::new();
     let color = args.color.enabled(false);
     // The sparse template: the command line's (or stdin, as for any shape, when neither
@@ -160,10 +158,12 @@ pub(super) fn plan(
     let mut settings = args.settings();
     let mut walls = args.part.walls.unwrap_or(2);
     if let (Some(f), Some(p)) = (&file, &path) {
-        let from = Infill::read(f, own);
+        let from = f.part_infill(object);
         notes.extend(from.notes.iter().cloned());
+        // The file's pattern names are rotlang's (`PartInfill`): they always parse.
+        let pattern = |name: Option<&str>| name.and_then(|n| n.parse::<Pattern>().ok());
         let mut used = Vec::new();
-        if let (None, Some(v)) = (args.pattern, from.pattern) {
+        if let (None, Some(v)) = (args.pattern, pattern(from.pattern)) {
             settings.pattern = v;
             used.push(format!("sparse_infill_pattern {v}"));
         }
@@ -171,7 +171,7 @@ pub(super) fn plan(
             settings.density = v;
             used.push(format!("sparse_infill_density {}%", num(v * 100.0, 3)));
         }
-        if let (None, Some(v)) = (args.solid_pattern, from.solid_pattern) {
+        if let (None, Some(v)) = (args.solid_pattern, pattern(from.solid_pattern)) {
             settings.solid_pattern = v;
             used.push(format!("internal_solid_infill_pattern {v}"));
         }
@@ -247,17 +247,7 @@ fn label(target: Target) -> &'static str {
 /// The file's template of `target`: the object's own, else the project's (not another
 /// object's); an empty one, with no path, when it has none (OrcaSlicer's default).
 fn from_file(file: &Profile, path: &Path, target: Target, object: Option<&str>) -> Input {
-    let found = object
-        .and_then(|o| {
-            file.templates
-                .iter()
-                .find(|f| f.target == target && f.object.as_deref() == Some(o))
-        })
-        .or_else(|| {
-            file.templates
-                .iter()
-                .find(|f| f.target == target && f.object.is_none())
-        });
+    let found = file.part_template(target, object);
     match found {
         Some(f) => Input {
             name: format!("{}: {}", path.display(), f.label()),
@@ -286,113 +276,6 @@ fn parsed(
             .map_err(|e| UsageError(format!("cannot write to stderr: {e}")))?;
     }
     Ok((!parse.has_errors()).then_some(parse))
-}
-
-/// The infill settings a profile (and an object's overrides) gives, each `None` when it
-/// is not set or not usable (with a note).
-#[derive(Debug, Default, PartialEq)]
-pub(super) struct Infill {
-    pub pattern: Option<Pattern>,
-    pub density: Option<f64>,
-    pub solid_pattern: Option<Pattern>,
-    pub line_width: Option<f64>,
-    pub walls: Option<u32>,
-    pub notes: Vec<String>,
-}
-
-impl Infill {
-    pub(super) fn read(file: &Profile, own: Option<&profile::Settings>) -> Infill {
-        let get = |key: &str| {
-            own.and_then(|o| o.values.get(key))
-                .or_else(|| file.settings.values.get(key))
-                .map(|s| s.value.trim().to_owned())
-        };
-        let mut notes = Vec::new();
-        let mut pattern = |key: &str, solid: bool| {
-            let v = get(key)?;
-            let p = orcaslicer_pattern(&v, solid);
-            if p.is_none() {
-                notes.push(format!(
-                    "`{key}` = `{v}` is not a pattern rotlang draws: the option's default is used"
-                ));
-            }
-            p
-        };
-        let sparse = pattern("sparse_infill_pattern", false);
-        let solid = pattern("internal_solid_infill_pattern", true);
-        let density = get("sparse_infill_density").and_then(|v| {
-            let d = number(v.trim_end_matches('%')).map(|d| d / 100.0);
-            let d = d.filter(|d| *d > 0.0 && *d <= 1.0);
-            if d.is_none() {
-                notes.push(format!(
-                    "`sparse_infill_density` = `{v}` is not a density above 0% and at most 100%: the option's default is used"
-                ));
-            }
-            d
-        });
-        let nozzle = get("nozzle_diameter")
-            .and_then(|v| number(&v))
-            .filter(|v| (0.01..=10.0).contains(v))
-            .unwrap_or(0.4);
-        // OrcaSlicer's widths: mm, or a percentage of the nozzle; 0 is "the default".
-        let mut width = |key: &str| {
-            let v = get(key)?;
-            let w = match v.strip_suffix('%') {
-                Some(p) => number(p).map(|p| p / 100.0 * nozzle),
-                None => number(&v),
-            };
-            let w = w.filter(|w| (0.01..=10.0).contains(w));
-            if w.is_none() && number(&v) != Some(0.0) {
-                notes.push(format!(
-                    "`{key}` = `{v}` is not a line width from 0.01 to 10 mm: not used"
-                ));
-            }
-            w
-        };
-        let line_width = width("sparse_infill_line_width")
-            .or_else(|| width("line_width"))
-            .or_else(|| get("nozzle_diameter").map(|_| nozzle));
-        let walls = get("wall_loops").and_then(|v| {
-            let n = number(&v).filter(|n| n.fract() == 0.0 && (0.0..=100.0).contains(n));
-            if n.is_none() {
-                notes.push(format!(
-                    "`wall_loops` = `{v}` is not a count from 0 to 100: the option's default is used"
-                ));
-            }
-            n.map(|n| n as u32)
-        });
-        Infill {
-            pattern: sparse,
-            density,
-            solid_pattern: solid,
-            line_width,
-            walls,
-            notes,
-        }
-    }
-}
-
-fn number(text: &str) -> Option<f64> {
-    text.trim().parse::<f64>().ok().filter(|v| v.is_finite())
-}
-
-/// OrcaSlicer's name of an infill pattern as the pattern rotlang draws for it: the same,
-/// or the nearest (rectilinear kinds are lines, honeycomb is hexagons, the cubic kinds
-/// cubic); `None` for those it has no likeness of.
-pub(super) fn orcaslicer_pattern(name: &str, solid: bool) -> Option<Pattern> {
-    Some(match name.trim().to_ascii_lowercase().as_str() {
-        "zig-zag" | "rectilinear" | "alignedrectilinear" | "line" | "monotonic"
-        | "monotonicline" => Pattern::Lines,
-        "grid" | "crosshatch" => Pattern::Grid,
-        "triangles" | "tri-hexagon" => Pattern::Triangles,
-        "honeycomb" | "3dhoneycomb" => Pattern::Hexagons,
-        "concentric" => Pattern::Concentric,
-        "gyroid" => Pattern::Gyroid,
-        "archimedeanchords" | "octagramspiral" => Pattern::Spiral,
-        "lightning" if !solid => Pattern::Lightning,
-        "cubic" | "adaptivecubic" | "supportcubic" | "quartercubic" => Pattern::Cubic,
-        _ => return None,
-    })
 }
 
 /// Whether a 3MF holds OrcaSlicer's settings (`Metadata/*.config`): a project.

@@ -14,6 +14,7 @@
 use rotlang::*;
 
 pub mod infill;
+pub(crate) mod math;
 pub mod mesh;
 pub mod plot;
 pub mod slice;

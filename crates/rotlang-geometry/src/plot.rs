@@ -18,6 +18,7 @@
 //! assert!(svg.starts_with("<svg") && svg.contains("height (mm)"));
 //! ```
 
+use crate::math;
 use std::fmt::Write;
 
 use crate::eval::{self, Model};
@@ -272,7 +273,7 @@ fn nice_range(lo: f64, hi: f64) -> (f64, f64, f64) {
 
 fn nice_step(raw: f64) -> f64 {
     let raw = raw.max(1e-9);
-    let p = 10f64.powf(raw.log10().floor());
+    let p = math::powf(10.0, math::log10(raw).floor());
     let m = raw / p;
     p * if m <= 1.0 {
         1.0

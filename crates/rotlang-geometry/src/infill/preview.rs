@@ -6,6 +6,7 @@
 //! labelled with the layer, its height, its angle and fill, and the instruction that
 //! governs it. A pure function of its inputs (the playground calls it in the browser).
 
+use crate::math;
 use std::fmt::Write;
 use std::ops::Range;
 
@@ -319,7 +320,7 @@ pub struct Slab<'a> {
 /// infill of every layer shows through), its infill coloured by height (blue at the
 /// bottom to red at the top).
 pub fn isometric(slabs: &[Slab<'_>], width: f64) -> String {
-    let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let (s, c) = math::sin_cos(30f64.to_radians());
     let project = |p: Coord, z: f64| Coord {
         x: (p.x - p.y) * c,
         y: -(p.x + p.y) * s - z,

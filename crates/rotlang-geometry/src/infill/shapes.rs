@@ -1,5 +1,6 @@
 //! Ready-made regions (centred on the origin, in mm) and the JSON multi-polygon reader.
 
+use crate::math;
 use std::f64::consts::TAU;
 
 use geo::{Coord, LineString, MultiPolygon, Polygon};
@@ -15,7 +16,7 @@ fn ring(points: impl IntoIterator<Item = (f64, f64)>) -> LineString<f64> {
 fn regular(n: usize, radius: f64, clockwise: bool) -> LineString<f64> {
     ring((0..n).map(|i| {
         let a = TAU * i as f64 / n as f64 * if clockwise { -1.0 } else { 1.0 };
-        (radius * a.cos(), radius * a.sin())
+        (radius * math::cos(a), radius * math::sin(a))
     }))
 }
 
@@ -47,7 +48,7 @@ pub fn star(outer: f64, inner: f64) -> MultiPolygon<f64> {
         ring((0..10).map(|i| {
             let r = if i % 2 == 0 { outer } else { inner };
             let a = TAU * i as f64 / 10.0 + TAU / 4.0;
-            (r * a.cos(), r * a.sin())
+            (r * math::cos(a), r * math::sin(a))
         })),
         vec![],
     )])

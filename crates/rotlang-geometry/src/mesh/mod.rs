@@ -338,7 +338,8 @@ pub mod shapes {
             let start = m.vertices.len() as u32;
             for i in 0..n {
                 let a = TAU * i as f64 / n as f64;
-                m.vertices.push([r * a.cos(), r * a.sin(), z]);
+                m.vertices
+                    .push([r * crate::math::cos(a), r * crate::math::sin(a), z]);
             }
             start
         };
@@ -380,9 +381,12 @@ pub mod shapes {
             let a = TAU * i as f64 / n as f64;
             for j in 0..k {
                 let b = TAU * j as f64 / k as f64;
-                let r = major + minor * b.cos();
-                m.vertices
-                    .push([r * a.cos(), r * a.sin(), minor + minor * b.sin()]);
+                let r = major + minor * crate::math::cos(b);
+                m.vertices.push([
+                    r * crate::math::cos(a),
+                    r * crate::math::sin(a),
+                    minor + minor * crate::math::sin(b),
+                ]);
             }
         }
         let at = |i: usize, j: usize| ((i % n) * k + (j % k)) as u32;
@@ -411,7 +415,8 @@ pub mod shapes {
             } else {
                 for i in 0..n {
                     let a = TAU * i as f64 / n as f64;
-                    m.vertices.push([r * a.cos(), r * a.sin(), z]);
+                    m.vertices
+                        .push([r * crate::math::cos(a), r * crate::math::sin(a), z]);
                 }
                 rings.push((start, true));
             }
@@ -441,7 +446,8 @@ pub mod shapes {
         let outer = |z: f64| {
             // Belly at a third of the height, waist at 80%, lip flaring at the top.
             let t = z / 80.0;
-            20.0 + 10.0 * (std::f64::consts::PI * t * 1.5).sin().max(-0.6) + 6.0 * t.powi(6)
+            20.0 + 10.0 * crate::math::sin(std::f64::consts::PI * t * 1.5).max(-0.6)
+                + 6.0 * t.powi(6)
         };
         let mut profile = vec![(0.0, 0.0)];
         let steps = 64;

@@ -22,6 +22,7 @@
 //! assert_eq!(section.region.0[0].interiors().len(), 1);
 //! ```
 
+use crate::math;
 use std::collections::HashMap;
 
 use geo::{Coord, LineString, MultiPolygon, Polygon};
@@ -213,7 +214,7 @@ fn chain(
         .map(|c| c.iter().map(|k| points[k]).collect())
         .collect();
     let mut bridged = 0;
-    let d = |a: Coord, b: Coord| (a - b).x.hypot((a - b).y);
+    let d = |a: Coord, b: Coord| math::hypot((a - b).x, (a - b).y);
     loop {
         let mut changed = false;
         let mut i = 0;
@@ -373,7 +374,7 @@ fn segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
     } else {
         0.0
     };
-    (u.x - t * v.x).hypot(u.y - t * v.y)
+    math::hypot(u.x - t * v.x, u.y - t * v.y)
 }
 
 fn area(ring: &[Coord]) -> f64 {

@@ -11,6 +11,7 @@
 //! (`D S O M R`) still makes its whole layer solid. Memory: the sections of a window of
 //! `B + T + 1` layers.
 
+use crate::math;
 use std::collections::VecDeque;
 
 use geo::{Area, BooleanOps, Coord, LineString, MultiPolygon, Polygon};
@@ -242,7 +243,7 @@ fn perimeter(p: &Polygon<f64>) -> f64 {
 fn ring_length(points: &[Coord]) -> f64 {
     points
         .windows(2)
-        .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+        .map(|w| math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y))
         .sum()
 }
 

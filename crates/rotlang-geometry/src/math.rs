@@ -1,0 +1,78 @@
+//! The transcendental functions of the geometry, the same bits on every target.
+//!
+//! `f64::sin` and its kin call the platform's C library in a native build and a port of
+//! musl's in wasm32, and the two differ in the last bit now and then: a gyroid or a circle
+//! drawn by the playground (wasm) would then not be the one `rotlang preview` prints. Every
+//! sine, cosine, arc tangent and hypotenuse of this crate goes through here, to `libm` (the
+//! same port, compiled for both). Square roots and the basic operations are exact in IEEE
+//! 754 on every target and stay as they are.
+
+/// The sine of `x` (radians).
+#[inline]
+pub fn sin(x: f64) -> f64 {
+    libm::sin(x)
+}
+
+/// The cosine of `x` (radians).
+#[inline]
+pub fn cos(x: f64) -> f64 {
+    libm::cos(x)
+}
+
+/// The sine and cosine of `x` (radians).
+#[inline]
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    libm::sincos(x)
+}
+
+/// The angle of the point (`x`, `y`), in radians in [-π, π].
+#[inline]
+pub fn atan2(y: f64, x: f64) -> f64 {
+    libm::atan2(y, x)
+}
+
+/// The arc cosine of `x`, in radians in [0, π].
+#[inline]
+pub fn acos(x: f64) -> f64 {
+    libm::acos(x)
+}
+
+/// The length of (`x`, `y`), without overflow.
+#[inline]
+pub fn hypot(x: f64, y: f64) -> f64 {
+    libm::hypot(x, y)
+}
+
+/// `x` to the power `y`.
+#[inline]
+pub fn powf(x: f64, y: f64) -> f64 {
+    libm::pow(x, y)
+}
+
+/// The base-10 logarithm of `x`.
+#[inline]
+pub fn log10(x: f64) -> f64 {
+    libm::log10(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The functions are the usual ones (to a few ulps of std's): a wrong argument order or
+    /// a swapped pair would show here.
+    #[test]
+    fn they_are_the_usual_functions() {
+        for i in -50..50 {
+            let x = f64::from(i) * 0.37;
+            assert!((sin(x) - x.sin()).abs() < 1e-15);
+            assert!((cos(x) - x.cos()).abs() < 1e-15);
+            assert_eq!(sin_cos(x), (sin(x), cos(x)));
+            assert!((atan2(x, 1.5) - x.atan2(1.5)).abs() < 1e-15);
+            assert!((hypot(x, 2.0) - x.hypot(2.0)).abs() < 1e-14);
+        }
+        assert!((acos(0.5) - 0.5f64.acos()).abs() < 1e-15);
+        assert_eq!(powf(10.0, 2.0), 100.0);
+        assert_eq!(log10(1000.0), 3.0);
+    }
+}

@@ -59,7 +59,6 @@ pub(crate) struct Edges {
     /// otherwise meet an edge once per strip).
     stamp: Vec<u32>,
     segment: u32,
-    crossings: Vec<f64>,
     /// `clip`'s cuts, kept for the next call.
     cuts: Vec<f64>,
     /// For `clip`, built by its first call: the edges in a grid of square cells, so that a
@@ -230,7 +229,6 @@ impl Edges {
             max,
             height,
             segment: 0,
-            crossings: Vec::new(),
             cuts: Vec::new(),
             grid: None,
         }
@@ -245,24 +243,25 @@ impl Edges {
         strip(y, self.min.y, self.height, self.strip_start.len() - 1)
     }
 
-    /// The inside intervals `[x0, x1]` of the horizontal line at `y`, left to right.
-    pub fn scan(&mut self, y: f64, out: &mut Vec<(f64, f64)>) {
+    /// The inside intervals `[x0, x1]` of the horizontal line at `y`, left to right (the
+    /// reference the straight families, found edge by edge, are tested against).
+    #[cfg(test)]
+    pub fn scan(&self, y: f64, out: &mut Vec<(f64, f64)>) {
         out.clear();
         if !(y >= self.min.y && y < self.max.y) {
             return;
         }
-        self.crossings.clear();
+        let mut crossings = Vec::new();
         let s = self.strip(y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
         for &i in &self.strip_edges[from as usize..to as usize] {
             let Edge { a, b } = self.edges[i as usize];
             if (a.y <= y) != (b.y <= y) {
-                self.crossings
-                    .push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+                crossings.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
             }
         }
-        self.crossings.sort_unstable_by(f64::total_cmp);
-        out.extend(self.crossings.chunks_exact(2).map(|c| (c[0], c[1])));
+        crossings.sort_unstable_by(f64::total_cmp);
+        out.extend(crossings.chunks_exact(2).map(|c| (c[0], c[1])));
     }
 
     /// Even-odd: whether `p` is inside the region (on an edge: either).

@@ -16,43 +16,50 @@ const MAX_POINTS: usize = 20_000;
 /// The erosion of `region` by `d` (arcs in steps of at most `arc` radians), or `None`
 /// where the raw offset is not it.
 pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<MultiPolygon<f64>> {
-    let mut out = Vec::with_capacity(region.0.len());
-    let mut rings: Vec<Vec<Coord>> = Vec::new();
+    // Every ring, outlines and holes, and per polygon how many holes follow its outline:
+    // the crossing check needs them all, the polygons are built after it by moving them.
+    let mut rings: Vec<Vec<Coord>> =
+        Vec::with_capacity(region.0.iter().map(|p| 1 + p.interiors().len()).sum());
+    let mut holes_of = Vec::with_capacity(region.0.len());
     let mut total = 0;
     for polygon in &region.0 {
         let exterior = offset_ring(&polygon.exterior().0, d, arc, true)?;
-        let mut holes = Vec::with_capacity(polygon.interiors().len());
+        total += exterior.len();
+        rings.push(exterior);
+        let outline = rings.len() - 1;
         for hole in polygon.interiors() {
-            holes.push(offset_ring(&hole.0, d, arc, false)?);
+            let hole = offset_ring(&hole.0, d, arc, false)?;
+            total += hole.len();
+            // A grown hole that swallowed the whole shrunk outline crosses nothing: each
+            // hole must lie inside the outline.
+            if hole.first().is_none_or(|&p| !inside(&rings[outline], p)) {
+                return None;
+            }
+            rings.push(hole);
         }
-        total += exterior.len() + holes.iter().map(Vec::len).sum::<usize>();
         if total > MAX_POINTS {
             return None;
         }
-        // A grown hole that swallowed the whole shrunk outline crosses nothing: each hole
-        // must lie inside the outline.
-        if holes
-            .iter()
-            .any(|h| h.first().is_none_or(|&p| !inside(&exterior, p)))
-        {
-            return None;
-        }
-        rings.push(exterior.clone());
-        rings.extend(holes.iter().cloned());
-        let closed = |mut ring: Vec<Coord>| {
-            ring.push(ring[0]);
-            LineString::new(ring)
-        };
-        out.push(Polygon::new(
-            closed(exterior),
-            holes.into_iter().map(closed).collect(),
-        ));
+        holes_of.push(polygon.interiors().len());
     }
     // Islands shrink apart and never meet; an outline inside another polygon's hole is
     // another matter, left to the crossing check as well.
     if crossings(&rings) {
         return None;
     }
+    let closed = |mut ring: Vec<Coord>| {
+        ring.push(ring[0]);
+        LineString::new(ring)
+    };
+    let mut rings = rings.into_iter();
+    let out = holes_of
+        .into_iter()
+        .filter_map(|holes| {
+            let exterior = closed(rings.next()?);
+            let interiors = rings.by_ref().take(holes).map(closed).collect();
+            Some(Polygon::new(exterior, interiors))
+        })
+        .collect();
     Some(MultiPolygon::new(out))
 }
 
@@ -62,9 +69,12 @@ pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<
 fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<Coord>> {
     let pts = inside_left(ring, exterior)?;
     let n = pts.len();
-    let unit = |e: Coord| e / e.x.hypot(e.y);
+    // Plain square roots (coordinates are bounded, nothing overflows; `hypot` is several
+    // times slower).
+    let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
-    let mut out = Vec::with_capacity(n + n / 2);
+    // Room for the arcs and the closing point the polygon adds.
+    let mut out = Vec::with_capacity(n + n / 2 + 1);
     // For every original edge i (from pts[i]), where its offset starts and ends in `out`.
     let mut starts = Vec::with_capacity(n);
     let mut ends = Vec::with_capacity(n);
@@ -137,9 +147,8 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
     struct Edge {
         a: Coord,
         b: Coord,
-        x1: f64,
-        ring: usize,
-        index: usize,
+        ring: u32,
+        index: u32,
     }
     let mut edges = Vec::with_capacity(rings.iter().map(Vec::len).sum());
     for (r, ring) in rings.iter().enumerate() {
@@ -154,24 +163,31 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
             edges.push(Edge {
                 a,
                 b,
-                x1: b.x,
-                ring: r,
-                index: i,
+                ring: r as u32,
+                index: i as u32,
             });
         }
     }
-    edges.sort_unstable_by(|p, q| p.a.x.total_cmp(&q.a.x));
-    for (i, e) in edges.iter().enumerate() {
+    // Sorted by left end through small keys (x, edge): cheaper to move than the edges.
+    let mut order: Vec<(f64, u32)> = edges
+        .iter()
+        .enumerate()
+        .map(|(i, e)| (e.a.x, i as u32))
+        .collect();
+    order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+    for (k, &(_, i)) in order.iter().enumerate() {
+        let e = &edges[i as usize];
         let (ylo, yhi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
-        for f in &edges[i + 1..] {
-            if f.a.x > e.x1 {
+        for &(x, j) in &order[k + 1..] {
+            if x > e.b.x {
                 break;
             }
+            let f = &edges[j as usize];
             if f.a.y.max(f.b.y) < ylo || f.a.y.min(f.b.y) > yhi {
                 continue;
             }
             if e.ring == f.ring {
-                let n = rings[e.ring].len();
+                let n = rings[e.ring as usize].len() as u32;
                 if (e.index + 1) % n == f.index || (f.index + 1) % n == e.index {
                     continue;
                 }

@@ -6,7 +6,7 @@ use crate::eval::{Model, Options};
 use crate::ir::Fill;
 use geo::Coord;
 use proptest::prelude::*;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 const W: f64 = 0.4;
 
@@ -1166,5 +1166,103 @@ fn concentric_loops_of_an_outline_and_a_hole_do_not_double() {
         );
         let gap = largest_gap(&region, &paths);
         assert!(gap < 2.0 * s, "{rho}: a point {gap} mm from every line");
+    }
+}
+
+/// The old scan of `straight::families`: every line against the edge index.
+fn families_by_scan(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    offsets: &[f64],
+    spacing: f64,
+    shift: f64,
+) -> Vec<Vec<Coord>> {
+    let mut out = Vec::new();
+    let mut intervals = Vec::new();
+    for &offset in offsets {
+        let frame = clip::Frame::new(centre, theta + offset.to_radians());
+        let mut edges = clip::Edges::new(region.rings(), &frame);
+        let shift = shift.rem_euclid(spacing);
+        let first = ((edges.min.y - shift) / spacing).ceil() as i64;
+        let last = ((edges.max.y - shift) / spacing).floor() as i64;
+        for k in first..=last {
+            let y = k as f64 * spacing + shift;
+            edges.scan(y, &mut intervals);
+            for &(x0, x1) in &intervals {
+                out.push(vec![
+                    frame.to_world(Coord { x: x0, y }),
+                    frame.to_world(Coord { x: x1, y }),
+                ]);
+            }
+        }
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The families found edge by edge are the scan's, point for point, on concave
+    /// regions with holes, lines through vertices included (spacing a divisor of a
+    /// vertex's height when `snap`).
+    #[test]
+    fn families_edge_by_edge_are_the_scan(
+        outer in prop::collection::vec(4.0f64..15.0, 3..24),
+        hole in prop::collection::vec(0.5f64..1.5, 3..8),
+        holed in any::<bool>(),
+        turn in 0.0f64..TAU,
+        theta in -7.0f64..7.0,
+        spacing in 0.3f64..12.0,
+        shift in -5.0f64..5.0,
+        families in 1usize..4,
+        snap in any::<bool>(),
+    ) {
+        let holes = if holed {
+            vec![radial_ring(&hole, -turn, Coord { x: 0.5, y: -0.25 }, true)]
+        } else {
+            vec![]
+        };
+        let shape = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&outer, turn, Coord::zero(), false),
+            holes,
+        )]);
+        let region = Region::new(&shape, W).unwrap();
+        let (theta, spacing) = if snap { (0.0, 0.5) } else { (theta, spacing) };
+        let offsets = &[0.0, 60.0, 120.0][..families];
+        let centre = region.centre();
+        let mut fast = Vec::new();
+        straight::families(&region, centre, theta, offsets, spacing, shift, &mut fast);
+        let slow = families_by_scan(&region, centre, theta, offsets, spacing, shift);
+        prop_assert_eq!(fast, slow);
+    }
+}
+
+/// On an axis-aligned square with lines through its corners and along its edges, both
+/// give the same lines (the half-open rule counts a vertex on a line once).
+#[test]
+fn families_through_vertices_are_the_scan() {
+    for shape in [
+        shapes::square(20.0),
+        shapes::l_shape(20.0),
+        shapes::holed_square(40.0, 10.0),
+    ] {
+        let region = Region::new(&shape, W).unwrap();
+        for (theta, spacing, shift) in [(0.0, 9.8, 0.0), (0.0, 0.2, 0.0), (FRAC_PI_2, 4.9, 0.1)] {
+            let mut fast = Vec::new();
+            let centre = Coord::zero();
+            straight::families(
+                &region,
+                centre,
+                theta,
+                &[0.0, 90.0],
+                spacing,
+                shift,
+                &mut fast,
+            );
+            let slow = families_by_scan(&region, centre, theta, &[0.0, 90.0], spacing, shift);
+            assert!(!fast.is_empty());
+            assert_eq!(fast, slow);
+        }
     }
 }

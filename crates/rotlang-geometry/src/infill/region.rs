@@ -65,16 +65,18 @@ impl Region {
         }
         let cleaned = clean(region);
         let arc = arc_step(nozzle / 2.0);
-        let inset = convex_inset(&cleaned, nozzle / 2.0, arc)
-            .or_else(|| super::offset::raw_inset(&cleaned, nozzle / 2.0, arc))
-            .unwrap_or_else(|| {
-                if cleaned.0.is_empty() {
-                    cleaned.clone()
-                } else {
-                    cleaned.buffer(-nozzle / 2.0)
-                }
-            });
-        let mut rings = Vec::new();
+        // Which offset made the inset says, most of the time, whether it is convex (see
+        // `convex` below) without testing its ring again.
+        let (inset, made_by) = if let Some(inset) = convex_inset(&cleaned, nozzle / 2.0, arc) {
+            (inset, Offset::Convex)
+        } else if let Some(inset) = super::offset::raw_inset(&cleaned, nozzle / 2.0, arc) {
+            (inset, Offset::Raw)
+        } else if cleaned.0.is_empty() {
+            (cleaned.clone(), Offset::Buffer)
+        } else {
+            (cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
+        };
+        let mut rings = Vec::with_capacity(inset.0.iter().map(|p| 1 + p.interiors().len()).sum());
         for p in &inset.0 {
             rings.push(open_ring(p.exterior()));
         }
@@ -88,7 +90,19 @@ impl Region {
             min = Coord::zero();
             max = Coord::zero();
         }
-        let convex = rings.len() == 1 && outlines == 1 && convex_ring(&rings[0]).is_some();
+        // The exact inset of one convex outline without holes is convex (its edges are the
+        // outline's, moved); the raw offset was only tried because some ring has a reflex
+        // vertex, which its inset keeps (an arc, or the same turn); a convex outline whose
+        // grown holes met it may be left concave, and the buffer's result is tested.
+        let convex = rings.len() == 1
+            && outlines == 1
+            && match made_by {
+                Offset::Convex if cleaned.0.len() == 1 && cleaned.0[0].interiors().is_empty() => {
+                    true
+                }
+                Offset::Raw => false,
+                _ => convex_ring(&rings[0]).is_some(),
+            };
         Ok(Region {
             convex,
             inset,
@@ -140,6 +154,13 @@ impl Region {
     pub(crate) fn outlines(&self) -> &[Vec<Coord>] {
         &self.rings[..self.outlines.min(self.rings.len())]
     }
+}
+
+/// Which offset made a region's inset.
+enum Offset {
+    Convex,
+    Raw,
+    Buffer,
 }
 
 /// The angle step (radians) of the arcs of an inset by `d`: chords that stray at most
@@ -265,25 +286,37 @@ fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
         pts.reverse();
     }
     let n = pts.len();
+    if n < 3 {
+        return None;
+    }
     let mut kept = Vec::with_capacity(n);
+    // Each vertex with the one before and after (no `%` per vertex: an integer division).
+    let mut a = pts[n - 1];
     for i in 0..n {
-        let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
-        let cross = cross(b - a, c - b);
+        let b = pts[i];
+        let c = if i + 1 < n { pts[i + 1] } else { pts[0] };
         let (u, v) = (b - a, c - b);
-        let scale = ((u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y)).sqrt();
-        if cross < -1e-12 * scale {
+        let cross = cross(u, v);
+        // |cross| against 1e-12·|u|·|v|, squared (no square root per vertex).
+        let scale2 = (u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y);
+        let significant = cross * cross > 1e-24 * scale2;
+        if significant && cross < 0.0 {
             return None; // a reflex vertex: not convex
         }
-        if cross > 1e-12 * scale {
+        if significant && cross > 0.0 {
             kept.push(b);
         }
+        a = b;
     }
     // A ring that winds more than once has no reflex vertex either: its edges' direction
     // turns through more than a full turn, so their x components change sign more than
     // twice.
     let n = kept.len();
+    if n < 3 {
+        return None;
+    }
     let signs = (0..n)
-        .map(|i| (kept[(i + 1) % n] - kept[i]).x)
+        .map(|i| (if i + 1 < n { kept[i + 1] } else { kept[0] } - kept[i]).x)
         .filter(|&x| x != 0.0)
         .map(|x| x > 0.0);
     let mut changes = 0;
@@ -299,7 +332,7 @@ fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
     if first != last {
         changes += 1;
     }
-    (n >= 3 && changes <= 2).then_some(kept)
+    (changes <= 2).then_some(kept)
 }
 
 /// The exact inward offset of one convex ring: empty when it is thinner than `2d`.

@@ -60,21 +60,37 @@ pub(crate) fn families(
 
 /// The crossings of the edge from `a` to `b` with the lines `y = k·spacing + shift`
 /// (`inv` = 1 / spacing): the half-open rule of the scan (`(a.y <= y) != (b.y <= y)`),
-/// tested on each candidate line, so that the candidates' range may be loose (a
-/// truncation, one more line each side, no `floor` call) without adding or dropping one.
+/// tested on each candidate line. The candidates are the lines within the edge's height
+/// widened by a margin far above rounding (a billionth of a line), so that none that the
+/// rule takes is missed; an edge shorter than the spacing (most edges of a round or
+/// arc-cornered region) usually has none, and costs two multiplications.
 fn crossings_of(a: Coord, b: Coord, spacing: f64, shift: f64, inv: f64, out: &mut Vec<(i64, f64)>) {
     let (lo, hi) = if a.y < b.y { (a.y, b.y) } else { (b.y, a.y) };
     if !(lo < hi) {
         return;
     }
-    let first = ((lo - shift) * inv) as i64 - 1;
-    let last = ((hi - shift) * inv) as i64 + 1;
+    let (t0, t1) = ((lo - shift) * inv, (hi - shift) * inv);
+    let margin = 1e-9 + 1e-12 * t0.abs().max(t1.abs());
+    let first = ceil(t0 - margin);
+    let last = floor(t1 + margin);
     for k in first..=last {
         let y = k as f64 * spacing + shift;
         if (a.y <= y) != (b.y <= y) {
             out.push((k, a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y)));
         }
     }
+}
+
+/// `x.floor()` as an integer, by a truncating cast (no call to the C library's `floor`
+/// on targets without SSE 4.1). `x` is bounded: coordinates over the spacing.
+fn floor(x: f64) -> i64 {
+    let i = x as i64;
+    if (i as f64) > x { i - 1 } else { i }
+}
+
+fn ceil(x: f64) -> i64 {
+    let i = x as i64;
+    if (i as f64) < x { i + 1 } else { i }
 }
 
 /// A honeycomb of side `side` whose "vertical" walls run along θ: in the frame turned by

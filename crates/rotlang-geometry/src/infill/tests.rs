@@ -1266,3 +1266,59 @@ fn families_through_vertices_are_the_scan() {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Travel routed with each ring's edges in chunks (skipped by their boxes) is the
+    /// route of every edge tested, point for point: between points on the rings (line
+    /// ends), at vertices, and anywhere in the region's box.
+    #[test]
+    fn chunked_routes_are_the_plain_routes(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3), 1..24),
+    ) {
+        let interiors = holes
+            .iter()
+            .enumerate()
+            .map(|(i, radii)| {
+                let a = turn + TAU * i as f64 / 3.0;
+                let centre = Coord { x: 2.2 * a.cos(), y: 2.2 * a.sin() };
+                radial_ring(radii, turn, centre, true)
+            })
+            .collect();
+        let shape = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&outer, turn, Coord::zero(), false),
+            interiors,
+        )]);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
+        let edges: Vec<(Coord, Coord)> = rings
+            .iter()
+            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+            .collect();
+        let (lo, hi) = travel::bounds(&vertices);
+        // A point on an edge, a vertex, or a point of the box.
+        let point = |(i, t): (usize, f64), kind: u8| match kind {
+            0 => {
+                let (a, b) = edges[i % edges.len()];
+                a + (b - a) * t
+            }
+            1 => vertices[i % vertices.len()],
+            _ => Coord {
+                x: lo.x + (hi.x - lo.x) * t,
+                y: lo.y + (hi.y - lo.y) * (i as f64 / 1000.0),
+            },
+        };
+        let chunked = travel::Router::new(rings);
+        let plain = travel::Router::with_chunk(rings, usize::MAX);
+        for (a, b, kind) in moves {
+            let (p, q) = (point(a, kind), point(b, kind));
+            prop_assert_eq!(chunked.route(p, q), plain.route(p, q));
+        }
+    }
+}

@@ -317,6 +317,25 @@ impl Edges {
             let d1 = q - p;
             let first = cuts.len();
             for r in r0..=r1 {
+                // Only the cells of this row that the segment passes (its x range within
+                // the row's band, with the grid's slack), not every cell of its box: a
+                // long diagonal branch meets a line of cells, not a square of them.
+                let (c0, c1) = if r0 == r1 || c0 == c1 {
+                    (c0, c1)
+                } else {
+                    let side = 1.0 / grid.inv;
+                    let band = (
+                        (grid.min.y + r as f64 * side).max(lo),
+                        (grid.min.y + (r + 1) as f64 * side).min(hi),
+                    );
+                    let x_at = |y: f64| p.x + (y - p.y) * d1.x / d1.y;
+                    let (xa, xb) = (x_at(band.0), x_at(band.1));
+                    let slack = side * 1e-6;
+                    (
+                        grid.col(xa.min(xb) - slack).max(c0),
+                        grid.col(xa.max(xb) + slack).min(c1),
+                    )
+                };
                 for c in c0..=c1 {
                     for &i in grid.cell(r, c) {
                         let i = i as usize;
@@ -364,9 +383,10 @@ impl Edges {
             if g1 <= g0 || !self.contains(at((g0 + g1) / 2.0)) {
                 continue;
             }
-            let mut piece = vec![at(g0)];
             let first = g0.floor() as usize + 1;
             let last = g1.ceil() as usize;
+            let mut piece = Vec::with_capacity(last - first.min(last) + 2);
+            piece.push(at(g0));
             piece.extend(pts[first.min(last)..last].iter().copied());
             piece.push(at(g1));
             out.push(piece);

@@ -5,7 +5,7 @@
 
 use geo::{Coord, MultiPolygon};
 
-use super::clip::Frame;
+use super::clip::{Edges, Frame};
 use super::{Error, MAX_VERTICES, Order, Params, Pattern, Region, Toolpaths};
 use super::{check, curves, lightning, order, straight};
 
@@ -88,9 +88,11 @@ impl Region {
                 // the shape (a star's long outline gets more): measure a first tree and
                 // space the branches again so that the density printed is the one asked.
                 let mut spacing = 2.0 * w / rho;
+                // The region's edges (and their grid) serve both trees.
+                let mut edges = Edges::new(&self.rings, &lightning::frame(centre));
                 for _ in 0..2 {
                     paths.clear();
-                    lightning::lightning(self, centre, theta, spacing, &mut paths);
+                    lightning::lightning(self, centre, theta, spacing, &mut edges, &mut paths);
                     let length: f64 = paths.iter().map(|p| super::travel::length(p)).sum();
                     let printed = length * w / self.area;
                     if printed.is_nan() || printed <= 0.0 || (printed / rho - 1.0).abs() < 0.03 {

@@ -66,7 +66,7 @@ pub(crate) fn families(
 /// arc-cornered region) usually has none, and costs two multiplications.
 fn crossings_of(a: Coord, b: Coord, spacing: f64, shift: f64, inv: f64, out: &mut Vec<(i64, f64)>) {
     let (lo, hi) = if a.y < b.y { (a.y, b.y) } else { (b.y, a.y) };
-    if !(lo < hi) {
+    if lo >= hi {
         return;
     }
     let (t0, t1) = ((lo - shift) * inv, (hi - shift) * inv);

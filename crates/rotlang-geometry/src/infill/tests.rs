@@ -1182,7 +1182,7 @@ fn families_by_scan(
     let mut intervals = Vec::new();
     for &offset in offsets {
         let frame = clip::Frame::new(centre, theta + offset.to_radians());
-        let mut edges = clip::Edges::new(region.rings(), &frame);
+        let edges = clip::Edges::new(region.rings(), &frame);
         let shift = shift.rem_euclid(spacing);
         let first = ((edges.min.y - shift) / spacing).ceil() as i64;
         let last = ((edges.max.y - shift) / spacing).floor() as i64;
@@ -1319,6 +1319,87 @@ proptest! {
         for (a, b, kind) in moves {
             let (p, q) = (point(a, kind), point(b, kind));
             prop_assert_eq!(chunked.route(p, q), plain.route(p, q));
+        }
+    }
+}
+
+/// `Edges::clip` with every edge tested against every segment (no grid), for reference.
+fn clip_plain(edges: &clip::Edges, pts: &[Coord]) -> Vec<Vec<Coord>> {
+    let all: Vec<(Coord, Coord)> = edges.segments().collect();
+    let mut cuts = vec![0.0];
+    for (k, w) in pts.windows(2).enumerate() {
+        let (p, q) = (w[0], w[1]);
+        let d1 = q - p;
+        let first = cuts.len();
+        for &(a, b) in &all {
+            let d2 = b - a;
+            let den = d1.x * d2.y - d1.y * d2.x;
+            if den == 0.0 {
+                continue;
+            }
+            let ap = a - p;
+            let t = (ap.x * d2.y - ap.y * d2.x) / den;
+            let u = (ap.x * d1.y - ap.y * d1.x) / den;
+            if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
+                cuts.push(k as f64 + t);
+            }
+        }
+        cuts[first..].sort_unstable_by(f64::total_cmp);
+    }
+    cuts.push((pts.len() - 1) as f64);
+    let at = |g: f64| {
+        let k = (g.floor() as usize).min(pts.len() - 2);
+        pts[k] + (pts[k + 1] - pts[k]) * (g - k as f64)
+    };
+    let mut out = Vec::new();
+    for w in cuts.windows(2) {
+        let (g0, g1) = (w[0], w[1]);
+        if g1 <= g0 || !edges.contains(at((g0 + g1) / 2.0)) {
+            continue;
+        }
+        let mut piece = vec![at(g0)];
+        let (first, last) = (g0.floor() as usize + 1, g1.ceil() as usize);
+        piece.extend(pts[first.min(last)..last].iter().copied());
+        piece.push(at(g1));
+        out.push(piece);
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Clipping through the edge grid (each segment visiting only the cells it passes
+    /// row by row) cuts where every edge tested would, point for point: long diagonal
+    /// segments and polylines across concave regions with holes.
+    #[test]
+    fn clip_through_the_grid_is_the_plain_clip(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        lines in prop::collection::vec(
+            prop::collection::vec((-16.0f64..16.0, -16.0f64..16.0), 2..6), 1..12),
+    ) {
+        let interiors = holes
+            .iter()
+            .enumerate()
+            .map(|(i, radii)| {
+                let a = turn + TAU * i as f64 / 3.0;
+                let centre = Coord { x: 2.2 * a.cos(), y: 2.2 * a.sin() };
+                radial_ring(radii, turn, centre, true)
+            })
+            .collect();
+        let shape = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&outer, turn, Coord::zero(), false),
+            interiors,
+        )]);
+        let region = Region::new(&shape, W).unwrap();
+        let mut edges = clip::Edges::new(region.rings(), &clip::Frame::new(Coord::zero(), turn));
+        for line in lines {
+            let pts: Vec<Coord> = line.into_iter().map(|(x, y)| Coord { x, y }).collect();
+            let mut fast = Vec::new();
+            edges.clip(&pts, &mut fast);
+            prop_assert_eq!(fast, clip_plain(&edges, &pts));
         }
     }
 }

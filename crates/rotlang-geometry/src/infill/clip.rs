@@ -286,9 +286,6 @@ impl Edges {
         if pts.len() < 2 {
             return;
         }
-        if self.stamp.len() != self.edges.len() {
-            self.stamp = vec![u32::MAX; self.edges.len()];
-        }
         // Where the polyline crosses an edge, as `segment index + t`.
         let mut cuts = std::mem::take(&mut self.cuts);
         cuts.clear();
@@ -303,78 +300,29 @@ impl Edges {
             {
                 continue;
             }
-            let grid = self
-                .grid
-                .get_or_insert_with(|| Grid::new(&self.edges, self.min, self.max));
-            let (px0, px1) = (p.x.min(q.x), p.x.max(q.x));
-            let (c0, c1) = (grid.col(px0), grid.col(px1));
-            let (r0, r1) = (grid.row(lo), grid.row(hi));
-            // Within one cell an edge is met once; across cells, the stamp skips repeats.
-            let stamped = c0 != c1 || r0 != r1;
-            if stamped {
-                self.segment = self.segment.wrapping_add(1);
-            }
-            let d1 = q - p;
             let first = cuts.len();
-            for r in r0..=r1 {
-                // Only the cells of this row that the segment passes (its x range within
-                // the row's band, with the grid's slack), not every cell of its box: a
-                // long diagonal branch meets a line of cells, not a square of them.
-                let (c0, c1) = if r0 == r1 || c0 == c1 {
-                    (c0, c1)
-                } else {
-                    let side = 1.0 / grid.inv;
-                    let band = (
-                        (grid.min.y + r as f64 * side).max(lo),
-                        (grid.min.y + (r + 1) as f64 * side).min(hi),
-                    );
-                    let x_at = |y: f64| p.x + (y - p.y) * d1.x / d1.y;
-                    let (xa, xb) = (x_at(band.0), x_at(band.1));
-                    let slack = side * 1e-6;
-                    (
-                        grid.col(xa.min(xb) - slack).max(c0),
-                        grid.col(xa.max(xb) + slack).min(c1),
-                    )
-                };
-                for c in c0..=c1 {
-                    for &i in grid.cell(r, c) {
-                        let i = i as usize;
-                        if stamped {
-                            if self.stamp[i] == self.segment {
-                                continue;
-                            }
-                            self.stamp[i] = self.segment;
-                        }
-                        let Edge { a, b } = self.edges[i];
-                        if a.x.max(b.x) < px0 || a.x.min(b.x) > px1 {
-                            continue;
-                        }
-                        // The edge's ends on opposite sides of the segment's line (cheap,
-                        // and false for nearly every edge) before any division.
-                        let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
-                        if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
-                            continue;
-                        }
-                        let d2 = b - a;
-                        let den = d1.x * d2.y - d1.y * d2.x;
-                        if den == 0.0 {
-                            continue;
-                        }
-                        let ap = a - p;
-                        let t = (ap.x * d2.y - ap.y * d2.x) / den;
-                        let u = (ap.x * d1.y - ap.y * d1.x) / den;
-                        if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
-                            cuts.push(k as f64 + t);
-                        }
-                    }
+            let segment = Segment {
+                p,
+                d: q - p,
+                x0: p.x.min(q.x),
+                x1: p.x.max(q.x),
+                k: k as f64,
+            };
+            if self.edges.len() <= PLAIN {
+                // Few edges (a star, an L): every one, no grid to build or walk.
+                for &edge in &self.edges {
+                    segment.cut(edge, &mut cuts);
                 }
+            } else {
+                self.cut_through_grid(&segment, lo, hi, &mut cuts);
             }
             cuts[first..].sort_unstable_by(f64::total_cmp);
         }
         let end = (pts.len() - 1) as f64;
         cuts.push(end);
+        // `g` is never negative: truncation is its floor (no call to the C library's).
         let at = |g: f64| {
-            let k = (g.floor() as usize).min(pts.len() - 2);
+            let k = (g as usize).min(pts.len() - 2);
             let t = g - k as f64;
             pts[k] + (pts[k + 1] - pts[k]) * t
         };
@@ -383,8 +331,15 @@ impl Edges {
             if g1 <= g0 || !self.contains(at((g0 + g1) / 2.0)) {
                 continue;
             }
-            let first = g0.floor() as usize + 1;
-            let last = g1.ceil() as usize;
+            let first = g0 as usize + 1;
+            let last = {
+                let whole = g1 as usize;
+                if (whole as f64) < g1 {
+                    whole + 1
+                } else {
+                    whole
+                }
+            };
             let mut piece = Vec::with_capacity(last - first.min(last) + 2);
             piece.push(at(g0));
             piece.extend(pts[first.min(last)..last].iter().copied());
@@ -392,6 +347,99 @@ impl Edges {
             out.push(piece);
         }
         self.cuts = cuts;
+    }
+
+    /// The crossings of one segment (`lo`..`hi` its y range) with the edges of the grid
+    /// cells it passes: row by row, only the cells of its x range within the row.
+    fn cut_through_grid(&mut self, segment: &Segment, lo: f64, hi: f64, cuts: &mut Vec<f64>) {
+        if self.stamp.len() != self.edges.len() {
+            self.stamp = vec![u32::MAX; self.edges.len()];
+        }
+        let grid = self
+            .grid
+            .get_or_insert_with(|| Grid::new(&self.edges, self.min, self.max));
+        let (p, d1) = (segment.p, segment.d);
+        let (c0, c1) = (grid.col(segment.x0), grid.col(segment.x1));
+        let (r0, r1) = (grid.row(lo), grid.row(hi));
+        // Within one cell an edge is met once; across cells, the stamp skips repeats.
+        let stamped = c0 != c1 || r0 != r1;
+        if stamped {
+            self.segment = self.segment.wrapping_add(1);
+        }
+        for r in r0..=r1 {
+            // Only the cells of this row that the segment passes (its x range within the
+            // row's band, with the grid's slack), not every cell of its box: a long
+            // diagonal branch meets a line of cells, not a square of them.
+            let (c0, c1) = if r0 == r1 || c0 == c1 {
+                (c0, c1)
+            } else {
+                let side = 1.0 / grid.inv;
+                let band = (
+                    (grid.min.y + r as f64 * side).max(lo),
+                    (grid.min.y + (r + 1) as f64 * side).min(hi),
+                );
+                let x_at = |y: f64| p.x + (y - p.y) * d1.x / d1.y;
+                let (xa, xb) = (x_at(band.0), x_at(band.1));
+                let slack = side * 1e-6;
+                (
+                    grid.col(xa.min(xb) - slack).max(c0),
+                    grid.col(xa.max(xb) + slack).min(c1),
+                )
+            };
+            for c in c0..=c1 {
+                for &i in grid.cell(r, c) {
+                    let i = i as usize;
+                    if stamped {
+                        if self.stamp[i] == self.segment {
+                            continue;
+                        }
+                        self.stamp[i] = self.segment;
+                    }
+                    segment.cut(self.edges[i], cuts);
+                }
+            }
+        }
+    }
+}
+
+/// Up to this many edges, `clip` tests every edge: cheaper than building and walking the
+/// grid.
+const PLAIN: usize = 32;
+
+/// One segment of a polyline being clipped: its start, direction, x range and index.
+struct Segment {
+    p: Coord,
+    d: Coord,
+    x0: f64,
+    x1: f64,
+    k: f64,
+}
+
+impl Segment {
+    /// Where the segment crosses `edge`, as `k + t`, pushed to `cuts`.
+    #[inline]
+    fn cut(&self, Edge { a, b }: Edge, cuts: &mut Vec<f64>) {
+        let (p, d1) = (self.p, self.d);
+        if a.x.max(b.x) < self.x0 || a.x.min(b.x) > self.x1 {
+            return;
+        }
+        // The edge's ends on opposite sides of the segment's line (cheap, and false for
+        // nearly every edge) before any division.
+        let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
+        if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
+            return;
+        }
+        let d2 = b - a;
+        let den = d1.x * d2.y - d1.y * d2.x;
+        if den == 0.0 {
+            return;
+        }
+        let ap = a - p;
+        let t = (ap.x * d2.y - ap.y * d2.x) / den;
+        let u = (ap.x * d1.y - ap.y * d1.x) / den;
+        if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
+            cuts.push(self.k + t);
+        }
     }
 }
 

@@ -69,9 +69,7 @@ pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<
 fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<Coord>> {
     let pts = inside_left(ring, exterior)?;
     let n = pts.len();
-    // Plain square roots (coordinates are bounded, nothing overflows; `hypot` is several
-    // times slower).
-    let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
+    let unit = |e: Coord| e / e.x.hypot(e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
     // Room for the arcs and the closing point the polygon adds.
     let mut out = Vec::with_capacity(n + n / 2 + 1);

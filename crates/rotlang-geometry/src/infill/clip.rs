@@ -59,8 +59,9 @@ pub(crate) struct Edges {
     /// otherwise meet an edge once per strip).
     stamp: Vec<u32>,
     segment: u32,
-    /// `clip`'s cuts, kept for the next call.
+    /// `clip`'s cuts and the piece it hands out, kept for the next call.
     cuts: Vec<f64>,
+    piece: Vec<Coord>,
     /// For `clip`, built by its first call: the edges in a grid of square cells, so that a
     /// short segment well inside the region tests no edge at all.
     grid: Option<Grid>,
@@ -230,6 +231,7 @@ impl Edges {
             height,
             segment: 0,
             cuts: Vec::new(),
+            piece: Vec::new(),
             grid: None,
         }
     }
@@ -283,6 +285,13 @@ impl Edges {
 
     /// The pieces of the polyline `pts` inside the region, appended to `out`.
     pub fn clip(&mut self, pts: &[Coord], out: &mut Vec<Vec<Coord>>) {
+        self.clip_each(pts, |piece| out.push(piece.to_vec()));
+    }
+
+    /// The pieces of the polyline `pts` inside the region, each handed to `piece` in turn
+    /// (from a buffer kept for the next call: nothing is allocated for a caller that only
+    /// measures them).
+    pub fn clip_each(&mut self, pts: &[Coord], mut piece: impl FnMut(&[Coord])) {
         if pts.len() < 2 {
             return;
         }
@@ -320,6 +329,7 @@ impl Edges {
         }
         let end = (pts.len() - 1) as f64;
         cuts.push(end);
+        let mut buffer = std::mem::take(&mut self.piece);
         // `g` is never negative: truncation is its floor (no call to the C library's).
         let at = |g: f64| {
             let k = (g as usize).min(pts.len() - 2);
@@ -340,13 +350,14 @@ impl Edges {
                     whole
                 }
             };
-            let mut piece = Vec::with_capacity(last - first.min(last) + 2);
-            piece.push(at(g0));
-            piece.extend(pts[first.min(last)..last].iter().copied());
-            piece.push(at(g1));
-            out.push(piece);
+            buffer.clear();
+            buffer.push(at(g0));
+            buffer.extend(pts[first.min(last)..last].iter().copied());
+            buffer.push(at(g1));
+            piece(&buffer);
         }
         self.cuts = cuts;
+        self.piece = buffer;
     }
 
     /// The crossings of one segment (`lo`..`hi` its y range) with the edges of the grid

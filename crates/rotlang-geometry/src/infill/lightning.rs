@@ -12,6 +12,22 @@ use geo::Coord;
 use super::Region;
 use super::clip::{Edges, Frame};
 
+/// How many branches each outline gets at `spacing`: all that the tree depends the
+/// spacing on (two spacings with the same counts make the same tree).
+pub(crate) fn counts(region: &Region, spacing: f64) -> Vec<usize> {
+    let gap = 2.5 * spacing;
+    region
+        .outlines()
+        .iter()
+        .map(|ring| (perimeter(ring) / gap).floor().max(1.0) as usize)
+        .collect()
+}
+
+fn perimeter(ring: &[Coord]) -> f64 {
+    let n = ring.len();
+    (0..n).map(|i| length(ring[(i + 1) % n] - ring[i])).sum()
+}
+
 /// The tree for one spacing, appended to `out`. `edges` are the region's in `frame`
 /// ([`frame`]): built once for every tree of the layer (`Region::fill` builds two).
 pub(crate) fn lightning(
@@ -21,6 +37,21 @@ pub(crate) fn lightning(
     spacing: f64,
     edges: &mut Edges,
     out: &mut Vec<Vec<Coord>>,
+) {
+    tree(region, centre, theta, spacing, edges, |piece| {
+        out.push(piece.to_vec())
+    });
+}
+
+/// The tree's pieces, in world coordinates, each handed to `piece` (in the order
+/// `lightning` appends them).
+pub(crate) fn tree(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    spacing: f64,
+    edges: &mut Edges,
+    mut piece: impl FnMut(&[Coord]),
 ) {
     let frame = frame(centre);
     let gap = 2.5 * spacing;
@@ -36,7 +67,7 @@ pub(crate) fn lightning(
         let start = (0..n)
             .max_by(|&i, &j| dot(ring[i], direction).total_cmp(&dot(ring[j], direction)))
             .unwrap_or(0);
-        let perimeter: f64 = (0..n).map(|i| length(ring[(i + 1) % n] - ring[i])).sum();
+        let perimeter = perimeter(ring);
         let count = (perimeter / gap).floor().max(1.0) as usize;
         let step = perimeter / count as f64;
         branches.reserve(3 * count);
@@ -69,26 +100,22 @@ pub(crate) fn lightning(
             next = k as f64 * step;
         }
     }
-    let mut local = Vec::new();
+    // Each piece back in world coordinates, in one buffer.
+    let mut world = Vec::new();
     // In a convex region a branch with both ends inside (or starting on the outline) is
     // inside whole: no clipping, which is most of the work.
     let convex = region.is_convex();
-    out.reserve(branches.len());
     for (branch, main) in branches {
         let branch = branch.map(|p| frame.to_local(p));
         if convex && (main || edges.contains(branch[0])) && edges.contains(branch[1]) {
-            out.push(branch.iter().map(|&q| frame.to_world(q)).collect());
+            piece(&branch.map(|q| frame.to_world(q)));
             continue;
         }
-        local.clear();
-        edges.clip(&branch, &mut local);
-        // Each piece back in place, without a new vector.
-        out.extend(local.drain(..).map(|mut piece| {
-            for q in &mut piece {
-                *q = frame.to_world(*q);
-            }
-            piece
-        }));
+        edges.clip_each(&branch, |local| {
+            world.clear();
+            world.extend(local.iter().map(|&q| frame.to_world(q)));
+            piece(&world);
+        });
     }
 }
 

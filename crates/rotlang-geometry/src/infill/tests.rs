@@ -1403,3 +1403,76 @@ proptest! {
         }
     }
 }
+
+/// Lightning as it was filled before the first tree was only measured: two trees built
+/// whole, the first's paths measured, the last one printed (then simplified and ordered
+/// as `Region::fill` does).
+fn lightning_by_two_trees(region: &Region, params: &Params) -> Toolpaths {
+    let (w, rho) = (params.nozzle, params.density);
+    let centre = region.centre();
+    let theta = params.angle.rem_euclid(360.0).to_radians();
+    let mut edges = clip::Edges::new(region.rings(), &lightning::frame(centre));
+    let mut paths = Vec::new();
+    let mut spacing = 2.0 * w / rho;
+    for _ in 0..2 {
+        paths.clear();
+        lightning::lightning(region, centre, theta, spacing, &mut edges, &mut paths);
+        let length: f64 = paths.iter().map(|p| travel::length(p)).sum();
+        let printed = length * w / region.area();
+        if printed.is_nan() || printed <= 0.0 || (printed / rho - 1.0).abs() < 0.03 {
+            break;
+        }
+        spacing *= (printed / rho).clamp(0.25, 4.0);
+    }
+    paths.retain_mut(|p| order::simplify(p, w / 10.0));
+    let rings: &[Vec<Coord>] = if region.is_convex() {
+        &[]
+    } else {
+        region.rings()
+    };
+    order::order(paths, false, clip::Frame::new(centre, theta), rings)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// Measuring the first tree without making its paths, and not rebuilding a tree whose
+    /// branch counts did not change, prints what building both trees printed.
+    #[test]
+    fn lightning_measured_once_is_lightning_built_twice(
+        radii in prop::collection::vec(2.0f64..15.0, 3..14),
+        hole in prop::collection::vec(0.5f64..1.5, 3..8),
+        holed in any::<bool>(),
+        turn in 0.0f64..TAU,
+        rho in 0.05f64..1.0,
+        angle in -360.0f64..360.0,
+    ) {
+        let holes = if holed {
+            vec![radial_ring(&hole, -turn, Coord { x: 0.3, y: 0.2 }, true)]
+        } else {
+            vec![]
+        };
+        let shape = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&radii, turn, Coord::zero(), false),
+            holes,
+        )]);
+        let region = Region::new(&shape, W).unwrap();
+        let params = Params::new(Pattern::Lightning, rho, W).angle(angle);
+        prop_assert_eq!(region.fill(&params).unwrap(), lightning_by_two_trees(&region, &params));
+    }
+}
+
+/// The five compared shapes at 10, 20 and 40%: the same paths as two whole trees.
+#[test]
+fn lightning_on_the_compared_shapes_is_unchanged() {
+    for (_, shape) in shapes() {
+        let region = Region::new(&shape, W).unwrap();
+        for rho in [0.1, 0.2, 0.4] {
+            let params = Params::new(Pattern::Lightning, rho, W).angle(45.0);
+            assert_eq!(
+                region.fill(&params).unwrap(),
+                lightning_by_two_trees(&region, &params)
+            );
+        }
+    }
+}

@@ -74,8 +74,9 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
     // Room for the arcs and the closing point the polygon adds.
     let mut out = Vec::with_capacity(n + n / 2 + 1);
     // For every original edge i (from pts[i]), where its offset starts and ends in `out`.
-    let mut starts = Vec::with_capacity(n);
-    let mut ends = Vec::with_capacity(n);
+    // One list of (start, end) per vertex: its moved point(s) run from `end` (where the
+    // edge before it ends) to `start` (where the edge after it starts).
+    let mut at: Vec<(usize, usize)> = Vec::with_capacity(n);
     for i in 0..n {
         let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
         let (u, v) = (unit(b - a), unit(c - b));
@@ -88,14 +89,13 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
             if k <= 1e-9 {
                 return None;
             }
-            ends.push(out.len());
-            starts.push(out.len());
+            at.push((out.len(), out.len()));
             out.push(b + (nu + nv) * (d / k));
         } else {
             // Reflex: an arc about the vertex from one moved edge's end to the next's start.
             let angle = turn.atan2(dot); // negative: turning right
             let steps = (-angle / arc).ceil().max(1.0) as usize;
-            ends.push(out.len());
+            let end = out.len();
             out.push(b + nu * d);
             let (s, c) = (angle / steps as f64).sin_cos();
             let mut w = nu;
@@ -106,13 +106,13 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
                 };
                 out.push(b + w * d);
             }
-            starts.push(out.len());
+            at.push((out.len(), end));
             out.push(b + nv * d);
         }
     }
     // Edge i runs from vertex i's start to vertex i+1's end: it must keep its direction.
     for i in 0..n {
-        let (p, q) = (out[starts[i]], out[ends[(i + 1) % n]]);
+        let (p, q) = (out[at[i].0], out[at[(i + 1) % n].1]);
         let e = pts[(i + 1) % n] - pts[i];
         let f = q - p;
         if e.x * f.x + e.y * f.y <= 0.0 {
@@ -172,7 +172,19 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
         .enumerate()
         .map(|(i, e)| (e.a.x, i as u32))
         .collect();
-    order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+    // A small ring's keys by insertion (the sweep's answer does not depend on how ties
+    // are ordered); a large one's by the library's sort.
+    if order.len() <= 48 {
+        for i in 1..order.len() {
+            let mut j = i;
+            while j > 0 && order[j - 1].0 > order[j].0 {
+                order.swap(j - 1, j);
+                j -= 1;
+            }
+        }
+    } else {
+        order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+    }
     for (k, &(_, i)) in order.iter().enumerate() {
         let e = &edges[i as usize];
         let (ylo, yhi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));

@@ -25,9 +25,11 @@ struct Cut {
 pub(crate) struct Router<'a> {
     rings: &'a [Vec<Coord>],
     /// Ring `r`'s cumulative lengths are `cumulative[at[r]..at[r] + n + 1]` (one flat
-    /// list: one allocation, not one per ring).
-    cumulative: Vec<f64>,
-    at: Vec<usize>,
+    /// list: one allocation, not one per ring), measured when a first move is walked
+    /// around (most layers' moves are straight).
+    lengths: std::cell::OnceCell<(Vec<f64>, Vec<usize>)>,
+    /// The crossings of the move being routed, kept for the next.
+    cuts: std::cell::RefCell<Vec<(f64, Cut)>>,
     /// Each ring's bounding box: a move or point outside it cannot cross it or be in it.
     boxes: Vec<(Coord, Coord)>,
     /// The boxes of each ring's chunks of `CHUNK` edges (ring `r`'s from `chunk_at[r]`),
@@ -46,22 +48,12 @@ impl<'a> Router<'a> {
     /// A router with chunks of `chunk` edges (`usize::MAX`: one per ring).
     pub(crate) fn with_chunk(rings: &'a [Vec<Coord>], chunk: usize) -> Router<'a> {
         let vertices: usize = rings.iter().map(Vec::len).sum();
-        let mut cumulative = Vec::with_capacity(vertices + rings.len());
-        let mut at = Vec::with_capacity(rings.len());
         let mut boxes = Vec::with_capacity(rings.len());
         let mut chunks = Vec::with_capacity(vertices / chunk + rings.len());
         let mut chunk_at = Vec::with_capacity(rings.len());
         let mut largest: f64 = 0.0;
         for r in rings {
             let n = r.len();
-            at.push(cumulative.len());
-            let mut s = 0.0;
-            cumulative.push(0.0);
-            for i in 0..n {
-                let e = r[(i + 1) % n] - r[i];
-                s += (e.x * e.x + e.y * e.y).sqrt();
-                cumulative.push(s);
-            }
             let ring_box = bounds(r);
             largest = largest
                 .max(ring_box.0.x.abs())
@@ -101,8 +93,8 @@ impl<'a> Router<'a> {
         }
         Router {
             rings,
-            cumulative,
-            at,
+            lengths: std::cell::OnceCell::new(),
+            cuts: std::cell::RefCell::new(Vec::new()),
             boxes,
             chunks,
             chunk_at,
@@ -132,8 +124,25 @@ impl<'a> Router<'a> {
     }
 
     fn cumulative(&self, r: usize) -> &[f64] {
-        let from = self.at[r];
-        &self.cumulative[from..from + self.rings[r].len() + 1]
+        let (cumulative, at) = self.lengths.get_or_init(|| {
+            let vertices: usize = self.rings.iter().map(Vec::len).sum();
+            let mut cumulative = Vec::with_capacity(vertices + self.rings.len());
+            let mut at = Vec::with_capacity(self.rings.len());
+            for ring in self.rings {
+                let n = ring.len();
+                at.push(cumulative.len());
+                let mut s = 0.0;
+                cumulative.push(0.0);
+                for i in 0..n {
+                    let e = ring[(i + 1) % n] - ring[i];
+                    s += (e.x * e.x + e.y * e.y).sqrt();
+                    cumulative.push(s);
+                }
+            }
+            (cumulative, at)
+        });
+        let from = at[r];
+        &cumulative[from..from + self.rings[r].len() + 1]
     }
 
     /// Where a move from `p` to `q` crosses ring `r`: the fraction along the move, and
@@ -189,7 +198,8 @@ impl<'a> Router<'a> {
         if self.rings.iter().any(|r| r.len() < 3) || self.rings.is_empty() {
             return vec![p, q];
         }
-        let mut cuts: Vec<(f64, Cut)> = Vec::new();
+        let mut cuts = self.cuts.take();
+        cuts.clear();
         let (lo, hi) = (
             Coord {
                 x: p.x.min(q.x),
@@ -210,6 +220,7 @@ impl<'a> Router<'a> {
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
         if !cuts.iter().any(|&(t, _)| interior(t)) && self.inside((p + q) / 2.0) {
+            self.cuts.replace(cuts);
             return vec![p, q];
         }
         // A move between two points of one ring (line ends lie on the inset's rings) may
@@ -248,6 +259,7 @@ impl<'a> Router<'a> {
             self.walk(r, place(ra, a), place(rb, b), &mut out);
             out.push(b);
         }
+        self.cuts.replace(cuts);
         out.dedup();
         out
     }

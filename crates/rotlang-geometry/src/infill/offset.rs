@@ -77,9 +77,12 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
     // One list of (start, end) per vertex: its moved point(s) run from `end` (where the
     // edge before it ends) to `start` (where the edge after it starts).
     let mut at: Vec<(usize, usize)> = Vec::with_capacity(n);
+    // Each edge's direction once: the corner after it takes it as the one before.
+    let mut u = unit(pts[0] - pts[n - 1]);
     for i in 0..n {
-        let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
-        let (u, v) = (unit(b - a), unit(c - b));
+        let b = pts[i];
+        let c = if i + 1 < n { pts[i + 1] } else { pts[0] };
+        let v = unit(c - b);
         let (nu, nv) = (left(u), left(v));
         let turn = cross(u, v);
         let dot = u.x * v.x + u.y * v.y;
@@ -109,6 +112,7 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
             at.push((out.len(), end));
             out.push(b + nv * d);
         }
+        u = v;
     }
     // Edge i runs from vertex i's start to vertex i+1's end: it must keep its direction.
     for i in 0..n {

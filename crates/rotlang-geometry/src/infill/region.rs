@@ -380,7 +380,8 @@ fn convex_ring_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
 fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
     let n = ring.len();
     let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
-    let mut out = Vec::with_capacity(n);
+    // Room for the closing point the polygon adds.
+    let mut out = Vec::with_capacity(n + 1);
     for i in 0..n {
         let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
         let (u, v) = (unit(b - a), unit(c - b));
@@ -417,14 +418,20 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
             y: -e.x / len,
         }
     };
-    let mut out = Vec::with_capacity(2 * n);
+    // Room for the closing point the polygon adds.
+    let mut out = Vec::with_capacity(2 * n + 1);
+    // Each edge's normal once (the corner before and the corner after it share it), and
+    // the arc's cosines once.
+    let (arc_cos, half_arc_cos) = (arc.cos(), (arc / 2.0).cos());
+    let mut n0 = normal(kept[n - 1], kept[0]);
     for i in 0..n {
-        let (a, b, c) = (kept[(i + n - 1) % n], kept[i], kept[(i + 1) % n]);
-        let (n0, n1) = (normal(a, b), normal(b, c));
+        let b = kept[i];
+        let c = if i + 1 < n { kept[i + 1] } else { kept[0] };
+        let n1 = normal(b, c);
         let (sin, cos) = (cross(n0, n1), n0.x * n1.x + n0.y * n1.y);
         // Most corners of a round hole turn by less than `arc`: their two ends only, no
         // trigonometry; sharper ones in equal steps, each the last rotated.
-        let steps = if sin >= 0.0 && cos >= arc.cos() {
+        let steps = if sin >= 0.0 && cos >= arc_cos {
             1
         } else {
             (sin.atan2(cos).max(0.0) / arc).ceil().max(1.0) as usize
@@ -434,9 +441,10 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
         // a 64-gon hole, for every pattern's clipping and routing after.
         if steps == 1 && cos > 0.0 {
             let half_cos = ((1.0 + cos) / 2.0).sqrt();
-            if 1.0 / half_cos - 1.0 <= 1.0 - (arc / 2.0).cos() {
+            if 1.0 / half_cos - 1.0 <= 1.0 - half_arc_cos {
                 let k = 1.0 + cos;
                 out.push(b + (n0 + n1) * (d / k));
+                n0 = n1;
                 continue;
             }
         }
@@ -453,6 +461,7 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
             }
         }
         out.push(b + n1 * d);
+        n0 = n1;
     }
     Some(out)
 }

@@ -1476,3 +1476,25 @@ fn lightning_on_the_compared_shapes_is_unchanged() {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// The ray test that skips the division for edges wholly left or right of the point
+    /// answers as the division does, edges near and through the point included.
+    #[test]
+    fn ray_crossing_without_division_is_the_division(
+        a in (-50.0f64..50.0, -50.0f64..50.0),
+        b in (-50.0f64..50.0, -50.0f64..50.0),
+        t in 0.0f64..1.0,
+        dx in prop::sample::select(vec![0.0, 1e-13, -1e-13, 1e-9, -1e-9, 0.3, -0.3, 7.0]),
+    ) {
+        let (a, b) = (Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 });
+        // A point at height t along the edge, moved by dx from it.
+        let on = a + (b - a) * t;
+        let p = Coord { x: on.x + dx, y: on.y };
+        let plain = (a.y <= p.y) != (b.y <= p.y)
+            && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x;
+        prop_assert_eq!(clip::ray_crosses(a, b, p), plain);
+    }
+}

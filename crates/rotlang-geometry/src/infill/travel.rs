@@ -287,9 +287,7 @@ impl<'a> Router<'a> {
                 }
                 for i in edges {
                     let (a, b) = (ring[i], ring[(i + 1) % n]);
-                    if (a.y <= p.y) != (b.y <= p.y)
-                        && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x
-                    {
+                    if super::clip::ray_crosses(a, b, p) {
                         inside = !inside;
                     }
                     if p.y >= a.y.min(b.y) - 1e-6

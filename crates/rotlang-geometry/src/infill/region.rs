@@ -276,7 +276,15 @@ pub(crate) fn convex_inset(
 
 /// A ring's points without the closing repeat, counter-clockwise, collinear and repeated
 /// vertices dropped; `None` when it has a reflex vertex.
-fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
+pub(crate) fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
+    if has_reflex_corner(ring) {
+        return None;
+    }
+    convex_ring_copied(ring)
+}
+
+/// `convex_ring` on a copy, every corner tested.
+pub(crate) fn convex_ring_copied(ring: &[Coord]) -> Option<Vec<Coord>> {
     let mut pts: Vec<Coord> = ring.to_vec();
     if pts.len() > 1 && pts.first() == pts.last() {
         pts.pop();
@@ -333,6 +341,38 @@ fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
         changes += 1;
     }
     (changes <= 2).then_some(kept)
+}
+
+/// Whether the ring (closing point or not) has a corner that `convex_ring` calls reflex,
+/// found without copying it: a star's or an L's outline is turned down before any
+/// allocation. Corners next to a repeated point are left to `convex_ring` (its copy drops
+/// the repeat, which may change the corner), so `false` is not a verdict of convexity.
+fn has_reflex_corner(ring: &[Coord]) -> bool {
+    let open = match ring {
+        [first, .., last] if first == last => &ring[..ring.len() - 1],
+        _ => ring,
+    };
+    let n = open.len();
+    if n < 3 {
+        return false;
+    }
+    // Turned as `convex_ring` turns it: counter-clockwise unless the area is negative.
+    let sign = if signed_area(open) < 0.0 { -1.0 } else { 1.0 };
+    let mut a = open[n - 2];
+    let mut b = open[n - 1];
+    for &c in open {
+        if a != b && b != c {
+            let (u, v) = (b - a, c - b);
+            let cross = sign * cross(u, v);
+            let scale2 = (u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y);
+            if cross < 0.0 && cross * cross > 1e-24 * scale2 {
+                return true;
+            }
+        }
+        a = b;
+        b = c;
+    }
+    false
 }
 
 /// The exact inward offset of one convex ring: empty when it is thinner than `2d`.

@@ -1498,3 +1498,33 @@ proptest! {
         prop_assert_eq!(clip::ray_crosses(a, b, p), plain);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// Turning down a ring at its first reflex corner before copying it gives what the
+    /// copy, deduplicated and oriented, gives: rings of either orientation, convex or
+    /// not, with repeated points and a closing point or none.
+    #[test]
+    fn reflex_corners_found_before_copying(
+        radii in prop::collection::vec(2.0f64..15.0, 3..16),
+        convex in any::<bool>(),
+        clockwise in any::<bool>(),
+        closed in any::<bool>(),
+        repeat in prop::collection::vec(0usize..16, 0..3),
+    ) {
+        let radii: Vec<f64> = if convex { vec![radii[0]; radii.len()] } else { radii };
+        let mut ring = polygon(&radii, 0.3).0.remove(0).into_inner().0 .0;
+        if !closed {
+            ring.pop();
+        }
+        for &i in &repeat {
+            let i = i % ring.len();
+            ring.insert(i, ring[i]);
+        }
+        if clockwise {
+            ring.reverse();
+        }
+        prop_assert_eq!(region::convex_ring(&ring), region::convex_ring_copied(&ring));
+    }
+}

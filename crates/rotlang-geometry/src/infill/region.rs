@@ -345,15 +345,18 @@ pub(crate) fn convex_ring_copied(ring: &[Coord]) -> Option<Vec<Coord>> {
 
 /// Whether the ring (closing point or not) has a corner that `convex_ring` calls reflex,
 /// found without copying it: a star's or an L's outline is turned down before any
-/// allocation. Corners next to a repeated point are left to `convex_ring` (its copy drops
-/// the repeat, which may change the corner), so `false` is not a verdict of convexity.
+/// allocation. Corners next to a repeated point, and rings of more than 32 points, are
+/// left to `convex_ring` (its copy drops the repeat, which may change the corner), so
+/// `false` is not a verdict of convexity.
 fn has_reflex_corner(ring: &[Coord]) -> bool {
     let open = match ring {
         [first, .., last] if first == last => &ring[..ring.len() - 1],
         _ => ring,
     };
     let n = open.len();
-    if n < 3 {
+    // A long ring (a round hole) is most likely convex: its copy is tested once, not
+    // scanned twice.
+    if !(3..=32).contains(&n) {
         return false;
     }
     // Turned as `convex_ring` turns it: counter-clockwise unless the area is negative.

@@ -11,6 +11,7 @@ use geo::Coord;
 
 use super::Region;
 use super::clip::{Edges, Frame};
+use super::offset::next;
 
 /// How many branches each outline gets at `spacing`: all that the tree depends the
 /// spacing on (two spacings with the same counts make the same tree).
@@ -25,7 +26,7 @@ pub(crate) fn counts(region: &Region, spacing: f64) -> Vec<usize> {
 
 fn perimeter(ring: &[Coord]) -> f64 {
     let n = ring.len();
-    (0..n).map(|i| length(ring[(i + 1) % n] - ring[i])).sum()
+    (0..n).map(|i| length(ring[next(i, n)] - ring[i])).sum()
 }
 
 /// The tree for one spacing, appended to `out`. `edges` are the region's in `frame`

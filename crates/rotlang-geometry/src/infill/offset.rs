@@ -116,8 +116,8 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
     }
     // Edge i runs from vertex i's start to vertex i+1's end: it must keep its direction.
     for i in 0..n {
-        let (p, q) = (out[at[i].0], out[at[(i + 1) % n].1]);
-        let e = pts[(i + 1) % n] - pts[i];
+        let (p, q) = (out[at[i].0], out[at[next(i, n)].1]);
+        let e = pts[next(i, n)] - pts[i];
         let f = q - p;
         if e.x * f.x + e.y * f.y <= 0.0 {
             return None;
@@ -135,7 +135,7 @@ fn inside(ring: &[Coord], p: Coord) -> bool {
     let n = ring.len();
     let mut inside = false;
     for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
+        let (a, b) = (ring[i], ring[next(i, n)]);
         if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
             inside = !inside;
         }
@@ -156,7 +156,7 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
     for (r, ring) in rings.iter().enumerate() {
         let n = ring.len();
         for i in 0..n {
-            let (a, b) = (ring[i], ring[(i + 1) % n]);
+            let (a, b) = (ring[i], ring[next(i, n)]);
             let (a, b) = if (a.x, a.y) <= (b.x, b.y) {
                 (a, b)
             } else {
@@ -202,7 +202,9 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
             }
             if e.ring == f.ring {
                 let n = rings[e.ring as usize].len() as u32;
-                if (e.index + 1) % n == f.index || (f.index + 1) % n == e.index {
+                if next(e.index as usize, n as usize) == f.index as usize
+                    || next(f.index as usize, n as usize) == e.index as usize
+                {
                     continue;
                 }
             }
@@ -254,6 +256,13 @@ pub(crate) fn inside_left(ring: &[Coord], exterior: bool) -> Option<Vec<Coord>> 
     Some(pts)
 }
 
+/// The index after `i` round a ring of `n` (a comparison, not the integer division of
+/// `%`, in the loops over every edge).
+#[inline]
+pub(crate) fn next(i: usize, n: usize) -> usize {
+    if i + 1 >= n { 0 } else { i + 1 }
+}
+
 pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
     a.x * b.y - a.y * b.x
 }
@@ -261,7 +270,7 @@ pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
 pub(crate) fn signed_area(ring: &[Coord]) -> f64 {
     let n = ring.len();
     (0..n)
-        .map(|i| cross(ring[i], ring[(i + 1) % n]))
+        .map(|i| cross(ring[i], ring[next(i, n)]))
         .sum::<f64>()
         / 2.0
 }

@@ -4,6 +4,7 @@ use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
 use super::{Error, MAX_COORDINATE};
 // Where they were (`super::region::cross`): ring helpers the offset shares.
+use super::offset::next;
 pub(crate) use super::offset::{cross, signed_area};
 
 /// The infill area of a layer: the region inset by half a nozzle.
@@ -390,7 +391,7 @@ fn convex_ring_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
     let mut out = kept.clone();
     let mut next = Vec::with_capacity(n + 1);
     for i in 0..n {
-        let (a, b) = (kept[i], kept[(i + 1) % n]);
+        let (a, b) = (kept[i], kept[super::offset::next(i, n)]);
         let dir = b - a;
         let len = dir.x.hypot(dir.y);
         // Inside: to the left of the edge, at least d from its line.
@@ -426,7 +427,7 @@ fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
     // Room for the closing point the polygon adds.
     let mut out = Vec::with_capacity(n + 1);
     for i in 0..n {
-        let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
+        let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[next(i, n)]);
         let (u, v) = (unit(b - a), unit(c - b));
         // The inward normals (left of each edge) and their mitre.
         let (nu, nv) = (Coord { x: -u.y, y: u.x }, Coord { x: -v.y, y: v.x });
@@ -437,8 +438,8 @@ fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
         out.push(b + (nu + nv) * (d / k));
     }
     for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        let (p, q) = (out[i], out[(i + 1) % n]);
+        let (a, b) = (ring[i], ring[next(i, n)]);
+        let (p, q) = (out[i], out[next(i, n)]);
         let (e, f) = (b - a, q - p);
         if e.x * f.x + e.y * f.y <= 0.0 {
             return None;
@@ -512,7 +513,7 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
 /// Whether `p` is strictly inside the counter-clockwise convex ring.
 fn inside_convex(ring: &[Coord], p: Coord) -> bool {
     let n = ring.len();
-    (0..n).all(|i| cross(ring[(i + 1) % n] - ring[i], p - ring[i]) > 0.0)
+    (0..n).all(|i| cross(ring[next(i, n)] - ring[i], p - ring[i]) > 0.0)
 }
 
 /// Whether two counter-clockwise convex rings are apart: some edge of one has the whole
@@ -521,7 +522,7 @@ fn separated(a: &[Coord], b: &[Coord]) -> bool {
     let outside = |r: &[Coord], s: &[Coord]| {
         let n = r.len();
         (0..n).any(|i| {
-            let (p, q) = (r[i], r[(i + 1) % n]);
+            let (p, q) = (r[i], r[next(i, n)]);
             s.iter().all(|&x| cross(q - p, x - p) < 0.0)
         })
     };

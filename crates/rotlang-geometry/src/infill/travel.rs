@@ -7,6 +7,8 @@
 
 use geo::Coord;
 
+use super::offset::next;
+
 /// Edges per chunk: each ring's edges are taken in runs of this many consecutive ones,
 /// each run with its bounding box, so that a move or a point far from a run skips it
 /// whole (a round hole's 64 edges are 8 boxes, of which a move near it meets one or two).
@@ -134,7 +136,7 @@ impl<'a> Router<'a> {
                 let mut s = 0.0;
                 cumulative.push(0.0);
                 for i in 0..n {
-                    let e = ring[(i + 1) % n] - ring[i];
+                    let e = ring[next(i, n)] - ring[i];
                     s += (e.x * e.x + e.y * e.y).sqrt();
                     cumulative.push(s);
                 }
@@ -167,7 +169,7 @@ impl<'a> Router<'a> {
                 continue;
             }
             for i in edges {
-                let (a, b) = (ring[i], ring[(i + 1) % n]);
+                let (a, b) = (ring[i], ring[next(i, n)]);
                 let e = b - a;
                 let denom = d.x * e.y - d.y * e.x;
                 if denom == 0.0 {
@@ -286,7 +288,7 @@ impl<'a> Router<'a> {
                     continue;
                 }
                 for i in edges {
-                    let (a, b) = (ring[i], ring[(i + 1) % n]);
+                    let (a, b) = (ring[i], ring[next(i, n)]);
                     if super::clip::ray_crosses(a, b, p) {
                         inside = !inside;
                     }
@@ -334,7 +336,7 @@ impl<'a> Router<'a> {
                 continue;
             }
             for i in edges {
-                let (a, b) = (ring[i], ring[(i + 1) % n]);
+                let (a, b) = (ring[i], ring[next(i, n)]);
                 let e = b - a;
                 let len2 = e.x * e.x + e.y * e.y;
                 let u = if len2 > 0.0 {
@@ -371,14 +373,14 @@ impl<'a> Router<'a> {
         let perimeter = self.cumulative(r)[n];
         let forward = (s1 - s0).rem_euclid(perimeter);
         if forward <= perimeter - forward {
-            let mut i = (i0 + 1) % n;
+            let mut i = next(i0, n);
             if !(i0 == i1 && s1 >= s0) {
                 for _ in 0..n {
                     walk.push(ring[i]);
                     if i == i1 {
                         break;
                     }
-                    i = (i + 1) % n;
+                    i = next(i, n);
                 }
             }
         } else if !(i0 == i1 && s1 <= s0) {

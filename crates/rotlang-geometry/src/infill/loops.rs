@@ -16,88 +16,159 @@ const MAX_SEGMENTS: usize = 20_000;
 
 /// The rings (closed: first point = last) bounding the erosion of `region` by `d`, arcs in
 /// steps of at most `arc` radians, each with the inside on its left (outlines
-/// counter-clockwise, holes clockwise). Empty when nothing is left.
+/// counter-clockwise, holes clockwise). Empty when nothing is left. (Concentric prepares
+/// an [`Eroder`] once for all its loops; the tests ask for one distance at a time.)
+#[cfg(test)]
 pub(crate) fn eroded_rings(
     region: &MultiPolygon<f64>,
     d: f64,
     arc: f64,
 ) -> Option<Vec<Vec<Coord>>> {
-    let mut boundary: Vec<&[Coord]> = Vec::new();
-    let mut raws: Vec<Raw> = Vec::new();
-    for polygon in &region.0 {
-        for (i, ring) in std::iter::once(polygon.exterior())
-            .chain(polygon.interiors())
-            .enumerate()
-        {
-            boundary.push(&ring.0);
-            if let Some(raw) = raw_ring(&ring.0, d, arc, i == 0) {
-                raws.push(raw);
+    Eroder::new(region, arc).rings(d)
+}
+
+/// A region prepared for eroding it by many distances (concentric's loops): what does not
+/// depend on the distance (each ring oriented, its corners' normals and kinds, the arcs'
+/// directions) is worked out once, and the buffers are reused from one distance to the
+/// next. Every raw point is computed from the same numbers as before, so the rings are the
+/// same to the bit as a fresh `eroded_rings`.
+pub(crate) struct Eroder<'a> {
+    /// Every ring of the region as given (closed), for the test that a piece is `d` away.
+    boundary: Vec<&'a [Coord]>,
+    /// Each ring's corners (rings that cannot be oriented are left out, as before).
+    corners: Vec<Vec<Corner>>,
+    /// The unit directions of every reflex corner's inner arc points.
+    directions: Vec<Coord>,
+    /// Reused: the raw offsets, the crossing sweep's edges, each ring's cuts.
+    raws: Vec<Raw>,
+    edges: Vec<Edge>,
+    here: Vec<(usize, usize, f64, usize)>,
+}
+
+/// A corner of a ring, as its raw offset needs it.
+enum Corner {
+    /// One point `b + m·d/k` (a convex corner's mitre, or a reflex corner within one arc
+    /// step).
+    Mitre { b: Coord, m: Coord, k: f64 },
+    /// A sharp tip: through the vertex.
+    Tip { b: Coord, nu: Coord, nv: Coord },
+    /// A reflex corner's arc: `b + nu·d`, `b + w·d` for each inner direction, `b + nv·d`.
+    Arc {
+        b: Coord,
+        nu: Coord,
+        nv: Coord,
+        inner: std::ops::Range<usize>,
+    },
+}
+
+impl<'a> Eroder<'a> {
+    pub(crate) fn new(region: &'a MultiPolygon<f64>, arc: f64) -> Eroder<'a> {
+        let mut boundary: Vec<&[Coord]> = Vec::new();
+        let mut corners = Vec::new();
+        let mut directions = Vec::new();
+        for polygon in &region.0 {
+            for (i, ring) in std::iter::once(polygon.exterior())
+                .chain(polygon.interiors())
+                .enumerate()
+            {
+                boundary.push(&ring.0);
+                if let Some(c) = prepare(&ring.0, arc, i == 0, &mut directions) {
+                    corners.push(c);
+                }
             }
         }
-    }
-    if raws.iter().map(|r| r.pts.len()).sum::<usize>() > MAX_SEGMENTS {
-        return None;
-    }
-    let cuts = crossings(&raws)?;
-    // Cut every raw ring at its crossings into pieces; keep those `d` from the boundary.
-    let mut pieces: Vec<Piece> = Vec::new();
-    for (r, raw) in raws.iter().enumerate() {
-        let n = raw.pts.len();
-        let mut here: Vec<(usize, f64, usize)> = cuts
-            .iter()
-            .enumerate()
-            .flat_map(|(id, c)| {
-                let mut v = Vec::with_capacity(2);
-                if c.ring[0] == r {
-                    v.push((c.seg[0], c.t[0], id));
-                }
-                if c.ring[1] == r {
-                    v.push((c.seg[1], c.t[1], id));
-                }
-                v
-            })
-            .collect();
-        if here.is_empty() {
-            let mut pts = raw.pts.clone();
-            pts.push(pts[0]);
-            if keep(&pts, &raw.centres, 0, &boundary, d) {
-                pieces.push(Piece {
-                    pts,
-                    from: usize::MAX,
-                    to: usize::MAX,
-                });
-            }
-            continue;
+        Eroder {
+            boundary,
+            corners,
+            directions,
+            raws: Vec::new(),
+            edges: Vec::new(),
+            here: Vec::new(),
         }
-        here.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        for k in 0..here.len() {
-            let (s0, t0, id0) = here[k];
-            let (s1, t1, id1) = here[(k + 1) % here.len()];
-            let mut pts = vec![cuts[id0].at];
-            // The segments the piece runs along, for the arc centre of its test point.
-            let first = s0;
-            let mut s = s0;
-            let wraps = k + 1 == here.len();
-            if !(s1 == s0 && t1 > t0 && !wraps) {
-                loop {
-                    s = (s + 1) % n;
-                    pts.push(raw.pts[s]);
-                    if s == s1 {
-                        break;
+    }
+
+    /// The rings bounding the erosion by `d` (as [`eroded_rings`]).
+    pub(crate) fn rings(&mut self, d: f64) -> Option<Vec<Vec<Coord>>> {
+        self.raws.resize_with(self.corners.len(), || Raw {
+            pts: Vec::new(),
+            centres: Vec::new(),
+        });
+        for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
+            raw.fill(corners, &self.directions, d);
+        }
+        if self.raws.iter().map(|r| r.pts.len()).sum::<usize>() > MAX_SEGMENTS {
+            return None;
+        }
+        let raws = &self.raws;
+        let cuts = crossings(raws, &mut self.edges)?;
+        // Every cut twice (once on each ring it is on), grouped by ring, in order along it.
+        self.here.clear();
+        for (id, c) in cuts.iter().enumerate() {
+            self.here.push((c.ring[0], c.seg[0], c.t[0], id));
+            self.here.push((c.ring[1], c.seg[1], c.t[1], id));
+        }
+        self.here
+            .sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.total_cmp(&b.2)));
+        // Cut every raw ring at its crossings into pieces; keep those `d` from the boundary.
+        // A piece is tested before it is built: most are cut away.
+        let boundary = &self.boundary;
+        let mut pieces: Vec<Piece> = Vec::new();
+        let mut from = 0;
+        for (r, raw) in raws.iter().enumerate() {
+            let n = raw.pts.len();
+            let to = from + self.here[from..].iter().take_while(|h| h.0 == r).count();
+            let here = &self.here[from..to];
+            from = to;
+            if here.is_empty() {
+                // The whole ring, closed: its point m and m + 1 (n is the first again).
+                let m = (n + 1 - 2) / 2;
+                let mid = (raw.pts[m] + raw.pts[(m + 1) % n]) / 2.0;
+                if keep(mid, raw.centres[m % n], boundary, d) {
+                    let mut pts = Vec::with_capacity(n + 1);
+                    pts.extend_from_slice(&raw.pts);
+                    pts.push(pts[0]);
+                    pieces.push(Piece {
+                        pts,
+                        from: usize::MAX,
+                        to: usize::MAX,
+                    });
+                }
+                continue;
+            }
+            for k in 0..here.len() {
+                let (_, s0, t0, id0) = here[k];
+                let (_, s1, t1, id1) = here[(k + 1) % here.len()];
+                let wraps = k + 1 == here.len();
+                // The raw points between the cuts: s0 + 1 ..= s1 (all around when s1 = s0).
+                let count = if s1 == s0 && t1 > t0 && !wraps {
+                    0
+                } else {
+                    let c = (s1 + n - s0) % n;
+                    if c == 0 { n } else { c }
+                };
+                let point = |i: usize| {
+                    if i == 0 {
+                        cuts[id0].at
+                    } else if i <= count {
+                        raw.pts[(s0 + i) % n]
+                    } else {
+                        cuts[id1].at
                     }
+                };
+                let m = count / 2;
+                let mid = (point(m) + point(m + 1)) / 2.0;
+                // Segment m of the piece is raw segment s0 + m (it starts inside s0).
+                if keep(mid, raw.centres[(s0 + m) % n], boundary, d) {
+                    pieces.push(Piece {
+                        pts: (0..count + 2).map(point).collect(),
+                        from: id0,
+                        to: id1,
+                    });
                 }
             }
-            pts.push(cuts[id1].at);
-            if keep(&pts, &raw.centres, first, &boundary, d) {
-                pieces.push(Piece {
-                    pts,
-                    from: id0,
-                    to: id1,
-                });
-            }
         }
+        chain(pieces, cuts.len())
     }
-    chain(pieces, cuts.len())
 }
 
 /// One ring's raw offset: its points (not closed) and, for the segment from each point,
@@ -105,6 +176,41 @@ pub(crate) fn eroded_rings(
 struct Raw {
     pts: Vec<Coord>,
     centres: Vec<Option<Coord>>,
+}
+
+impl Raw {
+    /// The raw offset by `d` of a ring's corners.
+    fn fill(&mut self, corners: &[Corner], directions: &[Coord], d: f64) {
+        self.pts.clear();
+        self.centres.clear();
+        for corner in corners {
+            match *corner {
+                Corner::Mitre { b, m, k } => {
+                    self.pts.push(b + m * (d / k));
+                    self.centres.push(None);
+                }
+                Corner::Tip { b, nu, nv } => {
+                    self.pts.extend([b + nu * d, b, b + nv * d]);
+                    self.centres.extend([None, None, None]);
+                }
+                Corner::Arc {
+                    b,
+                    nu,
+                    nv,
+                    ref inner,
+                } => {
+                    self.pts.push(b + nu * d);
+                    self.centres.push(Some(b));
+                    for &w in &directions[inner.clone()] {
+                        self.pts.push(b + w * d);
+                        self.centres.push(Some(b));
+                    }
+                    self.pts.push(b + nv * d);
+                    self.centres.push(None);
+                }
+            }
+        }
+    }
 }
 
 struct Piece {
@@ -122,18 +228,25 @@ struct Cut {
     at: Coord,
 }
 
-/// The raw offset of one ring toward the region's inside (`exterior`: an outline).
-fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
+/// A ring's corners toward the region's inside (`exterior`: an outline), the inner
+/// directions of its arcs appended to `directions`; `None` where it cannot be oriented.
+fn prepare(
+    ring: &[Coord],
+    arc: f64,
+    exterior: bool,
+    directions: &mut Vec<Coord>,
+) -> Option<Vec<Corner>> {
     let pts = inside_left(ring, exterior)?;
     let n = pts.len();
     let unit = |e: Coord| e / e.x.hypot(e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
-    let mut out = Vec::with_capacity(n + n / 2);
-    let mut centres = Vec::with_capacity(n + n / 2);
+    // Each edge's direction once (edge i runs from point i to i + 1).
+    let units: Vec<Coord> = (0..n).map(|i| unit(pts[(i + 1) % n] - pts[i])).collect();
+    let mut out = Vec::with_capacity(n);
     let cos_arc = arc.cos();
     for i in 0..n {
-        let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
-        let (u, v) = (unit(b - a), unit(c - b));
+        let b = pts[i];
+        let (u, v) = (units[(i + n - 1) % n], units[i]);
         let (nu, nv) = (left(u), left(v));
         let turn = cross(u, v);
         let dot = u.x * v.x + u.y * v.y;
@@ -141,29 +254,21 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
             let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
             if k >= 0.5 {
                 // The mitre, where both moved edges meet.
-                out.push(b + (nu + nv) * (d / k));
-                centres.push(None);
+                out.push(Corner::Mitre { b, m: nu + nv, k });
             } else {
                 // A sharp tip: its mitre would be far away; through the vertex instead
                 // (that stretch is nearer the boundary than `d`, and is cut away).
-                out.push(b + nu * d);
-                centres.push(None);
-                out.push(b);
-                centres.push(None);
-                out.push(b + nv * d);
-                centres.push(None);
+                out.push(Corner::Tip { b, nu, nv });
             }
         } else if dot >= cos_arc {
             // A reflex corner within one step (a round hole's): the mitre, which strays
             // outside the arc no more than a chord inside it, and is one point, not two.
             let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
-            out.push(b + (nu + nv) * (d / k));
-            centres.push(None);
+            out.push(Corner::Mitre { b, m: nu + nv, k });
         } else {
             let angle = turn.atan2(dot);
             let steps = (-angle / arc).ceil().max(1.0) as usize;
-            out.push(b + nu * d);
-            centres.push(Some(b));
+            let start = directions.len();
             let (s, co) = (angle / steps as f64).sin_cos();
             let mut w = nu;
             for _ in 1..steps {
@@ -171,28 +276,33 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
                     x: w.x * co - w.y * s,
                     y: w.x * s + w.y * co,
                 };
-                out.push(b + w * d);
-                centres.push(Some(b));
+                directions.push(w);
             }
-            out.push(b + nv * d);
-            centres.push(None);
+            out.push(Corner::Arc {
+                b,
+                nu,
+                nv,
+                inner: start..directions.len(),
+            });
         }
     }
-    Some(Raw { pts: out, centres })
+    Some(out)
+}
+
+/// A raw segment in the crossing sweep.
+struct Edge {
+    a: Coord,
+    b: Coord,
+    xlo: f64,
+    xhi: f64,
+    ring: usize,
+    seg: usize,
 }
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`
 /// where two touch without crossing.
-fn crossings(raws: &[Raw]) -> Option<Vec<Cut>> {
-    struct Edge {
-        a: Coord,
-        b: Coord,
-        xlo: f64,
-        xhi: f64,
-        ring: usize,
-        seg: usize,
-    }
-    let mut edges = Vec::with_capacity(raws.iter().map(|r| r.pts.len()).sum());
+fn crossings(raws: &[Raw], edges: &mut Vec<Edge>) -> Option<Vec<Cut>> {
+    edges.clear();
     for (r, raw) in raws.iter().enumerate() {
         let n = raw.pts.len();
         for i in 0..n {
@@ -260,20 +370,12 @@ fn crossings(raws: &[Raw]) -> Option<Vec<Cut>> {
     Some(cuts)
 }
 
-/// Whether a piece lies on the erosion's boundary: a point in its middle (on the arc, for
-/// a chord) at least `d` from every boundary edge and inside the region.
-fn keep(
-    pts: &[Coord],
-    centres: &[Option<Coord>],
-    first: usize,
-    boundary: &[&[Coord]],
-    d: f64,
-) -> bool {
-    let m = (pts.len() - 2) / 2;
-    let mut p = (pts[m] + pts[m + 1]) / 2.0;
-    // Segment m of the piece is raw segment first + m (the piece starts inside `first`).
-    let n = centres.len();
-    if let Some(c) = centres[(first + m) % n] {
+/// Whether a piece lies on the erosion's boundary: the point `mid` in its middle (moved
+/// onto the arc about `centre`, for a chord) at least `d` from every boundary edge and
+/// inside the region.
+fn keep(mid: Coord, centre: Option<Coord>, boundary: &[&[Coord]], d: f64) -> bool {
+    let mut p = mid;
+    if let Some(c) = centre {
         let r = p - c;
         let len = r.x.hypot(r.y);
         if len > 0.0 {
@@ -281,20 +383,29 @@ fn keep(
         }
     }
     let limit = d * (1.0 - 1e-9);
+    // An edge whose bounds, grown by `limit` (and a margin for rounding), miss `p` is
+    // farther than `limit`: only its crossing of the ray is counted.
+    let reach = limit + 1e-9;
     let mut inside = false;
     for ring in boundary {
         for w in ring.windows(2) {
             let (a, b) = (w[0], w[1]);
-            let e = b - a;
-            let len2 = e.x * e.x + e.y * e.y;
-            let t = if len2 > 0.0 {
-                (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let q = a + e * t - p;
-            if q.x * q.x + q.y * q.y < limit * limit {
-                return false;
+            if p.x >= a.x.min(b.x) - reach
+                && p.x <= a.x.max(b.x) + reach
+                && p.y >= a.y.min(b.y) - reach
+                && p.y <= a.y.max(b.y) + reach
+            {
+                let e = b - a;
+                let len2 = e.x * e.x + e.y * e.y;
+                let t = if len2 > 0.0 {
+                    (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let q = a + e * t - p;
+                if q.x * q.x + q.y * q.y < limit * limit {
+                    return false;
+                }
             }
             if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
                 inside = !inside;
@@ -306,7 +417,7 @@ fn keep(
 
 /// The kept pieces joined end to start at their cuts into closed rings; `None` where a
 /// cut has not exactly one piece leaving it.
-fn chain(pieces: Vec<Piece>, cuts: usize) -> Option<Vec<Vec<Coord>>> {
+fn chain(mut pieces: Vec<Piece>, cuts: usize) -> Option<Vec<Vec<Coord>>> {
     let mut leaving = vec![usize::MAX; cuts];
     let mut rings = Vec::new();
     for (i, p) in pieces.iter().enumerate() {
@@ -324,7 +435,7 @@ fn chain(pieces: Vec<Piece>, cuts: usize) -> Option<Vec<Vec<Coord>>> {
             continue;
         }
         used[start] = true;
-        let mut ring = pieces[start].pts.clone();
+        let mut ring = std::mem::take(&mut pieces[start].pts);
         if pieces[start].from != usize::MAX {
             let mut at = start;
             loop {

@@ -43,6 +43,9 @@ pub(crate) struct Eroder<'a> {
     raws: Vec<Raw>,
     edges: Vec<Edge>,
     here: Vec<(usize, usize, f64, usize)>,
+    /// Reused: the kept pieces, their points one after another.
+    pieces: Vec<Piece>,
+    points: Vec<Coord>,
 }
 
 /// A corner of a ring, as its raw offset needs it.
@@ -84,6 +87,8 @@ impl<'a> Eroder<'a> {
             raws: Vec::new(),
             edges: Vec::new(),
             here: Vec::new(),
+            pieces: Vec::new(),
+            points: Vec::new(),
         }
     }
 
@@ -112,7 +117,9 @@ impl<'a> Eroder<'a> {
         // Cut every raw ring at its crossings into pieces; keep those `d` from the boundary.
         // A piece is tested before it is built: most are cut away.
         let boundary = &self.boundary;
-        let mut pieces: Vec<Piece> = Vec::new();
+        let (pieces, points) = (&mut self.pieces, &mut self.points);
+        pieces.clear();
+        points.clear();
         let mut from = 0;
         for (r, raw) in raws.iter().enumerate() {
             let n = raw.pts.len();
@@ -124,11 +131,11 @@ impl<'a> Eroder<'a> {
                 let m = (n + 1 - 2) / 2;
                 let mid = (raw.pts[m] + raw.pts[(m + 1) % n]) / 2.0;
                 if keep(mid, raw.centres[m % n], boundary, d) {
-                    let mut pts = Vec::with_capacity(n + 1);
-                    pts.extend_from_slice(&raw.pts);
-                    pts.push(pts[0]);
+                    let first = points.len();
+                    points.extend_from_slice(&raw.pts);
+                    points.push(raw.pts[0]);
                     pieces.push(Piece {
-                        pts,
+                        pts: first..points.len(),
                         from: usize::MAX,
                         to: usize::MAX,
                     });
@@ -159,15 +166,17 @@ impl<'a> Eroder<'a> {
                 let mid = (point(m) + point(m + 1)) / 2.0;
                 // Segment m of the piece is raw segment s0 + m (it starts inside s0).
                 if keep(mid, raw.centres[(s0 + m) % n], boundary, d) {
+                    let first = points.len();
+                    points.extend((0..count + 2).map(point));
                     pieces.push(Piece {
-                        pts: (0..count + 2).map(point).collect(),
+                        pts: first..points.len(),
                         from: id0,
                         to: id1,
                     });
                 }
             }
         }
-        chain(pieces, cuts.len())
+        chain(pieces, points, cuts.len())
     }
 }
 
@@ -214,7 +223,8 @@ impl Raw {
 }
 
 struct Piece {
-    pts: Vec<Coord>,
+    /// Its points' range in the points of all pieces.
+    pts: std::ops::Range<usize>,
     /// The cuts it starts and ends at (`usize::MAX`: a whole ring).
     from: usize,
     to: usize,
@@ -416,8 +426,9 @@ fn keep(mid: Coord, centre: Option<Coord>, boundary: &[&[Coord]], d: f64) -> boo
 }
 
 /// The kept pieces joined end to start at their cuts into closed rings; `None` where a
-/// cut has not exactly one piece leaving it.
-fn chain(mut pieces: Vec<Piece>, cuts: usize) -> Option<Vec<Vec<Coord>>> {
+/// cut has not exactly one piece leaving it. Each chain is walked twice: to check it
+/// closes and measure it, then to copy its points into a ring of the right size.
+fn chain(pieces: &[Piece], points: &[Coord], cuts: usize) -> Option<Vec<Vec<Coord>>> {
     let mut leaving = vec![usize::MAX; cuts];
     let mut rings = Vec::new();
     for (i, p) in pieces.iter().enumerate() {
@@ -435,7 +446,7 @@ fn chain(mut pieces: Vec<Piece>, cuts: usize) -> Option<Vec<Vec<Coord>>> {
             continue;
         }
         used[start] = true;
-        let mut ring = std::mem::take(&mut pieces[start].pts);
+        let mut len = pieces[start].pts.len();
         if pieces[start].from != usize::MAX {
             let mut at = start;
             loop {
@@ -450,14 +461,25 @@ fn chain(mut pieces: Vec<Piece>, cuts: usize) -> Option<Vec<Vec<Coord>>> {
                     return None;
                 }
                 used[next] = true;
-                ring.pop();
-                ring.extend_from_slice(&pieces[next].pts);
+                // Each next piece starts where the last ended: that point once.
+                len += pieces[next].pts.len() - 1;
                 at = next;
             }
         }
-        if ring.len() >= 4 {
-            rings.push(ring);
+        if len < 4 {
+            continue;
         }
+        let mut ring = Vec::with_capacity(len);
+        ring.extend_from_slice(&points[pieces[start].pts.clone()]);
+        if pieces[start].from != usize::MAX {
+            let mut at = leaving[pieces[start].to];
+            while at != start {
+                ring.pop();
+                ring.extend_from_slice(&points[pieces[at].pts.clone()]);
+                at = leaving[pieces[at].to];
+            }
+        }
+        rings.push(ring);
     }
     Some(rings)
 }

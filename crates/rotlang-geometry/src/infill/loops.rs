@@ -301,6 +301,8 @@ fn prepare(
 
 /// A raw segment in the crossing sweep.
 struct Edge {
+    /// `xlo` as an integer that sorts as `f64::total_cmp` does.
+    key: i64,
     a: Coord,
     b: Coord,
     xlo: f64,
@@ -317,17 +319,22 @@ fn crossings(raws: &[Raw], edges: &mut Vec<Edge>) -> Option<Vec<Cut>> {
         let n = raw.pts.len();
         for i in 0..n {
             let (a, b) = (raw.pts[i], raw.pts[(i + 1) % n]);
+            let xlo = a.x.min(b.x);
+            let bits = xlo.to_bits() as i64;
             edges.push(Edge {
+                key: bits ^ (((bits >> 63) as u64) >> 1) as i64,
                 a,
                 b,
-                xlo: a.x.min(b.x),
+                xlo,
                 xhi: a.x.max(b.x),
                 ring: r,
                 seg: i,
             });
         }
     }
-    edges.sort_unstable_by(|p, q| p.xlo.total_cmp(&q.xlo));
+    // By `xlo` in `total_cmp`'s order, compared as integers (the same order, so the same
+    // permutation, at a fraction of the cost: this sort was a tenth of a layer).
+    edges.sort_unstable_by_key(|e| e.key);
     let mut cuts = Vec::new();
     for (i, e) in edges.iter().enumerate() {
         let (ylo, yhi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));

@@ -94,10 +94,32 @@ impl<'a> Eroder<'a> {
 
     /// The rings bounding the erosion by `d` (as [`eroded_rings`]).
     pub(crate) fn rings(&mut self, d: f64) -> Option<Vec<Vec<Coord>>> {
-        self.raws.resize_with(self.corners.len(), || Raw {
-            pts: Vec::new(),
-            centres: Vec::new(),
-        });
+        // Each raw ring's size is known from its corners: the buffers are made once at
+        // their size (growing them by doubling was a tenth of a star's layer).
+        if self.raws.len() != self.corners.len() {
+            let directions = &self.directions;
+            self.raws = self
+                .corners
+                .iter()
+                .map(|corners| {
+                    let n = corners
+                        .iter()
+                        .map(|c| match c {
+                            Corner::Mitre { .. } => 1,
+                            Corner::Tip { .. } => 3,
+                            Corner::Arc { inner, .. } => 2 + directions[inner.clone()].len(),
+                        })
+                        .sum();
+                    Raw {
+                        pts: Vec::with_capacity(n),
+                        centres: Vec::with_capacity(n),
+                    }
+                })
+                .collect();
+            let total: usize = self.raws.iter().map(|r| r.pts.capacity()).sum();
+            self.edges.reserve(total);
+            self.points.reserve(2 * total);
+        }
         for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
             raw.fill(corners, &self.directions, d);
         }
@@ -157,7 +179,9 @@ impl<'a> Eroder<'a> {
                     if i == 0 {
                         cuts[id0].at
                     } else if i <= count {
-                        raw.pts[(s0 + i) % n]
+                        // s0 + i < 2n: one wrap at most (no division per point).
+                        let j = s0 + i;
+                        raw.pts[if j >= n { j - n } else { j }]
                     } else {
                         cuts[id1].at
                     }
@@ -309,6 +333,8 @@ struct Edge {
     xhi: f64,
     ring: usize,
     seg: usize,
+    /// The segment after it on its ring (neighbours meet without crossing).
+    next: usize,
 }
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`
@@ -318,7 +344,8 @@ fn crossings(raws: &[Raw], edges: &mut Vec<Edge>) -> Option<Vec<Cut>> {
     for (r, raw) in raws.iter().enumerate() {
         let n = raw.pts.len();
         for i in 0..n {
-            let (a, b) = (raw.pts[i], raw.pts[(i + 1) % n]);
+            let next = if i + 1 == n { 0 } else { i + 1 };
+            let (a, b) = (raw.pts[i], raw.pts[next]);
             let xlo = a.x.min(b.x);
             let bits = xlo.to_bits() as i64;
             edges.push(Edge {
@@ -329,6 +356,7 @@ fn crossings(raws: &[Raw], edges: &mut Vec<Edge>) -> Option<Vec<Cut>> {
                 xhi: a.x.max(b.x),
                 ring: r,
                 seg: i,
+                next,
             });
         }
     }
@@ -345,11 +373,8 @@ fn crossings(raws: &[Raw], edges: &mut Vec<Edge>) -> Option<Vec<Cut>> {
             if f.a.y.max(f.b.y) < ylo || f.a.y.min(f.b.y) > yhi {
                 continue;
             }
-            if e.ring == f.ring {
-                let n = raws[e.ring].pts.len();
-                if (e.seg + 1) % n == f.seg || (f.seg + 1) % n == e.seg || e.seg == f.seg {
-                    continue;
-                }
+            if e.ring == f.ring && (e.next == f.seg || f.next == e.seg || e.seg == f.seg) {
+                continue;
             }
             let (p, r) = (e.b - e.a, f.b - f.a);
             let d1 = cross(p, f.a - e.a);

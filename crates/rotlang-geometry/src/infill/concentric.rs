@@ -334,41 +334,83 @@ fn uncovered(
     let last: Bounded = last.iter().map(|r| (r.as_slice(), span(r))).collect();
     scratch.segments.build(&covered, gap);
     scratch.last.build(&last, 2.0 * spacing);
+    // Inside `gap` by more than rounding: a segment of the middle ring whose both ends
+    // are this near one covered segment lies that near it all along (the distance to a
+    // segment is convex along a line), so none of its points is far.
+    let inner = gap * (1.0 - 1e-9);
     for ring in &middle.rings {
         // Points every quarter spacing at least: a ring cut from the raw offset has
         // long edges, and a stretch is kept from vertex to vertex.
-        let dense = &mut scratch.dense;
+        // Out of the scratch while `far` writes the flags there.
+        let mut dense = std::mem::take(&mut scratch.dense);
         dense.clear();
+        scratch.flags.clear();
+        // The points not flagged yet start here (measured in runs of 8 across segments).
+        let mut pending = 0;
         for w in ring.windows(2) {
             let e = w[1] - w[0];
             let steps = ((e.x.hypot(e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
+            let first = dense.len();
             dense.extend((0..steps).map(|i| w[0] + e * (i as f64 / steps as f64)));
-        }
-        dense.extend(ring.last().copied());
-        // Farther than `gap` from every covered ring (exactly: within is `<=`), and
-        // near at most one of the last loops.
-        scratch.flags.clear();
-        for run in dense.chunks(RUN) {
-            let (lo, hi) = span(run);
+            // Worth asking for a segment of a few points only.
+            if steps < 4 {
+                continue;
+            }
+            let (lo, hi) = span(w);
             scratch
                 .segments
                 .gather(lo, hi, usize::MAX, &mut scratch.near);
-            scratch
-                .last
-                .gather(lo, hi, usize::MAX, &mut scratch.near_last);
-            scratch.flags.extend(run.iter().map(|&p| {
-                !near_any(&covered, &scratch.near, p, gap)
-                    && !near_two(&last, &scratch.near_last, p, 2.0 * spacing)
-            }));
+            if scratch.near.iter().any(|c| {
+                segment_within(c.a, c.b, w[0], inner) && segment_within(c.a, c.b, w[1], inner)
+            }) {
+                far(
+                    &dense[pending..first],
+                    &covered,
+                    &last,
+                    gap,
+                    spacing,
+                    scratch,
+                );
+                scratch.flags.resize(dense.len(), false);
+                pending = dense.len();
+            }
         }
+        dense.extend(ring.last().copied());
+        far(&dense[pending..], &covered, &last, gap, spacing, scratch);
         let mut pieces = Vec::new();
-        runs(dense, &scratch.flags, &mut pieces);
+        runs(&dense, &scratch.flags, &mut pieces);
+        scratch.dense = dense;
         // A stretch shorter than a spacing (a star's tip) leaves no gap worth a line.
         out.extend(pieces.into_iter().filter(|p| {
             p.windows(2)
                 .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
                 .sum::<f64>()
                 >= spacing
+        }));
+    }
+}
+
+/// Appends to `scratch.flags` whether each point is farther than `gap` from every
+/// covered ring (exactly: within is `<=`) and near at most one of the last loops.
+fn far(
+    points: &[Coord],
+    covered: &Bounded,
+    last: &Bounded,
+    gap: f64,
+    spacing: f64,
+    scratch: &mut Scratch,
+) {
+    for run in points.chunks(RUN) {
+        let (lo, hi) = span(run);
+        scratch
+            .segments
+            .gather(lo, hi, usize::MAX, &mut scratch.near);
+        scratch
+            .last
+            .gather(lo, hi, usize::MAX, &mut scratch.near_last);
+        scratch.flags.extend(run.iter().map(|&p| {
+            !near_any(covered, &scratch.near, p, gap)
+                && !near_two(last, &scratch.near_last, p, 2.0 * spacing)
         }));
     }
 }

@@ -429,7 +429,7 @@ struct Loops {
 struct Shrink<'a> {
     area: &'a MultiPolygon<f64>,
     holes: bool,
-    eroder: Eroder<'a>,
+    eroder: Eroder,
 }
 
 impl<'a> Shrink<'a> {

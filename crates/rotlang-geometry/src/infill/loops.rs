@@ -32,16 +32,17 @@ pub(crate) fn eroded_rings(
 /// directions) is worked out once, and the buffers are reused from one distance to the
 /// next. Every raw point is computed from the same numbers as before, so the rings are the
 /// same to the bit as a fresh `eroded_rings`.
-pub(crate) struct Eroder<'a> {
-    /// Every ring of the region as given (closed), for the test that a piece is `d` away.
-    boundary: Vec<&'a [Coord]>,
+pub(crate) struct Eroder {
+    /// Every edge of the region as given with its bounds, for the test that a piece is
+    /// `d` away (the bounds do not depend on `d`: worked out once).
+    boundary: Vec<Side>,
     /// Each ring's corners (rings that cannot be oriented are left out, as before).
     corners: Vec<Vec<Corner>>,
     /// The unit directions of every reflex corner's inner arc points.
     directions: Vec<Coord>,
     /// Reused: the raw offsets, the crossing sweep's edges, each ring's cuts.
     raws: Vec<Raw>,
-    edges: Vec<Edge>,
+    sweep: Sweep,
     here: Vec<(usize, usize, f64, usize)>,
     /// Reused: the kept pieces, their points one after another.
     pieces: Vec<Piece>,
@@ -64,9 +65,9 @@ enum Corner {
     },
 }
 
-impl<'a> Eroder<'a> {
-    pub(crate) fn new(region: &'a MultiPolygon<f64>, arc: f64) -> Eroder<'a> {
-        let mut boundary: Vec<&[Coord]> = Vec::new();
+impl Eroder {
+    pub(crate) fn new(region: &MultiPolygon<f64>, arc: f64) -> Eroder {
+        let mut boundary: Vec<Side> = Vec::new();
         let mut corners = Vec::new();
         let mut directions = Vec::new();
         for polygon in &region.0 {
@@ -74,7 +75,21 @@ impl<'a> Eroder<'a> {
                 .chain(polygon.interiors())
                 .enumerate()
             {
-                boundary.push(&ring.0);
+                boundary.extend(ring.0.windows(2).map(|w| {
+                    let (a, b) = (w[0], w[1]);
+                    Side {
+                        a,
+                        b,
+                        lo: Coord {
+                            x: a.x.min(b.x),
+                            y: a.y.min(b.y),
+                        },
+                        hi: Coord {
+                            x: a.x.max(b.x),
+                            y: a.y.max(b.y),
+                        },
+                    }
+                }));
                 if let Some(c) = prepare(&ring.0, arc, i == 0, &mut directions) {
                     corners.push(c);
                 }
@@ -85,7 +100,7 @@ impl<'a> Eroder<'a> {
             corners,
             directions,
             raws: Vec::new(),
-            edges: Vec::new(),
+            sweep: Sweep::default(),
             here: Vec::new(),
             pieces: Vec::new(),
             points: Vec::new(),
@@ -117,7 +132,9 @@ impl<'a> Eroder<'a> {
                 })
                 .collect();
             let total: usize = self.raws.iter().map(|r| r.pts.capacity()).sum();
-            self.edges.reserve(total);
+            self.sweep.edges.reserve(total);
+            self.sweep.order.reserve(total);
+            self.sweep.sorted.reserve(total);
             self.points.reserve(2 * total);
         }
         for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
@@ -127,7 +144,7 @@ impl<'a> Eroder<'a> {
             return None;
         }
         let raws = &self.raws;
-        let cuts = crossings(raws, &mut self.edges)?;
+        let cuts = crossings(raws, &mut self.sweep)?;
         // Every cut twice (once on each ring it is on), grouped by ring, in order along it.
         self.here.clear();
         for (id, c) in cuts.iter().enumerate() {
@@ -323,7 +340,25 @@ fn prepare(
     Some(out)
 }
 
+/// An edge of the region as given, with its bounds.
+#[derive(Clone, Copy)]
+struct Side {
+    a: Coord,
+    b: Coord,
+    lo: Coord,
+    hi: Coord,
+}
+
+/// The crossing sweep's buffers: the edges as built, their sort keys, and in order.
+#[derive(Default)]
+struct Sweep {
+    edges: Vec<Edge>,
+    order: Vec<(i64, u32)>,
+    sorted: Vec<Edge>,
+}
+
 /// A raw segment in the crossing sweep.
+#[derive(Clone, Copy)]
 struct Edge {
     /// `xlo` as an integer that sorts as `f64::total_cmp` does.
     key: i64,
@@ -339,7 +374,12 @@ struct Edge {
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`
 /// where two touch without crossing.
-fn crossings(raws: &[Raw], edges: &mut Vec<Edge>) -> Option<Vec<Cut>> {
+fn crossings(raws: &[Raw], sweep: &mut Sweep) -> Option<Vec<Cut>> {
+    let Sweep {
+        edges,
+        order,
+        sorted,
+    } = sweep;
     edges.clear();
     for (r, raw) in raws.iter().enumerate() {
         let n = raw.pts.len();
@@ -360,9 +400,15 @@ fn crossings(raws: &[Raw], edges: &mut Vec<Edge>) -> Option<Vec<Cut>> {
             });
         }
     }
-    // By `xlo` in `total_cmp`'s order, compared as integers (the same order, so the same
-    // permutation, at a fraction of the cost: this sort was a tenth of a layer).
-    edges.sort_unstable_by_key(|e| e.key);
+    // By `xlo` in `total_cmp`'s order, compared as integers, ties in the order built: the
+    // small (key, index) pairs are sorted, not the edges (moving 80-byte edges about was
+    // a tenth of a layer), then the edges are laid out in that order once.
+    order.clear();
+    order.extend(edges.iter().enumerate().map(|(i, e)| (e.key, i as u32)));
+    order.sort_unstable();
+    sorted.clear();
+    sorted.extend(order.iter().map(|&(_, i)| edges[i as usize]));
+    let edges = &*sorted;
     let mut cuts = Vec::new();
     for (i, e) in edges.iter().enumerate() {
         let (ylo, yhi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
@@ -415,7 +461,7 @@ fn crossings(raws: &[Raw], edges: &mut Vec<Edge>) -> Option<Vec<Cut>> {
 /// Whether a piece lies on the erosion's boundary: the point `mid` in its middle (moved
 /// onto the arc about `centre`, for a chord) at least `d` from every boundary edge and
 /// inside the region.
-fn keep(mid: Coord, centre: Option<Coord>, boundary: &[&[Coord]], d: f64) -> bool {
+fn keep(mid: Coord, centre: Option<Coord>, boundary: &[Side], d: f64) -> bool {
     let mut p = mid;
     if let Some(c) = centre {
         let r = p - c;
@@ -429,13 +475,12 @@ fn keep(mid: Coord, centre: Option<Coord>, boundary: &[&[Coord]], d: f64) -> boo
     // farther than `limit`: only its crossing of the ray is counted.
     let reach = limit + 1e-9;
     let mut inside = false;
-    for ring in boundary {
-        for w in ring.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            if p.x >= a.x.min(b.x) - reach
-                && p.x <= a.x.max(b.x) + reach
-                && p.y >= a.y.min(b.y) - reach
-                && p.y <= a.y.max(b.y) + reach
+    for &Side { a, b, lo, hi } in boundary {
+        {
+            if p.x >= lo.x - reach
+                && p.x <= hi.x + reach
+                && p.y >= lo.y - reach
+                && p.y <= hi.y + reach
             {
                 let e = b - a;
                 let len2 = e.x * e.x + e.y * e.y;

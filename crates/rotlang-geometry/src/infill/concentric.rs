@@ -333,7 +333,13 @@ fn uncovered(
         .collect();
     let last: Bounded = last.iter().map(|r| (r.as_slice(), span(r))).collect();
     scratch.segments.build(&covered, gap);
-    scratch.last.build(&last, 2.0 * spacing);
+    // Near two of one loop is never asked: with one loop none of its segments is filed.
+    let two: Bounded = if last.len() > 1 {
+        last.clone()
+    } else {
+        Vec::new()
+    };
+    scratch.last.build(&two, 2.0 * spacing);
     // Inside `gap` by more than rounding: a segment of the middle ring whose both ends
     // are this near one covered segment lies that near it all along (the distance to a
     // segment is convex along a line), so none of its points is far.
@@ -429,6 +435,9 @@ struct Loops {
 struct Shrink<'a> {
     area: &'a MultiPolygon<f64>,
     holes: bool,
+    /// Set once the exact convex inset declined (without holes it declines a region with
+    /// a reflex corner, whatever the distance): not asked again for the later loops.
+    concave: bool,
     eroder: Eroder,
 }
 
@@ -437,6 +446,7 @@ impl<'a> Shrink<'a> {
         Shrink {
             area,
             holes: area.0.iter().any(|p| !p.interiors().is_empty()),
+            concave: false,
             eroder: Eroder::new(area, 0.5),
         }
     }
@@ -446,11 +456,12 @@ impl<'a> Shrink<'a> {
         let holes = self.holes;
         // A convex region without holes: its exact inset is cheapest. With holes, that
         // inset takes geo's boolean difference once a hole meets the outline.
-        let convex = if holes {
+        let convex = if holes || self.concave {
             None
         } else {
             crate::infill::region::convex_inset(area, d, 0.5)
         };
+        self.concave |= !holes && convex.is_none();
         if convex.is_none()
             && let Some(rings) = self.eroder.rings(d)
         {

@@ -438,7 +438,8 @@ struct Shrink<'a> {
     /// Set once the exact convex inset declined (without holes it declines a region with
     /// a reflex corner, whatever the distance): not asked again for the later loops.
     concave: bool,
-    eroder: Eroder,
+    /// Made at the first loop that needs it (a convex region never does).
+    eroder: Option<Eroder>,
 }
 
 impl<'a> Shrink<'a> {
@@ -447,7 +448,7 @@ impl<'a> Shrink<'a> {
             area,
             holes: area.0.iter().any(|p| !p.interiors().is_empty()),
             concave: false,
-            eroder: Eroder::new(area, 0.5),
+            eroder: None,
         }
     }
 
@@ -463,7 +464,10 @@ impl<'a> Shrink<'a> {
         };
         self.concave |= !holes && convex.is_none();
         if convex.is_none()
-            && let Some(rings) = self.eroder.rings(d)
+            && let Some(rings) = self
+                .eroder
+                .get_or_insert_with(|| Eroder::new(area, 0.5))
+                .rings(d)
         {
             let turns = rings
                 .iter()

@@ -144,7 +144,13 @@ impl Eroder {
             return None;
         }
         let raws = &self.raws;
-        let cuts = crossings(raws, &mut self.sweep)?;
+        // Convex rings nested or apart cross nothing (a holed square's loops until the
+        // outline's meet the hole's): no sweep.
+        let cuts = if apart(raws) {
+            Vec::new()
+        } else {
+            crossings(raws, &mut self.sweep)?
+        };
         // Every cut twice (once on each ring it is on), grouped by ring, in order along it.
         self.here.clear();
         for (id, c) in cuts.iter().enumerate() {
@@ -347,6 +353,111 @@ struct Side {
     b: Coord,
     lo: Coord,
     hi: Coord,
+}
+
+/// Whether the raw rings are each strictly convex and simple, and each pair apart (bounds
+/// that do not meet) or one strictly inside the other: then nothing crosses or touches,
+/// and the sweep would find no cut.
+fn apart(raws: &[Raw]) -> bool {
+    let turns: Vec<f64> = raws.iter().map(|r| convex(&r.pts)).collect();
+    if turns.contains(&0.0) {
+        return false;
+    }
+    let bounds: Vec<(Coord, Coord)> = raws.iter().map(|r| bounds(&r.pts)).collect();
+    for i in 0..raws.len() {
+        for j in i + 1..raws.len() {
+            let ((a, b), (c, e)) = (bounds[i], bounds[j]);
+            if b.x < c.x || e.x < a.x || b.y < c.y || e.y < a.y {
+                continue;
+            }
+            if !inside(&raws[j].pts, &raws[i].pts, turns[i])
+                && !inside(&raws[i].pts, &raws[j].pts, turns[j])
+            {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// `1.0` for a strictly convex simple counter-clockwise ring, `-1.0` clockwise, `0.0`
+/// otherwise: every turn strictly the same way, and the edges' direction passing east
+/// once (turns each under a half turn: it goes round once).
+fn convex(pts: &[Coord]) -> f64 {
+    let n = pts.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let edge = |i: usize| {
+        let j = if i + 1 == n { 0 } else { i + 1 };
+        pts[j] - pts[i]
+    };
+    let first = cross(edge(n - 1), edge(0));
+    let sign = if first > 0.0 {
+        1.0
+    } else if first < 0.0 {
+        -1.0
+    } else {
+        return 0.0;
+    };
+    let mut east = 0;
+    let mut prev = edge(n - 1);
+    for i in 0..n {
+        let e = edge(i);
+        if cross(prev, e) * sign <= 0.0 {
+            return 0.0;
+        }
+        let passes = if sign > 0.0 {
+            prev.y < 0.0 && e.y >= 0.0
+        } else {
+            prev.y > 0.0 && e.y <= 0.0
+        };
+        if passes {
+            east += 1;
+        }
+        prev = e;
+    }
+    if east == 1 { sign } else { 0.0 }
+}
+
+/// Whether every point of `pts` is strictly inside the strictly convex ring `ring`
+/// (turning `turn`: its inside is on the left when 1, on the right when −1).
+fn inside(pts: &[Coord], ring: &[Coord], turn: f64) -> bool {
+    let n = ring.len();
+    pts.iter().all(|&p| {
+        (0..n).all(|i| {
+            let (a, b) = (ring[i], ring[if i + 1 == n { 0 } else { i + 1 }]);
+            cross(b - a, p - a) * turn > 0.0
+        })
+    })
+}
+
+/// The bounds of some points.
+fn bounds(pts: &[Coord]) -> (Coord, Coord) {
+    pts.iter().fold(
+        (
+            Coord {
+                x: f64::INFINITY,
+                y: f64::INFINITY,
+            },
+            Coord {
+                x: f64::NEG_INFINITY,
+                y: f64::NEG_INFINITY,
+            },
+        ),
+        |(lo, hi), p| {
+            (
+                Coord {
+                    x: lo.x.min(p.x),
+                    y: lo.y.min(p.y),
+                },
+                Coord {
+                    x: hi.x.max(p.x),
+                    y: hi.y.max(p.y),
+                },
+            )
+        },
+    )
 }
 
 /// The crossing sweep's buffers: the edges as built, their sort keys, and in order.
@@ -559,4 +670,64 @@ fn chain(pieces: &[Piece], points: &[Coord], cuts: usize) -> Option<Vec<Vec<Coor
         rings.push(ring);
     }
     Some(rings)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn raw(pts: Vec<Coord>) -> Raw {
+        let centres = vec![None; pts.len()];
+        Raw { pts, centres }
+    }
+
+    fn polygon(n: usize, r: f64, at: (f64, f64), turns: usize, clockwise: bool) -> Vec<Coord> {
+        (0..n * turns)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                let a = if clockwise { -a } else { a };
+                Coord {
+                    x: at.0 + r * a.cos(),
+                    y: at.1 + r * a.sin(),
+                }
+            })
+            .collect()
+    }
+
+    /// The shortcut that skips the crossing sweep holds only where the sweep would find
+    /// nothing: strictly convex rings going round once, nested or apart.
+    #[test]
+    fn the_sweep_is_skipped_only_for_convex_rings_nested_or_apart() {
+        // A diamond, |x| + |y| < 10.
+        let square = polygon(4, 10.0, (0.0, 0.0), 1, false);
+        assert_eq!(convex(&square), 1.0);
+        assert_eq!(convex(&polygon(7, 3.0, (0.0, 0.0), 1, true)), -1.0);
+        // Round twice: every turn the same way, but it crosses itself.
+        assert_eq!(convex(&polygon(7, 3.0, (0.0, 0.0), 2, false)), 0.0);
+        // A reflex corner.
+        let notched = vec![
+            Coord { x: 0.0, y: 0.0 },
+            Coord { x: 4.0, y: 0.0 },
+            Coord { x: 2.0, y: 1.0 },
+            Coord { x: 4.0, y: 4.0 },
+            Coord { x: 0.0, y: 4.0 },
+        ];
+        assert_eq!(convex(&notched), 0.0);
+        let hole = |r: f64, at: (f64, f64)| raw(polygon(12, r, at, 1, true));
+        // A hole well inside the outline, and two holes apart.
+        assert!(apart(&[raw(square.clone()), hole(2.0, (0.0, 0.0))]));
+        assert!(apart(&[
+            raw(square.clone()),
+            hole(1.0, (-3.0, 0.0)),
+            hole(1.0, (3.0, 0.0))
+        ]));
+        // A hole reaching out of the outline, and two holes overlapping.
+        assert!(!apart(&[raw(square.clone()), hole(2.0, (9.0, 0.0))]));
+        assert!(!apart(&[
+            raw(square.clone()),
+            hole(2.0, (-1.0, 0.0)),
+            hole(2.0, (1.0, 0.0))
+        ]));
+        assert!(!apart(&[raw(notched)]));
+    }
 }

@@ -274,27 +274,44 @@ fn segment_within(a: Coord, b: Coord, p: Coord, r: f64) -> bool {
     (p - q).x * (p - q).x + (p - q).y * (p - q).y <= r * r
 }
 
-/// The runs of a closed ring's vertices whose flag is set (the whole ring when all are).
+/// The runs of a closed ring's vertices whose flag is set (the whole ring when all are),
+/// each of two points or more (copied a run at a time).
 fn runs(pts: &[Coord], flags: &[bool], out: &mut Vec<Vec<Coord>>) {
     if flags.iter().all(|&f| f) {
         out.push(pts.to_vec());
         return;
     }
-    // Read from an unflagged vertex so that no run wraps.
+    // Read from an unflagged vertex so that no run wraps: vertices start + 1 ..= start + n
+    // (the last is the unflagged one again), a run ended by the next unflagged vertex.
     let n = pts.len().saturating_sub(1);
     let Some(start) = (0..n).find(|&i| !flags[i]) else {
         return;
     };
-    let mut run: Vec<Coord> = Vec::new();
-    for k in 1..=n {
-        let i = (start + k) % n;
-        if flags[i] {
-            run.push(pts[i]);
-        } else if run.len() >= 2 {
-            out.push(std::mem::take(&mut run));
-        } else {
-            run.clear();
+    let mut piece: Vec<Coord> = Vec::new();
+    let mut from = start + 1;
+    while from <= start + n {
+        let flagged = |k: usize| flags[if k >= n { k - n } else { k }];
+        if !flagged(from) {
+            from += 1;
+            continue;
         }
+        let mut to = from;
+        while to < start + n && flagged(to + 1) {
+            to += 1;
+        }
+        if to > from {
+            // from..=to, in at most two slices where it passes the ring's end.
+            if to < n {
+                piece.extend_from_slice(&pts[from..=to]);
+            } else if from >= n {
+                piece.extend_from_slice(&pts[from - n..=to - n]);
+            } else {
+                piece.extend_from_slice(&pts[from..n]);
+                piece.extend_from_slice(&pts[..=to - n]);
+            }
+            out.push(std::mem::take(&mut piece));
+        }
+        from = to + 1;
     }
 }
 

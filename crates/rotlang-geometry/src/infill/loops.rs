@@ -44,6 +44,10 @@ pub(crate) struct Eroder {
     raws: Vec<Raw>,
     sweep: Sweep,
     here: Vec<(usize, usize, f64, usize)>,
+    cuts: Vec<Cut>,
+    turns: Vec<f64>,
+    /// Reused by the chaining: the piece leaving each cut, and the pieces used.
+    chained: (Vec<usize>, Vec<bool>),
     /// Reused: the kept pieces, their points one after another.
     pieces: Vec<Piece>,
     points: Vec<Coord>,
@@ -102,6 +106,9 @@ impl Eroder {
             raws: Vec::new(),
             sweep: Sweep::default(),
             here: Vec::new(),
+            cuts: Vec::new(),
+            turns: Vec::new(),
+            chained: (Vec::new(), Vec::new()),
             pieces: Vec::new(),
             points: Vec::new(),
         }
@@ -146,11 +153,12 @@ impl Eroder {
         let raws = &self.raws;
         // Convex rings nested or apart cross nothing (a holed square's loops until the
         // outline's meet the hole's): no sweep.
-        let cuts = if apart(raws) {
-            Vec::new()
-        } else {
-            crossings(raws, &mut self.sweep)?
-        };
+        let cuts = &mut self.cuts;
+        cuts.clear();
+        if !apart(raws, &mut self.turns) && !crossings(raws, &mut self.sweep, cuts) {
+            return None;
+        }
+        let cuts = &*cuts;
         // Every cut twice (once on each ring it is on), grouped by ring, in order along it.
         self.here.clear();
         for (id, c) in cuts.iter().enumerate() {
@@ -223,7 +231,7 @@ impl Eroder {
                 }
             }
         }
-        chain(pieces, points, cuts.len())
+        chain(pieces, points, cuts.len(), &mut self.chained)
     }
 }
 
@@ -358,10 +366,15 @@ struct Side {
 /// Whether the raw rings are each strictly convex and simple, and each pair apart (bounds
 /// that do not meet) or one strictly inside the other: then nothing crosses or touches,
 /// and the sweep would find no cut.
-fn apart(raws: &[Raw]) -> bool {
-    let turns: Vec<f64> = raws.iter().map(|r| convex(&r.pts)).collect();
-    if turns.contains(&0.0) {
-        return false;
+fn apart(raws: &[Raw], turns: &mut Vec<f64>) -> bool {
+    turns.clear();
+    for r in raws {
+        // Most rings that fail fail here, at their first reflex turn.
+        let turn = convex(&r.pts);
+        if turn == 0.0 {
+            return false;
+        }
+        turns.push(turn);
     }
     let bounds: Vec<(Coord, Coord)> = raws.iter().map(|r| bounds(&r.pts)).collect();
     for i in 0..raws.len() {
@@ -485,7 +498,7 @@ struct Edge {
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`
 /// where two touch without crossing.
-fn crossings(raws: &[Raw], sweep: &mut Sweep) -> Option<Vec<Cut>> {
+fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
     let Sweep {
         edges,
         order,
@@ -520,7 +533,6 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep) -> Option<Vec<Cut>> {
     sorted.clear();
     sorted.extend(order.iter().map(|&(_, i)| edges[i as usize]));
     let edges = &*sorted;
-    let mut cuts = Vec::new();
     for (i, e) in edges.iter().enumerate() {
         let (ylo, yhi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
         for f in &edges[i + 1..] {
@@ -561,12 +573,12 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep) -> Option<Vec<Cut>> {
                     || (d3 == 0.0 && on(f.a, f.b, e.a))
                     || (d4 == 0.0 && on(f.a, f.b, e.b))
                 {
-                    return None;
+                    return false;
                 }
             }
         }
     }
-    Some(cuts)
+    true
 }
 
 /// Whether a piece lies on the erosion's boundary: the point `mid` in its middle (moved
@@ -616,8 +628,14 @@ fn keep(mid: Coord, centre: Option<Coord>, boundary: &[Side], d: f64) -> bool {
 /// The kept pieces joined end to start at their cuts into closed rings; `None` where a
 /// cut has not exactly one piece leaving it. Each chain is walked twice: to check it
 /// closes and measure it, then to copy its points into a ring of the right size.
-fn chain(pieces: &[Piece], points: &[Coord], cuts: usize) -> Option<Vec<Vec<Coord>>> {
-    let mut leaving = vec![usize::MAX; cuts];
+fn chain(
+    pieces: &[Piece],
+    points: &[Coord],
+    cuts: usize,
+    (leaving, used): &mut (Vec<usize>, Vec<bool>),
+) -> Option<Vec<Vec<Coord>>> {
+    leaving.clear();
+    leaving.resize(cuts, usize::MAX);
     let mut rings = Vec::new();
     for (i, p) in pieces.iter().enumerate() {
         if p.from == usize::MAX {
@@ -628,7 +646,8 @@ fn chain(pieces: &[Piece], points: &[Coord], cuts: usize) -> Option<Vec<Vec<Coor
         }
         leaving[p.from] = i;
     }
-    let mut used = vec![false; pieces.len()];
+    used.clear();
+    used.resize(pieces.len(), false);
     for start in 0..pieces.len() {
         if used[start] {
             continue;
@@ -676,6 +695,10 @@ fn chain(pieces: &[Piece], points: &[Coord], cuts: usize) -> Option<Vec<Vec<Coor
 mod tests {
     use super::*;
 
+    fn apart_(raws: &[Raw]) -> bool {
+        apart(raws, &mut Vec::new())
+    }
+
     fn raw(pts: Vec<Coord>) -> Raw {
         let centres = vec![None; pts.len()];
         Raw { pts, centres }
@@ -715,19 +738,19 @@ mod tests {
         assert_eq!(convex(&notched), 0.0);
         let hole = |r: f64, at: (f64, f64)| raw(polygon(12, r, at, 1, true));
         // A hole well inside the outline, and two holes apart.
-        assert!(apart(&[raw(square.clone()), hole(2.0, (0.0, 0.0))]));
-        assert!(apart(&[
+        assert!(apart_(&[raw(square.clone()), hole(2.0, (0.0, 0.0))]));
+        assert!(apart_(&[
             raw(square.clone()),
             hole(1.0, (-3.0, 0.0)),
             hole(1.0, (3.0, 0.0))
         ]));
         // A hole reaching out of the outline, and two holes overlapping.
-        assert!(!apart(&[raw(square.clone()), hole(2.0, (9.0, 0.0))]));
-        assert!(!apart(&[
+        assert!(!apart_(&[raw(square.clone()), hole(2.0, (9.0, 0.0))]));
+        assert!(!apart_(&[
             raw(square.clone()),
             hole(2.0, (-1.0, 0.0)),
             hole(2.0, (1.0, 0.0))
         ]));
-        assert!(!apart(&[raw(notched)]));
+        assert!(!apart_(&[raw(notched)]));
     }
 }

@@ -403,12 +403,15 @@ fn uncovered(
         let mut pieces = Vec::new();
         runs(&dense, &scratch.flags, &mut pieces);
         scratch.dense = dense;
-        // A stretch shorter than a spacing (a star's tip) leaves no gap worth a line.
+        // A stretch shorter than a spacing (a star's tip) leaves no gap worth a line. Its
+        // length summed only until it reaches a spacing (sums of lengths only grow, so the
+        // answer is the whole sum's).
         out.extend(pieces.into_iter().filter(|p| {
-            p.windows(2)
-                .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
-                .sum::<f64>()
-                >= spacing
+            let mut length = 0.0;
+            p.windows(2).any(|w| {
+                length += (w[1] - w[0]).x.hypot((w[1] - w[0]).y);
+                length >= spacing
+            })
         }));
     }
 }

@@ -383,9 +383,23 @@ fn uncovered(
             scratch
                 .segments
                 .gather(lo, hi, usize::MAX, &mut scratch.near);
-            if scratch.near.iter().any(|c| {
+            // All near one covered segment: none far. No covered segment near the
+            // segment's bounds (nor last loops' segments, where two are asked for): all far.
+            let all = if scratch.near.iter().any(|c| {
                 segment_within(c.a, c.b, w[0], inner) && segment_within(c.a, c.b, w[1], inner)
             }) {
+                Some(false)
+            } else if scratch.near.is_empty() && {
+                scratch
+                    .last
+                    .gather(lo, hi, usize::MAX, &mut scratch.near_last);
+                scratch.near_last.is_empty()
+            } {
+                Some(true)
+            } else {
+                None
+            };
+            if let Some(flag) = all {
                 far(
                     &dense[pending..first],
                     &covered,
@@ -394,7 +408,7 @@ fn uncovered(
                     spacing,
                     scratch,
                 );
-                scratch.flags.resize(dense.len(), false);
+                scratch.flags.resize(dense.len(), flag);
                 pending = dense.len();
             }
         }

@@ -120,17 +120,16 @@ struct Scratch {
     dense: Vec<Coord>,
     segments: Segments,
     last: Segments,
-    near: Vec<Candidate>,
-    near_last: Vec<Candidate>,
+    near: Near,
+    near_last: Near,
 }
 
 /// Rings with their bounds.
 type Bounded<'a> = Vec<(&'a [Coord], (Coord, Coord))>;
 
-/// A segment near a run of points: its ring (the index in the rings given) and ends.
+/// A segment near a run of points: its ends (its ring is its group's in [`Near`]).
 #[derive(Clone, Copy)]
 struct Candidate {
-    ring: usize,
     a: Coord,
     b: Coord,
 }
@@ -156,7 +155,7 @@ impl Segments {
         };
         self.rings.clear();
         self.grown.clear();
-        for (i, &(ring, (lo, hi))) in rings.iter().enumerate() {
+        for &(ring, (lo, hi)) in rings {
             let first = self.grown.len();
             self.grown.extend(ring.windows(2).map(|w| {
                 let (a, b) = (w[0], w[1]);
@@ -168,7 +167,7 @@ impl Segments {
                     x: a.x.max(b.x),
                     y: a.y.max(b.y),
                 };
-                (lo - reach, hi + reach, Candidate { ring: i, a, b })
+                (lo - reach, hi + reach, Candidate { a, b })
             }));
             self.rings
                 .push((lo - reach, hi + reach, first..self.grown.len()));
@@ -177,17 +176,22 @@ impl Segments {
 
     /// The segments of rings before `before` that may be within `r` of a point of
     /// `lo..hi`.
-    fn gather(&self, lo: Coord, hi: Coord, before: usize, out: &mut Vec<Candidate>) {
-        out.clear();
+    fn gather(&self, lo: Coord, hi: Coord, before: usize, out: &mut Near) {
+        out.cands.clear();
+        out.groups.clear();
         let meets = |a: Coord, b: Coord| a.x <= hi.x && b.x >= lo.x && a.y <= hi.y && b.y >= lo.y;
-        for (a, b, range) in self.rings.iter().take(before) {
+        for (ring, (a, b, range)) in self.rings.iter().take(before).enumerate() {
             if meets(*a, *b) {
-                out.extend(
+                let first = out.cands.len();
+                out.cands.extend(
                     self.grown[range.clone()]
                         .iter()
                         .filter(|(a, b, _)| meets(*a, *b))
                         .map(|&(_, _, c)| c),
                 );
+                if out.cands.len() > first {
+                    out.groups.push((ring, first..out.cands.len()));
+                }
             }
         }
     }
@@ -198,29 +202,44 @@ fn span(points: &[Coord]) -> (Coord, Coord) {
     crate::infill::travel::bounds(points)
 }
 
+/// The segments gathered near a run of points, ring by ring: a ring's bounds are
+/// tested once per point, and a ring found near is not searched further.
+#[derive(Default)]
+struct Near {
+    cands: Vec<Candidate>,
+    /// Each ring with candidates, and their range in `cands`.
+    groups: Vec<(usize, std::ops::Range<usize>)>,
+}
+
+impl Near {
+    /// The candidates of each ring whose bounds (as `within` decides it) come within `r`
+    /// of `p`.
+    fn rings<'a>(
+        &'a self,
+        rings: &'a Bounded,
+        p: Coord,
+        r: f64,
+    ) -> impl Iterator<Item = &'a [Candidate]> + 'a {
+        self.groups
+            .iter()
+            .filter(move |(ring, _)| in_bounds(rings[*ring].1, p, r))
+            .map(|(_, range)| &self.cands[range.clone()])
+    }
+}
+
 /// Whether `p` is within `r` of a candidate (its ring's bounds first, then the segment,
 /// measured exactly as `within` measured it).
-fn near_any(rings: &Bounded, cands: &[Candidate], p: Coord, r: f64) -> bool {
-    cands
-        .iter()
-        .any(|c| in_bounds(rings[c.ring].1, p, r) && segment_within(c.a, c.b, p, r))
+fn near_any(rings: &Bounded, near: &Near, p: Coord, r: f64) -> bool {
+    near.rings(rings, p, r)
+        .any(|cands| cands.iter().any(|c| segment_within(c.a, c.b, p, r)))
 }
 
 /// Whether `p` is within `r` of segments of two different rings.
-fn near_two(rings: &Bounded, cands: &[Candidate], p: Coord, r: f64) -> bool {
-    let mut found = usize::MAX;
-    for &Candidate { ring, a, b } in cands {
-        if ring == found || !in_bounds(rings[ring].1, p, r) {
-            continue;
-        }
-        if segment_within(a, b, p, r) {
-            if found != usize::MAX {
-                return true;
-            }
-            found = ring;
-        }
-    }
-    false
+fn near_two(rings: &Bounded, near: &Near, p: Coord, r: f64) -> bool {
+    near.rings(rings, p, r)
+        .filter(|cands| cands.iter().any(|c| segment_within(c.a, c.b, p, r)))
+        .nth(1)
+        .is_some()
 }
 
 /// The loops of one distance, each less its stretches within `gap` of an earlier one.
@@ -385,15 +404,15 @@ fn uncovered(
                 .gather(lo, hi, usize::MAX, &mut scratch.near);
             // All near one covered segment: none far. No covered segment near the
             // segment's bounds (nor last loops' segments, where two are asked for): all far.
-            let all = if scratch.near.iter().any(|c| {
+            let all = if scratch.near.cands.iter().any(|c| {
                 segment_within(c.a, c.b, w[0], inner) && segment_within(c.a, c.b, w[1], inner)
             }) {
                 Some(false)
-            } else if scratch.near.is_empty() && {
+            } else if scratch.near.cands.is_empty() && {
                 scratch
                     .last
                     .gather(lo, hi, usize::MAX, &mut scratch.near_last);
-                scratch.near_last.is_empty()
+                scratch.near_last.cands.is_empty()
             } {
                 Some(true)
             } else {

@@ -464,6 +464,11 @@ fn far(
         scratch
             .segments
             .gather(lo, hi, usize::MAX, &mut scratch.near);
+        if scratch.near.cands.is_empty() && last.len() < 2 {
+            // Nothing near the run: all of it far.
+            scratch.flags.resize(scratch.flags.len() + run.len(), true);
+            continue;
+        }
         scratch
             .last
             .gather(lo, hi, usize::MAX, &mut scratch.near_last);

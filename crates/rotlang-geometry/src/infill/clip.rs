@@ -59,9 +59,9 @@ pub(crate) struct Edges {
     /// otherwise meet an edge once per strip).
     stamp: Vec<u32>,
     segment: u32,
-    crossings: Vec<f64>,
-    /// `clip`'s cuts, kept for the next call.
+    /// `clip`'s cuts and the piece it hands out, kept for the next call.
     cuts: Vec<f64>,
+    piece: Vec<Coord>,
     /// For `clip`, built by its first call: the edges in a grid of square cells, so that a
     /// short segment well inside the region tests no edge at all.
     grid: Option<Grid>,
@@ -230,8 +230,8 @@ impl Edges {
             max,
             height,
             segment: 0,
-            crossings: Vec::new(),
             cuts: Vec::new(),
+            piece: Vec::new(),
             grid: None,
         }
     }
@@ -245,24 +245,25 @@ impl Edges {
         strip(y, self.min.y, self.height, self.strip_start.len() - 1)
     }
 
-    /// The inside intervals `[x0, x1]` of the horizontal line at `y`, left to right.
-    pub fn scan(&mut self, y: f64, out: &mut Vec<(f64, f64)>) {
+    /// The inside intervals `[x0, x1]` of the horizontal line at `y`, left to right (the
+    /// reference the straight families, found edge by edge, are tested against).
+    #[cfg(test)]
+    pub fn scan(&self, y: f64, out: &mut Vec<(f64, f64)>) {
         out.clear();
         if !(y >= self.min.y && y < self.max.y) {
             return;
         }
-        self.crossings.clear();
+        let mut crossings = Vec::new();
         let s = self.strip(y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
         for &i in &self.strip_edges[from as usize..to as usize] {
             let Edge { a, b } = self.edges[i as usize];
             if (a.y <= y) != (b.y <= y) {
-                self.crossings
-                    .push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+                crossings.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
             }
         }
-        self.crossings.sort_unstable_by(f64::total_cmp);
-        out.extend(self.crossings.chunks_exact(2).map(|c| (c[0], c[1])));
+        crossings.sort_unstable_by(f64::total_cmp);
+        out.extend(crossings.chunks_exact(2).map(|c| (c[0], c[1])));
     }
 
     /// Even-odd: whether `p` is inside the region (on an edge: either).
@@ -275,7 +276,7 @@ impl Edges {
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
         for &i in &self.strip_edges[from as usize..to as usize] {
             let Edge { a, b } = self.edges[i as usize];
-            if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
+            if ray_crosses(a, b, p) {
                 inside = !inside;
             }
         }
@@ -284,11 +285,15 @@ impl Edges {
 
     /// The pieces of the polyline `pts` inside the region, appended to `out`.
     pub fn clip(&mut self, pts: &[Coord], out: &mut Vec<Vec<Coord>>) {
+        self.clip_each(pts, |piece| out.push(piece.to_vec()));
+    }
+
+    /// The pieces of the polyline `pts` inside the region, each handed to `piece` in turn
+    /// (from a buffer kept for the next call: nothing is allocated for a caller that only
+    /// measures them).
+    pub fn clip_each(&mut self, pts: &[Coord], mut piece: impl FnMut(&[Coord])) {
         if pts.len() < 2 {
             return;
-        }
-        if self.stamp.len() != self.edges.len() {
-            self.stamp = vec![u32::MAX; self.edges.len()];
         }
         // Where the polyline crosses an edge, as `segment index + t`.
         let mut cuts = std::mem::take(&mut self.cuts);
@@ -304,59 +309,30 @@ impl Edges {
             {
                 continue;
             }
-            let grid = self
-                .grid
-                .get_or_insert_with(|| Grid::new(&self.edges, self.min, self.max));
-            let (px0, px1) = (p.x.min(q.x), p.x.max(q.x));
-            let (c0, c1) = (grid.col(px0), grid.col(px1));
-            let (r0, r1) = (grid.row(lo), grid.row(hi));
-            // Within one cell an edge is met once; across cells, the stamp skips repeats.
-            let stamped = c0 != c1 || r0 != r1;
-            if stamped {
-                self.segment = self.segment.wrapping_add(1);
-            }
-            let d1 = q - p;
             let first = cuts.len();
-            for r in r0..=r1 {
-                for c in c0..=c1 {
-                    for &i in grid.cell(r, c) {
-                        let i = i as usize;
-                        if stamped {
-                            if self.stamp[i] == self.segment {
-                                continue;
-                            }
-                            self.stamp[i] = self.segment;
-                        }
-                        let Edge { a, b } = self.edges[i];
-                        if a.x.max(b.x) < px0 || a.x.min(b.x) > px1 {
-                            continue;
-                        }
-                        // The edge's ends on opposite sides of the segment's line (cheap,
-                        // and false for nearly every edge) before any division.
-                        let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
-                        if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
-                            continue;
-                        }
-                        let d2 = b - a;
-                        let den = d1.x * d2.y - d1.y * d2.x;
-                        if den == 0.0 {
-                            continue;
-                        }
-                        let ap = a - p;
-                        let t = (ap.x * d2.y - ap.y * d2.x) / den;
-                        let u = (ap.x * d1.y - ap.y * d1.x) / den;
-                        if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
-                            cuts.push(k as f64 + t);
-                        }
-                    }
+            let segment = Segment {
+                p,
+                d: q - p,
+                x0: p.x.min(q.x),
+                x1: p.x.max(q.x),
+                k: k as f64,
+            };
+            if self.edges.len() <= PLAIN {
+                // Few edges (a star, an L): every one, no grid to build or walk.
+                for &edge in &self.edges {
+                    segment.cut(edge, &mut cuts);
                 }
+            } else {
+                self.cut_through_grid(&segment, lo, hi, &mut cuts);
             }
             cuts[first..].sort_unstable_by(f64::total_cmp);
         }
         let end = (pts.len() - 1) as f64;
         cuts.push(end);
+        let mut buffer = std::mem::take(&mut self.piece);
+        // `g` is never negative: truncation is its floor (no call to the C library's).
         let at = |g: f64| {
-            let k = (g.floor() as usize).min(pts.len() - 2);
+            let k = (g as usize).min(pts.len() - 2);
             let t = g - k as f64;
             pts[k] + (pts[k + 1] - pts[k]) * t
         };
@@ -365,15 +341,138 @@ impl Edges {
             if g1 <= g0 || !self.contains(at((g0 + g1) / 2.0)) {
                 continue;
             }
-            let mut piece = vec![at(g0)];
-            let first = g0.floor() as usize + 1;
-            let last = g1.ceil() as usize;
-            piece.extend(pts[first.min(last)..last].iter().copied());
-            piece.push(at(g1));
-            out.push(piece);
+            let first = g0 as usize + 1;
+            let last = {
+                let whole = g1 as usize;
+                if (whole as f64) < g1 {
+                    whole + 1
+                } else {
+                    whole
+                }
+            };
+            buffer.clear();
+            buffer.push(at(g0));
+            buffer.extend(pts[first.min(last)..last].iter().copied());
+            buffer.push(at(g1));
+            piece(&buffer);
         }
         self.cuts = cuts;
+        self.piece = buffer;
     }
+
+    /// The crossings of one segment (`lo`..`hi` its y range) with the edges of the grid
+    /// cells it passes: row by row, only the cells of its x range within the row.
+    fn cut_through_grid(&mut self, segment: &Segment, lo: f64, hi: f64, cuts: &mut Vec<f64>) {
+        if self.stamp.len() != self.edges.len() {
+            self.stamp = vec![u32::MAX; self.edges.len()];
+        }
+        let grid = self
+            .grid
+            .get_or_insert_with(|| Grid::new(&self.edges, self.min, self.max));
+        let (p, d1) = (segment.p, segment.d);
+        let (c0, c1) = (grid.col(segment.x0), grid.col(segment.x1));
+        let (r0, r1) = (grid.row(lo), grid.row(hi));
+        // Within one cell an edge is met once; across cells, the stamp skips repeats.
+        let stamped = c0 != c1 || r0 != r1;
+        if stamped {
+            self.segment = self.segment.wrapping_add(1);
+        }
+        for r in r0..=r1 {
+            // Only the cells of this row that the segment passes (its x range within the
+            // row's band, with the grid's slack), not every cell of its box: a long
+            // diagonal branch meets a line of cells, not a square of them.
+            let (c0, c1) = if r0 == r1 || c0 == c1 {
+                (c0, c1)
+            } else {
+                let side = 1.0 / grid.inv;
+                let band = (
+                    (grid.min.y + r as f64 * side).max(lo),
+                    (grid.min.y + (r + 1) as f64 * side).min(hi),
+                );
+                let x_at = |y: f64| p.x + (y - p.y) * d1.x / d1.y;
+                let (xa, xb) = (x_at(band.0), x_at(band.1));
+                let slack = side * 1e-6;
+                (
+                    grid.col(xa.min(xb) - slack).max(c0),
+                    grid.col(xa.max(xb) + slack).min(c1),
+                )
+            };
+            for c in c0..=c1 {
+                for &i in grid.cell(r, c) {
+                    let i = i as usize;
+                    if stamped {
+                        if self.stamp[i] == self.segment {
+                            continue;
+                        }
+                        self.stamp[i] = self.segment;
+                    }
+                    segment.cut(self.edges[i], cuts);
+                }
+            }
+        }
+    }
+}
+
+/// Up to this many edges, `clip` tests every edge: cheaper than building and walking the
+/// grid.
+const PLAIN: usize = 32;
+
+/// One segment of a polyline being clipped: its start, direction, x range and index.
+struct Segment {
+    p: Coord,
+    d: Coord,
+    x0: f64,
+    x1: f64,
+    k: f64,
+}
+
+impl Segment {
+    /// Where the segment crosses `edge`, as `k + t`, pushed to `cuts`.
+    #[inline]
+    fn cut(&self, Edge { a, b }: Edge, cuts: &mut Vec<f64>) {
+        let (p, d1) = (self.p, self.d);
+        if a.x.max(b.x) < self.x0 || a.x.min(b.x) > self.x1 {
+            return;
+        }
+        // The edge's ends on opposite sides of the segment's line (cheap, and false for
+        // nearly every edge) before any division.
+        let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
+        if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
+            return;
+        }
+        let d2 = b - a;
+        let den = d1.x * d2.y - d1.y * d2.x;
+        if den == 0.0 {
+            return;
+        }
+        let ap = a - p;
+        let t = (ap.x * d2.y - ap.y * d2.x) / den;
+        let u = (ap.x * d1.y - ap.y * d1.x) / den;
+        if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
+            cuts.push(self.k + t);
+        }
+    }
+}
+
+/// Whether the edge from `a` to `b` crosses the ray from `p` toward +x, by the half-open
+/// rule (`(a.y <= p.y) != (b.y <= p.y)`) and the crossing's x computed as
+/// `a.x + (p.y − a.y)(b.x − a.x)/(b.y − a.y) > p.x`. That x lies between the edge's ends
+/// (within a few ulps), so an edge wholly to the right or left of `p` by more than a
+/// trillionth of the coordinates decides without the division: the same answer, cheaper.
+#[inline]
+pub(crate) fn ray_crosses(a: Coord, b: Coord, p: Coord) -> bool {
+    if (a.y <= p.y) == (b.y <= p.y) {
+        return false;
+    }
+    let (lo, hi) = if a.x < b.x { (a.x, b.x) } else { (b.x, a.x) };
+    let margin = 1e-12 * (lo.abs() + hi.abs() + p.x.abs()) + f64::MIN_POSITIVE;
+    if lo > p.x + margin {
+        return true;
+    }
+    if hi < p.x - margin {
+        return false;
+    }
+    a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x
 }
 
 fn cross(a: Coord, b: Coord) -> f64 {

@@ -11,16 +11,50 @@ use geo::Coord;
 
 use super::Region;
 use super::clip::{Edges, Frame};
+use super::offset::next;
 
+/// How many branches each outline gets at `spacing`: all that the tree depends the
+/// spacing on (two spacings with the same counts make the same tree).
+pub(crate) fn counts(region: &Region, spacing: f64) -> Vec<usize> {
+    let gap = 2.5 * spacing;
+    region
+        .outlines()
+        .iter()
+        .map(|ring| (perimeter(ring) / gap).floor().max(1.0) as usize)
+        .collect()
+}
+
+fn perimeter(ring: &[Coord]) -> f64 {
+    let n = ring.len();
+    (0..n).map(|i| length(ring[next(i, n)] - ring[i])).sum()
+}
+
+/// The tree for one spacing, appended to `out`. `edges` are the region's in `frame`
+/// ([`frame`]): built once for every tree of the layer (`Region::fill` builds two).
 pub(crate) fn lightning(
     region: &Region,
     centre: Coord,
     theta: f64,
     spacing: f64,
+    edges: &mut Edges,
     out: &mut Vec<Vec<Coord>>,
 ) {
-    let frame = Frame::new(centre, 0.0);
-    let mut edges = Edges::new(region.rings(), &frame);
+    tree(region, centre, theta, spacing, edges, |piece| {
+        out.push(piece.to_vec())
+    });
+}
+
+/// The tree's pieces, in world coordinates, each handed to `piece` (in the order
+/// `lightning` appends them).
+pub(crate) fn tree(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    spacing: f64,
+    edges: &mut Edges,
+    mut piece: impl FnMut(&[Coord]),
+) {
+    let frame = frame(centre);
     let gap = 2.5 * spacing;
     let direction = Coord {
         x: theta.cos(),
@@ -28,15 +62,16 @@ pub(crate) fn lightning(
     };
     // Each branch, and whether it starts on the outline (a main branch; a twig starts at
     // its fork).
-    let mut branches: Vec<(Vec<Coord>, bool)> = Vec::new();
+    let mut branches: Vec<([Coord; 2], bool)> = Vec::new();
     for ring in region.outlines() {
         let n = ring.len();
         let start = (0..n)
             .max_by(|&i, &j| dot(ring[i], direction).total_cmp(&dot(ring[j], direction)))
             .unwrap_or(0);
-        let perimeter: f64 = (0..n).map(|i| length(ring[(i + 1) % n] - ring[i])).sum();
+        let perimeter = perimeter(ring);
         let count = (perimeter / gap).floor().max(1.0) as usize;
         let step = perimeter / count as f64;
+        branches.reserve(3 * count);
         // Walk the ring from `start`, dropping a branch every `step` of arc length.
         let (mut i, mut along, mut next) = (0usize, 0.0, 0.0);
         let mut k = 0usize;
@@ -56,35 +91,38 @@ pub(crate) fn lightning(
                 let main = rotate(to_centre / dist, turn);
                 let reach = 0.8 * dist;
                 let fork = p + main * (0.4 * reach);
-                branches.push((vec![p, p + main * reach], true));
+                branches.push(([p, p + main * reach], true));
                 for side in [45f64, -45.0] {
                     let twig = rotate(main, side.to_radians());
-                    branches.push((vec![fork, fork + twig * (0.4 * reach)], false));
+                    branches.push(([fork, fork + twig * (0.4 * reach)], false));
                 }
             }
             k += 1;
             next = k as f64 * step;
         }
     }
-    let mut local = Vec::new();
+    // Each piece back in world coordinates, in one buffer.
+    let mut world = Vec::new();
     // In a convex region a branch with both ends inside (or starting on the outline) is
     // inside whole: no clipping, which is most of the work.
     let convex = region.is_convex();
     for (branch, main) in branches {
-        let branch: Vec<Coord> = branch.into_iter().map(|p| frame.to_local(p)).collect();
-        if convex && (main || edges.contains(branch[0])) && edges.contains(branch[branch.len() - 1])
-        {
-            out.push(branch.into_iter().map(|q| frame.to_world(q)).collect());
+        let branch = branch.map(|p| frame.to_local(p));
+        if convex && (main || edges.contains(branch[0])) && edges.contains(branch[1]) {
+            piece(&branch.map(|q| frame.to_world(q)));
             continue;
         }
-        local.clear();
-        edges.clip(&branch, &mut local);
-        out.extend(
-            local
-                .drain(..)
-                .map(|piece| piece.into_iter().map(|q| frame.to_world(q)).collect()),
-        );
+        edges.clip_each(&branch, |local| {
+            world.clear();
+            world.extend(local.iter().map(|&q| frame.to_world(q)));
+            piece(&world);
+        });
     }
+}
+
+/// The frame the tree is clipped in: unturned, about the pattern centre.
+pub(crate) fn frame(centre: Coord) -> Frame {
+    Frame::new(centre, 0.0)
 }
 
 fn dot(a: Coord, b: Coord) -> f64 {

@@ -16,88 +16,223 @@ const MAX_SEGMENTS: usize = 20_000;
 
 /// The rings (closed: first point = last) bounding the erosion of `region` by `d`, arcs in
 /// steps of at most `arc` radians, each with the inside on its left (outlines
-/// counter-clockwise, holes clockwise). Empty when nothing is left.
+/// counter-clockwise, holes clockwise). Empty when nothing is left. (Concentric prepares
+/// an [`Eroder`] once for all its loops; the tests ask for one distance at a time.)
+#[cfg(test)]
 pub(crate) fn eroded_rings(
     region: &MultiPolygon<f64>,
     d: f64,
     arc: f64,
 ) -> Option<Vec<Vec<Coord>>> {
-    let mut boundary: Vec<&[Coord]> = Vec::new();
-    let mut raws: Vec<Raw> = Vec::new();
-    for polygon in &region.0 {
-        for (i, ring) in std::iter::once(polygon.exterior())
-            .chain(polygon.interiors())
-            .enumerate()
-        {
-            boundary.push(&ring.0);
-            if let Some(raw) = raw_ring(&ring.0, d, arc, i == 0) {
-                raws.push(raw);
-            }
-        }
-    }
-    if raws.iter().map(|r| r.pts.len()).sum::<usize>() > MAX_SEGMENTS {
-        return None;
-    }
-    let cuts = crossings(&raws)?;
-    // Cut every raw ring at its crossings into pieces; keep those `d` from the boundary.
-    let mut pieces: Vec<Piece> = Vec::new();
-    for (r, raw) in raws.iter().enumerate() {
-        let n = raw.pts.len();
-        let mut here: Vec<(usize, f64, usize)> = cuts
-            .iter()
-            .enumerate()
-            .flat_map(|(id, c)| {
-                let mut v = Vec::with_capacity(2);
-                if c.ring[0] == r {
-                    v.push((c.seg[0], c.t[0], id));
-                }
-                if c.ring[1] == r {
-                    v.push((c.seg[1], c.t[1], id));
-                }
-                v
-            })
-            .collect();
-        if here.is_empty() {
-            let mut pts = raw.pts.clone();
-            pts.push(pts[0]);
-            if keep(&pts, &raw.centres, 0, &boundary, d) {
-                pieces.push(Piece {
-                    pts,
-                    from: usize::MAX,
-                    to: usize::MAX,
-                });
-            }
-            continue;
-        }
-        here.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
-        for k in 0..here.len() {
-            let (s0, t0, id0) = here[k];
-            let (s1, t1, id1) = here[(k + 1) % here.len()];
-            let mut pts = vec![cuts[id0].at];
-            // The segments the piece runs along, for the arc centre of its test point.
-            let first = s0;
-            let mut s = s0;
-            let wraps = k + 1 == here.len();
-            if !(s1 == s0 && t1 > t0 && !wraps) {
-                loop {
-                    s = (s + 1) % n;
-                    pts.push(raw.pts[s]);
-                    if s == s1 {
-                        break;
+    Eroder::new(region, arc).rings(d)
+}
+
+/// A region prepared for eroding it by many distances (concentric's loops): what does not
+/// depend on the distance (each ring oriented, its corners' normals and kinds, the arcs'
+/// directions) is worked out once, and the buffers are reused from one distance to the
+/// next. Every raw point is computed from the same numbers as before, so the rings are the
+/// same to the bit as a fresh `eroded_rings`.
+pub(crate) struct Eroder {
+    /// Every edge of the region as given with its bounds, for the test that a piece is
+    /// `d` away (the bounds do not depend on `d`: worked out once).
+    boundary: Vec<Side>,
+    /// Each ring's corners (rings that cannot be oriented are left out, as before).
+    corners: Vec<Vec<Corner>>,
+    /// The unit directions of every reflex corner's inner arc points.
+    directions: Vec<Coord>,
+    /// Reused: the raw offsets, the crossing sweep's edges, each ring's cuts.
+    raws: Vec<Raw>,
+    sweep: Sweep,
+    here: Vec<(usize, usize, f64, usize)>,
+    cuts: Vec<Cut>,
+    turns: Vec<f64>,
+    /// Reused by the chaining: the piece leaving each cut, and the pieces used.
+    chained: (Vec<usize>, Vec<bool>),
+    /// Reused: the kept pieces, their points one after another.
+    pieces: Vec<Piece>,
+    points: Vec<Coord>,
+}
+
+/// A corner of a ring, as its raw offset needs it.
+enum Corner {
+    /// One point `b + m·d/k` (a convex corner's mitre, or a reflex corner within one arc
+    /// step).
+    Mitre { b: Coord, m: Coord, k: f64 },
+    /// A sharp tip: through the vertex.
+    Tip { b: Coord, nu: Coord, nv: Coord },
+    /// A reflex corner's arc: `b + nu·d`, `b + w·d` for each inner direction, `b + nv·d`.
+    Arc {
+        b: Coord,
+        nu: Coord,
+        nv: Coord,
+        inner: std::ops::Range<usize>,
+    },
+}
+
+impl Eroder {
+    pub(crate) fn new(region: &MultiPolygon<f64>, arc: f64) -> Eroder {
+        let mut boundary: Vec<Side> = Vec::new();
+        let mut corners = Vec::new();
+        let mut directions = Vec::new();
+        for polygon in &region.0 {
+            for (i, ring) in std::iter::once(polygon.exterior())
+                .chain(polygon.interiors())
+                .enumerate()
+            {
+                boundary.extend(ring.0.windows(2).map(|w| {
+                    let (a, b) = (w[0], w[1]);
+                    Side {
+                        a,
+                        b,
+                        lo: Coord {
+                            x: a.x.min(b.x),
+                            y: a.y.min(b.y),
+                        },
+                        hi: Coord {
+                            x: a.x.max(b.x),
+                            y: a.y.max(b.y),
+                        },
                     }
+                }));
+                if let Some(c) = prepare(&ring.0, arc, i == 0, &mut directions) {
+                    corners.push(c);
                 }
             }
-            pts.push(cuts[id1].at);
-            if keep(&pts, &raw.centres, first, &boundary, d) {
-                pieces.push(Piece {
-                    pts,
-                    from: id0,
-                    to: id1,
-                });
-            }
+        }
+        Eroder {
+            boundary,
+            corners,
+            directions,
+            raws: Vec::new(),
+            sweep: Sweep::default(),
+            here: Vec::new(),
+            cuts: Vec::new(),
+            turns: Vec::new(),
+            chained: (Vec::new(), Vec::new()),
+            pieces: Vec::new(),
+            points: Vec::new(),
         }
     }
-    chain(pieces, cuts.len())
+
+    /// The rings bounding the erosion by `d` (as [`eroded_rings`]).
+    pub(crate) fn rings(&mut self, d: f64) -> Option<Vec<Vec<Coord>>> {
+        // Each raw ring's size is known from its corners: the buffers are made once at
+        // their size (growing them by doubling was a tenth of a star's layer).
+        if self.raws.len() != self.corners.len() {
+            let directions = &self.directions;
+            self.raws = self
+                .corners
+                .iter()
+                .map(|corners| {
+                    let n = corners
+                        .iter()
+                        .map(|c| match c {
+                            Corner::Mitre { .. } => 1,
+                            Corner::Tip { .. } => 3,
+                            Corner::Arc { inner, .. } => 2 + directions[inner.clone()].len(),
+                        })
+                        .sum();
+                    Raw {
+                        pts: Vec::with_capacity(n),
+                        centres: Vec::with_capacity(n),
+                    }
+                })
+                .collect();
+            let total: usize = self.raws.iter().map(|r| r.pts.capacity()).sum();
+            self.sweep.edges.reserve(total);
+            self.sweep.order.reserve(total);
+            self.sweep.sorted.reserve(total);
+            self.points.reserve(2 * total);
+        }
+        for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
+            raw.fill(corners, &self.directions, d);
+        }
+        if self.raws.iter().map(|r| r.pts.len()).sum::<usize>() > MAX_SEGMENTS {
+            return None;
+        }
+        let raws = &self.raws;
+        // Convex rings nested or apart cross nothing (a holed square's loops until the
+        // outline's meet the hole's): no sweep.
+        let cuts = &mut self.cuts;
+        cuts.clear();
+        if !apart(raws, &mut self.turns) && !crossings(raws, &mut self.sweep, cuts) {
+            return None;
+        }
+        let cuts = &*cuts;
+        // Every cut twice (once on each ring it is on), grouped by ring, in order along it.
+        self.here.clear();
+        for (id, c) in cuts.iter().enumerate() {
+            self.here.push((c.ring[0], c.seg[0], c.t[0], id));
+            self.here.push((c.ring[1], c.seg[1], c.t[1], id));
+        }
+        self.here
+            .sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.total_cmp(&b.2)));
+        // Cut every raw ring at its crossings into pieces; keep those `d` from the boundary.
+        // A piece is tested before it is built: most are cut away.
+        let boundary = &self.boundary;
+        let (pieces, points) = (&mut self.pieces, &mut self.points);
+        pieces.clear();
+        points.clear();
+        let mut from = 0;
+        for (r, raw) in raws.iter().enumerate() {
+            let n = raw.pts.len();
+            let to = from + self.here[from..].iter().take_while(|h| h.0 == r).count();
+            let here = &self.here[from..to];
+            from = to;
+            if here.is_empty() {
+                // The whole ring, closed: its point m and m + 1 (n is the first again).
+                let m = (n + 1 - 2) / 2;
+                let mid = (raw.pts[m] + raw.pts[(m + 1) % n]) / 2.0;
+                if keep(mid, raw.centres[m % n], boundary, d) {
+                    let first = points.len();
+                    points.extend_from_slice(&raw.pts);
+                    points.push(raw.pts[0]);
+                    pieces.push(Piece {
+                        pts: first..points.len(),
+                        from: usize::MAX,
+                        to: usize::MAX,
+                    });
+                }
+                continue;
+            }
+            for k in 0..here.len() {
+                let (_, s0, t0, id0) = here[k];
+                let (_, s1, t1, id1) = here[(k + 1) % here.len()];
+                let wraps = k + 1 == here.len();
+                // The raw points between the cuts: s0 + 1 ..= s1 (all around when s1 = s0).
+                let count = if s1 == s0 && t1 > t0 && !wraps {
+                    0
+                } else {
+                    let c = (s1 + n - s0) % n;
+                    if c == 0 { n } else { c }
+                };
+                let point = |i: usize| {
+                    if i == 0 {
+                        cuts[id0].at
+                    } else if i <= count {
+                        // s0 + i < 2n: one wrap at most (no division per point).
+                        let j = s0 + i;
+                        raw.pts[if j >= n { j - n } else { j }]
+                    } else {
+                        cuts[id1].at
+                    }
+                };
+                let m = count / 2;
+                let mid = (point(m) + point(m + 1)) / 2.0;
+                // Segment m of the piece is raw segment s0 + m (it starts inside s0).
+                if keep(mid, raw.centres[(s0 + m) % n], boundary, d) {
+                    let first = points.len();
+                    points.extend((0..count + 2).map(point));
+                    pieces.push(Piece {
+                        pts: first..points.len(),
+                        from: id0,
+                        to: id1,
+                    });
+                }
+            }
+        }
+        chain(pieces, points, cuts.len(), &mut self.chained)
+    }
 }
 
 /// One ring's raw offset: its points (not closed) and, for the segment from each point,
@@ -107,8 +242,44 @@ struct Raw {
     centres: Vec<Option<Coord>>,
 }
 
+impl Raw {
+    /// The raw offset by `d` of a ring's corners.
+    fn fill(&mut self, corners: &[Corner], directions: &[Coord], d: f64) {
+        self.pts.clear();
+        self.centres.clear();
+        for corner in corners {
+            match *corner {
+                Corner::Mitre { b, m, k } => {
+                    self.pts.push(b + m * (d / k));
+                    self.centres.push(None);
+                }
+                Corner::Tip { b, nu, nv } => {
+                    self.pts.extend([b + nu * d, b, b + nv * d]);
+                    self.centres.extend([None, None, None]);
+                }
+                Corner::Arc {
+                    b,
+                    nu,
+                    nv,
+                    ref inner,
+                } => {
+                    self.pts.push(b + nu * d);
+                    self.centres.push(Some(b));
+                    for &w in &directions[inner.clone()] {
+                        self.pts.push(b + w * d);
+                        self.centres.push(Some(b));
+                    }
+                    self.pts.push(b + nv * d);
+                    self.centres.push(None);
+                }
+            }
+        }
+    }
+}
+
 struct Piece {
-    pts: Vec<Coord>,
+    /// Its points' range in the points of all pieces.
+    pts: std::ops::Range<usize>,
     /// The cuts it starts and ends at (`usize::MAX`: a whole ring).
     from: usize,
     to: usize,
@@ -122,18 +293,25 @@ struct Cut {
     at: Coord,
 }
 
-/// The raw offset of one ring toward the region's inside (`exterior`: an outline).
-fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
+/// A ring's corners toward the region's inside (`exterior`: an outline), the inner
+/// directions of its arcs appended to `directions`; `None` where it cannot be oriented.
+fn prepare(
+    ring: &[Coord],
+    arc: f64,
+    exterior: bool,
+    directions: &mut Vec<Coord>,
+) -> Option<Vec<Corner>> {
     let pts = inside_left(ring, exterior)?;
     let n = pts.len();
     let unit = |e: Coord| e / e.x.hypot(e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
-    let mut out = Vec::with_capacity(n + n / 2);
-    let mut centres = Vec::with_capacity(n + n / 2);
+    // Each edge's direction once (edge i runs from point i to i + 1).
+    let units: Vec<Coord> = (0..n).map(|i| unit(pts[(i + 1) % n] - pts[i])).collect();
+    let mut out = Vec::with_capacity(n);
     let cos_arc = arc.cos();
     for i in 0..n {
-        let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
-        let (u, v) = (unit(b - a), unit(c - b));
+        let b = pts[i];
+        let (u, v) = (units[(i + n - 1) % n], units[i]);
         let (nu, nv) = (left(u), left(v));
         let turn = cross(u, v);
         let dot = u.x * v.x + u.y * v.y;
@@ -141,29 +319,21 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
             let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
             if k >= 0.5 {
                 // The mitre, where both moved edges meet.
-                out.push(b + (nu + nv) * (d / k));
-                centres.push(None);
+                out.push(Corner::Mitre { b, m: nu + nv, k });
             } else {
                 // A sharp tip: its mitre would be far away; through the vertex instead
                 // (that stretch is nearer the boundary than `d`, and is cut away).
-                out.push(b + nu * d);
-                centres.push(None);
-                out.push(b);
-                centres.push(None);
-                out.push(b + nv * d);
-                centres.push(None);
+                out.push(Corner::Tip { b, nu, nv });
             }
         } else if dot >= cos_arc {
             // A reflex corner within one step (a round hole's): the mitre, which strays
             // outside the arc no more than a chord inside it, and is one point, not two.
             let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
-            out.push(b + (nu + nv) * (d / k));
-            centres.push(None);
+            out.push(Corner::Mitre { b, m: nu + nv, k });
         } else {
             let angle = turn.atan2(dot);
             let steps = (-angle / arc).ceil().max(1.0) as usize;
-            out.push(b + nu * d);
-            centres.push(Some(b));
+            let start = directions.len();
             let (s, co) = (angle / steps as f64).sin_cos();
             let mut w = nu;
             for _ in 1..steps {
@@ -171,44 +341,198 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
                     x: w.x * co - w.y * s,
                     y: w.x * s + w.y * co,
                 };
-                out.push(b + w * d);
-                centres.push(Some(b));
+                directions.push(w);
             }
-            out.push(b + nv * d);
-            centres.push(None);
+            out.push(Corner::Arc {
+                b,
+                nu,
+                nv,
+                inner: start..directions.len(),
+            });
         }
     }
-    Some(Raw { pts: out, centres })
+    Some(out)
+}
+
+/// An edge of the region as given, with its bounds.
+#[derive(Clone, Copy)]
+struct Side {
+    a: Coord,
+    b: Coord,
+    lo: Coord,
+    hi: Coord,
+}
+
+/// Whether the raw rings are each strictly convex and simple, and each pair apart (bounds
+/// that do not meet) or one strictly inside the other: then nothing crosses or touches,
+/// and the sweep would find no cut.
+fn apart(raws: &[Raw], turns: &mut Vec<f64>) -> bool {
+    turns.clear();
+    for r in raws {
+        // Most rings that fail fail here, at their first reflex turn.
+        let turn = convex(&r.pts);
+        if turn == 0.0 {
+            return false;
+        }
+        turns.push(turn);
+    }
+    let bounds: Vec<(Coord, Coord)> = raws.iter().map(|r| bounds(&r.pts)).collect();
+    for i in 0..raws.len() {
+        for j in i + 1..raws.len() {
+            let ((a, b), (c, e)) = (bounds[i], bounds[j]);
+            if b.x < c.x || e.x < a.x || b.y < c.y || e.y < a.y {
+                continue;
+            }
+            if !inside(&raws[j].pts, &raws[i].pts, turns[i])
+                && !inside(&raws[i].pts, &raws[j].pts, turns[j])
+            {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// `1.0` for a strictly convex simple counter-clockwise ring, `-1.0` clockwise, `0.0`
+/// otherwise: every turn strictly the same way, and the edges' direction passing east
+/// once (turns each under a half turn: it goes round once).
+fn convex(pts: &[Coord]) -> f64 {
+    let n = pts.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let edge = |i: usize| {
+        let j = if i + 1 == n { 0 } else { i + 1 };
+        pts[j] - pts[i]
+    };
+    let first = cross(edge(n - 1), edge(0));
+    let sign = if first > 0.0 {
+        1.0
+    } else if first < 0.0 {
+        -1.0
+    } else {
+        return 0.0;
+    };
+    let mut east = 0;
+    let mut prev = edge(n - 1);
+    for i in 0..n {
+        let e = edge(i);
+        if cross(prev, e) * sign <= 0.0 {
+            return 0.0;
+        }
+        let passes = if sign > 0.0 {
+            prev.y < 0.0 && e.y >= 0.0
+        } else {
+            prev.y > 0.0 && e.y <= 0.0
+        };
+        if passes {
+            east += 1;
+        }
+        prev = e;
+    }
+    if east == 1 { sign } else { 0.0 }
+}
+
+/// Whether every point of `pts` is strictly inside the strictly convex ring `ring`
+/// (turning `turn`: its inside is on the left when 1, on the right when −1).
+fn inside(pts: &[Coord], ring: &[Coord], turn: f64) -> bool {
+    let n = ring.len();
+    pts.iter().all(|&p| {
+        (0..n).all(|i| {
+            let (a, b) = (ring[i], ring[if i + 1 == n { 0 } else { i + 1 }]);
+            cross(b - a, p - a) * turn > 0.0
+        })
+    })
+}
+
+/// The bounds of some points.
+fn bounds(pts: &[Coord]) -> (Coord, Coord) {
+    pts.iter().fold(
+        (
+            Coord {
+                x: f64::INFINITY,
+                y: f64::INFINITY,
+            },
+            Coord {
+                x: f64::NEG_INFINITY,
+                y: f64::NEG_INFINITY,
+            },
+        ),
+        |(lo, hi), p| {
+            (
+                Coord {
+                    x: lo.x.min(p.x),
+                    y: lo.y.min(p.y),
+                },
+                Coord {
+                    x: hi.x.max(p.x),
+                    y: hi.y.max(p.y),
+                },
+            )
+        },
+    )
+}
+
+/// The crossing sweep's buffers: the edges as built, their sort keys, and in order.
+#[derive(Default)]
+struct Sweep {
+    edges: Vec<Edge>,
+    order: Vec<(i64, u32)>,
+    sorted: Vec<Edge>,
+}
+
+/// A raw segment in the crossing sweep.
+#[derive(Clone, Copy)]
+struct Edge {
+    /// `xlo` as an integer that sorts as `f64::total_cmp` does.
+    key: i64,
+    a: Coord,
+    b: Coord,
+    xlo: f64,
+    xhi: f64,
+    ring: usize,
+    seg: usize,
+    /// The segment after it on its ring (neighbours meet without crossing).
+    next: usize,
 }
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`
 /// where two touch without crossing.
-fn crossings(raws: &[Raw]) -> Option<Vec<Cut>> {
-    struct Edge {
-        a: Coord,
-        b: Coord,
-        xlo: f64,
-        xhi: f64,
-        ring: usize,
-        seg: usize,
-    }
-    let mut edges = Vec::with_capacity(raws.iter().map(|r| r.pts.len()).sum());
+fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
+    let Sweep {
+        edges,
+        order,
+        sorted,
+    } = sweep;
+    edges.clear();
     for (r, raw) in raws.iter().enumerate() {
         let n = raw.pts.len();
         for i in 0..n {
-            let (a, b) = (raw.pts[i], raw.pts[(i + 1) % n]);
+            let next = if i + 1 == n { 0 } else { i + 1 };
+            let (a, b) = (raw.pts[i], raw.pts[next]);
+            let xlo = a.x.min(b.x);
+            let bits = xlo.to_bits() as i64;
             edges.push(Edge {
+                key: bits ^ (((bits >> 63) as u64) >> 1) as i64,
                 a,
                 b,
-                xlo: a.x.min(b.x),
+                xlo,
                 xhi: a.x.max(b.x),
                 ring: r,
                 seg: i,
+                next,
             });
         }
     }
-    edges.sort_unstable_by(|p, q| p.xlo.total_cmp(&q.xlo));
-    let mut cuts = Vec::new();
+    // By `xlo` in `total_cmp`'s order, compared as integers, ties in the order built: the
+    // small (key, index) pairs are sorted, not the edges (moving 80-byte edges about was
+    // a tenth of a layer), then the edges are laid out in that order once.
+    order.clear();
+    order.extend(edges.iter().enumerate().map(|(i, e)| (e.key, i as u32)));
+    order.sort_unstable();
+    sorted.clear();
+    sorted.extend(order.iter().map(|&(_, i)| edges[i as usize]));
+    let edges = &*sorted;
     for (i, e) in edges.iter().enumerate() {
         let (ylo, yhi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
         for f in &edges[i + 1..] {
@@ -218,11 +542,8 @@ fn crossings(raws: &[Raw]) -> Option<Vec<Cut>> {
             if f.a.y.max(f.b.y) < ylo || f.a.y.min(f.b.y) > yhi {
                 continue;
             }
-            if e.ring == f.ring {
-                let n = raws[e.ring].pts.len();
-                if (e.seg + 1) % n == f.seg || (f.seg + 1) % n == e.seg || e.seg == f.seg {
-                    continue;
-                }
+            if e.ring == f.ring && (e.next == f.seg || f.next == e.seg || e.seg == f.seg) {
+                continue;
             }
             let (p, r) = (e.b - e.a, f.b - f.a);
             let d1 = cross(p, f.a - e.a);
@@ -252,28 +573,20 @@ fn crossings(raws: &[Raw]) -> Option<Vec<Cut>> {
                     || (d3 == 0.0 && on(f.a, f.b, e.a))
                     || (d4 == 0.0 && on(f.a, f.b, e.b))
                 {
-                    return None;
+                    return false;
                 }
             }
         }
     }
-    Some(cuts)
+    true
 }
 
-/// Whether a piece lies on the erosion's boundary: a point in its middle (on the arc, for
-/// a chord) at least `d` from every boundary edge and inside the region.
-fn keep(
-    pts: &[Coord],
-    centres: &[Option<Coord>],
-    first: usize,
-    boundary: &[&[Coord]],
-    d: f64,
-) -> bool {
-    let m = (pts.len() - 2) / 2;
-    let mut p = (pts[m] + pts[m + 1]) / 2.0;
-    // Segment m of the piece is raw segment first + m (the piece starts inside `first`).
-    let n = centres.len();
-    if let Some(c) = centres[(first + m) % n] {
+/// Whether a piece lies on the erosion's boundary: the point `mid` in its middle (moved
+/// onto the arc about `centre`, for a chord) at least `d` from every boundary edge and
+/// inside the region.
+fn keep(mid: Coord, centre: Option<Coord>, boundary: &[Side], d: f64) -> bool {
+    let mut p = mid;
+    if let Some(c) = centre {
         let r = p - c;
         let len = r.x.hypot(r.y);
         if len > 0.0 {
@@ -281,20 +594,28 @@ fn keep(
         }
     }
     let limit = d * (1.0 - 1e-9);
+    // An edge whose bounds, grown by `limit` (and a margin for rounding), miss `p` is
+    // farther than `limit`: only its crossing of the ray is counted.
+    let reach = limit + 1e-9;
     let mut inside = false;
-    for ring in boundary {
-        for w in ring.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            let e = b - a;
-            let len2 = e.x * e.x + e.y * e.y;
-            let t = if len2 > 0.0 {
-                (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let q = a + e * t - p;
-            if q.x * q.x + q.y * q.y < limit * limit {
-                return false;
+    for &Side { a, b, lo, hi } in boundary {
+        {
+            if p.x >= lo.x - reach
+                && p.x <= hi.x + reach
+                && p.y >= lo.y - reach
+                && p.y <= hi.y + reach
+            {
+                let e = b - a;
+                let len2 = e.x * e.x + e.y * e.y;
+                let t = if len2 > 0.0 {
+                    (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let q = a + e * t - p;
+                if q.x * q.x + q.y * q.y < limit * limit {
+                    return false;
+                }
             }
             if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
                 inside = !inside;
@@ -305,9 +626,16 @@ fn keep(
 }
 
 /// The kept pieces joined end to start at their cuts into closed rings; `None` where a
-/// cut has not exactly one piece leaving it.
-fn chain(pieces: Vec<Piece>, cuts: usize) -> Option<Vec<Vec<Coord>>> {
-    let mut leaving = vec![usize::MAX; cuts];
+/// cut has not exactly one piece leaving it. Each chain is walked twice: to check it
+/// closes and measure it, then to copy its points into a ring of the right size.
+fn chain(
+    pieces: &[Piece],
+    points: &[Coord],
+    cuts: usize,
+    (leaving, used): &mut (Vec<usize>, Vec<bool>),
+) -> Option<Vec<Vec<Coord>>> {
+    leaving.clear();
+    leaving.resize(cuts, usize::MAX);
     let mut rings = Vec::new();
     for (i, p) in pieces.iter().enumerate() {
         if p.from == usize::MAX {
@@ -318,13 +646,14 @@ fn chain(pieces: Vec<Piece>, cuts: usize) -> Option<Vec<Vec<Coord>>> {
         }
         leaving[p.from] = i;
     }
-    let mut used = vec![false; pieces.len()];
+    used.clear();
+    used.resize(pieces.len(), false);
     for start in 0..pieces.len() {
         if used[start] {
             continue;
         }
         used[start] = true;
-        let mut ring = pieces[start].pts.clone();
+        let mut len = pieces[start].pts.len();
         if pieces[start].from != usize::MAX {
             let mut at = start;
             loop {
@@ -339,14 +668,89 @@ fn chain(pieces: Vec<Piece>, cuts: usize) -> Option<Vec<Vec<Coord>>> {
                     return None;
                 }
                 used[next] = true;
-                ring.pop();
-                ring.extend_from_slice(&pieces[next].pts);
+                // Each next piece starts where the last ended: that point once.
+                len += pieces[next].pts.len() - 1;
                 at = next;
             }
         }
-        if ring.len() >= 4 {
-            rings.push(ring);
+        if len < 4 {
+            continue;
         }
+        let mut ring = Vec::with_capacity(len);
+        ring.extend_from_slice(&points[pieces[start].pts.clone()]);
+        if pieces[start].from != usize::MAX {
+            let mut at = leaving[pieces[start].to];
+            while at != start {
+                ring.pop();
+                ring.extend_from_slice(&points[pieces[at].pts.clone()]);
+                at = leaving[pieces[at].to];
+            }
+        }
+        rings.push(ring);
     }
     Some(rings)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn apart_(raws: &[Raw]) -> bool {
+        apart(raws, &mut Vec::new())
+    }
+
+    fn raw(pts: Vec<Coord>) -> Raw {
+        let centres = vec![None; pts.len()];
+        Raw { pts, centres }
+    }
+
+    fn polygon(n: usize, r: f64, at: (f64, f64), turns: usize, clockwise: bool) -> Vec<Coord> {
+        (0..n * turns)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                let a = if clockwise { -a } else { a };
+                Coord {
+                    x: at.0 + r * a.cos(),
+                    y: at.1 + r * a.sin(),
+                }
+            })
+            .collect()
+    }
+
+    /// The shortcut that skips the crossing sweep holds only where the sweep would find
+    /// nothing: strictly convex rings going round once, nested or apart.
+    #[test]
+    fn the_sweep_is_skipped_only_for_convex_rings_nested_or_apart() {
+        // A diamond, |x| + |y| < 10.
+        let square = polygon(4, 10.0, (0.0, 0.0), 1, false);
+        assert_eq!(convex(&square), 1.0);
+        assert_eq!(convex(&polygon(7, 3.0, (0.0, 0.0), 1, true)), -1.0);
+        // Round twice: every turn the same way, but it crosses itself.
+        assert_eq!(convex(&polygon(7, 3.0, (0.0, 0.0), 2, false)), 0.0);
+        // A reflex corner.
+        let notched = vec![
+            Coord { x: 0.0, y: 0.0 },
+            Coord { x: 4.0, y: 0.0 },
+            Coord { x: 2.0, y: 1.0 },
+            Coord { x: 4.0, y: 4.0 },
+            Coord { x: 0.0, y: 4.0 },
+        ];
+        assert_eq!(convex(&notched), 0.0);
+        let hole = |r: f64, at: (f64, f64)| raw(polygon(12, r, at, 1, true));
+        // A hole well inside the outline, and two holes apart.
+        assert!(apart_(&[raw(square.clone()), hole(2.0, (0.0, 0.0))]));
+        assert!(apart_(&[
+            raw(square.clone()),
+            hole(1.0, (-3.0, 0.0)),
+            hole(1.0, (3.0, 0.0))
+        ]));
+        // A hole reaching out of the outline, and two holes overlapping.
+        assert!(!apart_(&[raw(square.clone()), hole(2.0, (9.0, 0.0))]));
+        assert!(!apart_(&[
+            raw(square.clone()),
+            hole(2.0, (-1.0, 0.0)),
+            hole(2.0, (1.0, 0.0))
+        ]));
+        assert!(!apart_(&[raw(notched)]));
+    }
 }

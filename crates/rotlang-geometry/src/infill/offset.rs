@@ -16,43 +16,50 @@ const MAX_POINTS: usize = 20_000;
 /// The erosion of `region` by `d` (arcs in steps of at most `arc` radians), or `None`
 /// where the raw offset is not it.
 pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<MultiPolygon<f64>> {
-    let mut out = Vec::with_capacity(region.0.len());
-    let mut rings: Vec<Vec<Coord>> = Vec::new();
+    // Every ring, outlines and holes, and per polygon how many holes follow its outline:
+    // the crossing check needs them all, the polygons are built after it by moving them.
+    let mut rings: Vec<Vec<Coord>> =
+        Vec::with_capacity(region.0.iter().map(|p| 1 + p.interiors().len()).sum());
+    let mut holes_of = Vec::with_capacity(region.0.len());
     let mut total = 0;
     for polygon in &region.0 {
         let exterior = offset_ring(&polygon.exterior().0, d, arc, true)?;
-        let mut holes = Vec::with_capacity(polygon.interiors().len());
+        total += exterior.len();
+        rings.push(exterior);
+        let outline = rings.len() - 1;
         for hole in polygon.interiors() {
-            holes.push(offset_ring(&hole.0, d, arc, false)?);
+            let hole = offset_ring(&hole.0, d, arc, false)?;
+            total += hole.len();
+            // A grown hole that swallowed the whole shrunk outline crosses nothing: each
+            // hole must lie inside the outline.
+            if hole.first().is_none_or(|&p| !inside(&rings[outline], p)) {
+                return None;
+            }
+            rings.push(hole);
         }
-        total += exterior.len() + holes.iter().map(Vec::len).sum::<usize>();
         if total > MAX_POINTS {
             return None;
         }
-        // A grown hole that swallowed the whole shrunk outline crosses nothing: each hole
-        // must lie inside the outline.
-        if holes
-            .iter()
-            .any(|h| h.first().is_none_or(|&p| !inside(&exterior, p)))
-        {
-            return None;
-        }
-        rings.push(exterior.clone());
-        rings.extend(holes.iter().cloned());
-        let closed = |mut ring: Vec<Coord>| {
-            ring.push(ring[0]);
-            LineString::new(ring)
-        };
-        out.push(Polygon::new(
-            closed(exterior),
-            holes.into_iter().map(closed).collect(),
-        ));
+        holes_of.push(polygon.interiors().len());
     }
     // Islands shrink apart and never meet; an outline inside another polygon's hole is
     // another matter, left to the crossing check as well.
     if crossings(&rings) {
         return None;
     }
+    let closed = |mut ring: Vec<Coord>| {
+        ring.push(ring[0]);
+        LineString::new(ring)
+    };
+    let mut rings = rings.into_iter();
+    let out = holes_of
+        .into_iter()
+        .filter_map(|holes| {
+            let exterior = closed(rings.next()?);
+            let interiors = rings.by_ref().take(holes).map(closed).collect();
+            Some(Polygon::new(exterior, interiors))
+        })
+        .collect();
     Some(MultiPolygon::new(out))
 }
 
@@ -64,13 +71,18 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
     let n = pts.len();
     let unit = |e: Coord| e / e.x.hypot(e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
-    let mut out = Vec::with_capacity(n + n / 2);
+    // Room for the arcs and the closing point the polygon adds.
+    let mut out = Vec::with_capacity(n + n / 2 + 1);
     // For every original edge i (from pts[i]), where its offset starts and ends in `out`.
-    let mut starts = Vec::with_capacity(n);
-    let mut ends = Vec::with_capacity(n);
+    // One list of (start, end) per vertex: its moved point(s) run from `end` (where the
+    // edge before it ends) to `start` (where the edge after it starts).
+    let mut at: Vec<(usize, usize)> = Vec::with_capacity(n);
+    // Each edge's direction once: the corner after it takes it as the one before.
+    let mut u = unit(pts[0] - pts[n - 1]);
     for i in 0..n {
-        let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
-        let (u, v) = (unit(b - a), unit(c - b));
+        let b = pts[i];
+        let c = if i + 1 < n { pts[i + 1] } else { pts[0] };
+        let v = unit(c - b);
         let (nu, nv) = (left(u), left(v));
         let turn = cross(u, v);
         let dot = u.x * v.x + u.y * v.y;
@@ -80,14 +92,13 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
             if k <= 1e-9 {
                 return None;
             }
-            ends.push(out.len());
-            starts.push(out.len());
+            at.push((out.len(), out.len()));
             out.push(b + (nu + nv) * (d / k));
         } else {
             // Reflex: an arc about the vertex from one moved edge's end to the next's start.
             let angle = turn.atan2(dot); // negative: turning right
             let steps = (-angle / arc).ceil().max(1.0) as usize;
-            ends.push(out.len());
+            let end = out.len();
             out.push(b + nu * d);
             let (s, c) = (angle / steps as f64).sin_cos();
             let mut w = nu;
@@ -98,14 +109,15 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
                 };
                 out.push(b + w * d);
             }
-            starts.push(out.len());
+            at.push((out.len(), end));
             out.push(b + nv * d);
         }
+        u = v;
     }
     // Edge i runs from vertex i's start to vertex i+1's end: it must keep its direction.
     for i in 0..n {
-        let (p, q) = (out[starts[i]], out[ends[(i + 1) % n]]);
-        let e = pts[(i + 1) % n] - pts[i];
+        let (p, q) = (out[at[i].0], out[at[next(i, n)].1]);
+        let e = pts[next(i, n)] - pts[i];
         let f = q - p;
         if e.x * f.x + e.y * f.y <= 0.0 {
             return None;
@@ -123,7 +135,7 @@ fn inside(ring: &[Coord], p: Coord) -> bool {
     let n = ring.len();
     let mut inside = false;
     for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
+        let (a, b) = (ring[i], ring[next(i, n)]);
         if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
             inside = !inside;
         }
@@ -137,15 +149,14 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
     struct Edge {
         a: Coord,
         b: Coord,
-        x1: f64,
-        ring: usize,
-        index: usize,
+        ring: u32,
+        index: u32,
     }
     let mut edges = Vec::with_capacity(rings.iter().map(Vec::len).sum());
     for (r, ring) in rings.iter().enumerate() {
         let n = ring.len();
         for i in 0..n {
-            let (a, b) = (ring[i], ring[(i + 1) % n]);
+            let (a, b) = (ring[i], ring[next(i, n)]);
             let (a, b) = if (a.x, a.y) <= (b.x, b.y) {
                 (a, b)
             } else {
@@ -154,25 +165,46 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
             edges.push(Edge {
                 a,
                 b,
-                x1: b.x,
-                ring: r,
-                index: i,
+                ring: r as u32,
+                index: i as u32,
             });
         }
     }
-    edges.sort_unstable_by(|p, q| p.a.x.total_cmp(&q.a.x));
-    for (i, e) in edges.iter().enumerate() {
+    // Sorted by left end through small keys (x, edge): cheaper to move than the edges.
+    let mut order: Vec<(f64, u32)> = edges
+        .iter()
+        .enumerate()
+        .map(|(i, e)| (e.a.x, i as u32))
+        .collect();
+    // A small ring's keys by insertion (the sweep's answer does not depend on how ties
+    // are ordered); a large one's by the library's sort.
+    if order.len() <= 48 {
+        for i in 1..order.len() {
+            let mut j = i;
+            while j > 0 && order[j - 1].0 > order[j].0 {
+                order.swap(j - 1, j);
+                j -= 1;
+            }
+        }
+    } else {
+        order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+    }
+    for (k, &(_, i)) in order.iter().enumerate() {
+        let e = &edges[i as usize];
         let (ylo, yhi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
-        for f in &edges[i + 1..] {
-            if f.a.x > e.x1 {
+        for &(x, j) in &order[k + 1..] {
+            if x > e.b.x {
                 break;
             }
+            let f = &edges[j as usize];
             if f.a.y.max(f.b.y) < ylo || f.a.y.min(f.b.y) > yhi {
                 continue;
             }
             if e.ring == f.ring {
-                let n = rings[e.ring].len();
-                if (e.index + 1) % n == f.index || (f.index + 1) % n == e.index {
+                let n = rings[e.ring as usize].len() as u32;
+                if next(e.index as usize, n as usize) == f.index as usize
+                    || next(f.index as usize, n as usize) == e.index as usize
+                {
                     continue;
                 }
             }
@@ -224,6 +256,13 @@ pub(crate) fn inside_left(ring: &[Coord], exterior: bool) -> Option<Vec<Coord>> 
     Some(pts)
 }
 
+/// The index after `i` round a ring of `n` (a comparison, not the integer division of
+/// `%`, in the loops over every edge).
+#[inline]
+pub(crate) fn next(i: usize, n: usize) -> usize {
+    if i + 1 >= n { 0 } else { i + 1 }
+}
+
 pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
     a.x * b.y - a.y * b.x
 }
@@ -231,7 +270,7 @@ pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
 pub(crate) fn signed_area(ring: &[Coord]) -> f64 {
     let n = ring.len();
     (0..n)
-        .map(|i| cross(ring[i], ring[(i + 1) % n]))
+        .map(|i| cross(ring[i], ring[next(i, n)]))
         .sum::<f64>()
         / 2.0
 }

@@ -56,6 +56,7 @@ pub(crate) fn order(
     };
     let mut toolpaths = Toolpaths {
         polylines: Vec::with_capacity(ordered.len()),
+        travels: Vec::with_capacity(ordered.len().saturating_sub(1)),
         ..Toolpaths::default()
     };
     let router = super::travel::Router::new(rings);

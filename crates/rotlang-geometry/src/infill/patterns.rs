@@ -5,7 +5,7 @@
 
 use geo::{Coord, MultiPolygon};
 
-use super::clip::Frame;
+use super::clip::{Edges, Frame};
 use super::{Error, MAX_VERTICES, Order, Params, Pattern, Region, Toolpaths};
 use super::{check, curves, lightning, order, straight};
 
@@ -87,16 +87,36 @@ impl Region {
                 // Branches are spaced along the outline, so how much they cover depends on
                 // the shape (a star's long outline gets more): measure a first tree and
                 // space the branches again so that the density printed is the one asked.
+                // The first tree is kept in one flat list while it is measured (no vector
+                // per path), and made paths only if it is the one printed: close enough,
+                // or a respacing that gives every outline as many branches (the same
+                // tree). Otherwise the second tree is built as paths directly.
                 let mut spacing = 2.0 * w / rho;
-                for _ in 0..2 {
-                    paths.clear();
-                    lightning::lightning(self, centre, theta, spacing, &mut paths);
-                    let length: f64 = paths.iter().map(|p| super::travel::length(p)).sum();
-                    let printed = length * w / self.area;
-                    if printed.is_nan() || printed <= 0.0 || (printed / rho - 1.0).abs() < 0.03 {
-                        break;
+                // The region's edges (and their grid) serve both trees.
+                let mut edges = Edges::new(&self.rings, &lightning::frame(centre));
+                let (mut flat, mut ends, mut length) = (Vec::new(), Vec::new(), 0.0);
+                lightning::tree(self, centre, theta, spacing, &mut edges, |piece| {
+                    flat.extend_from_slice(piece);
+                    ends.push(flat.len());
+                    // Summed path by path, as the paths' lengths would be.
+                    length += super::travel::length(piece);
+                });
+                let printed = length * w / self.area;
+                let respaced = spacing * (printed / rho).clamp(0.25, 4.0);
+                if printed.is_nan()
+                    || printed <= 0.0
+                    || (printed / rho - 1.0).abs() < 0.03
+                    || lightning::counts(self, respaced) == lightning::counts(self, spacing)
+                {
+                    let mut start = 0;
+                    paths.reserve(ends.len());
+                    for end in ends {
+                        paths.push(flat[start..end].to_vec());
+                        start = end;
                     }
-                    spacing *= (printed / rho).clamp(0.25, 4.0);
+                } else {
+                    spacing = respaced;
+                    lightning::lightning(self, centre, theta, spacing, &mut edges, &mut paths);
                 }
             }
         }

@@ -4,6 +4,7 @@ use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
 use super::{Error, MAX_COORDINATE};
 // Where they were (`super::region::cross`): ring helpers the offset shares.
+use super::offset::next;
 pub(crate) use super::offset::{cross, signed_area};
 
 /// The infill area of a layer: the region inset by half a nozzle.
@@ -65,16 +66,18 @@ impl Region {
         }
         let cleaned = clean(region);
         let arc = arc_step(nozzle / 2.0);
-        let inset = convex_inset(&cleaned, nozzle / 2.0, arc)
-            .or_else(|| super::offset::raw_inset(&cleaned, nozzle / 2.0, arc))
-            .unwrap_or_else(|| {
-                if cleaned.0.is_empty() {
-                    cleaned.clone()
-                } else {
-                    cleaned.buffer(-nozzle / 2.0)
-                }
-            });
-        let mut rings = Vec::new();
+        // Which offset made the inset says, most of the time, whether it is convex (see
+        // `convex` below) without testing its ring again.
+        let (inset, made_by) = if let Some(inset) = convex_inset(&cleaned, nozzle / 2.0, arc) {
+            (inset, Offset::Convex)
+        } else if let Some(inset) = super::offset::raw_inset(&cleaned, nozzle / 2.0, arc) {
+            (inset, Offset::Raw)
+        } else if cleaned.0.is_empty() {
+            (cleaned.clone(), Offset::Buffer)
+        } else {
+            (cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
+        };
+        let mut rings = Vec::with_capacity(inset.0.iter().map(|p| 1 + p.interiors().len()).sum());
         for p in &inset.0 {
             rings.push(open_ring(p.exterior()));
         }
@@ -88,7 +91,19 @@ impl Region {
             min = Coord::zero();
             max = Coord::zero();
         }
-        let convex = rings.len() == 1 && outlines == 1 && convex_ring(&rings[0]).is_some();
+        // The exact inset of one convex outline without holes is convex (its edges are the
+        // outline's, moved); the raw offset was only tried because some ring has a reflex
+        // vertex, which its inset keeps (an arc, or the same turn); a convex outline whose
+        // grown holes met it may be left concave, and the buffer's result is tested.
+        let convex = rings.len() == 1
+            && outlines == 1
+            && match made_by {
+                Offset::Convex if cleaned.0.len() == 1 && cleaned.0[0].interiors().is_empty() => {
+                    true
+                }
+                Offset::Raw => false,
+                _ => convex_ring(&rings[0]).is_some(),
+            };
         Ok(Region {
             convex,
             inset,
@@ -140,6 +155,13 @@ impl Region {
     pub(crate) fn outlines(&self) -> &[Vec<Coord>] {
         &self.rings[..self.outlines.min(self.rings.len())]
     }
+}
+
+/// Which offset made a region's inset.
+enum Offset {
+    Convex,
+    Raw,
+    Buffer,
 }
 
 /// The angle step (radians) of the arcs of an inset by `d`: chords that stray at most
@@ -255,7 +277,15 @@ pub(crate) fn convex_inset(
 
 /// A ring's points without the closing repeat, counter-clockwise, collinear and repeated
 /// vertices dropped; `None` when it has a reflex vertex.
-fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
+pub(crate) fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
+    if has_reflex_corner(ring) {
+        return None;
+    }
+    convex_ring_copied(ring)
+}
+
+/// `convex_ring` on a copy, every corner tested.
+pub(crate) fn convex_ring_copied(ring: &[Coord]) -> Option<Vec<Coord>> {
     let mut pts: Vec<Coord> = ring.to_vec();
     if pts.len() > 1 && pts.first() == pts.last() {
         pts.pop();
@@ -265,25 +295,37 @@ fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
         pts.reverse();
     }
     let n = pts.len();
+    if n < 3 {
+        return None;
+    }
     let mut kept = Vec::with_capacity(n);
+    // Each vertex with the one before and after (no `%` per vertex: an integer division).
+    let mut a = pts[n - 1];
     for i in 0..n {
-        let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
-        let cross = cross(b - a, c - b);
+        let b = pts[i];
+        let c = if i + 1 < n { pts[i + 1] } else { pts[0] };
         let (u, v) = (b - a, c - b);
-        let scale = ((u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y)).sqrt();
-        if cross < -1e-12 * scale {
+        let cross = cross(u, v);
+        // |cross| against 1e-12·|u|·|v|, squared (no square root per vertex).
+        let scale2 = (u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y);
+        let significant = cross * cross > 1e-24 * scale2;
+        if significant && cross < 0.0 {
             return None; // a reflex vertex: not convex
         }
-        if cross > 1e-12 * scale {
+        if significant && cross > 0.0 {
             kept.push(b);
         }
+        a = b;
     }
     // A ring that winds more than once has no reflex vertex either: its edges' direction
     // turns through more than a full turn, so their x components change sign more than
     // twice.
     let n = kept.len();
+    if n < 3 {
+        return None;
+    }
     let signs = (0..n)
-        .map(|i| (kept[(i + 1) % n] - kept[i]).x)
+        .map(|i| (if i + 1 < n { kept[i + 1] } else { kept[0] } - kept[i]).x)
         .filter(|&x| x != 0.0)
         .map(|x| x > 0.0);
     let mut changes = 0;
@@ -299,7 +341,42 @@ fn convex_ring(ring: &[Coord]) -> Option<Vec<Coord>> {
     if first != last {
         changes += 1;
     }
-    (n >= 3 && changes <= 2).then_some(kept)
+    (changes <= 2).then_some(kept)
+}
+
+/// Whether the ring (closing point or not) has a corner that `convex_ring` calls reflex,
+/// found without copying it: a star's or an L's outline is turned down before any
+/// allocation. Corners next to a repeated point, and rings of more than 32 points, are
+/// left to `convex_ring` (its copy drops the repeat, which may change the corner), so
+/// `false` is not a verdict of convexity.
+fn has_reflex_corner(ring: &[Coord]) -> bool {
+    let open = match ring {
+        [first, .., last] if first == last => &ring[..ring.len() - 1],
+        _ => ring,
+    };
+    let n = open.len();
+    // A long ring (a round hole) is most likely convex: its copy is tested once, not
+    // scanned twice.
+    if !(3..=32).contains(&n) {
+        return false;
+    }
+    // Turned as `convex_ring` turns it: counter-clockwise unless the area is negative.
+    let sign = if signed_area(open) < 0.0 { -1.0 } else { 1.0 };
+    let mut a = open[n - 2];
+    let mut b = open[n - 1];
+    for &c in open {
+        if a != b && b != c {
+            let (u, v) = (b - a, c - b);
+            let cross = sign * cross(u, v);
+            let scale2 = (u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y);
+            if cross < 0.0 && cross * cross > 1e-24 * scale2 {
+                return true;
+            }
+        }
+        a = b;
+        b = c;
+    }
+    false
 }
 
 /// The exact inward offset of one convex ring: empty when it is thinner than `2d`.
@@ -314,7 +391,7 @@ fn convex_ring_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
     let mut out = kept.clone();
     let mut next = Vec::with_capacity(n + 1);
     for i in 0..n {
-        let (a, b) = (kept[i], kept[(i + 1) % n]);
+        let (a, b) = (kept[i], kept[super::offset::next(i, n)]);
         let dir = b - a;
         let len = dir.x.hypot(dir.y);
         // Inside: to the left of the edge, at least d from its line.
@@ -347,9 +424,10 @@ fn convex_ring_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
 fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
     let n = ring.len();
     let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
-    let mut out = Vec::with_capacity(n);
+    // Room for the closing point the polygon adds.
+    let mut out = Vec::with_capacity(n + 1);
     for i in 0..n {
-        let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
+        let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[next(i, n)]);
         let (u, v) = (unit(b - a), unit(c - b));
         // The inward normals (left of each edge) and their mitre.
         let (nu, nv) = (Coord { x: -u.y, y: u.x }, Coord { x: -v.y, y: v.x });
@@ -360,8 +438,8 @@ fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
         out.push(b + (nu + nv) * (d / k));
     }
     for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        let (p, q) = (out[i], out[(i + 1) % n]);
+        let (a, b) = (ring[i], ring[next(i, n)]);
+        let (p, q) = (out[i], out[next(i, n)]);
         let (e, f) = (b - a, q - p);
         if e.x * f.x + e.y * f.y <= 0.0 {
             return None;
@@ -384,14 +462,20 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
             y: -e.x / len,
         }
     };
-    let mut out = Vec::with_capacity(2 * n);
+    // Room for the closing point the polygon adds.
+    let mut out = Vec::with_capacity(2 * n + 1);
+    // Each edge's normal once (the corner before and the corner after it share it), and
+    // the arc's cosines once.
+    let (arc_cos, half_arc_cos) = (arc.cos(), (arc / 2.0).cos());
+    let mut n0 = normal(kept[n - 1], kept[0]);
     for i in 0..n {
-        let (a, b, c) = (kept[(i + n - 1) % n], kept[i], kept[(i + 1) % n]);
-        let (n0, n1) = (normal(a, b), normal(b, c));
+        let b = kept[i];
+        let c = if i + 1 < n { kept[i + 1] } else { kept[0] };
+        let n1 = normal(b, c);
         let (sin, cos) = (cross(n0, n1), n0.x * n1.x + n0.y * n1.y);
         // Most corners of a round hole turn by less than `arc`: their two ends only, no
         // trigonometry; sharper ones in equal steps, each the last rotated.
-        let steps = if sin >= 0.0 && cos >= arc.cos() {
+        let steps = if sin >= 0.0 && cos >= arc_cos {
             1
         } else {
             (sin.atan2(cos).max(0.0) / arc).ceil().max(1.0) as usize
@@ -401,9 +485,10 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
         // a 64-gon hole, for every pattern's clipping and routing after.
         if steps == 1 && cos > 0.0 {
             let half_cos = ((1.0 + cos) / 2.0).sqrt();
-            if 1.0 / half_cos - 1.0 <= 1.0 - (arc / 2.0).cos() {
+            if 1.0 / half_cos - 1.0 <= 1.0 - half_arc_cos {
                 let k = 1.0 + cos;
                 out.push(b + (n0 + n1) * (d / k));
+                n0 = n1;
                 continue;
             }
         }
@@ -420,6 +505,7 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
             }
         }
         out.push(b + n1 * d);
+        n0 = n1;
     }
     Some(out)
 }
@@ -427,7 +513,7 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
 /// Whether `p` is strictly inside the counter-clockwise convex ring.
 fn inside_convex(ring: &[Coord], p: Coord) -> bool {
     let n = ring.len();
-    (0..n).all(|i| cross(ring[(i + 1) % n] - ring[i], p - ring[i]) > 0.0)
+    (0..n).all(|i| cross(ring[next(i, n)] - ring[i], p - ring[i]) > 0.0)
 }
 
 /// Whether two counter-clockwise convex rings are apart: some edge of one has the whole
@@ -436,7 +522,7 @@ fn separated(a: &[Coord], b: &[Coord]) -> bool {
     let outside = |r: &[Coord], s: &[Coord]| {
         let n = r.len();
         (0..n).any(|i| {
-            let (p, q) = (r[i], r[(i + 1) % n]);
+            let (p, q) = (r[i], r[next(i, n)]);
             s.iter().all(|&x| cross(q - p, x - p) < 0.0)
         })
     };

@@ -6,7 +6,7 @@ use crate::eval::{Model, Options};
 use crate::ir::Fill;
 use geo::Coord;
 use proptest::prelude::*;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 const W: f64 = 0.4;
 
@@ -1166,5 +1166,365 @@ fn concentric_loops_of_an_outline_and_a_hole_do_not_double() {
         );
         let gap = largest_gap(&region, &paths);
         assert!(gap < 2.0 * s, "{rho}: a point {gap} mm from every line");
+    }
+}
+
+/// The old scan of `straight::families`: every line against the edge index.
+fn families_by_scan(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    offsets: &[f64],
+    spacing: f64,
+    shift: f64,
+) -> Vec<Vec<Coord>> {
+    let mut out = Vec::new();
+    let mut intervals = Vec::new();
+    for &offset in offsets {
+        let frame = clip::Frame::new(centre, theta + offset.to_radians());
+        let edges = clip::Edges::new(region.rings(), &frame);
+        let shift = shift.rem_euclid(spacing);
+        let first = ((edges.min.y - shift) / spacing).ceil() as i64;
+        let last = ((edges.max.y - shift) / spacing).floor() as i64;
+        for k in first..=last {
+            let y = k as f64 * spacing + shift;
+            edges.scan(y, &mut intervals);
+            for &(x0, x1) in &intervals {
+                out.push(vec![
+                    frame.to_world(Coord { x: x0, y }),
+                    frame.to_world(Coord { x: x1, y }),
+                ]);
+            }
+        }
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The families found edge by edge are the scan's, point for point, on concave
+    /// regions with holes, lines through vertices included (spacing a divisor of a
+    /// vertex's height when `snap`).
+    #[test]
+    fn families_edge_by_edge_are_the_scan(
+        outer in prop::collection::vec(4.0f64..15.0, 3..24),
+        hole in prop::collection::vec(0.5f64..1.5, 3..8),
+        holed in any::<bool>(),
+        turn in 0.0f64..TAU,
+        theta in -7.0f64..7.0,
+        spacing in 0.3f64..12.0,
+        shift in -5.0f64..5.0,
+        families in 1usize..4,
+        snap in any::<bool>(),
+    ) {
+        let holes = if holed {
+            vec![radial_ring(&hole, -turn, Coord { x: 0.5, y: -0.25 }, true)]
+        } else {
+            vec![]
+        };
+        let shape = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&outer, turn, Coord::zero(), false),
+            holes,
+        )]);
+        let region = Region::new(&shape, W).unwrap();
+        let (theta, spacing) = if snap { (0.0, 0.5) } else { (theta, spacing) };
+        let offsets = &[0.0, 60.0, 120.0][..families];
+        let centre = region.centre();
+        let mut fast = Vec::new();
+        straight::families(&region, centre, theta, offsets, spacing, shift, &mut fast);
+        let slow = families_by_scan(&region, centre, theta, offsets, spacing, shift);
+        prop_assert_eq!(fast, slow);
+    }
+}
+
+/// On an axis-aligned square with lines through its corners and along its edges, both
+/// give the same lines (the half-open rule counts a vertex on a line once).
+#[test]
+fn families_through_vertices_are_the_scan() {
+    for shape in [
+        shapes::square(20.0),
+        shapes::l_shape(20.0),
+        shapes::holed_square(40.0, 10.0),
+    ] {
+        let region = Region::new(&shape, W).unwrap();
+        for (theta, spacing, shift) in [(0.0, 9.8, 0.0), (0.0, 0.2, 0.0), (FRAC_PI_2, 4.9, 0.1)] {
+            let mut fast = Vec::new();
+            let centre = Coord::zero();
+            straight::families(
+                &region,
+                centre,
+                theta,
+                &[0.0, 90.0],
+                spacing,
+                shift,
+                &mut fast,
+            );
+            let slow = families_by_scan(&region, centre, theta, &[0.0, 90.0], spacing, shift);
+            assert!(!fast.is_empty());
+            assert_eq!(fast, slow);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Travel routed with each ring's edges in chunks (skipped by their boxes) is the
+    /// route of every edge tested, point for point: between points on the rings (line
+    /// ends), at vertices, and anywhere in the region's box.
+    #[test]
+    fn chunked_routes_are_the_plain_routes(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3), 1..24),
+    ) {
+        let interiors = holes
+            .iter()
+            .enumerate()
+            .map(|(i, radii)| {
+                let a = turn + TAU * i as f64 / 3.0;
+                let centre = Coord { x: 2.2 * a.cos(), y: 2.2 * a.sin() };
+                radial_ring(radii, turn, centre, true)
+            })
+            .collect();
+        let shape = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&outer, turn, Coord::zero(), false),
+            interiors,
+        )]);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
+        let edges: Vec<(Coord, Coord)> = rings
+            .iter()
+            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+            .collect();
+        let (lo, hi) = travel::bounds(&vertices);
+        // A point on an edge, a vertex, or a point of the box.
+        let point = |(i, t): (usize, f64), kind: u8| match kind {
+            0 => {
+                let (a, b) = edges[i % edges.len()];
+                a + (b - a) * t
+            }
+            1 => vertices[i % vertices.len()],
+            _ => Coord {
+                x: lo.x + (hi.x - lo.x) * t,
+                y: lo.y + (hi.y - lo.y) * (i as f64 / 1000.0),
+            },
+        };
+        let chunked = travel::Router::new(rings);
+        let plain = travel::Router::with_chunk(rings, usize::MAX);
+        for (a, b, kind) in moves {
+            let (p, q) = (point(a, kind), point(b, kind));
+            prop_assert_eq!(chunked.route(p, q), plain.route(p, q));
+        }
+    }
+}
+
+/// `Edges::clip` with every edge tested against every segment (no grid), for reference.
+fn clip_plain(edges: &clip::Edges, pts: &[Coord]) -> Vec<Vec<Coord>> {
+    let all: Vec<(Coord, Coord)> = edges.segments().collect();
+    let mut cuts = vec![0.0];
+    for (k, w) in pts.windows(2).enumerate() {
+        let (p, q) = (w[0], w[1]);
+        let d1 = q - p;
+        let first = cuts.len();
+        for &(a, b) in &all {
+            let d2 = b - a;
+            let den = d1.x * d2.y - d1.y * d2.x;
+            if den == 0.0 {
+                continue;
+            }
+            let ap = a - p;
+            let t = (ap.x * d2.y - ap.y * d2.x) / den;
+            let u = (ap.x * d1.y - ap.y * d1.x) / den;
+            if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
+                cuts.push(k as f64 + t);
+            }
+        }
+        cuts[first..].sort_unstable_by(f64::total_cmp);
+    }
+    cuts.push((pts.len() - 1) as f64);
+    let at = |g: f64| {
+        let k = (g.floor() as usize).min(pts.len() - 2);
+        pts[k] + (pts[k + 1] - pts[k]) * (g - k as f64)
+    };
+    let mut out = Vec::new();
+    for w in cuts.windows(2) {
+        let (g0, g1) = (w[0], w[1]);
+        if g1 <= g0 || !edges.contains(at((g0 + g1) / 2.0)) {
+            continue;
+        }
+        let mut piece = vec![at(g0)];
+        let (first, last) = (g0.floor() as usize + 1, g1.ceil() as usize);
+        piece.extend(pts[first.min(last)..last].iter().copied());
+        piece.push(at(g1));
+        out.push(piece);
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Clipping through the edge grid (each segment visiting only the cells it passes
+    /// row by row) cuts where every edge tested would, point for point: long diagonal
+    /// segments and polylines across concave regions with holes.
+    #[test]
+    fn clip_through_the_grid_is_the_plain_clip(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        lines in prop::collection::vec(
+            prop::collection::vec((-16.0f64..16.0, -16.0f64..16.0), 2..6), 1..12),
+    ) {
+        let interiors = holes
+            .iter()
+            .enumerate()
+            .map(|(i, radii)| {
+                let a = turn + TAU * i as f64 / 3.0;
+                let centre = Coord { x: 2.2 * a.cos(), y: 2.2 * a.sin() };
+                radial_ring(radii, turn, centre, true)
+            })
+            .collect();
+        let shape = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&outer, turn, Coord::zero(), false),
+            interiors,
+        )]);
+        let region = Region::new(&shape, W).unwrap();
+        let mut edges = clip::Edges::new(region.rings(), &clip::Frame::new(Coord::zero(), turn));
+        for line in lines {
+            let pts: Vec<Coord> = line.into_iter().map(|(x, y)| Coord { x, y }).collect();
+            let mut fast = Vec::new();
+            edges.clip(&pts, &mut fast);
+            prop_assert_eq!(fast, clip_plain(&edges, &pts));
+        }
+    }
+}
+
+/// Lightning as it was filled before the first tree was only measured: two trees built
+/// whole, the first's paths measured, the last one printed (then simplified and ordered
+/// as `Region::fill` does).
+fn lightning_by_two_trees(region: &Region, params: &Params) -> Toolpaths {
+    let (w, rho) = (params.nozzle, params.density);
+    let centre = region.centre();
+    let theta = params.angle.rem_euclid(360.0).to_radians();
+    let mut edges = clip::Edges::new(region.rings(), &lightning::frame(centre));
+    let mut paths = Vec::new();
+    let mut spacing = 2.0 * w / rho;
+    for _ in 0..2 {
+        paths.clear();
+        lightning::lightning(region, centre, theta, spacing, &mut edges, &mut paths);
+        let length: f64 = paths.iter().map(|p| travel::length(p)).sum();
+        let printed = length * w / region.area();
+        if printed.is_nan() || printed <= 0.0 || (printed / rho - 1.0).abs() < 0.03 {
+            break;
+        }
+        spacing *= (printed / rho).clamp(0.25, 4.0);
+    }
+    paths.retain_mut(|p| order::simplify(p, w / 10.0));
+    let rings: &[Vec<Coord>] = if region.is_convex() {
+        &[]
+    } else {
+        region.rings()
+    };
+    order::order(paths, false, clip::Frame::new(centre, theta), rings)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// Measuring the first tree without making its paths, and not rebuilding a tree whose
+    /// branch counts did not change, prints what building both trees printed.
+    #[test]
+    fn lightning_measured_once_is_lightning_built_twice(
+        radii in prop::collection::vec(2.0f64..15.0, 3..14),
+        hole in prop::collection::vec(0.5f64..1.5, 3..8),
+        holed in any::<bool>(),
+        turn in 0.0f64..TAU,
+        rho in 0.05f64..1.0,
+        angle in -360.0f64..360.0,
+    ) {
+        let holes = if holed {
+            vec![radial_ring(&hole, -turn, Coord { x: 0.3, y: 0.2 }, true)]
+        } else {
+            vec![]
+        };
+        let shape = MultiPolygon::new(vec![Polygon::new(
+            radial_ring(&radii, turn, Coord::zero(), false),
+            holes,
+        )]);
+        let region = Region::new(&shape, W).unwrap();
+        let params = Params::new(Pattern::Lightning, rho, W).angle(angle);
+        prop_assert_eq!(region.fill(&params).unwrap(), lightning_by_two_trees(&region, &params));
+    }
+}
+
+/// The five compared shapes at 10, 20 and 40%: the same paths as two whole trees.
+#[test]
+fn lightning_on_the_compared_shapes_is_unchanged() {
+    for (_, shape) in shapes() {
+        let region = Region::new(&shape, W).unwrap();
+        for rho in [0.1, 0.2, 0.4] {
+            let params = Params::new(Pattern::Lightning, rho, W).angle(45.0);
+            assert_eq!(
+                region.fill(&params).unwrap(),
+                lightning_by_two_trees(&region, &params)
+            );
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// The ray test that skips the division for edges wholly left or right of the point
+    /// answers as the division does, edges near and through the point included.
+    #[test]
+    fn ray_crossing_without_division_is_the_division(
+        a in (-50.0f64..50.0, -50.0f64..50.0),
+        b in (-50.0f64..50.0, -50.0f64..50.0),
+        t in 0.0f64..1.0,
+        dx in prop::sample::select(vec![0.0, 1e-13, -1e-13, 1e-9, -1e-9, 0.3, -0.3, 7.0]),
+    ) {
+        let (a, b) = (Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 });
+        // A point at height t along the edge, moved by dx from it.
+        let on = a + (b - a) * t;
+        let p = Coord { x: on.x + dx, y: on.y };
+        let plain = (a.y <= p.y) != (b.y <= p.y)
+            && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x;
+        prop_assert_eq!(clip::ray_crosses(a, b, p), plain);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// Turning down a ring at its first reflex corner before copying it gives what the
+    /// copy, deduplicated and oriented, gives: rings of either orientation, convex or
+    /// not, with repeated points and a closing point or none.
+    #[test]
+    fn reflex_corners_found_before_copying(
+        radii in prop::collection::vec(2.0f64..15.0, 3..16),
+        convex in any::<bool>(),
+        clockwise in any::<bool>(),
+        closed in any::<bool>(),
+        repeat in prop::collection::vec(0usize..16, 0..3),
+    ) {
+        let radii: Vec<f64> = if convex { vec![radii[0]; radii.len()] } else { radii };
+        let mut ring = polygon(&radii, 0.3).0.remove(0).into_inner().0 .0;
+        if !closed {
+            ring.pop();
+        }
+        for &i in &repeat {
+            let i = i % ring.len();
+            ring.insert(i, ring[i]);
+        }
+        if clockwise {
+            ring.reverse();
+        }
+        prop_assert_eq!(region::convex_ring(&ring), region::convex_ring_copied(&ring));
     }
 }

@@ -7,33 +7,12 @@
 
 use geo::Coord;
 
-/// Where a move from `p` to `q` crosses ring `r`: the fraction along the move, and where
-/// on the ring (its index, the edge's and the fraction along that edge).
-fn hits(ring: &[Coord], r: usize, p: Coord, q: Coord, out: &mut Vec<(f64, Cut)>) {
-    let n = ring.len();
-    let d = q - p;
-    for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        let e = b - a;
-        let denom = d.x * e.y - d.y * e.x;
-        if denom == 0.0 {
-            continue;
-        }
-        let ap = a - p;
-        let t = (ap.x * e.y - ap.y * e.x) / denom;
-        let u = (ap.x * d.y - ap.y * d.x) / denom;
-        if (0.0..=1.0).contains(&t) && (0.0..1.0).contains(&u) {
-            out.push((
-                t,
-                Cut {
-                    ring: r,
-                    edge: i,
-                    u,
-                },
-            ));
-        }
-    }
-}
+use super::offset::next;
+
+/// Edges per chunk: each ring's edges are taken in runs of this many consecutive ones,
+/// each run with its bounding box, so that a move or a point far from a run skips it
+/// whole (a round hole's 64 edges are 8 boxes, of which a move near it meets one or two).
+const CHUNK: usize = 8;
 
 /// Where a move crosses a ring.
 #[derive(Clone, Copy, Debug)]
@@ -47,33 +26,169 @@ struct Cut {
 /// The rings with their cumulative lengths, ready for many moves.
 pub(crate) struct Router<'a> {
     rings: &'a [Vec<Coord>],
-    cumulative: Vec<Vec<f64>>,
+    /// Ring `r`'s cumulative lengths are `cumulative[at[r]..at[r] + n + 1]` (one flat
+    /// list: one allocation, not one per ring), measured when a first move is walked
+    /// around (most layers' moves are straight).
+    lengths: std::cell::OnceCell<(Vec<f64>, Vec<usize>)>,
+    /// The crossings of the move being routed, kept for the next.
+    cuts: std::cell::RefCell<Vec<(f64, Cut)>>,
     /// Each ring's bounding box: a move or point outside it cannot cross it or be in it.
     boxes: Vec<(Coord, Coord)>,
+    /// The boxes of each ring's chunks of `CHUNK` edges (ring `r`'s from `chunk_at[r]`),
+    /// grown by a little slack (below).
+    chunks: Vec<(Coord, Coord)>,
+    chunk_at: Vec<usize>,
+    /// `CHUNK`, or (in tests) a ring's whole length: every edge tested, as before chunks.
+    chunk: usize,
 }
 
 impl<'a> Router<'a> {
     pub(crate) fn new(rings: &'a [Vec<Coord>]) -> Router<'a> {
-        let cumulative = rings
-            .iter()
-            .map(|r| {
-                let n = r.len();
-                let mut c = Vec::with_capacity(n + 1);
-                let mut s = 0.0;
-                c.push(0.0);
-                for i in 0..n {
-                    let e = r[(i + 1) % n] - r[i];
-                    s += (e.x * e.x + e.y * e.y).sqrt();
-                    c.push(s);
-                }
-                c
-            })
-            .collect();
-        let boxes = rings.iter().map(|r| bounds(r)).collect();
+        Router::with_chunk(rings, CHUNK)
+    }
+
+    /// A router with chunks of `chunk` edges (`usize::MAX`: one per ring).
+    pub(crate) fn with_chunk(rings: &'a [Vec<Coord>], chunk: usize) -> Router<'a> {
+        let vertices: usize = rings.iter().map(Vec::len).sum();
+        let mut boxes = Vec::with_capacity(rings.len());
+        let mut chunks = Vec::with_capacity(vertices / chunk + rings.len());
+        let mut chunk_at = Vec::with_capacity(rings.len());
+        let mut largest: f64 = 0.0;
+        for r in rings {
+            let n = r.len();
+            let ring_box = bounds(r);
+            largest = largest
+                .max(ring_box.0.x.abs())
+                .max(ring_box.0.y.abs())
+                .max(ring_box.1.x.abs())
+                .max(ring_box.1.y.abs());
+            boxes.push(ring_box);
+            chunk_at.push(chunks.len());
+            // Chunk c holds edges c·CHUNK.. (up to the ring's end), so vertices
+            // c·CHUNK..=(c + 1)·CHUNK, the last wrapping to the first.
+            for c in 0..n.div_ceil(chunk) {
+                let (from, to) = (
+                    c * chunk,
+                    (c.saturating_add(1).saturating_mul(chunk)).min(n),
+                );
+                let (lo, hi) = bounds(&r[from..to]);
+                let last = r[to % n];
+                chunks.push((
+                    Coord {
+                        x: lo.x.min(last.x),
+                        y: lo.y.min(last.y),
+                    },
+                    Coord {
+                        x: hi.x.max(last.x),
+                        y: hi.y.max(last.y),
+                    },
+                ));
+            }
+        }
+        // A millionth of a nanometre per millimetre of coordinate: more than any rounding
+        // in the tests a chunk's box stands for, so that skipping a chunk never skips an
+        // edge the test would have taken.
+        let slack = 1e-9 * (1.0 + largest);
+        for (lo, hi) in &mut chunks {
+            *lo = *lo - Coord { x: slack, y: slack };
+            *hi = *hi + Coord { x: slack, y: slack };
+        }
         Router {
             rings,
-            cumulative,
+            lengths: std::cell::OnceCell::new(),
+            cuts: std::cell::RefCell::new(Vec::new()),
             boxes,
+            chunks,
+            chunk_at,
+            chunk,
+        }
+    }
+
+    /// Ring `r`'s chunk boxes, with the range of edges each holds.
+    fn chunks(
+        &self,
+        r: usize,
+    ) -> impl Iterator<Item = (std::ops::Range<usize>, Coord, Coord)> + '_ {
+        let n = self.rings[r].len();
+        let chunk = self.chunk;
+        let count = n.div_ceil(chunk);
+        let from = self.chunk_at[r];
+        self.chunks[from..from + count]
+            .iter()
+            .enumerate()
+            .map(move |(c, &(lo, hi))| {
+                (
+                    c * chunk..(c.saturating_add(1).saturating_mul(chunk)).min(n),
+                    lo,
+                    hi,
+                )
+            })
+    }
+
+    fn cumulative(&self, r: usize) -> &[f64] {
+        let (cumulative, at) = self.lengths.get_or_init(|| {
+            let vertices: usize = self.rings.iter().map(Vec::len).sum();
+            let mut cumulative = Vec::with_capacity(vertices + self.rings.len());
+            let mut at = Vec::with_capacity(self.rings.len());
+            for ring in self.rings {
+                let n = ring.len();
+                at.push(cumulative.len());
+                let mut s = 0.0;
+                cumulative.push(0.0);
+                for i in 0..n {
+                    let e = ring[next(i, n)] - ring[i];
+                    s += (e.x * e.x + e.y * e.y).sqrt();
+                    cumulative.push(s);
+                }
+            }
+            (cumulative, at)
+        });
+        let from = at[r];
+        &cumulative[from..from + self.rings[r].len() + 1]
+    }
+
+    /// Where a move from `p` to `q` crosses ring `r`: the fraction along the move, and
+    /// where on the ring (the edge and the fraction along it). Chunks whose box the
+    /// move's box misses are skipped.
+    fn hits(&self, r: usize, p: Coord, q: Coord, out: &mut Vec<(f64, Cut)>) {
+        let ring = &self.rings[r];
+        let n = ring.len();
+        let d = q - p;
+        let (lo, hi) = (
+            Coord {
+                x: p.x.min(q.x),
+                y: p.y.min(q.y),
+            },
+            Coord {
+                x: p.x.max(q.x),
+                y: p.y.max(q.y),
+            },
+        );
+        for (edges, a, b) in self.chunks(r) {
+            if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
+                continue;
+            }
+            for i in edges {
+                let (a, b) = (ring[i], ring[next(i, n)]);
+                let e = b - a;
+                let denom = d.x * e.y - d.y * e.x;
+                if denom == 0.0 {
+                    continue;
+                }
+                let ap = a - p;
+                let t = (ap.x * e.y - ap.y * e.x) / denom;
+                let u = (ap.x * d.y - ap.y * d.x) / denom;
+                if (0.0..=1.0).contains(&t) && (0.0..1.0).contains(&u) {
+                    out.push((
+                        t,
+                        Cut {
+                            ring: r,
+                            edge: i,
+                            u,
+                        },
+                    ));
+                }
+            }
         }
     }
 
@@ -85,7 +200,8 @@ impl<'a> Router<'a> {
         if self.rings.iter().any(|r| r.len() < 3) || self.rings.is_empty() {
             return vec![p, q];
         }
-        let mut cuts: Vec<(f64, Cut)> = Vec::new();
+        let mut cuts = self.cuts.take();
+        cuts.clear();
         let (lo, hi) = (
             Coord {
                 x: p.x.min(q.x),
@@ -96,16 +212,17 @@ impl<'a> Router<'a> {
                 y: p.y.max(q.y),
             },
         );
-        for (r, ring) in self.rings.iter().enumerate() {
+        for r in 0..self.rings.len() {
             let (a, b) = self.boxes[r];
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
-            hits(ring, r, p, q, &mut cuts);
+            self.hits(r, p, q, &mut cuts);
         }
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
         if !cuts.iter().any(|&(t, _)| interior(t)) && self.inside((p + q) / 2.0) {
+            self.cuts.replace(cuts);
             return vec![p, q];
         }
         // A move between two points of one ring (line ends lie on the inset's rings) may
@@ -113,15 +230,19 @@ impl<'a> Router<'a> {
         // stretch decides whether it is inside.
         cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let at = |t: f64| if t >= 1.0 { q } else { p + (q - p) * t };
-        let mut bounds: Vec<(f64, Option<Cut>)> = vec![(0.0, None)];
-        bounds.extend(cuts.into_iter().map(|(t, c)| (t, Some(c))));
-        bounds.push((1.0, None));
-        let mut out = vec![p];
-        for w in bounds.windows(2) {
-            let ((ta, ra), (tb, rb)) = (w[0], w[1]);
+        let move_length = ((q - p).x * (q - p).x + (q - p).y * (q - p).y).sqrt();
+        let mut out = Vec::with_capacity(2 + 2 * cuts.len());
+        out.push(p);
+        // The stretches between consecutive bounds: the move's ends and its crossings.
+        let mut previous: (f64, Option<Cut>) = (0.0, None);
+        let bounds = cuts
+            .iter()
+            .map(|&(t, c)| (t, Some(c)))
+            .chain(std::iter::once((1.0, None)));
+        for (tb, rb) in bounds {
+            let (ta, ra) = std::mem::replace(&mut previous, (tb, rb));
             let (a, b) = (at(ta), at(tb));
-            let move2 = (q - p).x * (q - p).x + (q - p).y * (q - p).y;
-            if (tb - ta) * move2.sqrt() < 1e-6 || self.inside(at((ta + tb) / 2.0)) {
+            if (tb - ta) * move_length < 1e-6 || self.inside(at((ta + tb) / 2.0)) {
                 out.push(b);
                 continue;
             }
@@ -131,46 +252,56 @@ impl<'a> Router<'a> {
             // Where each end is on ring r: known for a crossing, else projected.
             let place = |cut: Option<Cut>, p: Coord| match cut {
                 Some(c) if c.ring == r => {
-                    let cumulative = &self.cumulative[r];
+                    let cumulative = self.cumulative(r);
                     let (s0, s1) = (cumulative[c.edge], cumulative[c.edge + 1]);
                     (c.edge, s0 + c.u * (s1 - s0))
                 }
                 _ => self.project(r, p),
             };
-            out.extend(self.walk(r, place(ra, a), place(rb, b)));
+            self.walk(r, place(ra, a), place(rb, b), &mut out);
             out.push(b);
         }
+        self.cuts.replace(cuts);
         out.dedup();
         out
     }
 
     /// Even-odd over every ring; a point on an edge (within a nanometre) counts as
     /// inside: a move along an edge (between two line ends on one side of the outline)
-    /// stays on the boundary, and need not be walked around.
+    /// stays on the boundary, and need not be walked around. A chunk is skipped when
+    /// none of its edges can cross the ray to the right of `p` (all at or below it, all
+    /// above it, or all to its left) and `p` is not within a nanometre of its box.
     fn inside(&self, p: Coord) -> bool {
         const ON: f64 = 1e-6 * 1e-6;
         let mut inside = false;
-        for (ring, &(lo, hi)) in self.rings.iter().zip(&self.boxes) {
+        for (r, (ring, &(lo, hi))) in self.rings.iter().zip(&self.boxes).enumerate() {
             if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
                 continue;
             }
             let n = ring.len();
-            for i in 0..n {
-                let (a, b) = (ring[i], ring[(i + 1) % n]);
-                if (a.y <= p.y) != (b.y <= p.y)
-                    && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x
-                {
-                    inside = !inside;
+            for (edges, lo, hi) in self.chunks(r) {
+                let near = p.x >= lo.x - 1e-6
+                    && p.x <= hi.x + 1e-6
+                    && p.y >= lo.y - 1e-6
+                    && p.y <= hi.y + 1e-6;
+                if !near && (hi.y < p.y || lo.y > p.y || hi.x < p.x) {
+                    continue;
                 }
-                if p.y >= a.y.min(b.y) - 1e-6
-                    && p.y <= a.y.max(b.y) + 1e-6
-                    && p.x >= a.x.min(b.x) - 1e-6
-                    && p.x <= a.x.max(b.x) + 1e-6
-                {
-                    let e = b - a;
-                    let c = cross(e, p - a);
-                    if c * c <= ON * (e.x * e.x + e.y * e.y) {
-                        return true;
+                for i in edges {
+                    let (a, b) = (ring[i], ring[next(i, n)]);
+                    if super::clip::ray_crosses(a, b, p) {
+                        inside = !inside;
+                    }
+                    if p.y >= a.y.min(b.y) - 1e-6
+                        && p.y <= a.y.max(b.y) + 1e-6
+                        && p.x >= a.x.min(b.x) - 1e-6
+                        && p.x <= a.x.max(b.x) + 1e-6
+                    {
+                        let e = b - a;
+                        let c = cross(e, p - a);
+                        if c * c <= ON * (e.x * e.x + e.y * e.y) {
+                            return true;
+                        }
                     }
                 }
             }
@@ -191,51 +322,65 @@ impl<'a> Router<'a> {
             .map_or(0, |(r, _)| r)
     }
 
-    /// Where `p` projects on ring `r`: (edge index, distance along the ring).
+    /// Where `p` projects on ring `r`: (edge index, distance along the ring). A chunk
+    /// whose box is farther than the nearest edge found so far is skipped (its edges are
+    /// all farther, by more than the box's slack).
     fn project(&self, r: usize, p: Coord) -> (usize, f64) {
-        let (ring, cumulative) = (&self.rings[r], &self.cumulative[r]);
+        let (ring, cumulative) = (&self.rings[r], self.cumulative(r));
         let n = ring.len();
         let mut best = (f64::INFINITY, 0, 0.0);
-        for i in 0..n {
-            let (a, b) = (ring[i], ring[(i + 1) % n]);
-            let e = b - a;
-            let len2 = e.x * e.x + e.y * e.y;
-            let u = if len2 > 0.0 {
-                (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let c = a + e * u;
-            // Squared: the nearest is the same, without a root per edge.
-            let d = (p - c).x * (p - c).x + (p - c).y * (p - c).y;
-            if d < best.0 {
-                best = (
-                    d,
-                    i,
-                    cumulative[i] + u * (cumulative[i + 1] - cumulative[i]),
-                );
+        for (edges, lo, hi) in self.chunks(r) {
+            let dx = (lo.x - p.x).max(p.x - hi.x).max(0.0);
+            let dy = (lo.y - p.y).max(p.y - hi.y).max(0.0);
+            if dx * dx + dy * dy > best.0 {
+                continue;
+            }
+            for i in edges {
+                let (a, b) = (ring[i], ring[next(i, n)]);
+                let e = b - a;
+                let len2 = e.x * e.x + e.y * e.y;
+                let u = if len2 > 0.0 {
+                    (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let c = a + e * u;
+                // Squared: the nearest is the same, without a root per edge.
+                let d = (p - c).x * (p - c).x + (p - c).y * (p - c).y;
+                if d < best.0 {
+                    best = (
+                        d,
+                        i,
+                        cumulative[i] + u * (cumulative[i + 1] - cumulative[i]),
+                    );
+                }
             }
         }
         (best.1, best.2)
     }
 
     /// The vertices of ring `r` between two of its points (edge, distance along the ring),
-    /// the shorter way.
-    fn walk(&self, r: usize, (i0, s0): (usize, f64), (i1, s1): (usize, f64)) -> Vec<Coord> {
+    /// the shorter way, appended to `walk`.
+    fn walk(
+        &self,
+        r: usize,
+        (i0, s0): (usize, f64),
+        (i1, s1): (usize, f64),
+        walk: &mut Vec<Coord>,
+    ) {
         let ring = &self.rings[r];
         let n = ring.len();
-        let perimeter = self.cumulative[r][n];
+        let perimeter = self.cumulative(r)[n];
         let forward = (s1 - s0).rem_euclid(perimeter);
-        let mut walk = Vec::new();
         if forward <= perimeter - forward {
-            let mut i = (i0 + 1) % n;
+            let mut i = next(i0, n);
             if !(i0 == i1 && s1 >= s0) {
                 for _ in 0..n {
                     walk.push(ring[i]);
                     if i == i1 {
                         break;
                     }
-                    i = (i + 1) % n;
+                    i = next(i, n);
                 }
             }
         } else if !(i0 == i1 && s1 <= s0) {
@@ -248,7 +393,6 @@ impl<'a> Router<'a> {
                 }
             }
         }
-        walk
     }
 }
 

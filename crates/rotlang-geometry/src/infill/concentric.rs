@@ -16,13 +16,14 @@ use geo::{Buffer, Coord, MultiPolygon};
 
 use crate::infill::Region;
 use crate::infill::loops::Eroder;
+use crate::math;
 
 /// Loops at `(k + ½)·spacing` inside the inset outline (and around its holes), each
 /// starting at its farthest vertex in direction θ and closed.
 pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Vec<Vec<Coord>>) {
     let direction = Coord {
-        x: theta.cos(),
-        y: theta.sin(),
+        x: math::cos(theta),
+        y: math::sin(theta),
     };
     let outline = region.outline();
     let mut eroder = Shrink::new(outline);
@@ -341,7 +342,7 @@ fn perimeter(area: &Loops) -> (f64, f64) {
         .iter()
         .map(|ring| {
             ring.windows(2)
-                .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+                .map(|w| math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y))
                 .sum::<f64>()
         })
         .sum();
@@ -391,7 +392,7 @@ fn uncovered(
         let mut pending = 0;
         for w in ring.windows(2) {
             let e = w[1] - w[0];
-            let steps = ((e.x.hypot(e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
+            let steps = ((math::hypot(e.x, e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
             let first = dense.len();
             dense.extend((0..steps).map(|i| w[0] + e * (i as f64 / steps as f64)));
             // Worth asking for a segment of a few points only.
@@ -442,7 +443,7 @@ fn uncovered(
         out.extend(pieces.into_iter().filter(|p| {
             let mut length = 0.0;
             p.windows(2).any(|w| {
-                length += (w[1] - w[0]).x.hypot((w[1] - w[0]).y);
+                length += math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y);
                 length >= spacing
             })
         }));

@@ -9,13 +9,14 @@ use geo::{Buffer, Coord, MultiPolygon};
 
 use crate::infill::Region;
 use crate::infill::offset::{cross, inside_left};
+use crate::math;
 
 /// Loops at `(k + ½)·spacing` inside the inset outline (and around its holes), each
 /// starting at its farthest vertex in direction θ and closed.
 pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Vec<Vec<Coord>>) {
     let direction = Coord {
-        x: theta.cos(),
-        y: theta.sin(),
+        x: math::cos(theta),
+        y: math::sin(theta),
     };
     // Each loop offset from the inset itself, not from the previous loop: offsets of
     // offsets pile up the arcs at reflex corners.
@@ -158,7 +159,7 @@ fn perimeter(area: &Loops) -> (f64, f64) {
         .iter()
         .map(|ring| {
             ring.windows(2)
-                .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+                .map(|w| math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y))
                 .sum::<f64>()
         })
         .sum();
@@ -203,7 +204,7 @@ fn uncovered(
         let mut dense = Vec::with_capacity(ring.len());
         for w in ring.windows(2) {
             let e = w[1] - w[0];
-            let steps = ((e.x.hypot(e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
+            let steps = ((math::hypot(e.x, e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
             dense.extend((0..steps).map(|i| w[0] + e * (i as f64 / steps as f64)));
         }
         dense.extend(ring.last().copied());
@@ -213,7 +214,7 @@ fn uncovered(
         // A stretch shorter than a spacing (a star's tip) leaves no gap worth a line.
         out.extend(pieces.into_iter().filter(|p| {
             p.windows(2)
-                .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+                .map(|w| math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y))
                 .sum::<f64>()
                 >= spacing
         }));
@@ -393,11 +394,11 @@ struct Cut {
 fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
     let pts = inside_left(ring, exterior)?;
     let n = pts.len();
-    let unit = |e: Coord| e / e.x.hypot(e.y);
+    let unit = |e: Coord| e / math::hypot(e.x, e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
     let mut out = Vec::with_capacity(n + n / 2);
     let mut centres = Vec::with_capacity(n + n / 2);
-    let cos_arc = arc.cos();
+    let cos_arc = math::cos(arc);
     for i in 0..n {
         let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
         let (u, v) = (unit(b - a), unit(c - b));
@@ -427,11 +428,11 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
             out.push(b + (nu + nv) * (d / k));
             centres.push(None);
         } else {
-            let angle = turn.atan2(dot);
+            let angle = math::atan2(turn, dot);
             let steps = (-angle / arc).ceil().max(1.0) as usize;
             out.push(b + nu * d);
             centres.push(Some(b));
-            let (s, co) = (angle / steps as f64).sin_cos();
+            let (s, co) = math::sin_cos(angle / steps as f64);
             let mut w = nu;
             for _ in 1..steps {
                 w = Coord {
@@ -542,7 +543,7 @@ fn keep(
     let n = centres.len();
     if let Some(c) = centres[(first + m) % n] {
         let r = p - c;
-        let len = r.x.hypot(r.y);
+        let len = math::hypot(r.x, r.y);
         if len > 0.0 {
             p = c + r * (d / len);
         }

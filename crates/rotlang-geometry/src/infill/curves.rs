@@ -13,6 +13,7 @@ pub(crate) use concentric::concentric;
 
 use std::f64::consts::{PI, TAU};
 
+use crate::math;
 use geo::Coord;
 
 use super::Region;
@@ -36,7 +37,7 @@ pub(crate) fn gyroid(
 ) {
     let frame = Frame::new(centre, theta);
     let mut edges = Edges::new(region.rings(), &frame);
-    let (sz, cz) = (z / scale).sin_cos();
+    let (sz, cz) = math::sin_cos(z / scale);
     let along_y = sz.abs() > cz.abs();
     // In the frame where the waves run along "u" and repeat along "v".
     let (u0, u1, v0, v1) = if along_y {
@@ -58,7 +59,7 @@ pub(crate) fn gyroid(
     let samples: Vec<(f64, f64, f64)> = (s0..=s1)
         .map(|i| {
             let u = i as f64 * step;
-            let (su, cu) = u.sin_cos();
+            let (su, cu) = math::sin_cos(u);
             let (a, b, c) = if along_y {
                 (sz, cu, su * cz)
             } else {
@@ -71,11 +72,11 @@ pub(crate) fn gyroid(
             // direction (continuous there) and add π. Along x, `b = cos z` is fixed and at
             // least √½ in size, so atan2 never reaches its cut.
             let phi = if along_y && a < 0.0 {
-                (-b).atan2(-a) + PI
+                math::atan2(-b, -a) + PI
             } else {
-                b.atan2(a)
+                math::atan2(b, a)
             };
-            let delta = (-c / r).clamp(-1.0, 1.0).acos();
+            let delta = math::acos((-c / r).clamp(-1.0, 1.0));
             (u, phi + delta, phi - delta)
         })
         .collect();
@@ -180,12 +181,12 @@ pub(crate) fn spiral(
     let mut edges = Edges::new(region.rings(), &frame);
     let (min, max) = (edges.min, edges.max);
     let far = [min.x.abs().max(max.x.abs()), min.y.abs().max(max.y.abs())];
-    let r_max = far[0].hypot(far[1]);
+    let r_max = math::hypot(far[0], far[1]);
     let near = Coord {
         x: 0f64.clamp(min.x, max.x),
         y: 0f64.clamp(min.y, max.y),
     };
-    let r_min = near.x.hypot(near.y);
+    let r_min = math::hypot(near.x, near.y);
     let k = spacing / TAU;
     // Start a whole turn inside the region's nearest point (the spiral starts at angle 0).
     let mut phi = ((r_min / k / TAU).floor() - 1.0).max(0.0) * TAU;
@@ -195,7 +196,7 @@ pub(crate) fn spiral(
     let mut curve = Vec::new();
     while phi <= phi_end {
         let r = k * phi;
-        let (s, c) = phi.sin_cos();
+        let (s, c) = math::sin_cos(phi);
         curve.push(Coord { x: r * c, y: r * s });
         let chord = (8.0 * r * 0.02).sqrt().min(2.0);
         // Never a zero step (at the centre the chord is zero).

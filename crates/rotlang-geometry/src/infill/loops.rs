@@ -7,6 +7,7 @@
 //! cost 10–40 µs a loop. `None` where the offset touches itself without crossing (a
 //! tangency) or a chain does not close: the buffer decides then.
 
+use crate::math;
 use geo::{Coord, MultiPolygon};
 
 use super::offset::{cross, inside_left};
@@ -303,12 +304,12 @@ fn prepare(
 ) -> Option<Vec<Corner>> {
     let pts = inside_left(ring, exterior)?;
     let n = pts.len();
-    let unit = |e: Coord| e / e.x.hypot(e.y);
+    let unit = |e: Coord| e / math::hypot(e.x, e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
     // Each edge's direction once (edge i runs from point i to i + 1).
     let units: Vec<Coord> = (0..n).map(|i| unit(pts[(i + 1) % n] - pts[i])).collect();
     let mut out = Vec::with_capacity(n);
-    let cos_arc = arc.cos();
+    let cos_arc = math::cos(arc);
     for i in 0..n {
         let b = pts[i];
         let (u, v) = (units[(i + n - 1) % n], units[i]);
@@ -331,10 +332,10 @@ fn prepare(
             let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
             out.push(Corner::Mitre { b, m: nu + nv, k });
         } else {
-            let angle = turn.atan2(dot);
+            let angle = math::atan2(turn, dot);
             let steps = (-angle / arc).ceil().max(1.0) as usize;
             let start = directions.len();
-            let (s, co) = (angle / steps as f64).sin_cos();
+            let (s, co) = math::sin_cos(angle / steps as f64);
             let mut w = nu;
             for _ in 1..steps {
                 w = Coord {
@@ -588,7 +589,7 @@ fn keep(mid: Coord, centre: Option<Coord>, boundary: &[Side], d: f64) -> bool {
     let mut p = mid;
     if let Some(c) = centre {
         let r = p - c;
-        let len = r.x.hypot(r.y);
+        let len = math::hypot(r.x, r.y);
         if len > 0.0 {
             p = c + r * (d / len);
         }
@@ -710,8 +711,8 @@ mod tests {
                 let a = std::f64::consts::TAU * i as f64 / n as f64;
                 let a = if clockwise { -a } else { a };
                 Coord {
-                    x: at.0 + r * a.cos(),
-                    y: at.1 + r * a.sin(),
+                    x: at.0 + r * math::cos(a),
+                    y: at.1 + r * math::sin(a),
                 }
             })
             .collect()

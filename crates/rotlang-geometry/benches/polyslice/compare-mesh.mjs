@@ -11,8 +11,8 @@
 // rotlang's whole job is timed here: `rotlang preview 45 --shape out/MESH.stl --format json`
 // over every layer (grid 20%, 2 walls, 4 top and bottom shell layers, as Polyslice's job),
 // three runs, the median. The quality columns compare the layers that both programs fill
-// with sparse infill only (no skin, no solid area); a layer's region is the mesh's exact
-// section at the layer's middle less the two walls (0.8 mm).
+// with sparse infill only (no skin, no solid area) and at least 4 lines wide; a layer's
+// region is the mesh's exact section at the layer's middle less the two walls (0.8 mm).
 import { execFileSync } from 'node:child_process';
 import { readFileSync, existsSync } from 'node:fs';
 import { dirname, join } from 'node:path';
@@ -55,14 +55,15 @@ const SECTIONS = {
   },
 };
 
-/// The infill region at height z: the section less the walls.
+/// The infill region at height z: the section less the walls; null where it is narrower
+/// than 4 lines (the vase's 2 mm walls leave a 0.4 mm ring: nothing to measure a fill in).
 function regionAt(z) {
   const s = SECTIONS[meshName](z);
   if (!s) return null;
   const inset = WALLS * W;
   const rOut = s[1] - inset;
   const rIn = s[0] > 0 ? s[0] + inset : 0;
-  return rOut > rIn ? annulusRegion(0, 0, rIn, rOut) : null;
+  return rOut - rIn >= 4 * W ? annulusRegion(0, 0, rIn, rOut) : null;
 }
 
 // ---------- speed ----------
@@ -71,24 +72,37 @@ const readJson = (f) => JSON.parse(readFileSync(join(out, f), 'utf8'));
 const sections = existsSync(join(out, `polyslice-sections-${meshName}-0.04.json`))
   ? readJson(`polyslice-sections-${meshName}-0.04.json`)
   : null;
+const split = existsSync(join(out, `polyslice-split-${meshName}.json`)) ? readJson(`polyslice-split-${meshName}.json`) : null;
 const job = readJson(`polyslice-${meshName}-${H}.json`);
 const gcode = readFileSync(join(out, `polyslice-${meshName}-${H}.gcode`), 'utf8');
 
+/// rotlang's whole job, timed (median of 3 runs), and every layer's JSON. `preview` fills every
+/// layer (its summary) but lists at most 256: a taller part's other layers come from more,
+/// untimed runs.
 function rotlangJob() {
-  const file = join(out, `rotlang-${meshName}-${H}.json`);
-  const times = [];
-  for (let run = 0; run < 3; run++) {
-    const t0 = process.hrtime.bigint();
+  const run = (from, to) => {
+    const file = join(out, `rotlang-${meshName}-${H}-${from}.json`);
     execFileSync(rotlangBin, [
       'preview', '--shape', join(out, `${meshName}.stl`), '--pattern', 'grid', '--density', '20',
       '--nozzle', String(W), '--walls', String(WALLS), '--layer-height', String(H),
-      '--top-shell-layers', '4', '--bottom-shell-layers', '4', '--layers', `0..${job.layers}`,
+      '--top-shell-layers', '4', '--bottom-shell-layers', '4', '--layers', `${from}..${to}`,
       '--format', 'json', '--out', file, '--', '45',
     ], { stdio: ['ignore', 'ignore', 'ignore'] });
+    return file;
+  };
+  const first = Math.min(job.layers, 256);
+  const times = [];
+  let file;
+  for (let k = 0; k < 3; k++) {
+    const t0 = process.hrtime.bigint();
+    file = run(0, first);
     times.push(Number(process.hrtime.bigint() - t0) / 1e9);
   }
   times.sort((a, b) => a - b);
-  return { seconds: times[1], json: JSON.parse(readFileSync(file, 'utf8')) };
+  const json = JSON.parse(readFileSync(file, 'utf8'));
+  for (let from = first; from < job.layers; from += 256)
+    json.layers.push(...JSON.parse(readFileSync(run(from, Math.min(job.layers, from + 256)), 'utf8')).layers);
+  return { seconds: times[1], listed: first, json };
 }
 
 /// Medians (s) of the divan output of `cargo bench --bench slice`, by bench name.
@@ -141,6 +155,11 @@ if (sections) {
   const rs = divan.sections_500;
   console.log(`| slicing alone: ${sections.layers} sections at 0.04 mm | ${f(sections.seconds, 1)} s (Polytree.sliceIntoLayers) | ${rs ? f(rs, 3) + ' s (divan median, `sections_500`)' : '—'} | ${rs ? f(sections.seconds / rs, 0) + '×' : '—'} |`);
 }
+if (sections && split) {
+  const bound = split.build + sections.layers * split.planeTest;
+  const rs = divan.sections_500;
+  console.log(`| the same, were Polytree's per-layer gathering of triangles free (bound: fromMesh ${f(split.build, 2)} s + ${sections.layers} × ${f(split.planeTest * 1000, 0)} ms plane test; it measured ${f(split.gather, 2)} s a layer) | ≥ ${f(bound, 1)} s | ${rs ? f(rs, 3) + ' s' : '—'} | ${rs ? '≥ ' + f(bound / rs, 0) + '×' : '—'} |`);
+}
 console.log(`| whole job at ${H} mm: ${job.layers} layers, 2 walls, grid 20% | ${f(job.seconds, 1)} s (\`slice()\` to G-code) | ${f(r.seconds, 2)} s (\`rotlang preview --format json\`, every layer filled, median of 3) | ${f(job.seconds / r.seconds, 0)}× |`);
 if (divan.part_500) console.log(`| rotlang's part bench: 500 layers at 0.04 mm, 2 walls, lines 20%, shells | — | ${f(divan.part_500, 3)} s (divan median, \`part_500\`) | — |`);
 console.log();
@@ -148,7 +167,7 @@ console.log(`Layers with skin or solid areas (left out of the quality table): Po
 const sum = (k, who) => rows.reduce((s, row) => s + row[who][k], 0);
 const stat = (k, who, fn) => fn(...rows.map((row) => row[who][k]));
 const dirs = (who) => [...new Set(rows.map((row) => row[who].rotation))].sort((a, b) => a - b).join(', ');
-console.log(`Over the ${rows.length} layers both fill sparse only (z ${f(rows[0]?.z, 1)} to ${f(rows.at(-1)?.z, 1)} mm):\n`);
+console.log(`Over the ${rows.length} layers both fill sparse only, in a region at least 4 lines wide (z ${f(rows[0]?.z, 1)} to ${f(rows.at(-1)?.z, 1)} mm):\n`);
 console.log('| measure | Polyslice | rotlang |');
 console.log('|---|---|---|');
 console.log(`| printed density, mean (min–max) | ${f((sum('density', 'p') / rows.length) * 100, 1)}% (${f(stat('density', 'p', Math.min) * 100, 1)}–${f(stat('density', 'p', Math.max) * 100, 1)}) | ${f((sum('density', 'r') / rows.length) * 100, 1)}% (${f(stat('density', 'r', Math.min) * 100, 1)}–${f(stat('density', 'r', Math.max) * 100, 1)}) |`);

@@ -160,7 +160,7 @@ if (sections && split) {
   const rs = divan.sections_500;
   console.log(`| the same, were Polytree's per-layer gathering of triangles free (bound: fromMesh ${f(split.build, 2)} s + ${sections.layers} × ${f(split.planeTest * 1000, 0)} ms plane test; it measured ${f(split.gather, 2)} s a layer) | ≥ ${f(bound, 1)} s | ${rs ? f(rs, 3) + ' s' : '—'} | ${rs ? '≥ ' + f(bound / rs, 0) + '×' : '—'} |`);
 }
-console.log(`| whole job at ${H} mm: ${job.layers} layers, 2 walls, grid 20% | ${f(job.seconds, 1)} s (\`slice()\` to G-code) | ${f(r.seconds, 2)} s (\`rotlang preview --format json\`, every layer filled, median of 3) | ${f(job.seconds / r.seconds, 0)}× |`);
+console.log(`| whole job at ${H} mm: ${job.layers} layers, 2 walls, grid 20% | ${f(job.seconds, 1)} s (\`slice()\` to G-code) | ${f(r.seconds, 2)} s (\`rotlang preview --format json\`, every layer filled, ${r.listed} listed, median of 3) | ${f(job.seconds / r.seconds, 0)}× |`);
 if (divan.part_500) console.log(`| rotlang's part bench: 500 layers at 0.04 mm, 2 walls, lines 20%, shells | — | ${f(divan.part_500, 3)} s (divan median, \`part_500\`) | — |`);
 console.log();
 console.log(`Layers with skin or solid areas (left out of the quality table): Polyslice ${pSkinLayers}, rotlang ${rSolidLayers} of ${r.json.layers.length}.\n`);

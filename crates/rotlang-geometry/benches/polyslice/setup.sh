@@ -38,7 +38,10 @@ if [ -n "${POLYTREE_DIR:-}" ]; then
   npx --no-install coffee -cb vendor/polytree/app/
   (cd vendor/polytree && bash scripts/bundle.sh)
 else
-  tarball=$(cd vendor && npm pack --silent "@jgphilpott/polytree@$POLYTREE_VERSION")
+  tarball=$(cd vendor && npm pack --silent "@jgphilpott/polytree@$POLYTREE_VERSION") || {
+    echo "@jgphilpott/polytree@$POLYTREE_VERSION is not on this npm registry: give a polytree source tree as POLYTREE_DIR=... (see MESH.md)" >&2
+    exit 1
+  }
   got="sha512-$(openssl dgst -sha512 -binary "vendor/$tarball" | base64 -w0)"
   [ "$got" = "$POLYTREE_INTEGRITY" ] || { echo "polytree $POLYTREE_VERSION: integrity $got, expected $POLYTREE_INTEGRITY" >&2; exit 1; }
   tar -xzf "vendor/$tarball" -C vendor/polytree --strip-components=1

@@ -4,8 +4,9 @@
 //! layers (0.04 mm), sections only (`sections_500`) and sections filled with 20% lines
 //! inside two walls under a turning template, top and bottom surfaces solid (`part_500`;
 //! without them, `part_500_without_shells`), on one thread.
-//! Target: seconds on 2 cores; Polyslice's slicing of the same mesh is not in
-//! ../shared/anchors (only its infill generators are), see the README's note.
+//! Target: seconds on 2 cores, and ≥ 10× Polyslice's slicing of the same mesh:
+//! `polyslice/MESH.md` compares them (`examples/write_mesh.rs` writes this torus as STL;
+//! `polyslice/compare-mesh.mjs` reads this bench's divan output).
 
 use divan::{Bencher, black_box};
 use rotlang::eval::Options;

@@ -527,9 +527,22 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
     // By `xlo` in `total_cmp`'s order, compared as integers, ties in the order built: the
     // small (key, index) pairs are sorted, not the edges (moving 80-byte edges about was
     // a tenth of a layer), then the edges are laid out in that order once.
-    order.clear();
-    order.extend(edges.iter().enumerate().map(|(i, e)| (e.key, i as u32)));
-    order.sort_unstable();
+    // The pairs are distinct (the index breaks ties), so every sort gives the one order.
+    // A ring's raw offset has as many edges at every distance: the previous loop's order,
+    // its keys renewed, is nearly sorted (edges move little from one loop to the next),
+    // and insertion sorts it in a few passes; where it is not, a full sort takes over.
+    if order.len() == edges.len() {
+        for entry in order.iter_mut() {
+            entry.0 = edges[entry.1 as usize].key;
+        }
+        if !insertion_sort(order, 4 * edges.len() + 64) {
+            order.sort_unstable();
+        }
+    } else {
+        order.clear();
+        order.extend(edges.iter().enumerate().map(|(i, e)| (e.key, i as u32)));
+        order.sort_unstable();
+    }
     sorted.clear();
     sorted.extend(order.iter().map(|&(_, i)| edges[i as usize]));
     let edges = &*sorted;
@@ -576,6 +589,26 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
                     return false;
                 }
             }
+        }
+    }
+    true
+}
+
+/// Sorts `order` by insertion, moving elements at most `budget` places in all; `false`
+/// (the order left a permutation, partly sorted) where that was not enough.
+fn insertion_sort(order: &mut [(i64, u32)], budget: usize) -> bool {
+    let mut moves = 0;
+    for i in 1..order.len() {
+        let x = order[i];
+        let mut j = i;
+        while j > 0 && order[j - 1] > x {
+            order[j] = order[j - 1];
+            j -= 1;
+        }
+        order[j] = x;
+        moves += i - j;
+        if moves > budget {
+            return false;
         }
     }
     true

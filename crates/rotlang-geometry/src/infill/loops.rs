@@ -630,8 +630,14 @@ fn keep(mid: Coord, centre: Option<Coord>, boundary: &[Side], d: f64) -> bool {
     // An edge whose bounds, grown by `limit` (and a margin for rounding), miss `p` is
     // farther than `limit`: only its crossing of the ray is counted.
     let reach = limit + 1e-9;
+    // An edge that misses the band `p.y ± reach` is neither near `p` nor crosses the ray
+    // (a crossing edge spans `p.y`): most edges are passed on two comparisons.
+    let band = reach.max(0.0);
     let mut inside = false;
     for &Side { a, b, lo, hi } in boundary {
+        if p.y < lo.y - band || p.y > hi.y + band {
+            continue;
+        }
         {
             if p.x >= lo.x - reach
                 && p.x <= hi.x + reach

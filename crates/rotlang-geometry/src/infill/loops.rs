@@ -776,6 +776,26 @@ mod tests {
             .collect()
     }
 
+    /// The sweep's reused order: nearly sorted pairs are sorted within the budget, and a
+    /// reversed order runs past it (the caller then sorts in full) without losing a pair.
+    #[test]
+    fn the_reused_order_is_sorted_or_declined() {
+        let mut near: Vec<(i64, u32)> = (0..40).map(|i| (i64::from(i / 2), i)).collect();
+        near.swap(3, 4);
+        near.swap(20, 22);
+        let mut expected = near.clone();
+        expected.sort_unstable();
+        assert!(insertion_sort(&mut near, 8));
+        assert_eq!(near, expected);
+        let mut reversed: Vec<(i64, u32)> = (0..40).rev().map(|i| (i64::from(i), i)).collect();
+        assert!(!insertion_sort(&mut reversed, 100));
+        reversed.sort_unstable();
+        assert_eq!(
+            reversed,
+            (0..40).map(|i| (i64::from(i), i)).collect::<Vec<_>>()
+        );
+    }
+
     /// The shortcut that skips the crossing sweep holds only where the sweep would find
     /// nothing: strictly convex rings going round once, nested or apart.
     #[test]

@@ -170,36 +170,48 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
             });
         }
     }
-    // Sorted by left end through small keys (x, edge): cheaper to move than the edges.
-    let mut order: Vec<(f64, u32)> = edges
+    // Sorted by left end through keys that carry each edge's x and y extent: the sweep's
+    // inner loop reads them in order, and looks an edge up only when the boxes overlap.
+    struct Key {
+        ax: f64,
+        bx: f64,
+        ylo: f64,
+        yhi: f64,
+        edge: u32,
+    }
+    let mut order: Vec<Key> = edges
         .iter()
         .enumerate()
-        .map(|(i, e)| (e.a.x, i as u32))
+        .map(|(i, e)| Key {
+            ax: e.a.x,
+            bx: e.b.x,
+            ylo: e.a.y.min(e.b.y),
+            yhi: e.a.y.max(e.b.y),
+            edge: i as u32,
+        })
         .collect();
     // A small ring's keys by insertion (the sweep's answer does not depend on how ties
     // are ordered); a large one's by the library's sort.
     if order.len() <= 48 {
         for i in 1..order.len() {
             let mut j = i;
-            while j > 0 && order[j - 1].0 > order[j].0 {
+            while j > 0 && order[j - 1].ax > order[j].ax {
                 order.swap(j - 1, j);
                 j -= 1;
             }
         }
     } else {
-        order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+        order.sort_unstable_by(|p, q| p.ax.total_cmp(&q.ax));
     }
-    for (k, &(_, i)) in order.iter().enumerate() {
-        let e = &edges[i as usize];
-        let (ylo, yhi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
-        for &(x, j) in &order[k + 1..] {
-            if x > e.b.x {
+    for (k, e) in order.iter().enumerate() {
+        for f in &order[k + 1..] {
+            if f.ax > e.bx {
                 break;
             }
-            let f = &edges[j as usize];
-            if f.a.y.max(f.b.y) < ylo || f.a.y.min(f.b.y) > yhi {
+            if f.yhi < e.ylo || f.ylo > e.yhi {
                 continue;
             }
+            let (e, f) = (&edges[e.edge as usize], &edges[f.edge as usize]);
             if e.ring == f.ring {
                 let n = rings[e.ring as usize].len() as u32;
                 if next(e.index as usize, n as usize) == f.index as usize

@@ -1315,10 +1315,16 @@ proptest! {
             },
         };
         let chunked = travel::Router::new(rings);
-        let plain = travel::Router::with_chunk(rings, usize::MAX);
+        let plain = travel::Router::with_chunk(rings, usize::MAX).general();
+        let general = travel::Router::new(rings).general();
         for (a, b, kind) in moves {
             let (p, q) = (point(a, kind), point(b, kind));
             prop_assert_eq!(chunked.route(p, q), plain.route(p, q));
+            // A move from the middle of an edge (a line's end) to any point: the
+            // shortcut for a move heading into the region is the even-odd test's answer.
+            let from_edge = point(a, 0);
+            prop_assert_eq!(chunked.route(from_edge, q), general.route(from_edge, q));
+            prop_assert_eq!(chunked.route(q, from_edge), general.route(q, from_edge));
         }
     }
 }

@@ -40,6 +40,11 @@ pub(crate) struct Router<'a> {
     chunk_at: Vec<usize>,
     /// `CHUNK`, or (in tests) a ring's whole length: every edge tested, as before chunks.
     chunk: usize,
+    /// Per ring, whether the region lies on its left (measured when first needed).
+    left: std::cell::OnceCell<Vec<bool>>,
+    /// Whether a move that leaves a ring clearly inward is taken as inside without the
+    /// even-odd test of its middle (off in tests, for the general path).
+    fast: bool,
 }
 
 impl<'a> Router<'a> {
@@ -56,13 +61,6 @@ impl<'a> Router<'a> {
         let mut largest: f64 = 0.0;
         for r in rings {
             let n = r.len();
-            let ring_box = bounds(r);
-            largest = largest
-                .max(ring_box.0.x.abs())
-                .max(ring_box.0.y.abs())
-                .max(ring_box.1.x.abs())
-                .max(ring_box.1.y.abs());
-            boxes.push(ring_box);
             chunk_at.push(chunks.len());
             // Chunk c holds edges c·CHUNK.. (up to the ring's end), so vertices
             // c·CHUNK..=(c + 1)·CHUNK, the last wrapping to the first.
@@ -84,6 +82,28 @@ impl<'a> Router<'a> {
                     },
                 ));
             }
+            // The ring's box is its chunks' (they hold every vertex): not a second pass.
+            let ring_box = chunks[chunk_at[chunk_at.len() - 1]..].iter().fold(
+                bounds(&[]),
+                |(lo, hi), &(a, b)| {
+                    (
+                        Coord {
+                            x: lo.x.min(a.x),
+                            y: lo.y.min(a.y),
+                        },
+                        Coord {
+                            x: hi.x.max(b.x),
+                            y: hi.y.max(b.y),
+                        },
+                    )
+                },
+            );
+            largest = largest
+                .max(ring_box.0.x.abs())
+                .max(ring_box.0.y.abs())
+                .max(ring_box.1.x.abs())
+                .max(ring_box.1.y.abs());
+            boxes.push(ring_box);
         }
         // A millionth of a nanometre per millimetre of coordinate: more than any rounding
         // in the tests a chunk's box stands for, so that skipping a chunk never skips an
@@ -101,7 +121,73 @@ impl<'a> Router<'a> {
             chunks,
             chunk_at,
             chunk,
+            left: std::cell::OnceCell::new(),
+            fast: true,
         }
+    }
+
+    /// The same router without the inward-move shortcut (tests compare the two).
+    #[cfg(test)]
+    pub(crate) fn general(mut self) -> Router<'a> {
+        self.fast = false;
+        self
+    }
+
+    /// Whether a move that crosses no ring inside it (`cuts`: where it meets the rings)
+    /// starts or ends on an edge's middle and heads clearly into the region from it: then
+    /// it is inside all along (it would have to cross a ring to leave), and the even-odd
+    /// test of its middle is not needed. Any doubt (a vertex, a grazing move, two rings
+    /// met at that end) answers `false`, for that test to decide.
+    fn leaves_inward(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> bool {
+        let d = q - p;
+        let d2 = d.x * d.x + d.y * d.y;
+        for (at_p, from, to) in [(true, p, q), (false, q, p)] {
+            let mut at_end =
+                cuts.iter()
+                    .filter(|&&(t, _)| if at_p { t <= 1e-9 } else { t >= 1.0 - 1e-9 });
+            let (Some(&(_, c)), None) = (at_end.next(), at_end.next()) else {
+                continue;
+            };
+            if !(c.u > 1e-6 && c.u < 1.0 - 1e-6) {
+                continue;
+            }
+            let ring = &self.rings[c.ring];
+            let e = ring[next(c.edge, ring.len())] - ring[c.edge];
+            let turn = cross(e, to - from);
+            // Clearly off the edge's line: more than a thousandth of a radian.
+            if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
+                continue;
+            }
+            return (turn > 0.0) == self.region_left(c.ring);
+        }
+        false
+    }
+
+    /// Whether the region lies on ring `r`'s left: a counter-clockwise ring inside an even
+    /// number of the others (an outline), or a clockwise one inside an odd number (a hole).
+    fn region_left(&self, r: usize) -> bool {
+        self.left.get_or_init(|| {
+            self.rings
+                .iter()
+                .enumerate()
+                .map(|(r, ring)| {
+                    let n = ring.len();
+                    let area: f64 = (0..n).map(|i| cross(ring[i], ring[next(i, n)])).sum();
+                    let mut around = false;
+                    for (s, other) in self.rings.iter().enumerate() {
+                        let m = other.len();
+                        if s != r {
+                            for i in 0..m {
+                                if super::clip::ray_crosses(other[i], other[next(i, m)], ring[0]) {
+                                    around = !around;
+                                }
+                            }
+                        }
+                    }
+                    (area > 0.0) != around
+                })
+                .collect()
+        })[r]
     }
 
     /// Ring `r`'s chunk boxes, with the range of edges each holds.
@@ -221,7 +307,9 @@ impl<'a> Router<'a> {
         }
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
-        if !cuts.iter().any(|&(t, _)| interior(t)) && self.inside((p + q) / 2.0) {
+        if !cuts.iter().any(|&(t, _)| interior(t))
+            && (self.fast && self.leaves_inward(p, q, &cuts) || self.inside((p + q) / 2.0))
+        {
             self.cuts.replace(cuts);
             return vec![p, q];
         }

@@ -66,17 +66,24 @@ pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<
 /// One ring moved `d` toward the region's inside (`exterior`: the ring is an outline,
 /// else a hole), without its closing point; `None` when an edge turns around or the ring
 /// turns inside out.
-fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<Coord>> {
+pub(crate) fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<Coord>> {
     let pts = inside_left(ring, exterior)?;
     let n = pts.len();
     let unit = |e: Coord| e / e.x.hypot(e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
     // Room for the arcs and the closing point the polygon adds.
     let mut out = Vec::with_capacity(n + n / 2 + 1);
-    // For every original edge i (from pts[i]), where its offset starts and ends in `out`.
-    // One list of (start, end) per vertex: its moved point(s) run from `end` (where the
-    // edge before it ends) to `start` (where the edge after it starts).
-    let mut at: Vec<(usize, usize)> = Vec::with_capacity(n);
+    // Each vertex's moved point(s) run from `end` (where the edge before it ends) to
+    // `start` (where the edge after it starts); edge i runs from vertex i's start to
+    // vertex i+1's end and must keep its direction: checked as each vertex is moved
+    // (vertex 0's (start, end) kept for the last edge), no list of them.
+    let mut first = (0, 0);
+    let mut previous_start = 0;
+    let turns_around = |out: &[Coord], from: usize, to: usize, i: usize, j: usize| {
+        let e = pts[j] - pts[i];
+        let f = out[to] - out[from];
+        e.x * f.x + e.y * f.y <= 0.0
+    };
     // Each edge's direction once: the corner after it takes it as the one before.
     let mut u = unit(pts[0] - pts[n - 1]);
     for i in 0..n {
@@ -86,14 +93,15 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
         let (nu, nv) = (left(u), left(v));
         let turn = cross(u, v);
         let dot = u.x * v.x + u.y * v.y;
-        if turn >= 0.0 || dot > 1.0 - 1e-12 {
+        let (start, end) = if turn >= 0.0 || dot > 1.0 - 1e-12 {
             // Convex (or straight): the mitre, where both moved edges meet.
             let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
             if k <= 1e-9 {
                 return None;
             }
-            at.push((out.len(), out.len()));
+            let at = (out.len(), out.len());
             out.push(b + (nu + nv) * (d / k));
+            at
         } else {
             // Reflex: an arc about the vertex from one moved edge's end to the next's start.
             let angle = turn.atan2(dot); // negative: turning right
@@ -109,19 +117,20 @@ fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<C
                 };
                 out.push(b + w * d);
             }
-            at.push((out.len(), end));
+            let at = (out.len(), end);
             out.push(b + nv * d);
-        }
-        u = v;
-    }
-    // Edge i runs from vertex i's start to vertex i+1's end: it must keep its direction.
-    for i in 0..n {
-        let (p, q) = (out[at[i].0], out[at[next(i, n)].1]);
-        let e = pts[next(i, n)] - pts[i];
-        let f = q - p;
-        if e.x * f.x + e.y * f.y <= 0.0 {
+            at
+        };
+        if i == 0 {
+            first = (start, end);
+        } else if turns_around(&out, previous_start, end, i - 1, i) {
             return None;
         }
+        previous_start = start;
+        u = v;
+    }
+    if turns_around(&out, previous_start, first.1, n - 1, 0) {
+        return None;
     }
     let moved = signed_area(&out);
     if moved == 0.0 || (moved > 0.0) != (signed_area(&pts) > 0.0) {
@@ -172,6 +181,7 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
     }
     // Sorted by left end through keys that carry each edge's x and y extent: the sweep's
     // inner loop reads them in order, and looks an edge up only when the boxes overlap.
+    #[derive(Clone, Copy)]
     struct Key {
         ax: f64,
         bx: f64,
@@ -193,12 +203,16 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
     // A small ring's keys by insertion (the sweep's answer does not depend on how ties
     // are ordered); a large one's by the library's sort.
     if order.len() <= 48 {
+        // Each key held aside while the larger ones before it move up one (a copy each,
+        // not a swap): the same order as swapping it down.
         for i in 1..order.len() {
+            let key = order[i];
             let mut j = i;
-            while j > 0 && order[j - 1].ax > order[j].ax {
-                order.swap(j - 1, j);
+            while j > 0 && order[j - 1].ax > key.ax {
+                order[j] = order[j - 1];
                 j -= 1;
             }
+            order[j] = key;
         }
     } else {
         order.sort_unstable_by(|p, q| p.ax.total_cmp(&q.ax));
@@ -285,4 +299,76 @@ pub(crate) fn signed_area(ring: &[Coord]) -> f64 {
         .map(|i| cross(ring[i], ring[next(i, n)]))
         .sum::<f64>()
         / 2.0
+}
+
+/// The ring offset with each vertex's (start, end) listed and every edge's direction
+/// checked after: what `offset_ring` checks vertex by vertex (tests compare the two).
+#[cfg(test)]
+pub(crate) fn offset_ring_listed(
+    ring: &[Coord],
+    d: f64,
+    arc: f64,
+    exterior: bool,
+) -> Option<Vec<Coord>> {
+    let pts = inside_left(ring, exterior)?;
+    let n = pts.len();
+    let unit = |e: Coord| e / e.x.hypot(e.y);
+    let left = |u: Coord| Coord { x: -u.y, y: u.x };
+    // Room for the arcs and the closing point the polygon adds.
+    let mut out = Vec::with_capacity(n + n / 2 + 1);
+    // For every original edge i (from pts[i]), where its offset starts and ends in `out`.
+    // One list of (start, end) per vertex: its moved point(s) run from `end` (where the
+    // edge before it ends) to `start` (where the edge after it starts).
+    let mut at: Vec<(usize, usize)> = Vec::with_capacity(n);
+    // Each edge's direction once: the corner after it takes it as the one before.
+    let mut u = unit(pts[0] - pts[n - 1]);
+    for i in 0..n {
+        let b = pts[i];
+        let c = if i + 1 < n { pts[i + 1] } else { pts[0] };
+        let v = unit(c - b);
+        let (nu, nv) = (left(u), left(v));
+        let turn = cross(u, v);
+        let dot = u.x * v.x + u.y * v.y;
+        if turn >= 0.0 || dot > 1.0 - 1e-12 {
+            // Convex (or straight): the mitre, where both moved edges meet.
+            let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
+            if k <= 1e-9 {
+                return None;
+            }
+            at.push((out.len(), out.len()));
+            out.push(b + (nu + nv) * (d / k));
+        } else {
+            // Reflex: an arc about the vertex from one moved edge's end to the next's start.
+            let angle = turn.atan2(dot); // negative: turning right
+            let steps = (-angle / arc).ceil().max(1.0) as usize;
+            let end = out.len();
+            out.push(b + nu * d);
+            let (s, c) = (angle / steps as f64).sin_cos();
+            let mut w = nu;
+            for _ in 1..steps {
+                w = Coord {
+                    x: w.x * c - w.y * s,
+                    y: w.x * s + w.y * c,
+                };
+                out.push(b + w * d);
+            }
+            at.push((out.len(), end));
+            out.push(b + nv * d);
+        }
+        u = v;
+    }
+    // Edge i runs from vertex i's start to vertex i+1's end: it must keep its direction.
+    for i in 0..n {
+        let (p, q) = (out[at[i].0], out[at[next(i, n)].1]);
+        let e = pts[next(i, n)] - pts[i];
+        let f = q - p;
+        if e.x * f.x + e.y * f.y <= 0.0 {
+            return None;
+        }
+    }
+    let moved = signed_area(&out);
+    if moved == 0.0 || (moved > 0.0) != (signed_area(&pts) > 0.0) {
+        return None;
+    }
+    Some(out)
 }

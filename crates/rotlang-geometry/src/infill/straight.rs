@@ -26,7 +26,8 @@ pub(crate) fn families(
 ) {
     let vertices: usize = region.rings().iter().map(Vec::len).sum();
     let mut local: Vec<Coord> = Vec::with_capacity(vertices);
-    let mut crossings: Vec<(i64, f64)> = Vec::new();
+    // Room for a few lines' crossings at once: a small layer's never grow it.
+    let mut crossings: Vec<(i64, f64)> = Vec::with_capacity(32);
     for &offset in offsets {
         let frame = Frame::new(centre, theta + offset.to_radians());
         let shift = shift.rem_euclid(spacing);

@@ -1268,6 +1268,30 @@ fn families_through_vertices_are_the_scan() {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The ring offset checks each edge's direction as its end vertex is moved (no list
+    /// of where each vertex's points are): the same answer, the same points, as listing
+    /// them and checking every edge after, on star-like rings moved far enough that
+    /// edges turn around (outlines and holes, any arc step).
+    #[test]
+    fn edges_checked_as_moved_are_the_listed_check(
+        radii in prop::collection::vec(1.0f64..12.0, 3..40),
+        turn in 0.0f64..TAU,
+        d in 0.05f64..5.0,
+        arc in 0.1f64..0.8,
+        hole in any::<bool>(),
+    ) {
+        let ring = radial_ring(&radii, turn, Coord::zero(), hole);
+        let exterior = !hole;
+        prop_assert_eq!(
+            offset::offset_ring(&ring.0, d, arc, exterior),
+            offset::offset_ring_listed(&ring.0, d, arc, exterior)
+        );
+    }
+}
+
+proptest! {
     #![proptest_config(ProptestConfig::with_cases(128))]
 
     /// Travel routed with each ring's edges in chunks (skipped by their boxes) is the

@@ -21,6 +21,9 @@ struct Cut {
     edge: usize,
     /// The fraction along the edge.
     u: f64,
+    /// Met just beyond an end of the move (within a billionth of its length): not a
+    /// crossing, only a sign of where that end lies (a line's end a rounding inside).
+    near: bool,
 }
 
 /// The rings with their cumulative lengths, ready for many moves.
@@ -32,6 +35,8 @@ pub(crate) struct Router<'a> {
     lengths: std::cell::OnceCell<(Vec<f64>, Vec<usize>)>,
     /// The crossings of the move being routed, kept for the next.
     cuts: std::cell::RefCell<Vec<(f64, Cut)>>,
+    /// The route being built, kept for the next.
+    path: std::cell::RefCell<Vec<Coord>>,
     /// Each ring's bounding box: a move or point outside it cannot cross it or be in it.
     boxes: Vec<(Coord, Coord)>,
     /// The boxes of each ring's chunks of `CHUNK` edges (ring `r`'s from `chunk_at[r]`),
@@ -69,18 +74,25 @@ impl<'a> Router<'a> {
                     c * chunk,
                     (c.saturating_add(1).saturating_mul(chunk)).min(n),
                 );
-                let (lo, hi) = bounds(&r[from..to]);
+                // By comparisons, not `min`/`max` (which handle NaN, and cost several
+                // instructions each): the coordinates are finite, the box is the same.
                 let last = r[to % n];
-                chunks.push((
-                    Coord {
-                        x: lo.x.min(last.x),
-                        y: lo.y.min(last.y),
-                    },
-                    Coord {
-                        x: hi.x.max(last.x),
-                        y: hi.y.max(last.y),
-                    },
-                ));
+                let (mut lo, mut hi) = (last, last);
+                for c in &r[from..to] {
+                    if c.x < lo.x {
+                        lo.x = c.x;
+                    }
+                    if c.x > hi.x {
+                        hi.x = c.x;
+                    }
+                    if c.y < lo.y {
+                        lo.y = c.y;
+                    }
+                    if c.y > hi.y {
+                        hi.y = c.y;
+                    }
+                }
+                chunks.push((lo, hi));
             }
             // The ring's box is its chunks' (they hold every vertex): not a second pass.
             let ring_box = chunks[chunk_at[chunk_at.len() - 1]..].iter().fold(
@@ -117,6 +129,7 @@ impl<'a> Router<'a> {
             rings,
             lengths: std::cell::OnceCell::new(),
             cuts: std::cell::RefCell::new(Vec::new()),
+            path: std::cell::RefCell::new(Vec::new()),
             boxes,
             chunks,
             chunk_at,
@@ -142,9 +155,9 @@ impl<'a> Router<'a> {
         let d = q - p;
         let d2 = d.x * d.x + d.y * d.y;
         for (at_p, from, to) in [(true, p, q), (false, q, p)] {
-            let mut at_end =
-                cuts.iter()
-                    .filter(|&&(t, _)| if at_p { t <= 1e-9 } else { t >= 1.0 - 1e-9 });
+            let mut at_end = cuts
+                .iter()
+                .filter(|&&(t, _)| if at_p { t <= 1e-9 } else { t >= 1.0 - 1e-9 });
             let (Some(&(_, c)), None) = (at_end.next(), at_end.next()) else {
                 continue;
             };
@@ -264,13 +277,14 @@ impl<'a> Router<'a> {
                 let ap = a - p;
                 let t = (ap.x * e.y - ap.y * e.x) / denom;
                 let u = (ap.x * d.y - ap.y * d.x) / denom;
-                if (0.0..=1.0).contains(&t) && (0.0..1.0).contains(&u) {
+                if (0.0..1.0).contains(&u) && (-1e-9..=1.0 + 1e-9).contains(&t) {
                     out.push((
                         t,
                         Cut {
                             ring: r,
                             edge: i,
                             u,
+                            near: !(0.0..=1.0).contains(&t),
                         },
                     ));
                 }
@@ -316,10 +330,14 @@ impl<'a> Router<'a> {
         // A move between two points of one ring (line ends lie on the inset's rings) may
         // find no crossing at all, its ends being on the ring: the middle of each
         // stretch decides whether it is inside.
+        cuts.retain(|c| !c.1.near);
         cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let at = |t: f64| if t >= 1.0 { q } else { p + (q - p) * t };
         let move_length = ((q - p).x * (q - p).x + (q - p).y * (q - p).y).sqrt();
-        let mut out = Vec::with_capacity(2 + 2 * cuts.len());
+        // Built in a buffer kept for the next move (walks grow it vertex by vertex), then
+        // copied at its final length: one allocation per route, none to grow it.
+        let mut out = self.path.take();
+        out.clear();
         out.push(p);
         // The stretches between consecutive bounds: the move's ends and its crossings.
         let mut previous: (f64, Option<Cut>) = (0.0, None);
@@ -351,7 +369,9 @@ impl<'a> Router<'a> {
         }
         self.cuts.replace(cuts);
         out.dedup();
-        out
+        let route = out.clone();
+        self.path.replace(out);
+        route
     }
 
     /// Even-odd over every ring; a point on an edge (within a nanometre) counts as

@@ -16,11 +16,10 @@ const MAX_POINTS: usize = 20_000;
 /// The erosion of `region` by `d` (arcs in steps of at most `arc` radians), or `None`
 /// where the raw offset is not it.
 pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<MultiPolygon<f64>> {
-    // Every ring, outlines and holes, and per polygon how many holes follow its outline:
-    // the crossing check needs them all, the polygons are built after it by moving them.
+    // Every ring, outlines and holes (each outline followed by its holes): the crossing
+    // check needs them all, the polygons are built after it by moving them.
     let mut rings: Vec<Vec<Coord>> =
         Vec::with_capacity(region.0.iter().map(|p| 1 + p.interiors().len()).sum());
-    let mut holes_of = Vec::with_capacity(region.0.len());
     let mut total = 0;
     for polygon in &region.0 {
         let exterior = offset_ring(&polygon.exterior().0, d, arc, true)?;
@@ -40,7 +39,6 @@ pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<
         if total > MAX_POINTS {
             return None;
         }
-        holes_of.push(polygon.interiors().len());
     }
     // Islands shrink apart and never meet; an outline inside another polygon's hole is
     // another matter, left to the crossing check as well.
@@ -52,8 +50,10 @@ pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<
         LineString::new(ring)
     };
     let mut rings = rings.into_iter();
-    let out = holes_of
-        .into_iter()
+    let out = region
+        .0
+        .iter()
+        .map(|polygon| polygon.interiors().len())
         .filter_map(|holes| {
             let exterior = closed(rings.next()?);
             let interiors = rings.by_ref().take(holes).map(closed).collect();
@@ -154,52 +154,34 @@ fn inside(ring: &[Coord], p: Coord) -> bool {
 
 /// Whether any two edges of the rings cross or touch, other than neighbours at their
 /// shared vertex: a sweep over the edges sorted by their left end.
-fn crossings(rings: &[Vec<Coord>]) -> bool {
-    struct Edge {
-        a: Coord,
-        b: Coord,
-        ring: u32,
-        index: u32,
-    }
-    let mut edges = Vec::with_capacity(rings.iter().map(Vec::len).sum());
-    for (r, ring) in rings.iter().enumerate() {
-        let n = ring.len();
-        for i in 0..n {
-            let (a, b) = (ring[i], ring[next(i, n)]);
-            let (a, b) = if (a.x, a.y) <= (b.x, b.y) {
-                (a, b)
-            } else {
-                (b, a)
-            };
-            edges.push(Edge {
-                a,
-                b,
-                ring: r as u32,
-                index: i as u32,
-            });
-        }
-    }
-    // Sorted by left end through keys that carry each edge's x and y extent: the sweep's
-    // inner loop reads them in order, and looks an edge up only when the boxes overlap.
+pub(crate) fn crossings(rings: &[Vec<Coord>]) -> bool {
+    // Sorted by left end through keys that carry each edge's x and y extent and where it
+    // is (ring, index): the sweep's inner loop reads them in order, and looks an edge's
+    // ends up only when two boxes overlap.
     #[derive(Clone, Copy)]
     struct Key {
         ax: f64,
         bx: f64,
         ylo: f64,
         yhi: f64,
-        edge: u32,
+        ring: u32,
+        index: u32,
     }
-    let mut order: Vec<Key> = edges
-        .iter()
-        .enumerate()
-        .map(|(i, e)| Key {
-            ax: e.a.x,
-            bx: e.b.x,
-            ylo: e.a.y.min(e.b.y),
-            yhi: e.a.y.max(e.b.y),
-            edge: i as u32,
-        })
-        .collect();
+    let mut order: Vec<Key> = Vec::with_capacity(rings.iter().map(Vec::len).sum());
+    for (r, ring) in rings.iter().enumerate() {
+        let n = ring.len();
+        for i in 0..n {
+            let (a, b) = ends(ring, i);
+            order.push(Key {
+                ax: a.x,
+                bx: b.x,
+                ylo: a.y.min(b.y),
+                yhi: a.y.max(b.y),
+                ring: r as u32,
+                index: i as u32,
+            });
+        }
+    }
     // A small ring's keys by insertion (the sweep's answer does not depend on how ties
     // are ordered); a large one's by the library's sort.
     if order.len() <= 48 {
@@ -225,7 +207,6 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
             if f.yhi < e.ylo || f.ylo > e.yhi {
                 continue;
             }
-            let (e, f) = (&edges[e.edge as usize], &edges[f.edge as usize]);
             if e.ring == f.ring {
                 let n = rings[e.ring as usize].len() as u32;
                 if next(e.index as usize, n as usize) == f.index as usize
@@ -234,7 +215,9 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
                     continue;
                 }
             }
-            if segments_meet(e.a, e.b, f.a, f.b) {
+            let (ea, eb) = ends(&rings[e.ring as usize], e.index as usize);
+            let (fa, fb) = ends(&rings[f.ring as usize], f.index as usize);
+            if segments_meet(ea, eb, fa, fb) {
                 return true;
             }
         }
@@ -242,7 +225,18 @@ fn crossings(rings: &[Vec<Coord>]) -> bool {
     false
 }
 
-fn segments_meet(p: Coord, q: Coord, r: Coord, s: Coord) -> bool {
+/// Edge `i` of a ring, its ends ordered left to right (by x, then y).
+#[inline]
+fn ends(ring: &[Coord], i: usize) -> (Coord, Coord) {
+    let (a, b) = (ring[i], ring[next(i, ring.len())]);
+    if (a.x, a.y) <= (b.x, b.y) {
+        (a, b)
+    } else {
+        (b, a)
+    }
+}
+
+pub(crate) fn segments_meet(p: Coord, q: Coord, r: Coord, s: Coord) -> bool {
     let d1 = cross(q - p, r - p);
     let d2 = cross(q - p, s - p);
     let d3 = cross(s - r, p - r);

@@ -229,9 +229,14 @@ pub(crate) fn convex_inset(
     d: f64,
     arc: f64,
 ) -> Option<MultiPolygon<f64>> {
-    let mut out = Vec::with_capacity(region.0.len());
+    // Allocated once a first outline is found convex: most concave layers are turned
+    // down at their first ring, with nothing to free.
+    let mut out = Vec::new();
     for polygon in &region.0 {
         let exterior = convex_ring_inset(&polygon.exterior().0, d)?;
+        if out.capacity() == 0 {
+            out.reserve_exact(region.0.len());
+        }
         let mut holes = Vec::with_capacity(polygon.interiors().len());
         for hole in polygon.interiors() {
             holes.push(convex_ring_grow(&hole.0, d, arc)?);

@@ -1270,6 +1270,55 @@ fn families_through_vertices_are_the_scan() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
+    /// The inset's crossing sweep (edges sorted by their left ends, each tested against
+    /// those that start before it ends and overlap it in y) finds a crossing exactly when
+    /// testing every pair of non-neighbouring edges does: star-like rings, some crossing
+    /// themselves or each other once shifted, small (sorted by insertion) and large.
+    #[test]
+    fn crossing_sweep_is_every_pair(
+        rings in prop::collection::vec(
+            (prop::collection::vec(1.0f64..12.0, 3..40), -8.0f64..8.0, any::<bool>()), 1..4),
+        turn in 0.0f64..TAU,
+    ) {
+        let rings: Vec<Vec<Coord>> = rings
+            .iter()
+            .map(|(radii, dx, scramble)| {
+                let mut ring = radial_ring(radii, turn, Coord { x: *dx, y: 0.0 }, false).0;
+                ring.pop();
+                if *scramble {
+                    // Every other vertex swapped with its neighbour: edges that cross.
+                    for pair in ring.chunks_exact_mut(2).step_by(2) {
+                        pair.swap(0, 1);
+                    }
+                }
+                ring
+            })
+            .collect();
+        let mut every_pair = false;
+        for (r, ring) in rings.iter().enumerate() {
+            for i in 0..ring.len() {
+                for (s, other) in rings.iter().enumerate().skip(r) {
+                    let from = if s == r { i + 1 } else { 0 };
+                    for j in from..other.len() {
+                        let n = ring.len();
+                        if s == r && ((i + 1) % n == j || (j + 1) % n == i) {
+                            continue;
+                        }
+                        let (a, b) = (ring[i], ring[(i + 1) % n]);
+                        let (c, d) = (other[j], other[(j + 1) % other.len()]);
+                        // Each edge's ends ordered as the sweep orders them.
+                        let order = |p: Coord, q: Coord| {
+                            if (p.x, p.y) <= (q.x, q.y) { (p, q) } else { (q, p) }
+                        };
+                        let ((a, b), (c, d)) = (order(a, b), order(c, d));
+                        every_pair |= offset::segments_meet(a, b, c, d);
+                    }
+                }
+            }
+        }
+        prop_assert_eq!(offset::crossings(&rings), every_pair);
+    }
+
     /// The ring offset checks each edge's direction as its end vertex is moved (no list
     /// of where each vertex's points are): the same answer, the same points, as listing
     /// them and checking every edge after, on star-like rings moved far enough that

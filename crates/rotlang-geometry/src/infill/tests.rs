@@ -1270,6 +1270,38 @@ fn families_through_vertices_are_the_scan() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
+    /// A region found clean is what cleaning it returns (so `infill::fill` may read it
+    /// in place), and one with a repeated point is not; `infill::fill` (which keeps the
+    /// outline only for concentric) fills the layer `Region::new` fills, every pattern.
+    #[test]
+    fn region_read_in_place_is_the_cleaned_copy(
+        radii in prop::collection::vec(4.0f64..12.0, 3..30),
+        hole in prop::collection::vec(0.5f64..1.5, 3..12),
+        turn in 0.0f64..TAU,
+        repeat in prop::option::of(0usize..30),
+        pattern in 0usize..Pattern::ALL.len(),
+    ) {
+        let mut outline = radial_ring(&radii, turn, Coord::zero(), false);
+        if let Some(i) = repeat {
+            let i = i % (outline.0.len() - 1);
+            outline.0.insert(i, outline.0[i]);
+        }
+        let region = MultiPolygon::new(vec![Polygon::new(
+            outline,
+            vec![radial_ring(&hole, turn, Coord::zero(), true)],
+        )]);
+        let clean = region::is_clean(&region);
+        prop_assert_eq!(clean, repeat.is_none());
+        if clean {
+            prop_assert_eq!(&region::clean(&region), &region);
+        }
+        let params = Params::new(Pattern::ALL[pattern], 0.2, W).angle(turn.to_degrees());
+        prop_assert_eq!(
+            fill(&region, &params),
+            Region::new(&region, W).unwrap().fill(&params)
+        );
+    }
+
     /// The inset's crossing sweep (edges sorted by their left ends, each tested against
     /// those that start before it ends and overlap it in y) finds a crossing exactly when
     /// testing every pair of non-neighbouring edges does: star-like rings, some crossing

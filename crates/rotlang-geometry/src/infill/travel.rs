@@ -400,10 +400,13 @@ impl<'a> Router<'a> {
                     if super::clip::ray_crosses(a, b, p) {
                         inside = !inside;
                     }
-                    if p.y >= a.y.min(b.y) - 1e-6
-                        && p.y <= a.y.max(b.y) + 1e-6
-                        && p.x >= a.x.min(b.x) - 1e-6
-                        && p.x <= a.x.max(b.x) + 1e-6
+                    // Within a nanometre of the edge's box, by comparisons with each end
+                    // (`min(a, b) − 1e-6` is the lesser of `a − 1e-6` and `b − 1e-6`).
+                    const NM: f64 = 1e-6;
+                    if (p.y >= a.y - NM || p.y >= b.y - NM)
+                        && (p.y <= a.y + NM || p.y <= b.y + NM)
+                        && (p.x >= a.x - NM || p.x >= b.x - NM)
+                        && (p.x <= a.x + NM || p.x <= b.x + NM)
                     {
                         let e = b - a;
                         let c = cross(e, p - a);

@@ -1302,6 +1302,44 @@ proptest! {
         );
     }
 
+    /// Moves along an edge (between two points of one edge of an L, a holed square or a
+    /// star, straight ones parallel to it exactly), from an edge to any vertex, level and
+    /// upright ones (parallel to edges, some leaving the region), and of no length: the shortcuts (a move on an edge it runs along, one heading into the region
+    /// from a crossing) route them as the even-odd test of each stretch's middle does.
+    #[test]
+    fn moves_along_edges_are_the_general_routes(
+        shape in 0usize..3,
+        moves in prop::collection::vec((0usize..1000, 0.0f64..1.0, 0.0f64..1.0, 0usize..1000), 1..24),
+    ) {
+        let shape = match shape {
+            0 => shapes::l_shape(20.0),
+            1 => shapes::holed_square(40.0, 10.0),
+            _ => shapes::star(10.0, 4.5),
+        };
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let edges: Vec<(Coord, Coord)> = rings
+            .iter()
+            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+            .collect();
+        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
+        let fast = travel::Router::new(rings);
+        let general = travel::Router::new(rings).general();
+        for (i, s, t, j) in moves {
+            let (a, b) = edges[i % edges.len()];
+            let (p, q) = (a + (b - a) * s, a + (b - a) * t);
+            let v = vertices[j % vertices.len()];
+            // Across and along: level and upright moves from p to v's height or x
+            // (parallel to the L's and the square's edges, some over the L's notch or
+            // the hole).
+            let level = Coord { x: v.x, y: p.y };
+            let upright = Coord { x: p.x, y: v.y };
+            for (from, to) in [(p, q), (p, v), (v, p), (p, p), (a, b), (p, level), (p, upright)] {
+                prop_assert_eq!(fast.route(from, to), general.route(from, to));
+            }
+        }
+    }
+
     /// The inset's crossing sweep (edges sorted by their left ends, each tested against
     /// those that start before it ends and overlap it in y) finds a crossing exactly when
     /// testing every pair of non-neighbouring edges does: star-like rings, some crossing

@@ -176,6 +176,54 @@ impl<'a> Router<'a> {
         false
     }
 
+    /// Whether the stretch before bound `k` of a move (`d` its direction; bound `k` is
+    /// `cuts[k]`, the move's end past the last) runs into the region from a crossing at
+    /// either of its ends: a crossing inside the move, alone there (no other within a
+    /// billionth of the move), through an edge's middle and clearly across it, enters
+    /// the region on one side of the edge. `false` where in doubt, for the even-odd test
+    /// of the stretch's middle to decide (as it does every stretch that leaves).
+    fn enters(&self, cuts: &[(f64, Cut)], k: usize, d: Coord) -> bool {
+        let d2 = d.x * d.x + d.y * d.y;
+        let clean = |i: usize| {
+            let (t, c) = cuts[i];
+            t > 1e-9
+                && t < 1.0 - 1e-9
+                && c.u > 1e-6
+                && c.u < 1.0 - 1e-6
+                && (i == 0 || t - cuts[i - 1].0 > 1e-9)
+                && (i + 1 == cuts.len() || cuts[i + 1].0 - t > 1e-9)
+        };
+        // The crossing the stretch starts at (moving along d), then the one it ends at
+        // (moving back).
+        for (i, sign) in [(k.wrapping_sub(1), 1.0), (k, -1.0)] {
+            if i >= cuts.len() || !clean(i) {
+                continue;
+            }
+            let c = cuts[i].1;
+            let ring = &self.rings[c.ring];
+            let e = ring[next(c.edge, ring.len())] - ring[c.edge];
+            let turn = sign * cross(e, d);
+            if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
+                continue;
+            }
+            return (turn > 0.0) == self.region_left(c.ring);
+        }
+        false
+    }
+
+    /// Whether `m` (a move's middle) is on an edge the move runs parallel to (`cuts`
+    /// holds those with a NaN `t`), where the even-odd test would find it: inside its
+    /// ring's box and within a nanometre of the edge. Then that test answers "inside"
+    /// (a point on an edge is), and need not be run.
+    fn along_edge(&self, m: Coord, cuts: &[(f64, Cut)]) -> bool {
+        cuts.iter().filter(|(t, _)| t.is_nan()).any(|&(_, c)| {
+            let (lo, hi) = self.boxes[c.ring];
+            let ring = &self.rings[c.ring];
+            !(m.x < lo.x || m.x > hi.x || m.y < lo.y || m.y > hi.y)
+                && on_edge(ring[c.edge], ring[next(c.edge, ring.len())], m)
+        })
+    }
+
     /// Whether the region lies on ring `r`'s left: a counter-clockwise ring inside an even
     /// number of the others (an outline), or a clockwise one inside an odd number (a hole).
     fn region_left(&self, r: usize) -> bool {
@@ -263,6 +311,7 @@ impl<'a> Router<'a> {
                 y: p.y.max(q.y),
             },
         );
+        let moving = d.x != 0.0 || d.y != 0.0;
         for (edges, a, b) in self.chunks(r) {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
@@ -272,6 +321,20 @@ impl<'a> Router<'a> {
                 let e = b - a;
                 let denom = d.x * e.y - d.y * e.x;
                 if denom == 0.0 {
+                    // Parallel: no crossing, but kept (t NaN, `near`) as an edge the
+                    // move may run along (`along_edge`); a move of no length (every
+                    // edge "parallel") keeps none.
+                    if moving {
+                        out.push((
+                            f64::NAN,
+                            Cut {
+                                ring: r,
+                                edge: i,
+                                u: f64::NAN,
+                                near: true,
+                            },
+                        ));
+                    }
                     continue;
                 }
                 let ap = a - p;
@@ -322,7 +385,9 @@ impl<'a> Router<'a> {
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
         if !cuts.iter().any(|&(t, _)| interior(t))
-            && (self.fast && self.leaves_inward(p, q, &cuts) || self.inside((p + q) / 2.0))
+            && (self.fast
+                && (self.leaves_inward(p, q, &cuts) || self.along_edge((p + q) / 2.0, &cuts))
+                || self.inside((p + q) / 2.0))
         {
             self.cuts.replace(cuts);
             return vec![p, q];
@@ -345,10 +410,13 @@ impl<'a> Router<'a> {
             .iter()
             .map(|&(t, c)| (t, Some(c)))
             .chain(std::iter::once((1.0, None)));
-        for (tb, rb) in bounds {
+        for (k, (tb, rb)) in bounds.enumerate() {
             let (ta, ra) = std::mem::replace(&mut previous, (tb, rb));
             let (a, b) = (at(ta), at(tb));
-            if (tb - ta) * move_length < 1e-6 || self.inside(at((ta + tb) / 2.0)) {
+            if (tb - ta) * move_length < 1e-6
+                || (self.fast && self.enters(&cuts, k, q - p))
+                || self.inside(at((ta + tb) / 2.0))
+            {
                 out.push(b);
                 continue;
             }
@@ -380,7 +448,6 @@ impl<'a> Router<'a> {
     /// none of its edges can cross the ray to the right of `p` (all at or below it, all
     /// above it, or all to its left) and `p` is not within a nanometre of its box.
     fn inside(&self, p: Coord) -> bool {
-        const ON: f64 = 1e-6 * 1e-6;
         let mut inside = false;
         for (r, (ring, &(lo, hi))) in self.rings.iter().zip(&self.boxes).enumerate() {
             if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
@@ -400,19 +467,8 @@ impl<'a> Router<'a> {
                     if super::clip::ray_crosses(a, b, p) {
                         inside = !inside;
                     }
-                    // Within a nanometre of the edge's box, by comparisons with each end
-                    // (`min(a, b) − 1e-6` is the lesser of `a − 1e-6` and `b − 1e-6`).
-                    const NM: f64 = 1e-6;
-                    if (p.y >= a.y - NM || p.y >= b.y - NM)
-                        && (p.y <= a.y + NM || p.y <= b.y + NM)
-                        && (p.x >= a.x - NM || p.x >= b.x - NM)
-                        && (p.x <= a.x + NM || p.x <= b.x + NM)
-                    {
-                        let e = b - a;
-                        let c = cross(e, p - a);
-                        if c * c <= ON * (e.x * e.x + e.y * e.y) {
-                            return true;
-                        }
+                    if on_edge(a, b, p) {
+                        return true;
                     }
                 }
             }
@@ -505,6 +561,24 @@ impl<'a> Router<'a> {
             }
         }
     }
+}
+
+/// Whether `p` is on the edge from `a` to `b` within a nanometre (a millionth of a
+/// millimetre): within that of the edge's box, by comparisons with each end
+/// (`min(a, b) − 1e-6` is the lesser of `a − 1e-6` and `b − 1e-6`), and of its line.
+#[inline]
+fn on_edge(a: Coord, b: Coord, p: Coord) -> bool {
+    const NM: f64 = 1e-6;
+    if (p.y >= a.y - NM || p.y >= b.y - NM)
+        && (p.y <= a.y + NM || p.y <= b.y + NM)
+        && (p.x >= a.x - NM || p.x >= b.x - NM)
+        && (p.x <= a.x + NM || p.x <= b.x + NM)
+    {
+        let e = b - a;
+        let c = cross(e, p - a);
+        return c * c <= NM * NM * (e.x * e.x + e.y * e.y);
+    }
+    false
 }
 
 fn cross(a: Coord, b: Coord) -> f64 {

@@ -431,7 +431,10 @@ impl Segment {
     #[inline]
     fn cut(&self, Edge { a, b }: Edge, cuts: &mut Vec<f64>) {
         let (p, d1) = (self.p, self.d);
-        if a.x.max(b.x) < self.x0 || a.x.min(b.x) > self.x1 {
+        // Both ends left of the segment's x range, or both right: by comparisons, not
+        // `max`/`min` (which handle NaN at several instructions each; coordinates are
+        // finite), in the loop over every edge of a small region.
+        if (a.x < self.x0 && b.x < self.x0) || (a.x > self.x1 && b.x > self.x1) {
             return;
         }
         // The edge's ends on opposite sides of the segment's line (cheap, and false for

@@ -12,7 +12,8 @@ use super::{check, curves, lightning, order, straight};
 /// Fills `region` (inset by half a nozzle first) with one layer's pattern.
 /// For many layers of the same region, build the [`Region`] once and call [`Region::fill`].
 pub fn fill(region: &MultiPolygon<f64>, params: &Params) -> Result<Toolpaths, Error> {
-    Region::new(region, params.nozzle)?.fill(params)
+    // The outline as given is kept only for concentric loops (offset from it).
+    Region::build(region, params.nozzle, params.pattern == Pattern::Concentric)?.fill(params)
 }
 
 impl Region {

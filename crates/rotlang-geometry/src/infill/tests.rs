@@ -1268,6 +1268,149 @@ fn families_through_vertices_are_the_scan() {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// A region found clean is what cleaning it returns (so `infill::fill` may read it
+    /// in place), and one with a repeated point is not; `infill::fill` (which keeps the
+    /// outline only for concentric) fills the layer `Region::new` fills, every pattern.
+    #[test]
+    fn region_read_in_place_is_the_cleaned_copy(
+        radii in prop::collection::vec(4.0f64..12.0, 3..30),
+        hole in prop::collection::vec(0.5f64..1.5, 3..12),
+        turn in 0.0f64..TAU,
+        repeat in prop::option::of(0usize..30),
+        pattern in 0usize..Pattern::ALL.len(),
+    ) {
+        let mut outline = radial_ring(&radii, turn, Coord::zero(), false);
+        if let Some(i) = repeat {
+            let i = i % (outline.0.len() - 1);
+            outline.0.insert(i, outline.0[i]);
+        }
+        let region = MultiPolygon::new(vec![Polygon::new(
+            outline,
+            vec![radial_ring(&hole, turn, Coord::zero(), true)],
+        )]);
+        let clean = region::is_clean(&region);
+        prop_assert_eq!(clean, repeat.is_none());
+        if clean {
+            prop_assert_eq!(&region::clean(&region), &region);
+        }
+        let params = Params::new(Pattern::ALL[pattern], 0.2, W).angle(turn.to_degrees());
+        prop_assert_eq!(
+            fill(&region, &params),
+            Region::new(&region, W).unwrap().fill(&params)
+        );
+    }
+
+    /// Moves along an edge (between two points of one edge of an L, a holed square or a
+    /// star, straight ones parallel to it exactly), from an edge to any vertex, level and
+    /// upright ones (parallel to edges, some leaving the region), and of no length: the shortcuts (a move on an edge it runs along, one heading into the region
+    /// from a crossing) route them as the even-odd test of each stretch's middle does.
+    #[test]
+    fn moves_along_edges_are_the_general_routes(
+        shape in 0usize..3,
+        moves in prop::collection::vec((0usize..1000, 0.0f64..1.0, 0.0f64..1.0, 0usize..1000), 1..24),
+    ) {
+        let shape = match shape {
+            0 => shapes::l_shape(20.0),
+            1 => shapes::holed_square(40.0, 10.0),
+            _ => shapes::star(10.0, 4.5),
+        };
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let edges: Vec<(Coord, Coord)> = rings
+            .iter()
+            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+            .collect();
+        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
+        let fast = travel::Router::new(rings);
+        let general = travel::Router::new(rings).general();
+        for (i, s, t, j) in moves {
+            let (a, b) = edges[i % edges.len()];
+            let (p, q) = (a + (b - a) * s, a + (b - a) * t);
+            let v = vertices[j % vertices.len()];
+            // Across and along: level and upright moves from p to v's height or x
+            // (parallel to the L's and the square's edges, some over the L's notch or
+            // the hole).
+            let level = Coord { x: v.x, y: p.y };
+            let upright = Coord { x: p.x, y: v.y };
+            for (from, to) in [(p, q), (p, v), (v, p), (p, p), (a, b), (p, level), (p, upright)] {
+                prop_assert_eq!(fast.route(from, to), general.route(from, to));
+            }
+        }
+    }
+
+    /// The inset's crossing sweep (edges sorted by their left ends, each tested against
+    /// those that start before it ends and overlap it in y) finds a crossing exactly when
+    /// testing every pair of non-neighbouring edges does: star-like rings, some crossing
+    /// themselves or each other once shifted, small (sorted by insertion) and large.
+    #[test]
+    fn crossing_sweep_is_every_pair(
+        rings in prop::collection::vec(
+            (prop::collection::vec(1.0f64..12.0, 3..40), -8.0f64..8.0, any::<bool>()), 1..4),
+        turn in 0.0f64..TAU,
+    ) {
+        let rings: Vec<Vec<Coord>> = rings
+            .iter()
+            .map(|(radii, dx, scramble)| {
+                let mut ring = radial_ring(radii, turn, Coord { x: *dx, y: 0.0 }, false).0;
+                ring.pop();
+                if *scramble {
+                    // Every other vertex swapped with its neighbour: edges that cross.
+                    for pair in ring.chunks_exact_mut(2).step_by(2) {
+                        pair.swap(0, 1);
+                    }
+                }
+                ring
+            })
+            .collect();
+        let mut every_pair = false;
+        for (r, ring) in rings.iter().enumerate() {
+            for i in 0..ring.len() {
+                for (s, other) in rings.iter().enumerate().skip(r) {
+                    let from = if s == r { i + 1 } else { 0 };
+                    for j in from..other.len() {
+                        let n = ring.len();
+                        if s == r && ((i + 1) % n == j || (j + 1) % n == i) {
+                            continue;
+                        }
+                        let (a, b) = (ring[i], ring[(i + 1) % n]);
+                        let (c, d) = (other[j], other[(j + 1) % other.len()]);
+                        // Each edge's ends ordered as the sweep orders them.
+                        let order = |p: Coord, q: Coord| {
+                            if (p.x, p.y) <= (q.x, q.y) { (p, q) } else { (q, p) }
+                        };
+                        let ((a, b), (c, d)) = (order(a, b), order(c, d));
+                        every_pair |= offset::segments_meet(a, b, c, d);
+                    }
+                }
+            }
+        }
+        prop_assert_eq!(offset::crossings(&rings), every_pair);
+    }
+
+    /// The ring offset checks each edge's direction as its end vertex is moved (no list
+    /// of where each vertex's points are): the same answer, the same points, as listing
+    /// them and checking every edge after, on star-like rings moved far enough that
+    /// edges turn around (outlines and holes, any arc step).
+    #[test]
+    fn edges_checked_as_moved_are_the_listed_check(
+        radii in prop::collection::vec(1.0f64..12.0, 3..40),
+        turn in 0.0f64..TAU,
+        d in 0.05f64..5.0,
+        arc in 0.1f64..0.8,
+        hole in any::<bool>(),
+    ) {
+        let ring = radial_ring(&radii, turn, Coord::zero(), hole);
+        let exterior = !hole;
+        prop_assert_eq!(
+            offset::offset_ring(&ring.0, d, arc, exterior),
+            offset::offset_ring_listed(&ring.0, d, arc, exterior)
+        );
+    }
+}
+
+proptest! {
     #![proptest_config(ProptestConfig::with_cases(128))]
 
     /// Travel routed with each ring's edges in chunks (skipped by their boxes) is the
@@ -1315,10 +1458,16 @@ proptest! {
             },
         };
         let chunked = travel::Router::new(rings);
-        let plain = travel::Router::with_chunk(rings, usize::MAX);
+        let plain = travel::Router::with_chunk(rings, usize::MAX).general();
+        let general = travel::Router::new(rings).general();
         for (a, b, kind) in moves {
             let (p, q) = (point(a, kind), point(b, kind));
             prop_assert_eq!(chunked.route(p, q), plain.route(p, q));
+            // A move from the middle of an edge (a line's end) to any point: the
+            // shortcut for a move heading into the region is the even-odd test's answer.
+            let from_edge = point(a, 0);
+            prop_assert_eq!(chunked.route(from_edge, q), general.route(from_edge, q));
+            prop_assert_eq!(chunked.route(q, from_edge), general.route(q, from_edge));
         }
     }
 }

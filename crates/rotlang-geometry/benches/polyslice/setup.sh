@@ -12,6 +12,8 @@
 # registry does not hold it, a polytree source tree (its app/*.coffee, scripts/bundle.sh and
 # package.json) given as POLYTREE_DIR=..., compiled and bundled as its package.json does
 # (`coffee -cb`, then scripts/bundle.sh). MESH.md says which source the results used.
+# POLYTREE_DIR=none links a stand-in instead, enough for compare.mjs (the five shapes call
+# Polyslice's infill generators, which never reach Polytree) but not for a mesh's `slice`.
 set -euo pipefail
 cd "$(dirname "$0")"
 POLYSLICE_COMMIT=5057a95f51232a6f8213d4303d9f5dfd2f828102 # 26.4.0, as ../shared/anchors beside the repository
@@ -33,7 +35,10 @@ get polyslice "${POLYSLICE_GIT:-}" "$POLYSLICE_COMMIT" package.json src
 get polyconvert "${POLYCONVERT_GIT:-}" "$POLYCONVERT_COMMIT" package.json polyconvert.js
 npx --no-install coffee -cb vendor/polyslice/src/
 mkdir -p vendor/polytree
-if [ -n "${POLYTREE_DIR:-}" ]; then
+if [ "${POLYTREE_DIR:-}" = none ]; then
+  echo '{"name": "@jgphilpott/polytree", "version": "0.0.0-stand-in", "main": "index.js"}' >vendor/polytree/package.json
+  printf '%s\n' 'class Polytree { static sliceIntoLayers() { throw new Error("Polytree stand-in (setup.sh POLYTREE_DIR=none): no mesh slicing"); } }' 'module.exports = Polytree;' 'module.exports.Polytree = Polytree;' >vendor/polytree/index.js
+elif [ -n "${POLYTREE_DIR:-}" ]; then
   cp -r "$POLYTREE_DIR"/package.json "$POLYTREE_DIR"/app "$POLYTREE_DIR"/scripts vendor/polytree/
   npx --no-install coffee -cb vendor/polytree/app/
   (cd vendor/polytree && bash scripts/bundle.sh)

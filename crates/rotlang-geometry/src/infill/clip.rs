@@ -6,6 +6,7 @@
 //! with holes, concave or not; the half-open rule on edge ends (an edge owns its lower
 //! end) counts a vertex on the line once.
 
+use crate::math;
 use geo::Coord;
 
 /// A pattern's frame: its origin (the pattern centre) and its x axis at angle θ.
@@ -18,7 +19,7 @@ pub(crate) struct Frame {
 
 impl Frame {
     pub fn new(centre: Coord, theta: f64) -> Frame {
-        let (sin, cos) = theta.sin_cos();
+        let (sin, cos) = math::sin_cos(theta);
         Frame { centre, cos, sin }
     }
 
@@ -431,7 +432,10 @@ impl Segment {
     #[inline]
     fn cut(&self, Edge { a, b }: Edge, cuts: &mut Vec<f64>) {
         let (p, d1) = (self.p, self.d);
-        if a.x.max(b.x) < self.x0 || a.x.min(b.x) > self.x1 {
+        // Both ends left of the segment's x range, or both right: by comparisons, not
+        // `max`/`min` (which handle NaN at several instructions each; coordinates are
+        // finite), in the loop over every edge of a small region.
+        if (a.x < self.x0 && b.x < self.x0) || (a.x > self.x1 && b.x > self.x1) {
             return;
         }
         // The edge's ends on opposite sides of the segment's line (cheap, and false for

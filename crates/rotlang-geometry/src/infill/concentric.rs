@@ -341,8 +341,14 @@ fn perimeter(area: &Loops) -> (f64, f64) {
         .rings
         .iter()
         .map(|ring| {
+            // A plain square root, not `hypot` (a fraction of its time): no length comes
+            // near overflowing, and the last bit it may differ by changes a comparison of
+            // the sum (the heuristics' thresholds, `room`) only at its exact threshold.
             ring.windows(2)
-                .map(|w| math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y))
+                .map(|w| {
+                    let e = w[1] - w[0];
+                    (e.x * e.x + e.y * e.y).sqrt()
+                })
                 .sum::<f64>()
         })
         .sum();
@@ -473,11 +479,89 @@ fn far(
         scratch
             .last
             .gather(lo, hi, usize::MAX, &mut scratch.near_last);
+        // With two last loops or more (an outline's and a hole's), a run is mostly near
+        // one of them and far from the others all along: decided once, not per point.
+        if last.len() >= 2
+            && let Some(flag) = together(lo, hi, &scratch.near, &scratch.near_last, gap, spacing)
+        {
+            scratch.flags.resize(scratch.flags.len() + run.len(), flag);
+            continue;
+        }
         scratch.flags.extend(run.iter().map(|&p| {
             !near_any(covered, &scratch.near, p, gap)
                 && !near_two(last, &scratch.near_last, p, 2.0 * spacing)
         }));
     }
+}
+
+/// The answer `far` gives every point of a run in the bounds `lo..hi`, where it is the
+/// same for all: `None` where they must be measured one by one (`near`, `near_last`: the
+/// covered segments and the last loops' gathered near the run). Every point of the run
+/// lies within `rho` of the bounds' centre, so a segment within `r − rho` of the centre is
+/// within `r` of each point, and one farther than `r + rho` is within `r` of none; both
+/// with a margin far above the rounding of the distances (a run's points lie a quarter
+/// spacing apart along the middle ring: most runs are wholly near a last loop, and most
+/// far from the others).
+fn together(
+    lo: Coord,
+    hi: Coord,
+    near: &Near,
+    near_last: &Near,
+    gap: f64,
+    spacing: f64,
+) -> Option<bool> {
+    let centre = (lo + hi) / 2.0;
+    let half = (hi - lo) / 2.0;
+    let rho = (half.x * half.x + half.y * half.y).sqrt();
+    let distance = |c: &Candidate| {
+        let e = c.b - c.a;
+        let len2 = e.x * e.x + e.y * e.y;
+        let t = if len2 > 0.0 {
+            (((centre - c.a).x * e.x + (centre - c.a).y * e.y) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = centre - (c.a + e * t);
+        (q.x * q.x + q.y * q.y).sqrt()
+    };
+    let margin = |r: f64| 1e-9 * (r + rho) + 1e-12;
+    let (inner, outer) = (gap - rho - margin(gap), gap + rho + margin(gap));
+    let mut apart = true;
+    for c in &near.cands {
+        let d = distance(c);
+        // Near one covered segment, every point: none far.
+        if d < inner {
+            return Some(false);
+        }
+        apart &= d > outer;
+    }
+    let two = 2.0 * spacing;
+    let (inner2, outer2) = (two - rho - margin(two), two + rho + margin(two));
+    let (mut within, mut touched) = (0, 0);
+    for (_, range) in &near_last.groups {
+        let mut all = false;
+        let mut some = false;
+        for c in &near_last.cands[range.clone()] {
+            let d = distance(c);
+            if d < inner2 {
+                all = true;
+                some = true;
+                break;
+            }
+            some |= d <= outer2;
+        }
+        within += usize::from(all);
+        touched += usize::from(some);
+    }
+    // Near two last loops, every point: none far.
+    if within >= 2 {
+        return Some(false);
+    }
+    // No covered segment near any point, and at most one last loop near: all far.
+    if apart && touched <= 1 {
+        return Some(true);
+    }
+    None
 }
 
 /// A region's rings (closed), and its outline rings less its hole rings.

@@ -9,6 +9,7 @@ use super::concentric::concentric;
 use super::concentric_reference;
 use crate::infill::loops::Eroder;
 use crate::infill::{Region, shapes};
+use crate::math;
 
 const W: f64 = 0.4;
 
@@ -101,8 +102,8 @@ fn ring(radii: &[f64], size: f64, at: Coord) -> LineString<f64> {
         .map(|(i, r)| {
             let a = std::f64::consts::TAU * i as f64 / n as f64;
             Coord {
-                x: at.x + r * size * a.cos(),
-                y: at.y + r * size * a.sin(),
+                x: at.x + r * size * math::cos(a),
+                y: at.y + r * size * math::sin(a),
             }
         })
         .collect();

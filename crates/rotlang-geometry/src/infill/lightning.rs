@@ -7,6 +7,7 @@
 //! Everything is clipped to the region (holes included). A given spacing covers 0.57–0.69
 //! of the density on compact shapes: `Region::fill` measures a first tree and respaces.
 
+use crate::math;
 use geo::Coord;
 
 use super::Region;
@@ -57,8 +58,8 @@ pub(crate) fn tree(
     let frame = frame(centre);
     let gap = 2.5 * spacing;
     let direction = Coord {
-        x: theta.cos(),
-        y: theta.sin(),
+        x: math::cos(theta),
+        y: math::sin(theta),
     };
     // Each branch, and whether it starts on the outline (a main branch; a twig starts at
     // its fork).
@@ -134,7 +135,7 @@ fn length(a: Coord) -> f64 {
 }
 
 fn rotate(v: Coord, angle: f64) -> Coord {
-    let (s, c) = angle.sin_cos();
+    let (s, c) = math::sin_cos(angle);
     Coord {
         x: v.x * c - v.y * s,
         y: v.x * s + v.y * c,

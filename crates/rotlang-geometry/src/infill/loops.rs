@@ -384,8 +384,8 @@ fn apart(raws: &[Raw], turns: &mut Vec<f64>) -> bool {
             if b.x < c.x || e.x < a.x || b.y < c.y || e.y < a.y {
                 continue;
             }
-            if !inside(&raws[j].pts, &raws[i].pts, turns[i])
-                && !inside(&raws[i].pts, &raws[j].pts, turns[j])
+            if !inside(&raws[j].pts, bounds[j], &raws[i].pts, turns[i])
+                && !inside(&raws[i].pts, bounds[i], &raws[j].pts, turns[j])
             {
                 return false;
             }
@@ -434,16 +434,36 @@ fn convex(pts: &[Coord]) -> f64 {
     if east == 1 { sign } else { 0.0 }
 }
 
-/// Whether every point of `pts` is strictly inside the strictly convex ring `ring`
-/// (turning `turn`: its inside is on the left when 1, on the right when −1).
-fn inside(pts: &[Coord], ring: &[Coord], turn: f64) -> bool {
+/// Whether every point of `pts` (within the bounds `lo..hi`) is strictly inside the
+/// strictly convex ring `ring` (turning `turn`: its inside is on the left when 1, on the
+/// right when −1). Where the bounds' corners are inside it by far more than a rounding,
+/// so is every point (a convex ring holds the hull of what it holds: a hole's raw offset
+/// tested against an outline's four corners on its four corners, not its every point).
+fn inside(pts: &[Coord], (lo, hi): (Coord, Coord), ring: &[Coord], turn: f64) -> bool {
     let n = ring.len();
-    pts.iter().all(|&p| {
-        (0..n).all(|i| {
-            let (a, b) = (ring[i], ring[if i + 1 == n { 0 } else { i + 1 }]);
-            cross(b - a, p - a) * turn > 0.0
+    let corners = [
+        lo,
+        Coord { x: hi.x, y: lo.y },
+        hi,
+        Coord { x: lo.x, y: hi.y },
+    ];
+    let clear = (0..n).all(|i| {
+        let (a, b) = (ring[i], ring[if i + 1 == n { 0 } else { i + 1 }]);
+        let e = b - a;
+        let reach = corners
+            .iter()
+            .map(|&c| (c.x - a.x).abs() + (c.y - a.y).abs())
+            .fold(0.0, f64::max);
+        let margin = 1e-9 * (e.x.abs() + e.y.abs()) * reach;
+        corners.iter().all(|&c| cross(e, c - a) * turn > margin)
+    });
+    clear
+        || pts.iter().all(|&p| {
+            (0..n).all(|i| {
+                let (a, b) = (ring[i], ring[if i + 1 == n { 0 } else { i + 1 }]);
+                cross(b - a, p - a) * turn > 0.0
+            })
         })
-    })
 }
 
 /// The bounds of some points.
@@ -528,9 +548,22 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
     // By `xlo` in `total_cmp`'s order, compared as integers, ties in the order built: the
     // small (key, index) pairs are sorted, not the edges (moving 80-byte edges about was
     // a tenth of a layer), then the edges are laid out in that order once.
-    order.clear();
-    order.extend(edges.iter().enumerate().map(|(i, e)| (e.key, i as u32)));
-    order.sort_unstable();
+    // The pairs are distinct (the index breaks ties), so every sort gives the one order.
+    // A ring's raw offset has as many edges at every distance: the previous loop's order,
+    // its keys renewed, is nearly sorted (edges move little from one loop to the next),
+    // and insertion sorts it in a few passes; where it is not, a full sort takes over.
+    if order.len() == edges.len() {
+        for entry in order.iter_mut() {
+            entry.0 = edges[entry.1 as usize].key;
+        }
+        if !insertion_sort(order, 4 * edges.len() + 64) {
+            order.sort_unstable();
+        }
+    } else {
+        order.clear();
+        order.extend(edges.iter().enumerate().map(|(i, e)| (e.key, i as u32)));
+        order.sort_unstable();
+    }
     sorted.clear();
     sorted.extend(order.iter().map(|&(_, i)| edges[i as usize]));
     let edges = &*sorted;
@@ -582,6 +615,26 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
     true
 }
 
+/// Sorts `order` by insertion, moving elements at most `budget` places in all; `false`
+/// (the order left a permutation, partly sorted) where that was not enough.
+fn insertion_sort(order: &mut [(i64, u32)], budget: usize) -> bool {
+    let mut moves = 0;
+    for i in 1..order.len() {
+        let x = order[i];
+        let mut j = i;
+        while j > 0 && order[j - 1] > x {
+            order[j] = order[j - 1];
+            j -= 1;
+        }
+        order[j] = x;
+        moves += i - j;
+        if moves > budget {
+            return false;
+        }
+    }
+    true
+}
+
 /// Whether a piece lies on the erosion's boundary: the point `mid` in its middle (moved
 /// onto the arc about `centre`, for a chord) at least `d` from every boundary edge and
 /// inside the region.
@@ -598,8 +651,14 @@ fn keep(mid: Coord, centre: Option<Coord>, boundary: &[Side], d: f64) -> bool {
     // An edge whose bounds, grown by `limit` (and a margin for rounding), miss `p` is
     // farther than `limit`: only its crossing of the ray is counted.
     let reach = limit + 1e-9;
+    // An edge that misses the band `p.y ± reach` is neither near `p` nor crosses the ray
+    // (a crossing edge spans `p.y`): most edges are passed on two comparisons.
+    let band = reach.max(0.0);
     let mut inside = false;
     for &Side { a, b, lo, hi } in boundary {
+        if p.y < lo.y - band || p.y > hi.y + band {
+            continue;
+        }
         {
             if p.x >= lo.x - reach
                 && p.x <= hi.x + reach
@@ -718,6 +777,26 @@ mod tests {
             .collect()
     }
 
+    /// The sweep's reused order: nearly sorted pairs are sorted within the budget, and a
+    /// reversed order runs past it (the caller then sorts in full) without losing a pair.
+    #[test]
+    fn the_reused_order_is_sorted_or_declined() {
+        let mut near: Vec<(i64, u32)> = (0..40).map(|i| (i64::from(i / 2), i)).collect();
+        near.swap(3, 4);
+        near.swap(20, 22);
+        let mut expected = near.clone();
+        expected.sort_unstable();
+        assert!(insertion_sort(&mut near, 8));
+        assert_eq!(near, expected);
+        let mut reversed: Vec<(i64, u32)> = (0..40).rev().map(|i| (i64::from(i), i)).collect();
+        assert!(!insertion_sort(&mut reversed, 100));
+        reversed.sort_unstable();
+        assert_eq!(
+            reversed,
+            (0..40).map(|i| (i64::from(i), i)).collect::<Vec<_>>()
+        );
+    }
+
     /// The shortcut that skips the crossing sweep holds only where the sweep would find
     /// nothing: strictly convex rings going round once, nested or apart.
     #[test]
@@ -745,6 +824,9 @@ mod tests {
             hole(1.0, (-3.0, 0.0)),
             hole(1.0, (3.0, 0.0))
         ]));
+        // A hole whose bounds' corners leave the diamond (|x| + |y| up to 12) though
+        // its points stay inside (up to 8.5): the corners do not decide, the points do.
+        assert!(apart_(&[raw(square.clone()), hole(6.0, (0.0, 0.0))]));
         // A hole reaching out of the outline, and two holes overlapping.
         assert!(!apart_(&[raw(square.clone()), hole(2.0, (9.0, 0.0))]));
         assert!(!apart_(&[

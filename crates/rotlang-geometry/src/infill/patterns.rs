@@ -3,6 +3,7 @@
 //! (`region.rs`, which the patterns read) so that no pattern's file and the region's name
 //! each other.
 
+use crate::math;
 use geo::{Coord, MultiPolygon};
 
 use super::clip::{Edges, Frame};
@@ -12,7 +13,8 @@ use super::{check, curves, lightning, order, straight};
 /// Fills `region` (inset by half a nozzle first) with one layer's pattern.
 /// For many layers of the same region, build the [`Region`] once and call [`Region::fill`].
 pub fn fill(region: &MultiPolygon<f64>, params: &Params) -> Result<Toolpaths, Error> {
-    Region::new(region, params.nozzle)?.fill(params)
+    // The outline as given is kept only for concentric loops (offset from it).
+    Region::build(region, params.nozzle, params.pattern == Pattern::Concentric)?.fill(params)
 }
 
 impl Region {
@@ -28,7 +30,7 @@ impl Region {
         // Every pattern puts about `area·ρ/w` mm of line in the region, curves with a
         // vertex at least every quarter nozzle; and each of the (at most three families
         // of) lines is tested against every edge of the outline.
-        let extent = (self.max - self.min).x.hypot((self.max - self.min).y);
+        let extent = math::hypot((self.max - self.min).x, (self.max - self.min).y);
         let edges: usize = self.rings.iter().map(Vec::len).sum();
         let length = self.area * rho / w;
         let lines = 3.0 * extent * rho / w;

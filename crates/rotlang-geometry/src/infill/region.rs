@@ -1,5 +1,6 @@
 //! A layer's region, inset by half a nozzle, ready to be filled many times.
 
+use crate::math;
 use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
 use super::{Error, MAX_COORDINATE};
@@ -32,6 +33,17 @@ impl Region {
     /// Insets `region` by half of `nozzle`. Coordinates must be finite and within
     /// ±[`MAX_COORDINATE`] mm; rings with fewer than three points or no area are ignored.
     pub fn new(region: &MultiPolygon<f64>, nozzle: f64) -> Result<Region, Error> {
+        Region::build(region, nozzle, true)
+    }
+
+    /// The region, keeping the outline as given (`Region::outline`, which concentric
+    /// loops are offset from) only if `keep_outline`: a layer filled once with another
+    /// pattern (`infill::fill`) neither copies nor frees it. Its inset is the same.
+    pub(crate) fn build(
+        region: &MultiPolygon<f64>,
+        nozzle: f64,
+        keep_outline: bool,
+    ) -> Result<Region, Error> {
         if !(0.01..=10.0).contains(&nozzle) {
             return Err(Error::Nozzle(nozzle));
         }
@@ -64,7 +76,13 @@ impl Region {
                 }
             }
         }
-        let cleaned = clean(region);
+        // A region with nothing to clean (no repeated point, no degenerate ring: most)
+        // is read where it is, not copied.
+        let cleaned = if keep_outline || !is_clean(region) {
+            std::borrow::Cow::Owned(clean(region))
+        } else {
+            std::borrow::Cow::Borrowed(region)
+        };
         let arc = arc_step(nozzle / 2.0);
         // Which offset made the inset says, most of the time, whether it is convex (see
         // `convex` below) without testing its ring again.
@@ -73,7 +91,7 @@ impl Region {
         } else if let Some(inset) = super::offset::raw_inset(&cleaned, nozzle / 2.0, arc) {
             (inset, Offset::Raw)
         } else if cleaned.0.is_empty() {
-            (cleaned.clone(), Offset::Buffer)
+            (cleaned.as_ref().clone(), Offset::Buffer)
         } else {
             (cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
         };
@@ -107,7 +125,11 @@ impl Region {
         Ok(Region {
             convex,
             inset,
-            outline: cleaned,
+            outline: if keep_outline {
+                cleaned.into_owned()
+            } else {
+                MultiPolygon::new(Vec::new())
+            },
             rings,
             outlines,
             min,
@@ -173,7 +195,7 @@ fn arc_step(d: f64) -> f64 {
     if d <= CHORD {
         return 0.8;
     }
-    (2.0 * (1.0 - CHORD / d).acos()).clamp(0.2, 0.8)
+    (2.0 * math::acos(1.0 - CHORD / d)).clamp(0.2, 0.8)
 }
 
 /// The region moved inward by `d` mm (the erosion by a disc; what walls leave to the
@@ -188,8 +210,21 @@ pub fn inset(region: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
         .unwrap_or_else(|| cleaned.buffer(-d))
 }
 
+/// Whether `clean` would return the region as it is: every ring without a repeated
+/// point in a row, of three points or more and some area (a polygon's rings are closed).
+pub(crate) fn is_clean(region: &MultiPolygon<f64>) -> bool {
+    region.0.iter().all(|p| {
+        std::iter::once(p.exterior())
+            .chain(p.interiors())
+            .all(|ring| {
+                let c = &ring.0;
+                c.len() >= 3 && c.windows(2).all(|w| w[0] != w[1]) && signed_area(c) != 0.0
+            })
+    })
+}
+
 /// The region without degenerate rings, every ring closed.
-fn clean(region: &MultiPolygon<f64>) -> MultiPolygon<f64> {
+pub(crate) fn clean(region: &MultiPolygon<f64>) -> MultiPolygon<f64> {
     let keep = |ring: &LineString<f64>| {
         let mut c: Vec<Coord> = ring.0.clone();
         c.dedup();
@@ -229,9 +264,14 @@ pub(crate) fn convex_inset(
     d: f64,
     arc: f64,
 ) -> Option<MultiPolygon<f64>> {
-    let mut out = Vec::with_capacity(region.0.len());
+    // Allocated once a first outline is found convex: most concave layers are turned
+    // down at their first ring, with nothing to free.
+    let mut out = Vec::new();
     for polygon in &region.0 {
         let exterior = convex_ring_inset(&polygon.exterior().0, d)?;
+        if out.capacity() == 0 {
+            out.reserve_exact(region.0.len());
+        }
         let mut holes = Vec::with_capacity(polygon.interiors().len());
         for hole in polygon.interiors() {
             holes.push(convex_ring_grow(&hole.0, d, arc)?);
@@ -393,7 +433,7 @@ fn convex_ring_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
     for i in 0..n {
         let (a, b) = (kept[i], kept[super::offset::next(i, n)]);
         let dir = b - a;
-        let len = dir.x.hypot(dir.y);
+        let len = math::hypot(dir.x, dir.y);
         // Inside: to the left of the edge, at least d from its line.
         let side = |p: Coord| cross(dir, p - a) / len - d;
         next.clear();
@@ -456,7 +496,7 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
     let n = kept.len();
     let normal = |a: Coord, b: Coord| {
         let e = b - a;
-        let len = e.x.hypot(e.y);
+        let len = math::hypot(e.x, e.y);
         Coord {
             x: e.y / len,
             y: -e.x / len,
@@ -466,7 +506,7 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
     let mut out = Vec::with_capacity(2 * n + 1);
     // Each edge's normal once (the corner before and the corner after it share it), and
     // the arc's cosines once.
-    let (arc_cos, half_arc_cos) = (arc.cos(), (arc / 2.0).cos());
+    let (arc_cos, half_arc_cos) = (math::cos(arc), math::cos(arc / 2.0));
     let mut n0 = normal(kept[n - 1], kept[0]);
     for i in 0..n {
         let b = kept[i];
@@ -478,7 +518,7 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
         let steps = if sin >= 0.0 && cos >= arc_cos {
             1
         } else {
-            (sin.atan2(cos).max(0.0) / arc).ceil().max(1.0) as usize
+            (math::atan2(sin, cos).max(0.0) / arc).ceil().max(1.0) as usize
         };
         // A corner turning by little (a round hole's) gets one mitre point, no farther out
         // than a chord cuts in (`1/cos(α/2) − 1 ≤ 1 − cos(arc/2)`): half the vertices of
@@ -494,7 +534,7 @@ fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
         }
         out.push(b + n0 * d);
         if steps > 1 {
-            let (s, c) = (sin.atan2(cos).max(0.0) / steps as f64).sin_cos();
+            let (s, c) = math::sin_cos(math::atan2(sin, cos).max(0.0) / steps as f64);
             let mut v = n0;
             for _ in 1..steps {
                 v = Coord {

@@ -24,22 +24,22 @@ pub(crate) fn families(
     shift: f64,
     out: &mut Vec<Vec<Coord>>,
 ) {
-    let vertices: usize = region.rings().iter().map(Vec::len).sum();
-    let mut local: Vec<Coord> = Vec::with_capacity(vertices);
-    let mut crossings: Vec<(i64, f64)> = Vec::new();
+    // Room for a few lines' crossings at once: a small layer's never grow it.
+    let mut crossings: Vec<(i64, f64)> = Vec::with_capacity(32);
     for &offset in offsets {
         let frame = Frame::new(centre, theta + offset.to_radians());
         let shift = shift.rem_euclid(spacing);
         let inv = 1.0 / spacing;
         crossings.clear();
         for ring in region.rings() {
-            local.clear();
-            local.extend(ring.iter().map(|&p| frame.to_local(p)));
-            let Some(&last) = local.last() else {
+            // Each vertex turned into the family's frame as its edge is reached (the
+            // last one first, for the closing edge): no copy of the ring.
+            let Some(&last) = ring.last() else {
                 continue;
             };
-            let mut a = last;
-            for &b in &local {
+            let mut a = frame.to_local(last);
+            for &b in ring {
+                let b = frame.to_local(b);
                 crossings_of(a, b, spacing, shift, inv, &mut crossings);
                 a = b;
             }

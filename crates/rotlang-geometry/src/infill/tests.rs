@@ -4,6 +4,7 @@
 use super::*;
 use crate::eval::{Model, Options};
 use crate::ir::Fill;
+use crate::math;
 use geo::Coord;
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -70,7 +71,7 @@ fn distance_to_boundary(rings: &[Vec<Coord>], p: Coord) -> f64 {
             let t = (((p - a).x * ab.x + (p - a).y * ab.y) / (ab.x * ab.x + ab.y * ab.y))
                 .clamp(0.0, 1.0);
             let q = a + ab * t;
-            best = best.min((p - q).x.hypot((p - q).y));
+            best = best.min(math::hypot((p - q).x, (p - q).y));
         }
     }
     best
@@ -97,7 +98,7 @@ fn assert_segments(name: &str, paths: &Toolpaths, w: f64) {
     for line in &paths.polylines {
         assert!(line.0.len() >= 2, "{name}: a path of one point");
         for seg in line.0.windows(2) {
-            let len = (seg[1] - seg[0]).x.hypot((seg[1] - seg[0]).y);
+            let len = math::hypot((seg[1] - seg[0]).x, (seg[1] - seg[0]).y);
             assert!(len >= w / 10.0 - 1e-9, "{name}: a segment of {len} mm");
             assert!(seg[0].x.is_finite() && seg[0].y.is_finite());
         }
@@ -112,7 +113,7 @@ fn density(region: &Region, paths: &Toolpaths) -> f64 {
 fn gyroid_lambda_is_the_mean_wall_length() {
     // The wall length per unit area of the unit gyroid's section, averaged over z.
     let lambda = |z: f64| {
-        let (mut sz, mut cz) = z.sin_cos();
+        let (mut sz, mut cz) = math::sin_cos(z);
         if sz.abs() > cz.abs() {
             std::mem::swap(&mut sz, &mut cz);
         }
@@ -120,13 +121,13 @@ fn gyroid_lambda_is_the_mean_wall_length() {
         let mut length = 0.0;
         for branch in [1.0, -1.0] {
             let y = |x: f64| {
-                let (a, b, c) = (x.sin(), cz, sz * x.cos());
-                b.atan2(a) + branch * (-c / a.hypot(b)).clamp(-1.0, 1.0).acos()
+                let (a, b, c) = (math::sin(x), cz, sz * math::cos(x));
+                math::atan2(b, a) + branch * math::acos((-c / math::hypot(a, b)).clamp(-1.0, 1.0))
             };
             for i in 0..n {
                 let (x0, x1) = (TAU * i as f64 / n as f64, TAU * (i + 1) as f64 / n as f64);
                 let dy = (y(x1) - y(x0) + PI).rem_euclid(TAU) - PI;
-                length += (x1 - x0).hypot(dy);
+                length += math::hypot(x1 - x0, dy);
             }
         }
         length / (TAU * TAU)
@@ -257,7 +258,9 @@ fn density_is_what_was_asked() {
 
 /// The angle of a segment's direction, in [0, 180).
 fn direction(a: Coord, b: Coord) -> f64 {
-    (b.y - a.y).atan2(b.x - a.x).to_degrees().rem_euclid(180.0)
+    math::atan2(b.y - a.y, b.x - a.x)
+        .to_degrees()
+        .rem_euclid(180.0)
 }
 
 fn same_direction(a: f64, b: f64) -> bool {
@@ -340,7 +343,7 @@ fn every_pattern_turns_with_the_angle() {
         .min_by(|(a, sa), (b, sb)| {
             let end = |l: &LineString<f64>, s: bool| if s { l.0[0] } else { l.0[l.0.len() - 1] };
             let (p, q) = (end(a, *sa), end(b, *sb));
-            p.x.hypot(p.y).total_cmp(&q.x.hypot(q.y))
+            math::hypot(p.x, p.y).total_cmp(&math::hypot(q.x, q.y))
         })
         .unwrap();
     let next = if at_start {
@@ -348,7 +351,7 @@ fn every_pattern_turns_with_the_angle() {
     } else {
         line.0[line.0.len() - 2]
     };
-    let angle = next.y.atan2(next.x).to_degrees();
+    let angle = math::atan2(next.y, next.x).to_degrees();
     assert!(
         (angle - 120.0).abs() < 25.0,
         "the spiral starts at {angle}°"
@@ -434,7 +437,7 @@ fn travel_is_reported_and_short() {
             .windows(2)
             .map(|w| {
                 let (a, b) = (w[0].0[w[0].0.len() - 1], w[1].0[0]);
-                (b - a).x.hypot((b - a).y)
+                math::hypot((b - a).x, (b - a).y)
             })
             .sum();
         // Routed around the hole where a straight move would cross it: never shorter.
@@ -444,7 +447,7 @@ fn travel_is_reported_and_short() {
             .iter()
             .flat_map(|l| {
                 l.0.windows(2)
-                    .map(|s| (s[1] - s[0]).x.hypot((s[1] - s[0]).y))
+                    .map(|s| math::hypot((s[1] - s[0]).x, (s[1] - s[0]).y))
             })
             .sum();
         assert!((length - paths.length).abs() < 1e-6, "{pattern}");
@@ -654,13 +657,13 @@ fn polygon(radii: &[f64], turn: f64) -> MultiPolygon<f64> {
         .map(|(i, r)| {
             let a = TAU * i as f64 / n as f64 + turn;
             Coord {
-                x: r * a.cos(),
-                y: r * a.sin(),
+                x: r * math::cos(a),
+                y: r * math::sin(a),
             }
         })
         .chain(std::iter::once(Coord {
-            x: radii[0] * turn.cos(),
-            y: radii[0] * turn.sin(),
+            x: radii[0] * math::cos(turn),
+            y: radii[0] * math::sin(turn),
         }))
         .collect();
     MultiPolygon::new(vec![Polygon::new(LineString::new(ring), vec![])])
@@ -739,7 +742,7 @@ proptest! {
             .enumerate()
             .map(|(i, radii)| {
                 let a = turn + TAU * i as f64 / 3.0;
-                let centre = Coord { x: 3.5 * a.cos(), y: 3.5 * a.sin() };
+                let centre = Coord { x: 3.5 * math::cos(a), y: 3.5 * math::sin(a) };
                 radial_ring(radii, turn, centre, true)
             })
             .collect();
@@ -952,7 +955,7 @@ fn eroded_rings_match_the_general_buffer() {
         rings
             .iter()
             .flat_map(|r| r.windows(2))
-            .map(|w| (w[1] - w[0]).x.hypot((w[1] - w[0]).y))
+            .map(|w| math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y))
             .sum()
     };
     for (name, region) in &cases {
@@ -1035,7 +1038,7 @@ fn travel_goes_around_holes() {
                     assert_eq!(route.0.first(), paths.polylines[k].0.last(), "{label}");
                     assert_eq!(route.0.last(), paths.polylines[k + 1].0.first(), "{label}");
                     for seg in route.0.windows(2) {
-                        total += (seg[1] - seg[0]).x.hypot((seg[1] - seg[0]).y);
+                        total += math::hypot((seg[1] - seg[0]).x, (seg[1] - seg[0]).y);
                         for i in 1..8 {
                             let p = seg[0] + (seg[1] - seg[0]) * (i as f64 / 8.0);
                             assert!(
@@ -1080,7 +1083,7 @@ fn largest_gap(region: &Region, paths: &Toolpaths) -> f64 {
                             / (e.x * e.x + e.y * e.y).max(1e-18))
                         .clamp(0.0, 1.0);
                         let q = a + e * t;
-                        (p - q).x.hypot((p - q).y)
+                        math::hypot((p - q).x, (p - q).y)
                     })
                     .fold(f64::INFINITY, f64::min);
                 worst = worst.max(d);
@@ -1268,6 +1271,149 @@ fn families_through_vertices_are_the_scan() {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// A region found clean is what cleaning it returns (so `infill::fill` may read it
+    /// in place), and one with a repeated point is not; `infill::fill` (which keeps the
+    /// outline only for concentric) fills the layer `Region::new` fills, every pattern.
+    #[test]
+    fn region_read_in_place_is_the_cleaned_copy(
+        radii in prop::collection::vec(4.0f64..12.0, 3..30),
+        hole in prop::collection::vec(0.5f64..1.5, 3..12),
+        turn in 0.0f64..TAU,
+        repeat in prop::option::of(0usize..30),
+        pattern in 0usize..Pattern::ALL.len(),
+    ) {
+        let mut outline = radial_ring(&radii, turn, Coord::zero(), false);
+        if let Some(i) = repeat {
+            let i = i % (outline.0.len() - 1);
+            outline.0.insert(i, outline.0[i]);
+        }
+        let region = MultiPolygon::new(vec![Polygon::new(
+            outline,
+            vec![radial_ring(&hole, turn, Coord::zero(), true)],
+        )]);
+        let clean = region::is_clean(&region);
+        prop_assert_eq!(clean, repeat.is_none());
+        if clean {
+            prop_assert_eq!(&region::clean(&region), &region);
+        }
+        let params = Params::new(Pattern::ALL[pattern], 0.2, W).angle(turn.to_degrees());
+        prop_assert_eq!(
+            fill(&region, &params),
+            Region::new(&region, W).unwrap().fill(&params)
+        );
+    }
+
+    /// Moves along an edge (between two points of one edge of an L, a holed square or a
+    /// star, straight ones parallel to it exactly), from an edge to any vertex, level and
+    /// upright ones (parallel to edges, some leaving the region), and of no length: the shortcuts (a move on an edge it runs along, one heading into the region
+    /// from a crossing) route them as the even-odd test of each stretch's middle does.
+    #[test]
+    fn moves_along_edges_are_the_general_routes(
+        shape in 0usize..3,
+        moves in prop::collection::vec((0usize..1000, 0.0f64..1.0, 0.0f64..1.0, 0usize..1000), 1..24),
+    ) {
+        let shape = match shape {
+            0 => shapes::l_shape(20.0),
+            1 => shapes::holed_square(40.0, 10.0),
+            _ => shapes::star(10.0, 4.5),
+        };
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let edges: Vec<(Coord, Coord)> = rings
+            .iter()
+            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+            .collect();
+        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
+        let fast = travel::Router::new(rings);
+        let general = travel::Router::new(rings).general();
+        for (i, s, t, j) in moves {
+            let (a, b) = edges[i % edges.len()];
+            let (p, q) = (a + (b - a) * s, a + (b - a) * t);
+            let v = vertices[j % vertices.len()];
+            // Across and along: level and upright moves from p to v's height or x
+            // (parallel to the L's and the square's edges, some over the L's notch or
+            // the hole).
+            let level = Coord { x: v.x, y: p.y };
+            let upright = Coord { x: p.x, y: v.y };
+            for (from, to) in [(p, q), (p, v), (v, p), (p, p), (a, b), (p, level), (p, upright)] {
+                prop_assert_eq!(fast.route(from, to), general.route(from, to));
+            }
+        }
+    }
+
+    /// The inset's crossing sweep (edges sorted by their left ends, each tested against
+    /// those that start before it ends and overlap it in y) finds a crossing exactly when
+    /// testing every pair of non-neighbouring edges does: star-like rings, some crossing
+    /// themselves or each other once shifted, small (sorted by insertion) and large.
+    #[test]
+    fn crossing_sweep_is_every_pair(
+        rings in prop::collection::vec(
+            (prop::collection::vec(1.0f64..12.0, 3..40), -8.0f64..8.0, any::<bool>()), 1..4),
+        turn in 0.0f64..TAU,
+    ) {
+        let rings: Vec<Vec<Coord>> = rings
+            .iter()
+            .map(|(radii, dx, scramble)| {
+                let mut ring = radial_ring(radii, turn, Coord { x: *dx, y: 0.0 }, false).0;
+                ring.pop();
+                if *scramble {
+                    // Every other vertex swapped with its neighbour: edges that cross.
+                    for pair in ring.chunks_exact_mut(2).step_by(2) {
+                        pair.swap(0, 1);
+                    }
+                }
+                ring
+            })
+            .collect();
+        let mut every_pair = false;
+        for (r, ring) in rings.iter().enumerate() {
+            for i in 0..ring.len() {
+                for (s, other) in rings.iter().enumerate().skip(r) {
+                    let from = if s == r { i + 1 } else { 0 };
+                    for j in from..other.len() {
+                        let n = ring.len();
+                        if s == r && ((i + 1) % n == j || (j + 1) % n == i) {
+                            continue;
+                        }
+                        let (a, b) = (ring[i], ring[(i + 1) % n]);
+                        let (c, d) = (other[j], other[(j + 1) % other.len()]);
+                        // Each edge's ends ordered as the sweep orders them.
+                        let order = |p: Coord, q: Coord| {
+                            if (p.x, p.y) <= (q.x, q.y) { (p, q) } else { (q, p) }
+                        };
+                        let ((a, b), (c, d)) = (order(a, b), order(c, d));
+                        every_pair |= offset::segments_meet(a, b, c, d);
+                    }
+                }
+            }
+        }
+        prop_assert_eq!(offset::crossings(&rings), every_pair);
+    }
+
+    /// The ring offset checks each edge's direction as its end vertex is moved (no list
+    /// of where each vertex's points are): the same answer, the same points, as listing
+    /// them and checking every edge after, on star-like rings moved far enough that
+    /// edges turn around (outlines and holes, any arc step).
+    #[test]
+    fn edges_checked_as_moved_are_the_listed_check(
+        radii in prop::collection::vec(1.0f64..12.0, 3..40),
+        turn in 0.0f64..TAU,
+        d in 0.05f64..5.0,
+        arc in 0.1f64..0.8,
+        hole in any::<bool>(),
+    ) {
+        let ring = radial_ring(&radii, turn, Coord::zero(), hole);
+        let exterior = !hole;
+        prop_assert_eq!(
+            offset::offset_ring(&ring.0, d, arc, exterior),
+            offset::offset_ring_listed(&ring.0, d, arc, exterior)
+        );
+    }
+}
+
+proptest! {
     #![proptest_config(ProptestConfig::with_cases(128))]
 
     /// Travel routed with each ring's edges in chunks (skipped by their boxes) is the
@@ -1286,7 +1432,7 @@ proptest! {
             .enumerate()
             .map(|(i, radii)| {
                 let a = turn + TAU * i as f64 / 3.0;
-                let centre = Coord { x: 2.2 * a.cos(), y: 2.2 * a.sin() };
+                let centre = Coord { x: 2.2 * math::cos(a), y: 2.2 * math::sin(a) };
                 radial_ring(radii, turn, centre, true)
             })
             .collect();
@@ -1315,10 +1461,16 @@ proptest! {
             },
         };
         let chunked = travel::Router::new(rings);
-        let plain = travel::Router::with_chunk(rings, usize::MAX);
+        let plain = travel::Router::with_chunk(rings, usize::MAX).general();
+        let general = travel::Router::new(rings).general();
         for (a, b, kind) in moves {
             let (p, q) = (point(a, kind), point(b, kind));
             prop_assert_eq!(chunked.route(p, q), plain.route(p, q));
+            // A move from the middle of an edge (a line's end) to any point: the
+            // shortcut for a move heading into the region is the even-odd test's answer.
+            let from_edge = point(a, 0);
+            prop_assert_eq!(chunked.route(from_edge, q), general.route(from_edge, q));
+            prop_assert_eq!(chunked.route(q, from_edge), general.route(q, from_edge));
         }
     }
 }
@@ -1385,7 +1537,7 @@ proptest! {
             .enumerate()
             .map(|(i, radii)| {
                 let a = turn + TAU * i as f64 / 3.0;
-                let centre = Coord { x: 2.2 * a.cos(), y: 2.2 * a.sin() };
+                let centre = Coord { x: 2.2 * math::cos(a), y: 2.2 * math::sin(a) };
                 radial_ring(radii, turn, centre, true)
             })
             .collect();

@@ -21,6 +21,9 @@ struct Cut {
     edge: usize,
     /// The fraction along the edge.
     u: f64,
+    /// Met just beyond an end of the move (within a billionth of its length): not a
+    /// crossing, only a sign of where that end lies (a line's end a rounding inside).
+    near: bool,
 }
 
 /// The rings with their cumulative lengths, ready for many moves.
@@ -32,6 +35,8 @@ pub(crate) struct Router<'a> {
     lengths: std::cell::OnceCell<(Vec<f64>, Vec<usize>)>,
     /// The crossings of the move being routed, kept for the next.
     cuts: std::cell::RefCell<Vec<(f64, Cut)>>,
+    /// The route being built, kept for the next.
+    path: std::cell::RefCell<Vec<Coord>>,
     /// Each ring's bounding box: a move or point outside it cannot cross it or be in it.
     boxes: Vec<(Coord, Coord)>,
     /// The boxes of each ring's chunks of `CHUNK` edges (ring `r`'s from `chunk_at[r]`),
@@ -40,6 +45,11 @@ pub(crate) struct Router<'a> {
     chunk_at: Vec<usize>,
     /// `CHUNK`, or (in tests) a ring's whole length: every edge tested, as before chunks.
     chunk: usize,
+    /// Per ring, whether the region lies on its left (measured when first needed).
+    left: std::cell::OnceCell<Vec<bool>>,
+    /// Whether a move that leaves a ring clearly inward is taken as inside without the
+    /// even-odd test of its middle (off in tests, for the general path).
+    fast: bool,
 }
 
 impl<'a> Router<'a> {
@@ -56,13 +66,6 @@ impl<'a> Router<'a> {
         let mut largest: f64 = 0.0;
         for r in rings {
             let n = r.len();
-            let ring_box = bounds(r);
-            largest = largest
-                .max(ring_box.0.x.abs())
-                .max(ring_box.0.y.abs())
-                .max(ring_box.1.x.abs())
-                .max(ring_box.1.y.abs());
-            boxes.push(ring_box);
             chunk_at.push(chunks.len());
             // Chunk c holds edges c·CHUNK.. (up to the ring's end), so vertices
             // c·CHUNK..=(c + 1)·CHUNK, the last wrapping to the first.
@@ -71,19 +74,48 @@ impl<'a> Router<'a> {
                     c * chunk,
                     (c.saturating_add(1).saturating_mul(chunk)).min(n),
                 );
-                let (lo, hi) = bounds(&r[from..to]);
+                // By comparisons, not `min`/`max` (which handle NaN, and cost several
+                // instructions each): the coordinates are finite, the box is the same.
                 let last = r[to % n];
-                chunks.push((
-                    Coord {
-                        x: lo.x.min(last.x),
-                        y: lo.y.min(last.y),
-                    },
-                    Coord {
-                        x: hi.x.max(last.x),
-                        y: hi.y.max(last.y),
-                    },
-                ));
+                let (mut lo, mut hi) = (last, last);
+                for c in &r[from..to] {
+                    if c.x < lo.x {
+                        lo.x = c.x;
+                    }
+                    if c.x > hi.x {
+                        hi.x = c.x;
+                    }
+                    if c.y < lo.y {
+                        lo.y = c.y;
+                    }
+                    if c.y > hi.y {
+                        hi.y = c.y;
+                    }
+                }
+                chunks.push((lo, hi));
             }
+            // The ring's box is its chunks' (they hold every vertex): not a second pass.
+            let ring_box = chunks[chunk_at[chunk_at.len() - 1]..].iter().fold(
+                bounds(&[]),
+                |(lo, hi), &(a, b)| {
+                    (
+                        Coord {
+                            x: lo.x.min(a.x),
+                            y: lo.y.min(a.y),
+                        },
+                        Coord {
+                            x: hi.x.max(b.x),
+                            y: hi.y.max(b.y),
+                        },
+                    )
+                },
+            );
+            largest = largest
+                .max(ring_box.0.x.abs())
+                .max(ring_box.0.y.abs())
+                .max(ring_box.1.x.abs())
+                .max(ring_box.1.y.abs());
+            boxes.push(ring_box);
         }
         // A millionth of a nanometre per millimetre of coordinate: more than any rounding
         // in the tests a chunk's box stands for, so that skipping a chunk never skips an
@@ -97,11 +129,126 @@ impl<'a> Router<'a> {
             rings,
             lengths: std::cell::OnceCell::new(),
             cuts: std::cell::RefCell::new(Vec::new()),
+            path: std::cell::RefCell::new(Vec::new()),
             boxes,
             chunks,
             chunk_at,
             chunk,
+            left: std::cell::OnceCell::new(),
+            fast: true,
         }
+    }
+
+    /// The same router without the inward-move shortcut (tests compare the two).
+    #[cfg(test)]
+    pub(crate) fn general(mut self) -> Router<'a> {
+        self.fast = false;
+        self
+    }
+
+    /// Whether a move that crosses no ring inside it (`cuts`: where it meets the rings)
+    /// starts or ends on an edge's middle and heads clearly into the region from it: then
+    /// it is inside all along (it would have to cross a ring to leave), and the even-odd
+    /// test of its middle is not needed. Any doubt (a vertex, a grazing move, two rings
+    /// met at that end) answers `false`, for that test to decide.
+    fn leaves_inward(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> bool {
+        let d = q - p;
+        let d2 = d.x * d.x + d.y * d.y;
+        for (at_p, from, to) in [(true, p, q), (false, q, p)] {
+            let mut at_end = cuts
+                .iter()
+                .filter(|&&(t, _)| if at_p { t <= 1e-9 } else { t >= 1.0 - 1e-9 });
+            let (Some(&(_, c)), None) = (at_end.next(), at_end.next()) else {
+                continue;
+            };
+            if !(c.u > 1e-6 && c.u < 1.0 - 1e-6) {
+                continue;
+            }
+            let ring = &self.rings[c.ring];
+            let e = ring[next(c.edge, ring.len())] - ring[c.edge];
+            let turn = cross(e, to - from);
+            // Clearly off the edge's line: more than a thousandth of a radian.
+            if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
+                continue;
+            }
+            return (turn > 0.0) == self.region_left(c.ring);
+        }
+        false
+    }
+
+    /// Whether the stretch before bound `k` of a move (`d` its direction; bound `k` is
+    /// `cuts[k]`, the move's end past the last) runs into the region from a crossing at
+    /// either of its ends: a crossing inside the move, alone there (no other within a
+    /// billionth of the move), through an edge's middle and clearly across it, enters
+    /// the region on one side of the edge. `false` where in doubt, for the even-odd test
+    /// of the stretch's middle to decide (as it does every stretch that leaves).
+    fn enters(&self, cuts: &[(f64, Cut)], k: usize, d: Coord) -> bool {
+        let d2 = d.x * d.x + d.y * d.y;
+        let clean = |i: usize| {
+            let (t, c) = cuts[i];
+            t > 1e-9
+                && t < 1.0 - 1e-9
+                && c.u > 1e-6
+                && c.u < 1.0 - 1e-6
+                && (i == 0 || t - cuts[i - 1].0 > 1e-9)
+                && (i + 1 == cuts.len() || cuts[i + 1].0 - t > 1e-9)
+        };
+        // The crossing the stretch starts at (moving along d), then the one it ends at
+        // (moving back).
+        for (i, sign) in [(k.wrapping_sub(1), 1.0), (k, -1.0)] {
+            if i >= cuts.len() || !clean(i) {
+                continue;
+            }
+            let c = cuts[i].1;
+            let ring = &self.rings[c.ring];
+            let e = ring[next(c.edge, ring.len())] - ring[c.edge];
+            let turn = sign * cross(e, d);
+            if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
+                continue;
+            }
+            return (turn > 0.0) == self.region_left(c.ring);
+        }
+        false
+    }
+
+    /// Whether `m` (a move's middle) is on an edge the move runs parallel to (`cuts`
+    /// holds those with a NaN `t`), where the even-odd test would find it: inside its
+    /// ring's box and within a nanometre of the edge. Then that test answers "inside"
+    /// (a point on an edge is), and need not be run.
+    fn along_edge(&self, m: Coord, cuts: &[(f64, Cut)]) -> bool {
+        cuts.iter().filter(|(t, _)| t.is_nan()).any(|&(_, c)| {
+            let (lo, hi) = self.boxes[c.ring];
+            let ring = &self.rings[c.ring];
+            !(m.x < lo.x || m.x > hi.x || m.y < lo.y || m.y > hi.y)
+                && on_edge(ring[c.edge], ring[next(c.edge, ring.len())], m)
+        })
+    }
+
+    /// Whether the region lies on ring `r`'s left: a counter-clockwise ring inside an even
+    /// number of the others (an outline), or a clockwise one inside an odd number (a hole).
+    fn region_left(&self, r: usize) -> bool {
+        self.left.get_or_init(|| {
+            self.rings
+                .iter()
+                .enumerate()
+                .map(|(r, ring)| {
+                    let n = ring.len();
+                    let area: f64 = (0..n).map(|i| cross(ring[i], ring[next(i, n)])).sum();
+                    let mut around = false;
+                    for (s, other) in self.rings.iter().enumerate() {
+                        let m = other.len();
+                        if s != r {
+                            for i in 0..m {
+                                if super::clip::ray_crosses(other[i], other[next(i, m)], ring[0]) {
+                                    around = !around;
+                                }
+                            }
+                        }
+                    }
+                    (area > 0.0) != around
+                })
+                .collect()
+        })[r]
     }
 
     /// Ring `r`'s chunk boxes, with the range of edges each holds.
@@ -164,6 +311,7 @@ impl<'a> Router<'a> {
                 y: p.y.max(q.y),
             },
         );
+        let moving = d.x != 0.0 || d.y != 0.0;
         for (edges, a, b) in self.chunks(r) {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
@@ -173,18 +321,33 @@ impl<'a> Router<'a> {
                 let e = b - a;
                 let denom = d.x * e.y - d.y * e.x;
                 if denom == 0.0 {
+                    // Parallel: no crossing, but kept (t NaN, `near`) as an edge the
+                    // move may run along (`along_edge`); a move of no length (every
+                    // edge "parallel") keeps none.
+                    if moving {
+                        out.push((
+                            f64::NAN,
+                            Cut {
+                                ring: r,
+                                edge: i,
+                                u: f64::NAN,
+                                near: true,
+                            },
+                        ));
+                    }
                     continue;
                 }
                 let ap = a - p;
                 let t = (ap.x * e.y - ap.y * e.x) / denom;
                 let u = (ap.x * d.y - ap.y * d.x) / denom;
-                if (0.0..=1.0).contains(&t) && (0.0..1.0).contains(&u) {
+                if (0.0..1.0).contains(&u) && (-1e-9..=1.0 + 1e-9).contains(&t) {
                     out.push((
                         t,
                         Cut {
                             ring: r,
                             edge: i,
                             u,
+                            near: !(0.0..=1.0).contains(&t),
                         },
                     ));
                 }
@@ -221,17 +384,25 @@ impl<'a> Router<'a> {
         }
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
-        if !cuts.iter().any(|&(t, _)| interior(t)) && self.inside((p + q) / 2.0) {
+        if !cuts.iter().any(|&(t, _)| interior(t))
+            && (self.fast
+                && (self.leaves_inward(p, q, &cuts) || self.along_edge((p + q) / 2.0, &cuts))
+                || self.inside((p + q) / 2.0))
+        {
             self.cuts.replace(cuts);
             return vec![p, q];
         }
         // A move between two points of one ring (line ends lie on the inset's rings) may
         // find no crossing at all, its ends being on the ring: the middle of each
         // stretch decides whether it is inside.
+        cuts.retain(|c| !c.1.near);
         cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let at = |t: f64| if t >= 1.0 { q } else { p + (q - p) * t };
         let move_length = ((q - p).x * (q - p).x + (q - p).y * (q - p).y).sqrt();
-        let mut out = Vec::with_capacity(2 + 2 * cuts.len());
+        // Built in a buffer kept for the next move (walks grow it vertex by vertex), then
+        // copied at its final length: one allocation per route, none to grow it.
+        let mut out = self.path.take();
+        out.clear();
         out.push(p);
         // The stretches between consecutive bounds: the move's ends and its crossings.
         let mut previous: (f64, Option<Cut>) = (0.0, None);
@@ -239,10 +410,13 @@ impl<'a> Router<'a> {
             .iter()
             .map(|&(t, c)| (t, Some(c)))
             .chain(std::iter::once((1.0, None)));
-        for (tb, rb) in bounds {
+        for (k, (tb, rb)) in bounds.enumerate() {
             let (ta, ra) = std::mem::replace(&mut previous, (tb, rb));
             let (a, b) = (at(ta), at(tb));
-            if (tb - ta) * move_length < 1e-6 || self.inside(at((ta + tb) / 2.0)) {
+            if (tb - ta) * move_length < 1e-6
+                || (self.fast && self.enters(&cuts, k, q - p))
+                || self.inside(at((ta + tb) / 2.0))
+            {
                 out.push(b);
                 continue;
             }
@@ -263,7 +437,9 @@ impl<'a> Router<'a> {
         }
         self.cuts.replace(cuts);
         out.dedup();
-        out
+        let route = out.clone();
+        self.path.replace(out);
+        route
     }
 
     /// Even-odd over every ring; a point on an edge (within a nanometre) counts as
@@ -272,7 +448,6 @@ impl<'a> Router<'a> {
     /// none of its edges can cross the ray to the right of `p` (all at or below it, all
     /// above it, or all to its left) and `p` is not within a nanometre of its box.
     fn inside(&self, p: Coord) -> bool {
-        const ON: f64 = 1e-6 * 1e-6;
         let mut inside = false;
         for (r, (ring, &(lo, hi))) in self.rings.iter().zip(&self.boxes).enumerate() {
             if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
@@ -292,16 +467,8 @@ impl<'a> Router<'a> {
                     if super::clip::ray_crosses(a, b, p) {
                         inside = !inside;
                     }
-                    if p.y >= a.y.min(b.y) - 1e-6
-                        && p.y <= a.y.max(b.y) + 1e-6
-                        && p.x >= a.x.min(b.x) - 1e-6
-                        && p.x <= a.x.max(b.x) + 1e-6
-                    {
-                        let e = b - a;
-                        let c = cross(e, p - a);
-                        if c * c <= ON * (e.x * e.x + e.y * e.y) {
-                            return true;
-                        }
+                    if on_edge(a, b, p) {
+                        return true;
                     }
                 }
             }
@@ -394,6 +561,24 @@ impl<'a> Router<'a> {
             }
         }
     }
+}
+
+/// Whether `p` is on the edge from `a` to `b` within a nanometre (a millionth of a
+/// millimetre): within that of the edge's box, by comparisons with each end
+/// (`min(a, b) − 1e-6` is the lesser of `a − 1e-6` and `b − 1e-6`), and of its line.
+#[inline]
+fn on_edge(a: Coord, b: Coord, p: Coord) -> bool {
+    const NM: f64 = 1e-6;
+    if (p.y >= a.y - NM || p.y >= b.y - NM)
+        && (p.y <= a.y + NM || p.y <= b.y + NM)
+        && (p.x >= a.x - NM || p.x >= b.x - NM)
+        && (p.x <= a.x + NM || p.x <= b.x + NM)
+    {
+        let e = b - a;
+        let c = cross(e, p - a);
+        return c * c <= NM * NM * (e.x * e.x + e.y * e.y);
+    }
+    false
 }
 
 fn cross(a: Coord, b: Coord) -> f64 {

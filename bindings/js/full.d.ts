@@ -42,7 +42,7 @@ export function readProfile(name: string, content: string | Uint8Array | ArrayBu
 export interface PreviewOptions extends Options {
   /** The layer (default 0). */
   layer?: number;
-  pattern?: 'lines' | 'grid' | 'triangles' | 'hexagons' | 'concentric' | 'gyroid' | 'spiral' | 'lightning';
+  pattern?: 'lines' | 'grid' | 'triangles' | 'hexagons' | 'concentric' | 'gyroid' | 'spiral' | 'lightning' | 'cubic';
   /** Sparse density, 0 to 1 (default 0.2). */
   density?: number;
   shape?: 'square' | 'circle' | 'ring' | 'star' | 'l';

@@ -73,7 +73,7 @@ const PICTURE_HEIGHT = 17;
 const PRESENT = 18;
 const SLOT_COUNT = 19;
 /** The preview's patterns and outlines (indices cross into wasm; src/api.rs `SHAPES`). */
-export const PATTERNS = Object.freeze(['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning']);
+export const PATTERNS = Object.freeze(['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning', 'cubic']);
 export const SHAPES = Object.freeze(['square', 'circle', 'ring', 'star', 'l']);
 // The names wasm reads (`rotlang_choice`).
 const CHOICES = { target: 0, dialect: 1 };

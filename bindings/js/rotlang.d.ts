@@ -5,7 +5,7 @@
 export const FILLS: readonly ['sparse', 'dense', 'solid', 'concentric', 'monotonic', 'rectilinear'];
 export type Fill = (typeof FILLS)[number];
 /** The infill preview's patterns (rotlang/full). */
-export const PATTERNS: readonly ['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning'];
+export const PATTERNS: readonly ['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning', 'cubic'];
 /** The infill preview's outlines, 20 mm across (rotlang/full). */
 export const SHAPES: readonly ['square', 'circle', 'ring', 'star', 'l'];
 

@@ -10,7 +10,7 @@ import { decodeState, encodeState } from './share.js';
 
 const $ = (id) => document.getElementById(id);
 const FILLS = ['sparse', 'dense', 'solid', 'concentric', 'monotonic', 'rectilinear'];
-const PATTERN_NAMES = ['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning'];
+const PATTERN_NAMES = ['lines', 'grid', 'triangles', 'hexagons', 'concentric', 'gyroid', 'spiral', 'lightning', 'cubic'];
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => `&#${c.charCodeAt(0)};`);
 const deg = (a) => `${Number(a.toFixed(4))}°`;
 

@@ -142,3 +142,70 @@ proptest! {
         prop_assert!((turned - angle).abs() < 1e-9);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Travel's crossings, each edge told missed by where the move's line meets it before
+    /// the second division, are the crossings found dividing both first, to the bit: moves between points on the
+    /// inset's rings (line ends), its vertices and anywhere in its box, on star-like
+    /// outlines with holes (moves along edges and of no length included).
+    #[test]
+    fn crossings_told_before_dividing_are_the_divided_ones(
+        outer in prop::collection::vec(4.0f64..15.0, 6..30),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..12), 0..3),
+        turn in 0.0f64..TAU,
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3, 0u8..3), 1..24),
+    ) {
+        use geo::{LineString, MultiPolygon, Polygon};
+        let closed = |mut ring: Vec<Coord>| {
+            ring.push(ring[0]);
+            LineString::new(ring)
+        };
+        let interiors = holes
+            .iter()
+            .enumerate()
+            .map(|(i, radii)| {
+                let a = turn + TAU * i as f64 / 3.0;
+                let mut hole = radial(radii, turn, Coord { x: 2.2 * a.cos(), y: 2.2 * a.sin() });
+                hole.reverse();
+                closed(hole)
+            })
+            .collect();
+        let shape = MultiPolygon::new(vec![Polygon::new(
+            closed(radial(&outer, turn, Coord::zero())),
+            interiors,
+        )]);
+        let region = super::Region::new(&shape, 0.4).unwrap();
+        let rings = region.rings();
+        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
+        let edges: Vec<(Coord, Coord)> = rings
+            .iter()
+            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+            .collect();
+        let (lo, hi) = super::travel::bounds(&vertices);
+        let point = |(i, t): (usize, f64), kind: u8| match kind {
+            0 => {
+                let (a, b) = edges[i % edges.len()];
+                a + (b - a) * t
+            }
+            1 => vertices[i % vertices.len()],
+            _ => Coord {
+                x: lo.x + (hi.x - lo.x) * t,
+                y: lo.y + (hi.y - lo.y) * (i as f64 / 1000.0),
+            },
+        };
+        let told = super::travel::Router::new(rings);
+        let divided = super::travel::Router::new(rings).dividing_first();
+        for (a, b, ka, kb) in moves {
+            let (p, q) = (point(a, ka), point(b, kb));
+            let (i, _) = a;
+            let (e0, e1) = edges[i % edges.len()];
+            for (from, to) in [(p, q), (q, p), (p, p), (e0, e1), (p, e1)] {
+                prop_assert_eq!(told.crossings_of_move(from, to), divided.crossings_of_move(from, to));
+                prop_assert_eq!(told.route(from, to), divided.route(from, to));
+            }
+        }
+    }
+}

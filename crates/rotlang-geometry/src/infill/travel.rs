@@ -50,6 +50,9 @@ pub(crate) struct Router<'a> {
     /// Whether a move that leaves a ring clearly inward is taken as inside without the
     /// even-odd test of its middle (off in tests, for the general path).
     fast: bool,
+    /// Whether both fractions of every edge's crossing are divided out before either is
+    /// tested (in tests: the general path the early test is compared with).
+    divide_first: bool,
 }
 
 impl<'a> Router<'a> {
@@ -136,6 +139,7 @@ impl<'a> Router<'a> {
             chunk,
             left: std::cell::OnceCell::new(),
             fast: true,
+            divide_first: false,
         }
     }
 
@@ -144,6 +148,31 @@ impl<'a> Router<'a> {
     pub(crate) fn general(mut self) -> Router<'a> {
         self.fast = false;
         self
+    }
+
+    /// The same router dividing out both fractions of every edge's crossing before
+    /// testing them.
+    #[cfg(test)]
+    pub(crate) fn dividing_first(mut self) -> Router<'a> {
+        self.divide_first = true;
+        self
+    }
+
+    /// Where a move crosses every ring, as (fraction along the move, ring, edge,
+    /// fraction along the edge, near) with bits for exact comparison (tests).
+    #[cfg(test)]
+    pub(crate) fn crossings_of_move(
+        &self,
+        p: Coord,
+        q: Coord,
+    ) -> Vec<(u64, usize, usize, u64, bool)> {
+        let mut out = Vec::new();
+        for r in 0..self.rings.len() {
+            self.hits(r, p, q, &mut out);
+        }
+        out.iter()
+            .map(|(t, c)| (t.to_bits(), c.ring, c.edge, c.u.to_bits(), c.near))
+            .collect()
     }
 
     /// Whether a move that crosses no ring inside it (`cuts`: where it meets the rings)
@@ -338,8 +367,13 @@ impl<'a> Router<'a> {
                     continue;
                 }
                 let ap = a - p;
-                let t = (ap.x * e.y - ap.y * e.x) / denom;
+                // Most edges are missed beside their ends: told by where the move's line
+                // meets the edge's, before the second division.
                 let u = (ap.x * d.y - ap.y * d.x) / denom;
+                if !self.divide_first && !(0.0..1.0).contains(&u) {
+                    continue;
+                }
+                let t = (ap.x * e.y - ap.y * e.x) / denom;
                 if (0.0..1.0).contains(&u) && (-1e-9..=1.0 + 1e-9).contains(&t) {
                     out.push((
                         t,

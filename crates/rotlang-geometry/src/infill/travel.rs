@@ -29,20 +29,20 @@ struct Cut {
 /// The rings with their cumulative lengths, ready for many moves.
 pub(crate) struct Router<'a> {
     rings: &'a [Vec<Coord>],
-    /// Ring `r`'s cumulative lengths are `cumulative[at[r]..at[r] + n + 1]` (one flat
+    /// Ring `r`'s cumulative lengths are `lengths[at[r].1..at[r].1 + n + 1]` (one flat
     /// list: one allocation, not one per ring), measured when a first move is walked
     /// around (most layers' moves are straight).
-    lengths: std::cell::OnceCell<(Vec<f64>, Vec<usize>)>,
+    lengths: std::cell::OnceCell<Vec<f64>>,
     /// The crossings of the move being routed, kept for the next.
     cuts: std::cell::RefCell<Vec<(f64, Cut)>>,
     /// The route being built, kept for the next.
     path: std::cell::RefCell<Vec<Coord>>,
-    /// Each ring's bounding box: a move or point outside it cannot cross it or be in it.
+    /// Per ring, its bounding box (a move or point outside it cannot cross it or be in
+    /// it), then the boxes of its chunks of `CHUNK` edges, grown by a little slack
+    /// (below): one list, ring `r`'s from `at[r].0`.
     boxes: Vec<(Coord, Coord)>,
-    /// The boxes of each ring's chunks of `CHUNK` edges (ring `r`'s from `chunk_at[r]`),
-    /// grown by a little slack (below).
-    chunks: Vec<(Coord, Coord)>,
-    chunk_at: Vec<usize>,
+    /// Where each ring's boxes and cumulative lengths start.
+    at: Vec<(usize, usize)>,
     /// `CHUNK`, or (in tests) a ring's whole length: every edge tested, as before chunks.
     chunk: usize,
     /// Per ring, whether the region lies on its left (measured when first needed).
@@ -63,13 +63,17 @@ impl<'a> Router<'a> {
     /// A router with chunks of `chunk` edges (`usize::MAX`: one per ring).
     pub(crate) fn with_chunk(rings: &'a [Vec<Coord>], chunk: usize) -> Router<'a> {
         let vertices: usize = rings.iter().map(Vec::len).sum();
-        let mut boxes = Vec::with_capacity(rings.len());
-        let mut chunks = Vec::with_capacity(vertices / chunk + rings.len());
-        let mut chunk_at = Vec::with_capacity(rings.len());
+        let mut chunks = Vec::with_capacity(vertices / chunk + 2 * rings.len());
+        let mut at = Vec::with_capacity(rings.len());
         let mut largest: f64 = 0.0;
+        let mut lengths_at = 0;
         for r in rings {
             let n = r.len();
-            chunk_at.push(chunks.len());
+            // The ring's box first, set once its chunks are measured.
+            let ring_at = chunks.len();
+            at.push((ring_at, lengths_at));
+            lengths_at += n + 1;
+            chunks.push((Coord::zero(), Coord::zero()));
             // Chunk c holds edges c·CHUNK.. (up to the ring's end), so vertices
             // c·CHUNK..=(c + 1)·CHUNK, the last wrapping to the first.
             for c in 0..n.div_ceil(chunk) {
@@ -98,9 +102,9 @@ impl<'a> Router<'a> {
                 chunks.push((lo, hi));
             }
             // The ring's box is its chunks' (they hold every vertex): not a second pass.
-            let ring_box = chunks[chunk_at[chunk_at.len() - 1]..].iter().fold(
-                bounds(&[]),
-                |(lo, hi), &(a, b)| {
+            let ring_box = chunks[ring_at + 1..]
+                .iter()
+                .fold(bounds(&[]), |(lo, hi), &(a, b)| {
                     (
                         Coord {
                             x: lo.x.min(a.x),
@@ -111,31 +115,32 @@ impl<'a> Router<'a> {
                             y: hi.y.max(b.y),
                         },
                     )
-                },
-            );
+                });
             largest = largest
                 .max(ring_box.0.x.abs())
                 .max(ring_box.0.y.abs())
                 .max(ring_box.1.x.abs())
                 .max(ring_box.1.y.abs());
-            boxes.push(ring_box);
+            chunks[ring_at] = ring_box;
         }
         // A millionth of a nanometre per millimetre of coordinate: more than any rounding
         // in the tests a chunk's box stands for, so that skipping a chunk never skips an
         // edge the test would have taken.
         let slack = 1e-9 * (1.0 + largest);
-        for (lo, hi) in &mut chunks {
-            *lo = *lo - Coord { x: slack, y: slack };
-            *hi = *hi + Coord { x: slack, y: slack };
+        for (r, &(ring_at, _)) in rings.iter().zip(&at) {
+            let count = r.len().div_ceil(chunk);
+            for (lo, hi) in &mut chunks[ring_at + 1..ring_at + 1 + count] {
+                *lo = *lo - Coord { x: slack, y: slack };
+                *hi = *hi + Coord { x: slack, y: slack };
+            }
         }
         Router {
             rings,
             lengths: std::cell::OnceCell::new(),
             cuts: std::cell::RefCell::new(Vec::new()),
             path: std::cell::RefCell::new(Vec::new()),
-            boxes,
-            chunks,
-            chunk_at,
+            boxes: chunks,
+            at,
             chunk,
             left: std::cell::OnceCell::new(),
             fast: true,
@@ -246,7 +251,7 @@ impl<'a> Router<'a> {
     /// (a point on an edge is), and need not be run.
     fn along_edge(&self, m: Coord, cuts: &[(f64, Cut)]) -> bool {
         cuts.iter().filter(|(t, _)| t.is_nan()).any(|&(_, c)| {
-            let (lo, hi) = self.boxes[c.ring];
+            let (lo, hi) = self.ring_box(c.ring);
             let ring = &self.rings[c.ring];
             !(m.x < lo.x || m.x > hi.x || m.y < lo.y || m.y > hi.y)
                 && on_edge(ring[c.edge], ring[next(c.edge, ring.len())], m)
@@ -280,6 +285,12 @@ impl<'a> Router<'a> {
         })[r]
     }
 
+    /// Ring `r`'s bounding box.
+    #[inline]
+    fn ring_box(&self, r: usize) -> (Coord, Coord) {
+        self.boxes[self.at[r].0]
+    }
+
     /// Ring `r`'s chunk boxes, with the range of edges each holds.
     fn chunks(
         &self,
@@ -288,8 +299,8 @@ impl<'a> Router<'a> {
         let n = self.rings[r].len();
         let chunk = self.chunk;
         let count = n.div_ceil(chunk);
-        let from = self.chunk_at[r];
-        self.chunks[from..from + count]
+        let from = self.at[r].0 + 1;
+        self.boxes[from..from + count]
             .iter()
             .enumerate()
             .map(move |(c, &(lo, hi))| {
@@ -302,13 +313,11 @@ impl<'a> Router<'a> {
     }
 
     fn cumulative(&self, r: usize) -> &[f64] {
-        let (cumulative, at) = self.lengths.get_or_init(|| {
+        let cumulative = self.lengths.get_or_init(|| {
             let vertices: usize = self.rings.iter().map(Vec::len).sum();
             let mut cumulative = Vec::with_capacity(vertices + self.rings.len());
-            let mut at = Vec::with_capacity(self.rings.len());
             for ring in self.rings {
                 let n = ring.len();
-                at.push(cumulative.len());
                 let mut s = 0.0;
                 cumulative.push(0.0);
                 for i in 0..n {
@@ -317,9 +326,9 @@ impl<'a> Router<'a> {
                     cumulative.push(s);
                 }
             }
-            (cumulative, at)
+            cumulative
         });
-        let from = at[r];
+        let from = self.at[r].1;
         &cumulative[from..from + self.rings[r].len() + 1]
     }
 
@@ -410,7 +419,7 @@ impl<'a> Router<'a> {
             },
         );
         for r in 0..self.rings.len() {
-            let (a, b) = self.boxes[r];
+            let (a, b) = self.ring_box(r);
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
@@ -483,7 +492,8 @@ impl<'a> Router<'a> {
     /// above it, or all to its left) and `p` is not within a nanometre of its box.
     fn inside(&self, p: Coord) -> bool {
         let mut inside = false;
-        for (r, (ring, &(lo, hi))) in self.rings.iter().zip(&self.boxes).enumerate() {
+        for (r, ring) in self.rings.iter().enumerate() {
+            let (lo, hi) = self.ring_box(r);
             if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
                 continue;
             }

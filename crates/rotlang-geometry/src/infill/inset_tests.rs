@@ -209,3 +209,21 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    /// The signed area summed point by point with the closing edge last is the indexed
+    /// sum (`i` and `(i + 1) % n`) to the bit, on rings of any size, empty ones included.
+    #[test]
+    fn signed_area_without_wrapping_is_the_indexed_sum(
+        ring in prop::collection::vec((-1e3f64..1e3, -1e3f64..1e3), 0..40),
+    ) {
+        let ring: Vec<Coord> = ring.into_iter().map(|(x, y)| Coord { x, y }).collect();
+        let n = ring.len();
+        let indexed = (0..n)
+            .map(|i| offset::cross(ring[i], ring[(i + 1) % n]))
+            .sum::<f64>()
+            / 2.0;
+        let area = offset::signed_area(&ring);
+        prop_assert!(area.to_bits() == indexed.to_bits() || (area == 0.0 && indexed == 0.0));
+    }
+}

@@ -28,14 +28,14 @@ pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<
     let mut total = 0;
     for polygon in &region.0 {
         let pts = inside_left(&polygon.exterior().0, true)?;
-        let exterior = offset_points(&pts, d, step)?;
+        let exterior = offset_points(&pts, d, step, true)?;
         originals.push(pts);
         total += exterior.len();
         rings.push(exterior);
         let outline = rings.len() - 1;
         for hole in polygon.interiors() {
             let pts = inside_left(&hole.0, false)?;
-            let hole = offset_points(&pts, d, step)?;
+            let hole = offset_points(&pts, d, step, false)?;
             originals.push(pts);
             total += hole.len();
             // A grown hole that swallowed the whole shrunk outline crosses nothing: each
@@ -254,11 +254,12 @@ fn farther(p: Coord, a: Coord, b: Coord, reach2: f64) -> bool {
 #[cfg(test)]
 pub(crate) fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Vec<Coord>> {
     let pts = inside_left(ring, exterior)?;
-    offset_points(&pts, d, ArcStep::new(arc))
+    offset_points(&pts, d, ArcStep::new(arc), exterior)
 }
 
-/// `offset_ring` of a ring already turned by `inside_left`.
-fn offset_points(pts: &[Coord], d: f64, step: ArcStep) -> Option<Vec<Coord>> {
+/// `offset_ring` of a ring already turned by `inside_left` (so its area is positive for
+/// an outline, negative for a hole: not measured again).
+fn offset_points(pts: &[Coord], d: f64, step: ArcStep, exterior: bool) -> Option<Vec<Coord>> {
     let n = pts.len();
     // Coordinates are bounded (MAX_COORDINATE): a plain square root, not `hypot`.
     let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
@@ -316,7 +317,7 @@ fn offset_points(pts: &[Coord], d: f64, step: ArcStep) -> Option<Vec<Coord>> {
         return None;
     }
     let moved = signed_area(&out);
-    if moved == 0.0 || (moved > 0.0) != (signed_area(pts) > 0.0) {
+    if moved == 0.0 || (moved > 0.0) != exterior {
         return None;
     }
     Some(out)
@@ -471,11 +472,13 @@ pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
 }
 
 pub(crate) fn signed_area(ring: &[Coord]) -> f64 {
-    let n = ring.len();
-    (0..n)
-        .map(|i| cross(ring[i], ring[next(i, n)]))
-        .sum::<f64>()
-        / 2.0
+    // The same terms in the same order as `cross(ring[i], ring[next(i, n)])` over i (so
+    // the same sum to the bit), without a wrap test per vertex: each point and the
+    // next, then the closing edge.
+    let (Some(&first), Some(&last)) = (ring.first(), ring.last()) else {
+        return 0.0;
+    };
+    (ring.windows(2).map(|w| cross(w[0], w[1])).sum::<f64>() + cross(last, first)) / 2.0
 }
 
 /// The ring offset with each vertex's (start, end) listed and every edge's direction

@@ -149,7 +149,8 @@ proptest! {
     /// Travel's crossings, each edge told missed by where the move's line meets it before
     /// the second division, are the crossings found dividing both first, to the bit: moves between points on the
     /// inset's rings (line ends), its vertices and anywhere in its box, on star-like
-    /// outlines with holes (moves along edges and of no length included).
+    /// outlines with holes (moves along edges and of no length included). And the routes
+    /// walked from where a move's end meets a ring are those walked from its projection.
     #[test]
     fn crossings_told_before_dividing_are_the_divided_ones(
         outer in prop::collection::vec(4.0f64..15.0, 6..30),
@@ -197,6 +198,7 @@ proptest! {
             },
         };
         let told = super::travel::Router::new(rings);
+        let projecting = super::travel::Router::new(rings).projecting_ends();
         let divided = super::travel::Router::new(rings).dividing_first();
         for (a, b, ka, kb) in moves {
             let (p, q) = (point(a, ka), point(b, kb));
@@ -205,6 +207,9 @@ proptest! {
             for (from, to) in [(p, q), (q, p), (p, p), (e0, e1), (p, e1)] {
                 prop_assert_eq!(told.crossings_of_move(from, to), divided.crossings_of_move(from, to));
                 prop_assert_eq!(told.route(from, to), divided.route(from, to));
+                // A walk from a move's end where it meets the ring is the walk from its
+                // projection on the ring.
+                prop_assert_eq!(told.route(from, to), projecting.route(from, to));
             }
         }
     }

@@ -53,6 +53,9 @@ pub(crate) struct Router<'a> {
     /// Whether both fractions of every edge's crossing are divided out before either is
     /// tested (in tests: the general path the early test is compared with).
     divide_first: bool,
+    /// Whether a walk projects the move's ends on the ring even where a crossing at the
+    /// end says where they are (in tests: the general path).
+    project_ends: bool,
 }
 
 impl<'a> Router<'a> {
@@ -145,6 +148,7 @@ impl<'a> Router<'a> {
             left: std::cell::OnceCell::new(),
             fast: true,
             divide_first: false,
+            project_ends: false,
         }
     }
 
@@ -152,6 +156,13 @@ impl<'a> Router<'a> {
     #[cfg(test)]
     pub(crate) fn general(mut self) -> Router<'a> {
         self.fast = false;
+        self
+    }
+
+    /// The same router projecting the move's ends on the ring before every walk.
+    #[cfg(test)]
+    pub(crate) fn projecting_ends(mut self) -> Router<'a> {
+        self.project_ends = true;
         self
     }
 
@@ -408,6 +419,8 @@ impl<'a> Router<'a> {
         }
         let mut cuts = self.cuts.take();
         cuts.clear();
+        // Room for a few crossings at once (not grown from nothing, one at a time).
+        cuts.reserve(16);
         let (lo, hi) = (
             Coord {
                 x: p.x.min(q.x),
@@ -438,6 +451,19 @@ impl<'a> Router<'a> {
         // A move between two points of one ring (line ends lie on the inset's rings) may
         // find no crossing at all, its ends being on the ring: the middle of each
         // stretch decides whether it is inside.
+        // Where each end of the move lies on a ring (a line's end on its edge, met just
+        // beyond the move): a walk from there starts at that crossing, without
+        // projecting the end on the ring (a search of every edge).
+        let on_ring = |at_p: bool| {
+            cuts.iter()
+                .find(|&&(t, c)| c.near && if at_p { t <= 0.0 } else { t >= 1.0 })
+                .map(|&(_, c)| c)
+        };
+        let (start, end) = if self.project_ends {
+            (None, None)
+        } else {
+            (on_ring(true), on_ring(false))
+        };
         cuts.retain(|c| !c.1.near);
         cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let at = |t: f64| if t >= 1.0 { q } else { p + (q - p) * t };
@@ -446,6 +472,7 @@ impl<'a> Router<'a> {
         // copied at its final length: one allocation per route, none to grow it.
         let mut out = self.path.take();
         out.clear();
+        out.reserve(32);
         out.push(p);
         // The stretches between consecutive bounds: the move's ends and its crossings.
         let mut previous: (f64, Option<Cut>) = (0.0, None);
@@ -475,7 +502,11 @@ impl<'a> Router<'a> {
                 }
                 _ => self.project(r, p),
             };
-            self.walk(r, place(ra, a), place(rb, b), &mut out);
+            let ends = (
+                ra.or(if k == 0 { start } else { None }),
+                rb.or(if k == cuts.len() { end } else { None }),
+            );
+            self.walk(r, place(ends.0, a), place(ends.1, b), &mut out);
             out.push(b);
         }
         self.cuts.replace(cuts);

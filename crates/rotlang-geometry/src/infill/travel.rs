@@ -551,8 +551,11 @@ impl<'a> Router<'a> {
         inside
     }
 
-    /// The ring nearest to `p`.
+    /// The ring nearest to `p` (of one ring, that one: nothing to measure).
     fn nearest(&self, p: Coord) -> usize {
+        if self.rings.len() == 1 {
+            return 0;
+        }
         (0..self.rings.len())
             .map(|r| {
                 let (i, _) = self.project(r, p);

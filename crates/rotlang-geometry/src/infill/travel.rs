@@ -279,8 +279,8 @@ impl<'a> Router<'a> {
                 .iter()
                 .enumerate()
                 .map(|(r, ring)| {
-                    let n = ring.len();
-                    let area: f64 = (0..n).map(|i| cross(ring[i], ring[next(i, n)])).sum();
+                    // Its sign only: the sum without a wrap test per vertex.
+                    let area = super::offset::signed_area(ring);
                     let mut around = false;
                     for (s, other) in self.rings.iter().enumerate() {
                         let m = other.len();

@@ -353,4 +353,6 @@ fn check(params: &Params) -> Result<(), Error> {
 }
 
 #[cfg(test)]
+mod inset_tests;
+#[cfg(test)]
 mod tests;

@@ -37,10 +37,10 @@ pub(crate) fn families(
             let Some(&last) = ring.last() else {
                 continue;
             };
-            let mut a = frame.to_local(last);
+            let mut a = Vertex::new(frame.to_local(last), shift, inv);
             for &b in ring {
-                let b = frame.to_local(b);
-                crossings_of(a, b, spacing, shift, inv, &mut crossings);
+                let b = Vertex::new(frame.to_local(b), shift, inv);
+                crossings_of(&a, &b, spacing, shift, &mut crossings);
                 a = b;
             }
         }
@@ -58,21 +58,44 @@ pub(crate) fn families(
     }
 }
 
-/// The crossings of the edge from `a` to `b` with the lines `y = k·spacing + shift`
-/// (`inv` = 1 / spacing): the half-open rule of the scan (`(a.y <= y) != (b.y <= y)`),
-/// tested on each candidate line. The candidates are the lines within the edge's height
-/// widened by a margin far above rounding (a billionth of a line), so that none that the
-/// rule takes is missed; an edge shorter than the spacing (most edges of a round or
-/// arc-cornered region) usually has none, and costs two multiplications.
-fn crossings_of(a: Coord, b: Coord, spacing: f64, shift: f64, inv: f64, out: &mut Vec<(i64, f64)>) {
-    let (lo, hi) = if a.y < b.y { (a.y, b.y) } else { (b.y, a.y) };
-    if lo >= hi {
-        return;
+/// A vertex in the family's frame with the range of lines it might be on: the lines
+/// within a margin far above rounding (a billionth of a line) below and above it, found
+/// once per vertex (each is the end of two edges), not once per edge end.
+struct Vertex {
+    p: Coord,
+    /// The first line at or above `p.y` less the margin.
+    above: i64,
+    /// The last line at or below `p.y` plus the margin.
+    below: i64,
+}
+
+impl Vertex {
+    #[inline]
+    fn new(p: Coord, shift: f64, inv: f64) -> Vertex {
+        let t = (p.y - shift) * inv;
+        let margin = 1e-9 + 1e-12 * t.abs();
+        Vertex {
+            p,
+            above: ceil(t - margin),
+            below: floor(t + margin),
+        }
     }
-    let (t0, t1) = ((lo - shift) * inv, (hi - shift) * inv);
-    let margin = 1e-9 + 1e-12 * t0.abs().max(t1.abs());
-    let first = ceil(t0 - margin);
-    let last = floor(t1 + margin);
+}
+
+/// The crossings of the edge from `a` to `b` with the lines `y = k·spacing + shift`:
+/// the half-open rule of the scan (`(a.y <= y) != (b.y <= y)`), tested on each candidate
+/// line. The candidates run from the lower end's first line above to the upper end's
+/// last line below, each widened by its margin, so that none that the rule takes is
+/// missed; an edge shorter than the spacing (most edges of a round or arc-cornered
+/// region) usually has none, and costs a comparison.
+#[inline]
+fn crossings_of(a: &Vertex, b: &Vertex, spacing: f64, shift: f64, out: &mut Vec<(i64, f64)>) {
+    let (first, last) = if a.p.y < b.p.y {
+        (a.above, b.below)
+    } else {
+        (b.above, a.below)
+    };
+    let (a, b) = (a.p, b.p);
     for k in first..=last {
         let y = k as f64 * spacing + shift;
         if (a.y <= y) != (b.y <= y) {

@@ -29,20 +29,20 @@ struct Cut {
 /// The rings with their cumulative lengths, ready for many moves.
 pub(crate) struct Router<'a> {
     rings: &'a [Vec<Coord>],
-    /// Ring `r`'s cumulative lengths are `cumulative[at[r]..at[r] + n + 1]` (one flat
+    /// Ring `r`'s cumulative lengths are `lengths[at[r].1..at[r].1 + n + 1]` (one flat
     /// list: one allocation, not one per ring), measured when a first move is walked
     /// around (most layers' moves are straight).
-    lengths: std::cell::OnceCell<(Vec<f64>, Vec<usize>)>,
+    lengths: std::cell::OnceCell<Vec<f64>>,
     /// The crossings of the move being routed, kept for the next.
     cuts: std::cell::RefCell<Vec<(f64, Cut)>>,
     /// The route being built, kept for the next.
     path: std::cell::RefCell<Vec<Coord>>,
-    /// Each ring's bounding box: a move or point outside it cannot cross it or be in it.
+    /// Per ring, its bounding box (a move or point outside it cannot cross it or be in
+    /// it), then the boxes of its chunks of `CHUNK` edges, grown by a little slack
+    /// (below): one list, ring `r`'s from `at[r].0`.
     boxes: Vec<(Coord, Coord)>,
-    /// The boxes of each ring's chunks of `CHUNK` edges (ring `r`'s from `chunk_at[r]`),
-    /// grown by a little slack (below).
-    chunks: Vec<(Coord, Coord)>,
-    chunk_at: Vec<usize>,
+    /// Where each ring's boxes and cumulative lengths start.
+    at: Vec<(usize, usize)>,
     /// `CHUNK`, or (in tests) a ring's whole length: every edge tested, as before chunks.
     chunk: usize,
     /// Per ring, whether the region lies on its left (measured when first needed).
@@ -50,6 +50,12 @@ pub(crate) struct Router<'a> {
     /// Whether a move that leaves a ring clearly inward is taken as inside without the
     /// even-odd test of its middle (off in tests, for the general path).
     fast: bool,
+    /// Whether both fractions of every edge's crossing are divided out before either is
+    /// tested (in tests: the general path the early test is compared with).
+    divide_first: bool,
+    /// Whether a walk projects the move's ends on the ring even where a crossing at the
+    /// end says where they are (in tests: the general path).
+    project_ends: bool,
 }
 
 impl<'a> Router<'a> {
@@ -60,13 +66,17 @@ impl<'a> Router<'a> {
     /// A router with chunks of `chunk` edges (`usize::MAX`: one per ring).
     pub(crate) fn with_chunk(rings: &'a [Vec<Coord>], chunk: usize) -> Router<'a> {
         let vertices: usize = rings.iter().map(Vec::len).sum();
-        let mut boxes = Vec::with_capacity(rings.len());
-        let mut chunks = Vec::with_capacity(vertices / chunk + rings.len());
-        let mut chunk_at = Vec::with_capacity(rings.len());
+        let mut chunks = Vec::with_capacity(vertices / chunk + 2 * rings.len());
+        let mut at = Vec::with_capacity(rings.len());
         let mut largest: f64 = 0.0;
+        let mut lengths_at = 0;
         for r in rings {
             let n = r.len();
-            chunk_at.push(chunks.len());
+            // The ring's box first, set once its chunks are measured.
+            let ring_at = chunks.len();
+            at.push((ring_at, lengths_at));
+            lengths_at += n + 1;
+            chunks.push((Coord::zero(), Coord::zero()));
             // Chunk c holds edges c·CHUNK.. (up to the ring's end), so vertices
             // c·CHUNK..=(c + 1)·CHUNK, the last wrapping to the first.
             for c in 0..n.div_ceil(chunk) {
@@ -95,9 +105,9 @@ impl<'a> Router<'a> {
                 chunks.push((lo, hi));
             }
             // The ring's box is its chunks' (they hold every vertex): not a second pass.
-            let ring_box = chunks[chunk_at[chunk_at.len() - 1]..].iter().fold(
-                bounds(&[]),
-                |(lo, hi), &(a, b)| {
+            let ring_box = chunks[ring_at + 1..]
+                .iter()
+                .fold(bounds(&[]), |(lo, hi), &(a, b)| {
                     (
                         Coord {
                             x: lo.x.min(a.x),
@@ -108,34 +118,37 @@ impl<'a> Router<'a> {
                             y: hi.y.max(b.y),
                         },
                     )
-                },
-            );
+                });
             largest = largest
                 .max(ring_box.0.x.abs())
                 .max(ring_box.0.y.abs())
                 .max(ring_box.1.x.abs())
                 .max(ring_box.1.y.abs());
-            boxes.push(ring_box);
+            chunks[ring_at] = ring_box;
         }
         // A millionth of a nanometre per millimetre of coordinate: more than any rounding
         // in the tests a chunk's box stands for, so that skipping a chunk never skips an
         // edge the test would have taken.
         let slack = 1e-9 * (1.0 + largest);
-        for (lo, hi) in &mut chunks {
-            *lo = *lo - Coord { x: slack, y: slack };
-            *hi = *hi + Coord { x: slack, y: slack };
+        for (r, &(ring_at, _)) in rings.iter().zip(&at) {
+            let count = r.len().div_ceil(chunk);
+            for (lo, hi) in &mut chunks[ring_at + 1..ring_at + 1 + count] {
+                *lo = *lo - Coord { x: slack, y: slack };
+                *hi = *hi + Coord { x: slack, y: slack };
+            }
         }
         Router {
             rings,
             lengths: std::cell::OnceCell::new(),
             cuts: std::cell::RefCell::new(Vec::new()),
             path: std::cell::RefCell::new(Vec::new()),
-            boxes,
-            chunks,
-            chunk_at,
+            boxes: chunks,
+            at,
             chunk,
             left: std::cell::OnceCell::new(),
             fast: true,
+            divide_first: false,
+            project_ends: false,
         }
     }
 
@@ -146,12 +159,46 @@ impl<'a> Router<'a> {
         self
     }
 
+    /// The same router projecting the move's ends on the ring before every walk.
+    #[cfg(test)]
+    pub(crate) fn projecting_ends(mut self) -> Router<'a> {
+        self.project_ends = true;
+        self
+    }
+
+    /// The same router dividing out both fractions of every edge's crossing before
+    /// testing them.
+    #[cfg(test)]
+    pub(crate) fn dividing_first(mut self) -> Router<'a> {
+        self.divide_first = true;
+        self
+    }
+
+    /// Where a move crosses every ring, as (fraction along the move, ring, edge,
+    /// fraction along the edge, near) with bits for exact comparison (tests).
+    #[cfg(test)]
+    pub(crate) fn crossings_of_move(
+        &self,
+        p: Coord,
+        q: Coord,
+    ) -> Vec<(u64, usize, usize, u64, bool)> {
+        let mut out = Vec::new();
+        for r in 0..self.rings.len() {
+            self.hits(r, p, q, &mut out);
+        }
+        out.iter()
+            .map(|(t, c)| (t.to_bits(), c.ring, c.edge, c.u.to_bits(), c.near))
+            .collect()
+    }
+
     /// Whether a move that crosses no ring inside it (`cuts`: where it meets the rings)
-    /// starts or ends on an edge's middle and heads clearly into the region from it: then
-    /// it is inside all along (it would have to cross a ring to leave), and the even-odd
-    /// test of its middle is not needed. Any doubt (a vertex, a grazing move, two rings
-    /// met at that end) answers `false`, for that test to decide.
-    fn leaves_inward(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> bool {
+    /// and starts or ends on an edge's middle heads clearly into the region from it
+    /// (`Some(true)`: then it is inside all along, as it would have to cross a ring to
+    /// leave) or clearly out of it (`Some(false)`: outside all along, for the same
+    /// reason); either way the even-odd test of its middle is not needed. Any doubt (a
+    /// vertex, a grazing move, two rings met at that end) answers `None`, for that test
+    /// to decide.
+    fn leaves(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> Option<bool> {
         let d = q - p;
         let d2 = d.x * d.x + d.y * d.y;
         for (at_p, from, to) in [(true, p, q), (false, q, p)] {
@@ -171,9 +218,9 @@ impl<'a> Router<'a> {
             if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
                 continue;
             }
-            return (turn > 0.0) == self.region_left(c.ring);
+            return Some((turn > 0.0) == self.region_left(c.ring));
         }
-        false
+        None
     }
 
     /// Whether the stretch before bound `k` of a move (`d` its direction; bound `k` is
@@ -217,7 +264,7 @@ impl<'a> Router<'a> {
     /// (a point on an edge is), and need not be run.
     fn along_edge(&self, m: Coord, cuts: &[(f64, Cut)]) -> bool {
         cuts.iter().filter(|(t, _)| t.is_nan()).any(|&(_, c)| {
-            let (lo, hi) = self.boxes[c.ring];
+            let (lo, hi) = self.ring_box(c.ring);
             let ring = &self.rings[c.ring];
             !(m.x < lo.x || m.x > hi.x || m.y < lo.y || m.y > hi.y)
                 && on_edge(ring[c.edge], ring[next(c.edge, ring.len())], m)
@@ -232,8 +279,8 @@ impl<'a> Router<'a> {
                 .iter()
                 .enumerate()
                 .map(|(r, ring)| {
-                    let n = ring.len();
-                    let area: f64 = (0..n).map(|i| cross(ring[i], ring[next(i, n)])).sum();
+                    // Its sign only: the sum without a wrap test per vertex.
+                    let area = super::offset::signed_area(ring);
                     let mut around = false;
                     for (s, other) in self.rings.iter().enumerate() {
                         let m = other.len();
@@ -251,6 +298,12 @@ impl<'a> Router<'a> {
         })[r]
     }
 
+    /// Ring `r`'s bounding box.
+    #[inline]
+    fn ring_box(&self, r: usize) -> (Coord, Coord) {
+        self.boxes[self.at[r].0]
+    }
+
     /// Ring `r`'s chunk boxes, with the range of edges each holds.
     fn chunks(
         &self,
@@ -259,8 +312,8 @@ impl<'a> Router<'a> {
         let n = self.rings[r].len();
         let chunk = self.chunk;
         let count = n.div_ceil(chunk);
-        let from = self.chunk_at[r];
-        self.chunks[from..from + count]
+        let from = self.at[r].0 + 1;
+        self.boxes[from..from + count]
             .iter()
             .enumerate()
             .map(move |(c, &(lo, hi))| {
@@ -273,13 +326,11 @@ impl<'a> Router<'a> {
     }
 
     fn cumulative(&self, r: usize) -> &[f64] {
-        let (cumulative, at) = self.lengths.get_or_init(|| {
+        let cumulative = self.lengths.get_or_init(|| {
             let vertices: usize = self.rings.iter().map(Vec::len).sum();
             let mut cumulative = Vec::with_capacity(vertices + self.rings.len());
-            let mut at = Vec::with_capacity(self.rings.len());
             for ring in self.rings {
                 let n = ring.len();
-                at.push(cumulative.len());
                 let mut s = 0.0;
                 cumulative.push(0.0);
                 for i in 0..n {
@@ -288,9 +339,9 @@ impl<'a> Router<'a> {
                     cumulative.push(s);
                 }
             }
-            (cumulative, at)
+            cumulative
         });
-        let from = at[r];
+        let from = self.at[r].1;
         &cumulative[from..from + self.rings[r].len() + 1]
     }
 
@@ -338,8 +389,13 @@ impl<'a> Router<'a> {
                     continue;
                 }
                 let ap = a - p;
-                let t = (ap.x * e.y - ap.y * e.x) / denom;
+                // Most edges are missed beside their ends: told by where the move's line
+                // meets the edge's, before the second division.
                 let u = (ap.x * d.y - ap.y * d.x) / denom;
+                if !self.divide_first && !(0.0..1.0).contains(&u) {
+                    continue;
+                }
+                let t = (ap.x * e.y - ap.y * e.x) / denom;
                 if (0.0..1.0).contains(&u) && (-1e-9..=1.0 + 1e-9).contains(&t) {
                     out.push((
                         t,
@@ -365,6 +421,8 @@ impl<'a> Router<'a> {
         }
         let mut cuts = self.cuts.take();
         cuts.clear();
+        // Room for a few crossings at once (not grown from nothing, one at a time).
+        cuts.reserve(16);
         let (lo, hi) = (
             Coord {
                 x: p.x.min(q.x),
@@ -376,7 +434,7 @@ impl<'a> Router<'a> {
             },
         );
         for r in 0..self.rings.len() {
-            let (a, b) = self.boxes[r];
+            let (a, b) = self.ring_box(r);
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
@@ -384,17 +442,34 @@ impl<'a> Router<'a> {
         }
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
-        if !cuts.iter().any(|&(t, _)| interior(t))
-            && (self.fast
-                && (self.leaves_inward(p, q, &cuts) || self.along_edge((p + q) / 2.0, &cuts))
-                || self.inside((p + q) / 2.0))
-        {
-            self.cuts.replace(cuts);
-            return vec![p, q];
+        if !cuts.iter().any(|&(t, _)| interior(t)) {
+            let straight = match self.fast.then(|| self.leaves(p, q, &cuts)).flatten() {
+                Some(inward) => inward,
+                None => {
+                    self.fast && self.along_edge((p + q) / 2.0, &cuts) || self.inside((p + q) / 2.0)
+                }
+            };
+            if straight {
+                self.cuts.replace(cuts);
+                return vec![p, q];
+            }
         }
         // A move between two points of one ring (line ends lie on the inset's rings) may
         // find no crossing at all, its ends being on the ring: the middle of each
         // stretch decides whether it is inside.
+        // Where each end of the move lies on a ring (a line's end on its edge, met just
+        // beyond the move): a walk from there starts at that crossing, without
+        // projecting the end on the ring (a search of every edge).
+        let on_ring = |at_p: bool| {
+            cuts.iter()
+                .find(|&&(t, c)| c.near && if at_p { t <= 0.0 } else { t >= 1.0 })
+                .map(|&(_, c)| c)
+        };
+        let (start, end) = if self.project_ends {
+            (None, None)
+        } else {
+            (on_ring(true), on_ring(false))
+        };
         cuts.retain(|c| !c.1.near);
         cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let at = |t: f64| if t >= 1.0 { q } else { p + (q - p) * t };
@@ -403,6 +478,7 @@ impl<'a> Router<'a> {
         // copied at its final length: one allocation per route, none to grow it.
         let mut out = self.path.take();
         out.clear();
+        out.reserve(32);
         out.push(p);
         // The stretches between consecutive bounds: the move's ends and its crossings.
         let mut previous: (f64, Option<Cut>) = (0.0, None);
@@ -432,7 +508,11 @@ impl<'a> Router<'a> {
                 }
                 _ => self.project(r, p),
             };
-            self.walk(r, place(ra, a), place(rb, b), &mut out);
+            let ends = (
+                ra.or(if k == 0 { start } else { None }),
+                rb.or(if k == cuts.len() { end } else { None }),
+            );
+            self.walk(r, place(ends.0, a), place(ends.1, b), &mut out);
             out.push(b);
         }
         self.cuts.replace(cuts);
@@ -449,7 +529,8 @@ impl<'a> Router<'a> {
     /// above it, or all to its left) and `p` is not within a nanometre of its box.
     fn inside(&self, p: Coord) -> bool {
         let mut inside = false;
-        for (r, (ring, &(lo, hi))) in self.rings.iter().zip(&self.boxes).enumerate() {
+        for (r, ring) in self.rings.iter().enumerate() {
+            let (lo, hi) = self.ring_box(r);
             if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
                 continue;
             }
@@ -476,8 +557,11 @@ impl<'a> Router<'a> {
         inside
     }
 
-    /// The ring nearest to `p`.
+    /// The ring nearest to `p` (of one ring, that one: nothing to measure).
     fn nearest(&self, p: Coord) -> usize {
+        if self.rings.len() == 1 {
+            return 0;
+        }
         (0..self.rings.len())
             .map(|r| {
                 let (i, _) = self.project(r, p);

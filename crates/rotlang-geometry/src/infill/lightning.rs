@@ -56,14 +56,49 @@ pub(crate) fn tree(
     mut piece: impl FnMut(&[Coord]),
 ) {
     let frame = frame(centre);
+    let branches = branches(region, centre, theta, spacing);
+    // Each piece back in world coordinates, in one buffer.
+    let mut world = Vec::new();
+    // In a convex region a polyline whose ends are inside is inside whole. A branch starts
+    // on the outline and its fork lies between its start and its tip, so with the tip
+    // inside, each of its polylines is inside when its twig's end is: no clipping, which
+    // is most of the work.
+    let convex = region.is_convex();
+    for pair in branches.chunks_exact(2) {
+        let tip_inside = convex && edges.contains(frame.to_local(pair[1][0]));
+        for branch in pair {
+            let branch = branch.map(|p| frame.to_local(p));
+            if tip_inside && edges.contains(branch[2]) {
+                piece(&branch.map(|q| frame.to_world(q)));
+                continue;
+            }
+            edges.clip_each(&branch, |local| {
+                world.clear();
+                world.extend(local.iter().map(|&q| frame.to_world(q)));
+                piece(&world);
+            });
+        }
+    }
+}
+
+/// The tree's polylines before clipping, in world coordinates: per branch, its start, fork
+/// and left twig's end, then its tip, fork and right twig's end.
+pub(crate) fn branches(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    spacing: f64,
+) -> Vec<[Coord; 3]> {
     let gap = 2.5 * spacing;
     let direction = Coord {
         x: math::cos(theta),
         y: math::sin(theta),
     };
-    // Each branch, and whether it starts on the outline (a main branch; a twig starts at
-    // its fork).
-    let mut branches: Vec<([Coord; 2], bool)> = Vec::new();
+    // Each branch as two polylines through its fork: the main branch's first part and one
+    // twig, then the main branch's tip, back to the fork and the other twig. A tree of four
+    // ends needs two paths at least; three separate segments (as before) made three paths
+    // and three travels per branch, each travel routed inside the region.
+    let mut branches: Vec<[Coord; 3]> = Vec::new();
     for ring in region.outlines() {
         let n = ring.len();
         let start = (0..n)
@@ -72,7 +107,7 @@ pub(crate) fn tree(
         let perimeter = perimeter(ring);
         let count = (perimeter / gap).floor().max(1.0) as usize;
         let step = perimeter / count as f64;
-        branches.reserve(3 * count);
+        branches.reserve(2 * count);
         // Walk the ring from `start`, dropping a branch every `step` of arc length.
         let (mut i, mut along, mut next) = (0usize, 0.0, 0.0);
         let mut k = 0usize;
@@ -92,33 +127,16 @@ pub(crate) fn tree(
                 let main = rotate(to_centre / dist, turn);
                 let reach = 0.8 * dist;
                 let fork = p + main * (0.4 * reach);
-                branches.push(([p, p + main * reach], true));
-                for side in [45f64, -45.0] {
-                    let twig = rotate(main, side.to_radians());
-                    branches.push(([fork, fork + twig * (0.4 * reach)], false));
-                }
+                let [left, right] = [45f64, -45.0]
+                    .map(|side| fork + rotate(main, side.to_radians()) * (0.4 * reach));
+                branches.push([p, fork, left]);
+                branches.push([p + main * reach, fork, right]);
             }
             k += 1;
             next = k as f64 * step;
         }
     }
-    // Each piece back in world coordinates, in one buffer.
-    let mut world = Vec::new();
-    // In a convex region a branch with both ends inside (or starting on the outline) is
-    // inside whole: no clipping, which is most of the work.
-    let convex = region.is_convex();
-    for (branch, main) in branches {
-        let branch = branch.map(|p| frame.to_local(p));
-        if convex && (main || edges.contains(branch[0])) && edges.contains(branch[1]) {
-            piece(&branch.map(|q| frame.to_world(q)));
-            continue;
-        }
-        edges.clip_each(&branch, |local| {
-            world.clear();
-            world.extend(local.iter().map(|&q| frame.to_world(q)));
-            piece(&world);
-        });
-    }
+    branches
 }
 
 /// The frame the tree is clipped in: unturned, about the pattern centre.
@@ -141,3 +159,7 @@ fn rotate(v: Coord, angle: f64) -> Coord {
         y: v.x * s + v.y * c,
     }
 }
+
+#[cfg(test)]
+#[path = "lightning_tests.rs"]
+mod tests;

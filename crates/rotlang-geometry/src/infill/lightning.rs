@@ -40,7 +40,10 @@ pub(crate) fn lightning(
     edges: &mut Edges,
     out: &mut Vec<Vec<Coord>>,
 ) {
-    tree(region, centre, theta, spacing, edges, |piece| {
+    let branches = branches(region, centre, theta, spacing);
+    // A piece per polyline, unless one is cut: the list made at about its size, not grown.
+    out.reserve(branches.len() + branches.len() / 4);
+    clip_tree(&branches, centre, region.is_convex(), edges, |piece| {
         out.push(piece.to_vec())
     });
 }
@@ -53,17 +56,27 @@ pub(crate) fn tree(
     theta: f64,
     spacing: f64,
     edges: &mut Edges,
+    piece: impl FnMut(&[Coord]),
+) {
+    let branches = branches(region, centre, theta, spacing);
+    clip_tree(&branches, centre, region.is_convex(), edges, piece);
+}
+
+/// The polylines of [`branches`] clipped, each piece handed to `piece`.
+fn clip_tree(
+    branches: &[[Coord; 3]],
+    centre: Coord,
+    convex: bool,
+    edges: &mut Edges,
     mut piece: impl FnMut(&[Coord]),
 ) {
     let frame = frame(centre);
-    let branches = branches(region, centre, theta, spacing);
     // Each piece back in world coordinates, in one buffer.
     let mut world = Vec::new();
     // In a convex region a polyline whose ends are inside is inside whole. A branch starts
     // on the outline and its fork lies between its start and its tip, so with the tip
     // inside, each of its polylines is inside when its twig's end is: no clipping, which
     // is most of the work.
-    let convex = region.is_convex();
     for pair in branches.chunks_exact(2) {
         let tip_inside = convex && edges.contains(frame.to_local(pair[1][0]));
         for branch in pair {

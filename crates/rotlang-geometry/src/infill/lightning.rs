@@ -112,6 +112,9 @@ pub(crate) fn branches(
     // ends needs two paths at least; three separate segments (as before) made three paths
     // and three travels per branch, each travel routed inside the region.
     let mut branches: Vec<[Coord; 3]> = Vec::new();
+    // The turns' sines and cosines, once a tree (not per branch: the same numbers).
+    let [even, odd, left_twig, right_twig] =
+        [10f64, -10.0, 45.0, -45.0].map(|angle| math::sin_cos(angle.to_radians()));
     for ring in region.outlines() {
         let n = ring.len();
         let start = (0..n)
@@ -136,12 +139,12 @@ pub(crate) fn branches(
             let to_centre = centre - p;
             let dist = length(to_centre);
             if dist > 1e-9 {
-                let turn = if k.is_multiple_of(2) { 10f64 } else { -10.0 }.to_radians();
+                let turn = if k.is_multiple_of(2) { even } else { odd };
                 let main = rotate(to_centre / dist, turn);
                 let reach = 0.8 * dist;
                 let fork = p + main * (0.4 * reach);
-                let [left, right] = [45f64, -45.0]
-                    .map(|side| fork + rotate(main, side.to_radians()) * (0.4 * reach));
+                let [left, right] =
+                    [left_twig, right_twig].map(|side| fork + rotate(main, side) * (0.4 * reach));
                 branches.push([p, fork, left]);
                 branches.push([p + main * reach, fork, right]);
             }
@@ -165,8 +168,8 @@ fn length(a: Coord) -> f64 {
     (a.x * a.x + a.y * a.y).sqrt()
 }
 
-fn rotate(v: Coord, angle: f64) -> Coord {
-    let (s, c) = math::sin_cos(angle);
+/// `v` turned by the angle whose sine and cosine are given.
+fn rotate(v: Coord, (s, c): (f64, f64)) -> Coord {
     Coord {
         x: v.x * c - v.y * s,
         y: v.x * s + v.y * c,

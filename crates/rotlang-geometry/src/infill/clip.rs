@@ -316,6 +316,8 @@ impl Edges {
                 d: q - p,
                 x0: p.x.min(q.x),
                 x1: p.x.max(q.x),
+                y0: lo,
+                y1: hi,
                 k: k as f64,
             };
             if self.edges.len() <= PLAIN {
@@ -418,12 +420,15 @@ impl Edges {
 /// grid.
 const PLAIN: usize = 32;
 
-/// One segment of a polyline being clipped: its start, direction, x range and index.
+/// One segment of a polyline being clipped: its start, direction, x and y ranges and
+/// index.
 struct Segment {
     p: Coord,
     d: Coord,
     x0: f64,
     x1: f64,
+    y0: f64,
+    y1: f64,
     k: f64,
 }
 
@@ -432,10 +437,15 @@ impl Segment {
     #[inline]
     fn cut(&self, Edge { a, b }: Edge, cuts: &mut Vec<f64>) {
         let (p, d1) = (self.p, self.d);
-        // Both ends left of the segment's x range, or both right: by comparisons, not
-        // `max`/`min` (which handle NaN at several instructions each; coordinates are
-        // finite), in the loop over every edge of a small region.
-        if (a.x < self.x0 && b.x < self.x0) || (a.x > self.x1 && b.x > self.x1) {
+        // Both ends left of the segment's x range, or both right, below or above: by
+        // comparisons, not `max`/`min` (which handle NaN at several instructions each;
+        // coordinates are finite), in the loop over every edge of a small region. An edge
+        // wholly beside the segment's box cannot cross it.
+        if (a.x < self.x0 && b.x < self.x0)
+            || (a.x > self.x1 && b.x > self.x1)
+            || (a.y < self.y0 && b.y < self.y0)
+            || (a.y > self.y1 && b.y > self.y1)
+        {
             return;
         }
         // The edge's ends on opposite sides of the segment's line (cheap, and false for

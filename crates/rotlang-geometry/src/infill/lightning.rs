@@ -40,7 +40,10 @@ pub(crate) fn lightning(
     edges: &mut Edges,
     out: &mut Vec<Vec<Coord>>,
 ) {
-    tree(region, centre, theta, spacing, edges, |piece| {
+    let branches = branches(region, centre, theta, spacing);
+    // A piece per polyline, unless one is cut: the list made at about its size, not grown.
+    out.reserve(branches.len() + branches.len() / 4);
+    clip_tree(&branches, centre, region.is_convex(), edges, |piece| {
         out.push(piece.to_vec())
     });
 }
@@ -53,17 +56,65 @@ pub(crate) fn tree(
     theta: f64,
     spacing: f64,
     edges: &mut Edges,
+    piece: impl FnMut(&[Coord]),
+) {
+    let branches = branches(region, centre, theta, spacing);
+    clip_tree(&branches, centre, region.is_convex(), edges, piece);
+}
+
+/// The polylines of [`branches`] clipped, each piece handed to `piece`.
+fn clip_tree(
+    branches: &[[Coord; 3]],
+    centre: Coord,
+    convex: bool,
+    edges: &mut Edges,
     mut piece: impl FnMut(&[Coord]),
 ) {
     let frame = frame(centre);
+    // Each piece back in world coordinates, in one buffer.
+    let mut world = Vec::new();
+    // In a convex region a polyline whose ends are inside is inside whole. A branch starts
+    // on the outline and its fork lies between its start and its tip, so with the tip
+    // inside, each of its polylines is inside when its twig's end is: no clipping, which
+    // is most of the work.
+    for pair in branches.chunks_exact(2) {
+        let tip_inside = convex && edges.contains(frame.to_local(pair[1][0]));
+        for branch in pair {
+            let branch = branch.map(|p| frame.to_local(p));
+            if tip_inside && edges.contains(branch[2]) {
+                piece(&branch.map(|q| frame.to_world(q)));
+                continue;
+            }
+            edges.clip_each(&branch, |local| {
+                world.clear();
+                world.extend(local.iter().map(|&q| frame.to_world(q)));
+                piece(&world);
+            });
+        }
+    }
+}
+
+/// The tree's polylines before clipping, in world coordinates: per branch, its start, fork
+/// and left twig's end, then its tip, fork and right twig's end.
+pub(crate) fn branches(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    spacing: f64,
+) -> Vec<[Coord; 3]> {
     let gap = 2.5 * spacing;
     let direction = Coord {
         x: math::cos(theta),
         y: math::sin(theta),
     };
-    // Each branch, and whether it starts on the outline (a main branch; a twig starts at
-    // its fork).
-    let mut branches: Vec<([Coord; 2], bool)> = Vec::new();
+    // Each branch as two polylines through its fork: the main branch's first part and one
+    // twig, then the main branch's tip, back to the fork and the other twig. A tree of four
+    // ends needs two paths at least; three separate segments (as before) made three paths
+    // and three travels per branch, each travel routed inside the region.
+    let mut branches: Vec<[Coord; 3]> = Vec::new();
+    // The turns' sines and cosines, once a tree (not per branch: the same numbers).
+    let [even, odd, left_twig, right_twig] =
+        [10f64, -10.0, 45.0, -45.0].map(|angle| math::sin_cos(angle.to_radians()));
     for ring in region.outlines() {
         let n = ring.len();
         let start = (0..n)
@@ -72,7 +123,7 @@ pub(crate) fn tree(
         let perimeter = perimeter(ring);
         let count = (perimeter / gap).floor().max(1.0) as usize;
         let step = perimeter / count as f64;
-        branches.reserve(3 * count);
+        branches.reserve(2 * count);
         // Walk the ring from `start`, dropping a branch every `step` of arc length.
         let (mut i, mut along, mut next) = (0usize, 0.0, 0.0);
         let mut k = 0usize;
@@ -88,37 +139,20 @@ pub(crate) fn tree(
             let to_centre = centre - p;
             let dist = length(to_centre);
             if dist > 1e-9 {
-                let turn = if k.is_multiple_of(2) { 10f64 } else { -10.0 }.to_radians();
+                let turn = if k.is_multiple_of(2) { even } else { odd };
                 let main = rotate(to_centre / dist, turn);
                 let reach = 0.8 * dist;
                 let fork = p + main * (0.4 * reach);
-                branches.push(([p, p + main * reach], true));
-                for side in [45f64, -45.0] {
-                    let twig = rotate(main, side.to_radians());
-                    branches.push(([fork, fork + twig * (0.4 * reach)], false));
-                }
+                let [left, right] =
+                    [left_twig, right_twig].map(|side| fork + rotate(main, side) * (0.4 * reach));
+                branches.push([p, fork, left]);
+                branches.push([p + main * reach, fork, right]);
             }
             k += 1;
             next = k as f64 * step;
         }
     }
-    // Each piece back in world coordinates, in one buffer.
-    let mut world = Vec::new();
-    // In a convex region a branch with both ends inside (or starting on the outline) is
-    // inside whole: no clipping, which is most of the work.
-    let convex = region.is_convex();
-    for (branch, main) in branches {
-        let branch = branch.map(|p| frame.to_local(p));
-        if convex && (main || edges.contains(branch[0])) && edges.contains(branch[1]) {
-            piece(&branch.map(|q| frame.to_world(q)));
-            continue;
-        }
-        edges.clip_each(&branch, |local| {
-            world.clear();
-            world.extend(local.iter().map(|&q| frame.to_world(q)));
-            piece(&world);
-        });
-    }
+    branches
 }
 
 /// The frame the tree is clipped in: unturned, about the pattern centre.
@@ -134,10 +168,14 @@ fn length(a: Coord) -> f64 {
     (a.x * a.x + a.y * a.y).sqrt()
 }
 
-fn rotate(v: Coord, angle: f64) -> Coord {
-    let (s, c) = math::sin_cos(angle);
+/// `v` turned by the angle whose sine and cosine are given.
+fn rotate(v: Coord, (s, c): (f64, f64)) -> Coord {
     Coord {
         x: v.x * c - v.y * s,
         y: v.x * s + v.y * c,
     }
 }
+
+#[cfg(test)]
+#[path = "lightning_tests.rs"]
+mod tests;

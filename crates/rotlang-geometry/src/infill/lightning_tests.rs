@@ -1,0 +1,148 @@
+//! Lightning's tree against the general path: every polyline clipped, every segment
+//! clipped on its own.
+
+use super::*;
+use crate::infill::clip::Edges;
+use crate::infill::shapes;
+use geo::{LineString, MultiPolygon, Polygon};
+use proptest::prelude::*;
+use std::f64::consts::TAU;
+
+const W: f64 = 0.4;
+
+/// A ring of `radii.len()` vertices at those distances from `centre`, evenly turned
+/// (counter-clockwise; clockwise for a hole).
+fn radial(radii: &[f64], turn: f64, centre: Coord, hole: bool) -> LineString<f64> {
+    let n = radii.len();
+    let mut points: Vec<Coord> = radii
+        .iter()
+        .enumerate()
+        .map(|(i, &r)| {
+            let (s, c) = math::sin_cos(turn + TAU * i as f64 / n as f64);
+            centre + Coord { x: r * c, y: r * s }
+        })
+        .collect();
+    if hole {
+        points.reverse();
+    }
+    LineString::from(points)
+}
+
+fn region_of(radii: &[f64], hole: Option<&[f64]>, turn: f64) -> Region {
+    let holes = hole
+        .map(|h| vec![radial(h, -turn, Coord { x: 0.3, y: 0.2 }, true)])
+        .unwrap_or_default();
+    let shape = MultiPolygon::new(vec![Polygon::new(
+        radial(radii, turn, Coord::zero(), false),
+        holes,
+    )]);
+    Region::new(&shape, W).unwrap()
+}
+
+/// The tree's pieces as `tree` hands them out.
+fn tree_pieces(region: &Region, theta: f64, spacing: f64) -> Vec<Vec<Coord>> {
+    let centre = region.centre();
+    let mut edges = Edges::new(region.rings(), &frame(centre));
+    let mut out = Vec::new();
+    tree(region, centre, theta, spacing, &mut edges, |p| {
+        out.push(p.to_vec())
+    });
+    out
+}
+
+/// The general path: each of `lines` clipped, in the frame, back in world coordinates.
+fn clipped(region: &Region, lines: &[Vec<Coord>]) -> Vec<Vec<Coord>> {
+    let frame = frame(region.centre());
+    let mut edges = Edges::new(region.rings(), &frame);
+    let mut out = Vec::new();
+    for line in lines {
+        let local: Vec<Coord> = line.iter().map(|&p| frame.to_local(p)).collect();
+        edges.clip_each(&local, |piece| {
+            out.push(piece.iter().map(|&q| frame.to_world(q)).collect())
+        });
+    }
+    out
+}
+
+fn total(paths: &[Vec<Coord>]) -> f64 {
+    paths.iter().map(|p| length_of(p)).sum()
+}
+
+fn length_of(p: &[Coord]) -> f64 {
+    p.windows(2).map(|w| length(w[1] - w[0])).sum()
+}
+
+/// The tree's polylines are the branches' three segments (start to tip, two twigs from
+/// the fork): the same line printed, in two paths per branch, not three.
+fn check_same_line(region: &Region, theta: f64, spacing: f64) -> Result<(), TestCaseError> {
+    let centre = region.centre();
+    let polylines = branches(region, centre, theta, spacing);
+    let segments: Vec<Vec<Coord>> = polylines
+        .chunks_exact(2)
+        .flat_map(|pair| {
+            let ([p, fork, left], [tip, _, right]) = (pair[0], pair[1]);
+            [vec![p, tip], vec![fork, left], vec![fork, right]]
+        })
+        .collect();
+    let pieces = tree_pieces(region, theta, spacing);
+    let (a, b) = (total(&pieces), total(&clipped(region, &segments)));
+    prop_assert!((a - b).abs() <= 1e-9 * b.max(1.0), "{a} against {b}");
+    // The fast path (no clipping in a convex region) gives what clipping gives, but for
+    // the pieces of no length that clipping leaves where a branch starts on an edge (which
+    // `Region::fill` drops as slivers) and the last bits of the frame's round trip.
+    let general: Vec<Vec<Coord>> = clipped(
+        region,
+        &polylines.iter().map(|p| p.to_vec()).collect::<Vec<_>>(),
+    )
+    .into_iter()
+    .filter(|p| length_of(p) > 1e-9)
+    .collect();
+    let ours: Vec<&Vec<Coord>> = pieces.iter().filter(|p| length_of(p) > 1e-9).collect();
+    prop_assert_eq!(ours.len(), general.len());
+    for (a, b) in ours.iter().zip(&general) {
+        prop_assert_eq!(a.len(), b.len());
+        for (p, q) in a.iter().zip(b) {
+            prop_assert!(length(*p - *q) < 1e-9, "{p:?} against {q:?}");
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Star-like regions, convex (equal radii) or not, with a hole or none, any angle and
+    /// spacing: the tree's pieces are its polylines clipped, and print the length its
+    /// segments clipped one by one print.
+    #[test]
+    fn tree_is_its_segments_clipped(
+        radii in prop::collection::vec(2.0f64..15.0, 3..14),
+        hole in prop::collection::vec(0.5f64..1.5, 3..8),
+        holed in any::<bool>(),
+        convex in any::<bool>(),
+        turn in 0.0f64..TAU,
+        theta in 0.0f64..TAU,
+        spacing in 0.8f64..16.0,
+    ) {
+        let radii = if convex { vec![radii[0]; radii.len()] } else { radii };
+        let region = region_of(&radii, holed.then_some(&hole[..]), turn);
+        check_same_line(&region, theta, spacing)?;
+    }
+}
+
+/// The compared shapes at their first spacings for 10, 20 and 40%.
+#[test]
+fn compared_shapes_print_their_segments() {
+    for shape in [
+        shapes::square(20.0),
+        shapes::circle(10.0),
+        shapes::holed_square(40.0, 10.0),
+        shapes::star(10.0, 4.5),
+        shapes::l_shape(20.0),
+    ] {
+        let region = Region::new(&shape, W).unwrap();
+        for rho in [0.1, 0.2, 0.4] {
+            check_same_line(&region, 45f64.to_radians(), 2.0 * W / rho).unwrap();
+        }
+    }
+}

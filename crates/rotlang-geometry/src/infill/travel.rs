@@ -192,13 +192,11 @@ impl<'a> Router<'a> {
     }
 
     /// Whether a move that crosses no ring inside it (`cuts`: where it meets the rings)
-    /// and starts or ends on an edge's middle heads clearly into the region from it
-    /// (`Some(true)`: then it is inside all along, as it would have to cross a ring to
-    /// leave) or clearly out of it (`Some(false)`: outside all along, for the same
-    /// reason); either way the even-odd test of its middle is not needed. Any doubt (a
-    /// vertex, a grazing move, two rings met at that end) answers `None`, for that test
-    /// to decide.
-    fn leaves(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> Option<bool> {
+    /// starts or ends on an edge's middle and heads clearly into the region from it: then
+    /// it is inside all along (it would have to cross a ring to leave), and the even-odd
+    /// test of its middle is not needed. Any doubt (a vertex, a grazing move, two rings
+    /// met at that end) answers `false`, for that test to decide.
+    fn leaves_inward(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> bool {
         let d = q - p;
         let d2 = d.x * d.x + d.y * d.y;
         for (at_p, from, to) in [(true, p, q), (false, q, p)] {
@@ -218,9 +216,9 @@ impl<'a> Router<'a> {
             if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
                 continue;
             }
-            return Some((turn > 0.0) == self.region_left(c.ring));
+            return (turn > 0.0) == self.region_left(c.ring);
         }
-        None
+        false
     }
 
     /// Whether the stretch before bound `k` of a move (`d` its direction; bound `k` is
@@ -442,17 +440,13 @@ impl<'a> Router<'a> {
         }
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
-        if !cuts.iter().any(|&(t, _)| interior(t)) {
-            let straight = match self.fast.then(|| self.leaves(p, q, &cuts)).flatten() {
-                Some(inward) => inward,
-                None => {
-                    self.fast && self.along_edge((p + q) / 2.0, &cuts) || self.inside((p + q) / 2.0)
-                }
-            };
-            if straight {
-                self.cuts.replace(cuts);
-                return vec![p, q];
-            }
+        if !cuts.iter().any(|&(t, _)| interior(t))
+            && (self.fast
+                && (self.leaves_inward(p, q, &cuts) || self.along_edge((p + q) / 2.0, &cuts))
+                || self.inside((p + q) / 2.0))
+        {
+            self.cuts.replace(cuts);
+            return vec![p, q];
         }
         // A move between two points of one ring (line ends lie on the inset's rings) may
         // find no crossing at all, its ends being on the ring: the middle of each

@@ -2,7 +2,7 @@
 //! replaced (`concentric_reference.rs`): the same polylines to the bit, on the comparison's
 //! shapes and on random ones.
 
-use geo::{Coord, LineString, MultiPolygon, Polygon, Translate};
+use geo::{Coord, LineString, MultiPolygon, Polygon};
 use proptest::prelude::*;
 
 use super::concentric::concentric;
@@ -26,37 +26,12 @@ fn loops(
 }
 
 fn named_shapes() -> Vec<(&'static str, MultiPolygon<f64>)> {
-    let star_with_hole = MultiPolygon::new(vec![Polygon::new(
-        shapes::star(10.0, 4.5).0[0].exterior().clone(),
-        vec![shapes::circle(1.5).0[0].exterior().clone()],
-    )]);
-    let mut islands = shapes::star(10.0, 4.5);
-    islands
-        .0
-        .extend(shapes::l_shape(10.0).translate(30.0, 0.0).0);
-    let two_holes = MultiPolygon::new(vec![Polygon::new(
-        shapes::square(40.0).0[0].exterior().clone(),
-        vec![
-            shapes::circle(6.0).0[0]
-                .exterior()
-                .clone()
-                .translate(-8.3, 0.0),
-            shapes::circle(6.0).0[0]
-                .exterior()
-                .clone()
-                .translate(8.5, 1.3),
-        ],
-    )]);
-    vec![
+    let mut named = vec![
         ("square", shapes::square(20.0)),
         ("circle", shapes::circle(10.0)),
-        ("holed square", shapes::holed_square(40.0, 10.0)),
-        ("star", shapes::star(10.0, 4.5)),
-        ("L", shapes::l_shape(20.0)),
-        ("star with a hole", star_with_hole),
-        ("islands", islands),
-        ("two holes", two_holes),
-    ]
+    ];
+    named.extend(crate::infill::tests::ring_shapes());
+    named
 }
 
 /// Every shape of the Polyslice comparison (at its 10, 20 and 40% and its 45°) and a few

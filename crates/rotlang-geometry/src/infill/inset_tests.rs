@@ -159,25 +159,7 @@ proptest! {
         moves in prop::collection::vec(
             ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3, 0u8..3), 1..24),
     ) {
-        use geo::{LineString, MultiPolygon, Polygon};
-        let closed = |mut ring: Vec<Coord>| {
-            ring.push(ring[0]);
-            LineString::new(ring)
-        };
-        let interiors = holes
-            .iter()
-            .enumerate()
-            .map(|(i, radii)| {
-                let a = turn + TAU * i as f64 / 3.0;
-                let mut hole = radial(radii, turn, Coord { x: 2.2 * a.cos(), y: 2.2 * a.sin() });
-                hole.reverse();
-                closed(hole)
-            })
-            .collect();
-        let shape = MultiPolygon::new(vec![Polygon::new(
-            closed(radial(&outer, turn, Coord::zero())),
-            interiors,
-        )]);
+        let shape = super::tests::holed_radial(&outer, &holes, turn, 2.2);
         let region = super::Region::new(&shape, 0.4).unwrap();
         let rings = region.rings();
         let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();

@@ -700,7 +700,7 @@ proptest! {
 }
 
 /// A radial polygon's ring (as `polygon` makes), moved to `centre`, clockwise if `hole`.
-fn radial_ring(radii: &[f64], turn: f64, centre: Coord, hole: bool) -> LineString<f64> {
+pub(super) fn radial_ring(radii: &[f64], turn: f64, centre: Coord, hole: bool) -> LineString<f64> {
     let mut ring = polygon(radii, turn).0.remove(0).into_inner().0;
     for c in &mut ring.0 {
         *c = *c + centre;
@@ -709,6 +709,32 @@ fn radial_ring(radii: &[f64], turn: f64, centre: Coord, hole: bool) -> LineStrin
         ring.0.reverse();
     }
     ring
+}
+
+/// A radial outline of `outer` radii with a radial hole of each of `holes`' radii, the
+/// holes' centres `spread` mm out, a third of a turn apart (the proptests' holed regions).
+pub(super) fn holed_radial(
+    outer: &[f64],
+    holes: &[Vec<f64>],
+    turn: f64,
+    spread: f64,
+) -> MultiPolygon<f64> {
+    let interiors = holes
+        .iter()
+        .enumerate()
+        .map(|(i, radii)| {
+            let a = turn + TAU * i as f64 / 3.0;
+            let centre = Coord {
+                x: spread * math::cos(a),
+                y: spread * math::sin(a),
+            };
+            radial_ring(radii, turn, centre, true)
+        })
+        .collect();
+    MultiPolygon::new(vec![Polygon::new(
+        radial_ring(outer, turn, Coord::zero(), false),
+        interiors,
+    )])
 }
 
 proptest! {
@@ -737,19 +763,7 @@ proptest! {
         let centring = if global { Centring::Global } else { Centring::Object };
         let params = Params::new(pattern, rho, W).angle(angle).z(z).centring(centring);
         // One outline with up to three holes.
-        let interiors = holes
-            .iter()
-            .enumerate()
-            .map(|(i, radii)| {
-                let a = turn + TAU * i as f64 / 3.0;
-                let centre = Coord { x: 3.5 * math::cos(a), y: 3.5 * math::sin(a) };
-                radial_ring(radii, turn, centre, true)
-            })
-            .collect();
-        let holed = MultiPolygon::new(vec![Polygon::new(
-            radial_ring(&outer, turn, Coord::zero(), false),
-            interiors,
-        )]);
+        let holed = holed_radial(&outer, &holes, turn, 3.5);
         // Several islands, some holed.
         let archipelago = MultiPolygon::new(
             islands
@@ -914,14 +928,10 @@ fn raw_inset_matches_the_general_buffer() {
     assert!(offset::raw_inset(&shapes::star(10.0, 4.5), 4.0, 0.2).is_none());
 }
 
-/// Concentric loops where parts pinch off (the star's tips, the L's arms) or a grown hole
-/// meets the outline: the raw offset cut at its crossings bounds the same area as geo's
-/// buffer, with the same length of boundary, and declines none of these (before, each
-/// such loop went through the buffer or the boolean difference, 10–40 µs a loop).
-#[test]
-fn eroded_rings_match_the_general_buffer() {
-    use geo::algorithm::buffer::{BufferStyle, LineJoin};
-    use geo::{Area, Buffer, Translate};
+/// The concave and many-ringed shapes concentric is tested on: the comparison's L, star
+/// and holed square, a star with a hole, two islands, and a square with two round holes.
+pub(super) fn ring_shapes() -> Vec<(&'static str, MultiPolygon<f64>)> {
+    use geo::Translate;
     let star_with_hole = MultiPolygon::new(vec![Polygon::new(
         shapes::star(10.0, 4.5).0[0].exterior().clone(),
         vec![shapes::circle(1.5).0[0].exterior().clone()],
@@ -943,14 +953,25 @@ fn eroded_rings_match_the_general_buffer() {
                 .translate(8.5, 1.3),
         ],
     )]);
-    let cases = [
+    vec![
         ("L", shapes::l_shape(20.0)),
         ("star", shapes::star(10.0, 4.5)),
         ("holed square", shapes::holed_square(40.0, 10.0)),
         ("star with a hole", star_with_hole),
         ("islands", islands),
         ("two holes", two_holes),
-    ];
+    ]
+}
+
+/// Concentric loops where parts pinch off (the star's tips, the L's arms) or a grown hole
+/// meets the outline: the raw offset cut at its crossings bounds the same area as geo's
+/// buffer, with the same length of boundary, and declines none of these (before, each
+/// such loop went through the buffer or the boolean difference, 10–40 µs a loop).
+#[test]
+fn eroded_rings_match_the_general_buffer() {
+    use geo::algorithm::buffer::{BufferStyle, LineJoin};
+    use geo::{Area, Buffer};
+    let cases = ring_shapes();
     let length = |rings: &[Vec<Coord>]| -> f64 {
         rings
             .iter()
@@ -1427,19 +1448,7 @@ proptest! {
         moves in prop::collection::vec(
             ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3), 1..24),
     ) {
-        let interiors = holes
-            .iter()
-            .enumerate()
-            .map(|(i, radii)| {
-                let a = turn + TAU * i as f64 / 3.0;
-                let centre = Coord { x: 2.2 * math::cos(a), y: 2.2 * math::sin(a) };
-                radial_ring(radii, turn, centre, true)
-            })
-            .collect();
-        let shape = MultiPolygon::new(vec![Polygon::new(
-            radial_ring(&outer, turn, Coord::zero(), false),
-            interiors,
-        )]);
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
         let region = Region::new(&shape, W).unwrap();
         let rings = region.rings();
         let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
@@ -1532,19 +1541,7 @@ proptest! {
         lines in prop::collection::vec(
             prop::collection::vec((-16.0f64..16.0, -16.0f64..16.0), 2..6), 1..12),
     ) {
-        let interiors = holes
-            .iter()
-            .enumerate()
-            .map(|(i, radii)| {
-                let a = turn + TAU * i as f64 / 3.0;
-                let centre = Coord { x: 2.2 * math::cos(a), y: 2.2 * math::sin(a) };
-                radial_ring(radii, turn, centre, true)
-            })
-            .collect();
-        let shape = MultiPolygon::new(vec![Polygon::new(
-            radial_ring(&outer, turn, Coord::zero(), false),
-            interiors,
-        )]);
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
         let region = Region::new(&shape, W).unwrap();
         let mut edges = clip::Edges::new(region.rings(), &clip::Frame::new(Coord::zero(), turn));
         for line in lines {

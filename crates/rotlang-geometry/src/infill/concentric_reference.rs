@@ -399,6 +399,7 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
     let mut out = Vec::with_capacity(n + n / 2);
     let mut centres = Vec::with_capacity(n + n / 2);
     let cos_arc = math::cos(arc);
+    let mut tips = Vec::new();
     for i in 0..n {
         let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
         let (u, v) = (unit(b - a), unit(c - b));
@@ -414,6 +415,7 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
             } else {
                 // A sharp tip: its mitre would be far away; through the vertex instead
                 // (that stretch is nearer the boundary than `d`, and is cut away).
+                tips.push(out.len());
                 out.push(b + nu * d);
                 centres.push(None);
                 out.push(b);
@@ -446,7 +448,60 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
             centres.push(None);
         }
     }
-    Some(Raw { pts: out, centres })
+    Some(close_tips(Raw { pts: out, centres }, &tips))
+}
+
+/// Each tip's three points (from `at`) made the point where the moved edges on either
+/// side cross (the segment into it `e`, the one out `f`), where every tip's do cross
+/// properly and two tips in a row keep their mitres in order; otherwise the ring as it is.
+fn close_tips(raw: Raw, tips: &[usize]) -> Raw {
+    let n = raw.pts.len();
+    let at = |i: usize| raw.pts[i % n];
+    let mitres: Vec<Option<Coord>> = tips
+        .iter()
+        .map(|&t| {
+            let (p, a, b, q) = (at(t + n - 1), at(t), at(t + 2), at(t + 3));
+            let (e, f) = (a - p, q - b);
+            let (d1, d2) = (cross(e, b - p), cross(e, q - p));
+            let (d3, d4) = (cross(f, p - b), cross(f, a - b));
+            let proper = |x: f64, y: f64| (x > 0.0 && y < 0.0) || (x < 0.0 && y > 0.0);
+            (proper(d1, d2) && proper(d3, d4)).then(|| p + e * (d3 / (d3 - d4)))
+        })
+        .collect();
+    if mitres.iter().all(Option::is_none) {
+        return raw;
+    }
+    for i in 0..tips.len() {
+        let j = (i + 1) % tips.len();
+        if let (Some(x), Some(y)) = (mitres[i], mitres[j])
+            && tips[j] == (tips[i] + 3) % n
+        {
+            let e = at(tips[j]) - at(tips[i] + 2);
+            if (y - x).x * e.x + (y - x).y * e.y <= 0.0 {
+                return raw;
+            }
+        }
+    }
+    let mut out = Raw {
+        pts: Vec::new(),
+        centres: Vec::new(),
+    };
+    let mut i = 0;
+    while i < n {
+        match tips.iter().position(|&t| t == i) {
+            Some(k) if mitres[k].is_some() => {
+                out.pts.push(mitres[k].expect("a mitre"));
+                out.centres.push(None);
+                i += 3;
+            }
+            _ => {
+                out.pts.push(raw.pts[i]);
+                out.centres.push(raw.centres[i]);
+                i += 1;
+            }
+        }
+    }
+    out
 }
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`

@@ -1,6 +1,9 @@
 //! The concentric loops as they were computed before `concentric.rs` and `loops::Eroder`
 //! (each loop's erosion from scratch, every point tested against every earlier segment):
-//! kept for the tests only, which check that the quicker code gives the same loops.
+//! kept for the tests only, which check that the quicker code gives the same loops. Two
+//! rules of the erosion were added to both since, in plain code here: a sharp tip closed
+//! at its mitre where its moved edges cross (`close_tips`), and a swallowtail that one
+//! point cannot decide left to the buffer (`undecided`).
 
 use std::f64::consts::TAU;
 
@@ -328,7 +331,15 @@ pub(super) fn eroded_rings(
         if here.is_empty() {
             let mut pts = raw.pts.clone();
             pts.push(pts[0]);
-            if keep(&pts, &raw.centres, 0, &boundary, d) {
+            let kept = keep(&pts, &raw.centres, 0, &boundary, d);
+            // The region's one ring, uncut, with an edge run backwards and turned the
+            // wrong way round: inside out, none of it on the erosion.
+            let area: f64 = pts.windows(2).map(|w| cross(w[0], w[1])).sum();
+            let inverted = raws.len() == 1 && (0..n).any(|i| raw.reversed(i)) && area < 0.0;
+            if !inverted && undecided(raw, &pts, 0, kept, &boundary, d) {
+                return None;
+            }
+            if kept && !inverted {
                 pieces.push(Piece {
                     pts,
                     from: usize::MAX,
@@ -356,7 +367,11 @@ pub(super) fn eroded_rings(
                 }
             }
             pts.push(cuts[id1].at);
-            if keep(&pts, &raw.centres, first, &boundary, d) {
+            let kept = keep(&pts, &raw.centres, first, &boundary, d);
+            if undecided(raw, &pts, first, kept, &boundary, d) {
+                return None;
+            }
+            if kept {
                 pieces.push(Piece {
                     pts,
                     from: id0,
@@ -373,6 +388,19 @@ pub(super) fn eroded_rings(
 struct Raw {
     pts: Vec<Coord>,
     centres: Vec<Option<Coord>>,
+    /// For each segment along an edge of the ring, that edge's vertices.
+    along: Vec<Option<(Coord, Coord)>>,
+}
+
+impl Raw {
+    /// Whether segment `i` runs against the edge it was moved from.
+    fn reversed(&self, i: usize) -> bool {
+        let n = self.pts.len();
+        self.along[i % n].is_some_and(|(a, b)| {
+            let (s, e) = (self.pts[(i + 1) % n] - self.pts[i % n], b - a);
+            s.x * e.x + s.y * e.y < 0.0
+        })
+    }
 }
 
 struct Piece {
@@ -400,6 +428,7 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
     let mut centres = Vec::with_capacity(n + n / 2);
     let cos_arc = math::cos(arc);
     let mut tips = Vec::new();
+    let mut along = Vec::with_capacity(n + n / 2);
     for i in 0..n {
         let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
         let (u, v) = (unit(b - a), unit(c - b));
@@ -412,6 +441,7 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
                 // The mitre, where both moved edges meet.
                 out.push(b + (nu + nv) * (d / k));
                 centres.push(None);
+                along.push(Some((b, c)));
             } else {
                 // A sharp tip: its mitre would be far away; through the vertex instead
                 // (that stretch is nearer the boundary than `d`, and is cut away).
@@ -422,6 +452,7 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
                 centres.push(None);
                 out.push(b + nv * d);
                 centres.push(None);
+                along.extend([None, None, Some((b, c))]);
             }
         } else if dot >= cos_arc {
             // A reflex corner within one step (a round hole's): the mitre, which strays
@@ -429,11 +460,13 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
             let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
             out.push(b + (nu + nv) * (d / k));
             centres.push(None);
+            along.push(Some((b, c)));
         } else {
             let angle = math::atan2(turn, dot);
             let steps = (-angle / arc).ceil().max(1.0) as usize;
             out.push(b + nu * d);
             centres.push(Some(b));
+            along.push(None);
             let (s, co) = math::sin_cos(angle / steps as f64);
             let mut w = nu;
             for _ in 1..steps {
@@ -443,12 +476,21 @@ fn raw_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> Option<Raw> {
                 };
                 out.push(b + w * d);
                 centres.push(Some(b));
+                along.push(None);
             }
             out.push(b + nv * d);
             centres.push(None);
+            along.push(Some((b, c)));
         }
     }
-    Some(close_tips(Raw { pts: out, centres }, &tips))
+    Some(close_tips(
+        Raw {
+            pts: out,
+            centres,
+            along,
+        },
+        &tips,
+    ))
 }
 
 /// Each tip's three points (from `at`) made the point where the moved edges on either
@@ -485,6 +527,7 @@ fn close_tips(raw: Raw, tips: &[usize]) -> Raw {
     let mut out = Raw {
         pts: Vec::new(),
         centres: Vec::new(),
+        along: Vec::new(),
     };
     let mut i = 0;
     while i < n {
@@ -492,16 +535,37 @@ fn close_tips(raw: Raw, tips: &[usize]) -> Raw {
             Some(k) if mitres[k].is_some() => {
                 out.pts.push(mitres[k].expect("a mitre"));
                 out.centres.push(None);
+                out.along.push(raw.along[i + 2]);
                 i += 3;
             }
             _ => {
                 out.pts.push(raw.pts[i]);
                 out.centres.push(raw.centres[i]);
+                out.along.push(raw.along[i]);
                 i += 1;
             }
         }
     }
     out
+}
+
+/// Whether a piece with a segment run backwards (a swallowtail) is not cut away whole:
+/// kept, or another of its segments would be kept. Then the erosion is left to the
+/// buffer.
+fn undecided(
+    raw: &Raw,
+    pts: &[Coord],
+    first: usize,
+    kept: bool,
+    boundary: &[&[Coord]],
+    d: f64,
+) -> bool {
+    (0..pts.len() - 1).any(|j| raw.reversed(first + j))
+        && (kept
+            || (0..pts.len() - 1).any(|j| {
+                !raw.reversed(first + j)
+                    && keep(&pts[j..=j + 1], &raw.centres, first + j, boundary, d)
+            }))
 }
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`

@@ -5,7 +5,8 @@
 //! boundary are chained back into rings. The erosion's boundary is made of exactly those
 //! pieces; no polygon is rebuilt, which is what made geo's buffer and boolean difference
 //! cost 10–40 µs a loop. `None` where the offset touches itself without crossing (a
-//! tangency) or a chain does not close: the buffer decides then.
+//! tangency), a chain does not close, or a stretch run backwards (an edge event) is not
+//! cut off as a whole swallowtail: the buffer decides then.
 
 use crate::math;
 use geo::{Coord, MultiPolygon};
@@ -39,6 +40,8 @@ pub(crate) struct Eroder {
     boundary: Vec<Side>,
     /// Each ring's corners (rings that cannot be oriented are left out, as before).
     corners: Vec<Vec<Corner>>,
+    /// Each ring's distance below which no segment of its raw offset runs backwards.
+    safes: Vec<f64>,
     /// The unit directions of every reflex corner's inner arc points.
     directions: Vec<Coord>,
     /// Reused: the raw offsets, the crossing sweep's edges, each ring's cuts.
@@ -52,6 +55,9 @@ pub(crate) struct Eroder {
     /// Reused: the kept pieces, their points one after another.
     pieces: Vec<Piece>,
     points: Vec<Coord>,
+    /// Whether sharp tips are closed at their mitre (`Raw::close_tips`); the tests turn
+    /// it off to compare with the tips cut.
+    close: bool,
 }
 
 /// A corner of a ring, as its raw offset needs it.
@@ -74,6 +80,7 @@ impl Eroder {
     pub(crate) fn new(region: &MultiPolygon<f64>, arc: f64) -> Eroder {
         let mut boundary: Vec<Side> = Vec::new();
         let mut corners = Vec::new();
+        let mut safes = Vec::new();
         let mut directions = Vec::new();
         for polygon in &region.0 {
             for (i, ring) in std::iter::once(polygon.exterior())
@@ -95,14 +102,16 @@ impl Eroder {
                         },
                     }
                 }));
-                if let Some(c) = prepare(&ring.0, arc, i == 0, &mut directions) {
+                if let Some((c, safe)) = prepare(&ring.0, arc, i == 0, &mut directions) {
                     corners.push(c);
+                    safes.push(safe);
                 }
             }
         }
         Eroder {
             boundary,
             corners,
+            safes,
             directions,
             raws: Vec::new(),
             sweep: Sweep::default(),
@@ -112,7 +121,16 @@ impl Eroder {
             chained: (Vec::new(), Vec::new()),
             pieces: Vec::new(),
             points: Vec::new(),
+            close: true,
         }
+    }
+
+    /// The same eroder with sharp tips run through the vertex and cut, as before tips
+    /// were closed (for the tests).
+    #[cfg(test)]
+    pub(crate) fn cutting_tips(mut self) -> Eroder {
+        self.close = false;
+        self
     }
 
     /// The rings bounding the erosion by `d` (as [`eroded_rings`]).
@@ -136,8 +154,14 @@ impl Eroder {
                     Raw {
                         pts: Vec::with_capacity(n),
                         centres: Vec::with_capacity(n),
+                        along: Vec::with_capacity(n),
+                        check: false,
                         tips: Vec::new(),
-                        closed: (Vec::with_capacity(n), Vec::with_capacity(n)),
+                        closed: (
+                            Vec::with_capacity(n),
+                            Vec::with_capacity(n),
+                            Vec::with_capacity(n),
+                        ),
                     }
                 })
                 .collect();
@@ -147,8 +171,8 @@ impl Eroder {
             self.sweep.sorted.reserve(total);
             self.points.reserve(2 * total);
         }
-        for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
-            raw.fill(corners, &self.directions, d);
+        for ((raw, corners), &safe) in self.raws.iter_mut().zip(&self.corners).zip(&self.safes) {
+            raw.fill(corners, &self.directions, d, self.close, d >= safe);
         }
         if self.raws.iter().map(|r| r.pts.len()).sum::<usize>() > MAX_SEGMENTS {
             return None;
@@ -186,7 +210,20 @@ impl Eroder {
                 // The whole ring, closed: its point m and m + 1 (n is the first again).
                 let m = (n + 1 - 2) / 2;
                 let mid = (raw.pts[m] + raw.pts[(m + 1) % n]) / 2.0;
-                if keep(mid, raw.centres[m % n], boundary, d) {
+                let kept = keep(mid, raw.centres[m % n], boundary, d);
+                // A region's one ring, uncut, run round the wrong way (inside on its
+                // right): a simple curve turned inside out where edges ran backwards; no
+                // point of it is on the erosion (the L's arms gone, its corner too small).
+                let inverted = raws.len() == 1
+                    && (0..n).any(|i| raw.reversed(i))
+                    && (0..n)
+                        .map(|i| cross(raw.pts[i], raw.pts[if i + 1 == n { 0 } else { i + 1 }]))
+                        .sum::<f64>()
+                        < 0.0;
+                if !inverted && undecided(raw, 0, n - 1, |i| raw.pts[i % n], kept, boundary, d) {
+                    return None;
+                }
+                if kept && !inverted {
                     let first = points.len();
                     points.extend_from_slice(&raw.pts);
                     points.push(raw.pts[0]);
@@ -223,7 +260,11 @@ impl Eroder {
                 let m = count / 2;
                 let mid = (point(m) + point(m + 1)) / 2.0;
                 // Segment m of the piece is raw segment s0 + m (it starts inside s0).
-                if keep(mid, raw.centres[(s0 + m) % n], boundary, d) {
+                let kept = keep(mid, raw.centres[(s0 + m) % n], boundary, d);
+                if undecided(raw, s0, count, point, kept, boundary, d) {
+                    return None;
+                }
+                if kept {
                     let first = points.len();
                     points.extend((0..count + 2).map(point));
                     pieces.push(Piece {
@@ -243,18 +284,26 @@ impl Eroder {
 struct Raw {
     pts: Vec<Coord>,
     centres: Vec<Option<Coord>>,
+    /// For the segment from each point that runs along an edge of the ring (from a
+    /// corner's last point to the next corner's first), that edge's direction: the
+    /// segment is reversed (an edge event passed) where it points against it.
+    along: Vec<Option<Coord>>,
+    /// Whether a segment may run backwards at this distance (`along` is worth asking).
+    check: bool,
     /// Reused by `fill`: where each sharp tip's three points start, and each tip's mitre
     /// (where its two moved edges cross), and the ring with the tips closed.
     tips: Vec<(usize, Option<Coord>)>,
-    closed: (Vec<Coord>, Vec<Option<Coord>>),
+    closed: (Vec<Coord>, Vec<Option<Coord>>, Vec<Option<Coord>>),
 }
 
 impl Raw {
     /// The raw offset by `d` of a ring's corners.
-    fn fill(&mut self, corners: &[Corner], directions: &[Coord], d: f64) {
+    fn fill(&mut self, corners: &[Corner], directions: &[Coord], d: f64, close: bool, check: bool) {
         self.pts.clear();
         self.centres.clear();
+        self.along.clear();
         self.tips.clear();
+        self.check = check;
         for corner in corners {
             match *corner {
                 Corner::Mitre { b, m, k } => {
@@ -283,9 +332,36 @@ impl Raw {
                 }
             }
         }
-        if !self.tips.is_empty() {
+        // Only where an edge may have run backwards (past the ring's safe distance): the
+        // segment from each corner's last point runs along the edge to the next corner.
+        if check {
+            let vertex = |c: &Corner| match *c {
+                Corner::Mitre { b, .. } | Corner::Tip { b, .. } | Corner::Arc { b, .. } => b,
+            };
+            for (i, corner) in corners.iter().enumerate() {
+                let points = match corner {
+                    Corner::Mitre { .. } => 1,
+                    Corner::Tip { .. } => 3,
+                    Corner::Arc { inner, .. } => 2 + inner.len(),
+                };
+                let next = vertex(&corners[if i + 1 == corners.len() { 0 } else { i + 1 }]);
+                self.along.extend(std::iter::repeat_n(None, points - 1));
+                self.along.push(Some(next - vertex(corner)));
+            }
+        }
+        if close && !self.tips.is_empty() {
             self.close_tips();
         }
+    }
+
+    /// Whether the segment from point `i` runs against the edge it was moved from.
+    fn reversed(&self, i: usize) -> bool {
+        let n = self.pts.len();
+        self.check
+            && self.along[i].is_some_and(|e| {
+                let s = self.pts[if i + 1 == n { 0 } else { i + 1 }] - self.pts[i];
+                s.x * e.x + s.y * e.y < 0.0
+            })
     }
 
     /// Each sharp tip's three points (through the vertex) replaced by the one point where
@@ -323,26 +399,41 @@ impl Raw {
                 }
             }
         }
-        let (out, centres) = &mut self.closed;
+        let (out, centres, along) = &mut self.closed;
         out.clear();
         centres.clear();
+        along.clear();
         let mut from = 0;
         for &(at, x) in &self.tips {
             out.extend_from_slice(&pts[from..at]);
             centres.extend_from_slice(&self.centres[from..at]);
+            if self.check {
+                along.extend_from_slice(&self.along[from..at]);
+            }
             if let Some(x) = x {
+                // On along the edge out of the tip, as the tip's last point was.
                 out.push(x);
                 centres.push(None);
+                if self.check {
+                    along.push(self.along[at + 2]);
+                }
             } else {
                 out.extend_from_slice(&pts[at..at + 3]);
                 centres.extend_from_slice(&self.centres[at..at + 3]);
+                if self.check {
+                    along.extend_from_slice(&self.along[at..at + 3]);
+                }
             }
             from = at + 3;
         }
         out.extend_from_slice(&pts[from..]);
         centres.extend_from_slice(&self.centres[from..]);
+        if self.check {
+            along.extend_from_slice(&self.along[from..]);
+        }
         std::mem::swap(&mut self.pts, out);
         std::mem::swap(&mut self.centres, centres);
+        std::mem::swap(&mut self.along, along);
     }
 }
 
@@ -388,7 +479,7 @@ fn prepare(
     arc: f64,
     exterior: bool,
     directions: &mut Vec<Coord>,
-) -> Option<Vec<Corner>> {
+) -> Option<(Vec<Corner>, f64)> {
     let pts = inside_left(ring, exterior)?;
     let n = pts.len();
     let unit = |e: Coord| e / math::hypot(e.x, e.y);
@@ -439,7 +530,25 @@ fn prepare(
             });
         }
     }
-    Some(out)
+    // Edge i (from corner i to i + 1) moved by `d` runs from the foot of corner i's last
+    // point to that of corner i + 1's first: shorter by `d` times the mitres' slants along
+    // it (a tip's and an arc's points stand square on it), backwards past length / rate.
+    let slant = |c: &Corner, e: Coord| match *c {
+        Corner::Mitre { m, k, .. } => (m.x * e.x + m.y * e.y) / k,
+        _ => 0.0,
+    };
+    let mut safe = f64::INFINITY;
+    for i in 0..n {
+        let j = if i + 1 == n { 0 } else { i + 1 };
+        let e = units[i];
+        let rate = slant(&out[i], e) - slant(&out[j], e);
+        if rate > 0.0 {
+            let length = (pts[j] - pts[i]).x * e.x + (pts[j] - pts[i]).y * e.y;
+            safe = safe.min(length / rate);
+        }
+    }
+    // Well inside the rounding of the points' own test.
+    Some((out, safe * (1.0 - 1e-6)))
 }
 
 /// An edge of the region as given, with its bounds.
@@ -721,6 +830,44 @@ fn insertion_sort(order: &mut [(i64, u32)], budget: usize) -> bool {
     true
 }
 
+/// Whether a piece (or a ring not cut) that runs backwards somewhere (against the edge a
+/// segment was moved from: an edge event passed) cannot be decided by one point: it is a
+/// swallowtail, to be cut away whole, unless it was kept (`kept`), or another of its
+/// segments would be kept (a swallowtail that crossed nothing to cut it off, the offset
+/// only grazing itself: seen on random star-like outlines, where the ring kept a spike,
+/// or was dropped whole where the erosion has a part). Its segments are raw segments
+/// `first ..= first + count` (mod the ring's), segment `j` from `point(j)` to
+/// `point(j + 1)`.
+fn undecided(
+    raw: &Raw,
+    first: usize,
+    count: usize,
+    point: impl Fn(usize) -> Coord,
+    kept: bool,
+    boundary: &[Side],
+    d: f64,
+) -> bool {
+    if !raw.check {
+        return false;
+    }
+    let n = raw.pts.len();
+    let seg = |j: usize| {
+        let s = first + j;
+        if s >= n { s - n } else { s }
+    };
+    (0..=count).any(|j| raw.reversed(seg(j)))
+        && (kept
+            || (0..=count).any(|j| {
+                !raw.reversed(seg(j))
+                    && keep(
+                        (point(j) + point(j + 1)) / 2.0,
+                        raw.centres[seg(j)],
+                        boundary,
+                        d,
+                    )
+            }))
+}
+
 /// Whether a piece lies on the erosion's boundary: the point `mid` in its middle (moved
 /// onto the arc about `centre`, for a chord) at least `d` from every boundary edge and
 /// inside the region.
@@ -848,10 +995,12 @@ mod tests {
     fn raw(pts: Vec<Coord>) -> Raw {
         let centres = vec![None; pts.len()];
         Raw {
+            along: vec![None; pts.len()],
+            check: true,
             pts,
             centres,
             tips: Vec::new(),
-            closed: (Vec::new(), Vec::new()),
+            closed: (Vec::new(), Vec::new(), Vec::new()),
         }
     }
 

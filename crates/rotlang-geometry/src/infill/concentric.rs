@@ -9,6 +9,7 @@
 //! full to find it empty. The answers are the same to the bit (`concentric_tests.rs`
 //! checks them against the former code on random shapes).
 
+use std::cell::Cell;
 use std::f64::consts::{PI, TAU};
 
 use geo::algorithm::buffer::{BufferStyle, LineJoin};
@@ -26,14 +27,16 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         y: math::sin(theta),
     };
     let outline = region.outline();
-    let mut eroder = Shrink::new(outline);
+    let mut pool = POOL.with(Cell::take).unwrap_or_default();
+    let mut eroder = Shrink::new(outline, pool.eroder.take());
     // Each loop offset from the inset itself, not from the previous loop: offsets of
     // offsets pile up the arcs at reflex corners.
     // The previous loops' distance and (perimeter, outline rings − hole rings).
     let mut previous: Option<(f64, f64, f64)> = None;
     // The previous loops themselves (closed rings).
-    let mut last_loops: Vec<Vec<Coord>> = Vec::new();
-    let mut scratch = Scratch::default();
+    let mut last_loops = std::mem::take(&mut pool.last);
+    last_loops.clear();
+    let mut scratch = std::mem::take(&mut pool.scratch);
     for k in 0.. {
         let mut d = (k as f64 + 0.5) * spacing;
         // From the region itself: the inset's offset by d is its offset by w/2 + d.
@@ -92,6 +95,33 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
             break;
         }
     }
+    // Kept for the next layer on this thread, unless a huge region made them huge.
+    if scratch.dense.capacity() + scratch.flags.capacity() < POOLED_POINTS {
+        last_loops.clear();
+        *pool = Pool {
+            eroder: eroder.eroder.filter(|e| e.capacity() < POOLED_POINTS),
+            scratch,
+            last: last_loops,
+        };
+        POOL.with(|p| p.set(Some(pool)));
+    }
+}
+
+/// The buffers of one layer's loops, kept for the next layer on the same thread: a
+/// layer's loops allocated some forty vectors and grew most of them by doubling (a tenth
+/// of the L's layer). Never anything computed: each layer's region is prepared afresh.
+#[derive(Default)]
+struct Pool {
+    eroder: Option<Eroder>,
+    scratch: Scratch,
+    last: Vec<Vec<Coord>>,
+}
+
+/// Buffers holding more points than this are let go rather than kept.
+const POOLED_POINTS: usize = 1 << 20;
+
+thread_local! {
+    static POOL: Cell<Option<Box<Pool>>> = const { Cell::new(None) };
 }
 
 /// The radius of the largest disc inside rings that bound (approximately) the erosion
@@ -581,18 +611,33 @@ struct Shrink<'a> {
     /// Set once the exact convex inset declined (without holes it declines a region with
     /// a reflex corner, whatever the distance): not asked again for the later loops.
     concave: bool,
-    /// Made at the first loop that needs it (a convex region never does).
+    /// Made (or an earlier layer's reset) at the first loop that needs it (a convex
+    /// region never does).
     eroder: Option<Eroder>,
+    ready: bool,
 }
 
 impl<'a> Shrink<'a> {
-    fn new(area: &'a MultiPolygon<f64>) -> Shrink<'a> {
+    fn new(area: &'a MultiPolygon<f64>, spare: Option<Eroder>) -> Shrink<'a> {
         Shrink {
             area,
             holes: area.0.iter().any(|p| !p.interiors().is_empty()),
             concave: false,
-            eroder: None,
+            eroder: spare,
+            ready: false,
         }
+    }
+
+    /// The eroder of this region, prepared at the first call.
+    fn eroder(&mut self) -> &mut Eroder {
+        if !self.ready {
+            self.ready = true;
+            match &mut self.eroder {
+                Some(e) => e.reset(self.area, 0.5),
+                None => self.eroder = Some(Eroder::new(self.area, 0.5)),
+            }
+        }
+        self.eroder.as_mut().expect("made above")
     }
 
     fn shrink(&mut self, d: f64) -> Loops {
@@ -607,10 +652,7 @@ impl<'a> Shrink<'a> {
         };
         self.concave |= !holes && convex.is_none();
         if convex.is_none()
-            && let Some(rings) = self
-                .eroder
-                .get_or_insert_with(|| Eroder::new(area, 0.5))
-                .rings(d)
+            && let Some(rings) = self.eroder().rings(d)
         {
             let turns = rings
                 .iter()

@@ -42,6 +42,8 @@ pub(crate) struct Eroder {
     corners: Vec<Vec<Corner>>,
     /// Each ring's distance below which no segment of its raw offset runs backwards.
     safes: Vec<f64>,
+    /// Whether the raw rings' buffers were sized for these corners.
+    sized: bool,
     /// The unit directions of every reflex corner's inner arc points.
     directions: Vec<Coord>,
     /// Reused: the raw offsets, the crossing sweep's edges, each ring's cuts.
@@ -78,10 +80,37 @@ enum Corner {
 
 impl Eroder {
     pub(crate) fn new(region: &MultiPolygon<f64>, arc: f64) -> Eroder {
-        let mut boundary: Vec<Side> = Vec::new();
-        let mut corners = Vec::new();
-        let mut safes = Vec::new();
-        let mut directions = Vec::new();
+        let mut eroder = Eroder {
+            boundary: Vec::new(),
+            corners: Vec::new(),
+            safes: Vec::new(),
+            directions: Vec::new(),
+            sized: false,
+            raws: Vec::new(),
+            sweep: Sweep::default(),
+            here: Vec::new(),
+            cuts: Vec::new(),
+            turns: Vec::new(),
+            chained: (Vec::new(), Vec::new()),
+            pieces: Vec::new(),
+            points: Vec::new(),
+            close: true,
+        };
+        eroder.reset(region, arc);
+        eroder
+    }
+
+    /// Prepared for another region (the next layer's), its buffers kept: an eroder made
+    /// afresh for each layer allocated some twenty vectors and grew them by doubling.
+    pub(crate) fn reset(&mut self, region: &MultiPolygon<f64>, arc: f64) {
+        let boundary = &mut self.boundary;
+        boundary.clear();
+        self.safes.clear();
+        self.directions.clear();
+        // The sweep's order from another region means nothing (any order would do).
+        self.sweep.order.clear();
+        self.sized = false;
+        let mut used = 0;
         for polygon in &region.0 {
             for (i, ring) in std::iter::once(polygon.exterior())
                 .chain(polygon.interiors())
@@ -102,27 +131,22 @@ impl Eroder {
                         },
                     }
                 }));
-                if let Some((c, safe)) = prepare(&ring.0, arc, i == 0, &mut directions) {
-                    corners.push(c);
-                    safes.push(safe);
+                if used == self.corners.len() {
+                    self.corners.push(Vec::new());
+                }
+                let corners = &mut self.corners[used];
+                if let Some(safe) = prepare(&ring.0, arc, i == 0, &mut self.directions, corners) {
+                    used += 1;
+                    self.safes.push(safe);
                 }
             }
         }
-        Eroder {
-            boundary,
-            corners,
-            safes,
-            directions,
-            raws: Vec::new(),
-            sweep: Sweep::default(),
-            here: Vec::new(),
-            cuts: Vec::new(),
-            turns: Vec::new(),
-            chained: (Vec::new(), Vec::new()),
-            pieces: Vec::new(),
-            points: Vec::new(),
-            close: true,
-        }
+        self.corners.truncate(used);
+    }
+
+    /// How many points its largest buffers hold room for (a pool lets a huge one go).
+    pub(crate) fn capacity(&self) -> usize {
+        self.points.capacity() + self.boundary.capacity() + self.sweep.edges.capacity()
     }
 
     /// The same eroder with sharp tips run through the vertex and cut, as before tips
@@ -137,38 +161,42 @@ impl Eroder {
     pub(crate) fn rings(&mut self, d: f64) -> Option<Vec<Vec<Coord>>> {
         // Each raw ring's size is known from its corners: the buffers are made once at
         // their size (growing them by doubling was a tenth of a star's layer).
-        if self.raws.len() != self.corners.len() {
+        if !self.sized {
             let directions = &self.directions;
-            self.raws = self
-                .corners
-                .iter()
-                .map(|corners| {
-                    let n = corners
-                        .iter()
-                        .map(|c| match c {
-                            Corner::Mitre { .. } => 1,
-                            Corner::Tip { .. } => 3,
-                            Corner::Arc { inner, .. } => 2 + directions[inner.clone()].len(),
-                        })
-                        .sum();
-                    Raw {
-                        pts: Vec::with_capacity(n),
-                        centres: Vec::with_capacity(n),
-                        along: Vec::with_capacity(n),
-                        check: false,
-                        tips: Vec::new(),
-                        closed: (
-                            Vec::with_capacity(n),
-                            Vec::with_capacity(n),
-                            Vec::with_capacity(n),
-                        ),
-                    }
-                })
-                .collect();
-            let total: usize = self.raws.iter().map(|r| r.pts.capacity()).sum();
+            self.raws.resize_with(self.corners.len(), Raw::default);
+            let mut total = 0;
+            for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
+                let n: usize = corners
+                    .iter()
+                    .map(|c| match c {
+                        Corner::Mitre { .. } => 1,
+                        Corner::Tip { .. } => 3,
+                        Corner::Arc { inner, .. } => 2 + directions[inner.clone()].len(),
+                    })
+                    .sum();
+                total += n;
+                // (`reserve` counts from the length: the vectors are emptied first.)
+                for v in [&mut raw.pts, &mut raw.closed.0] {
+                    v.clear();
+                    v.reserve(n);
+                }
+                for v in [
+                    &mut raw.centres,
+                    &mut raw.along,
+                    &mut raw.closed.1,
+                    &mut raw.closed.2,
+                ] {
+                    v.clear();
+                    v.reserve(n);
+                }
+            }
+            self.sized = true;
+            self.sweep.edges.clear();
             self.sweep.edges.reserve(total);
             self.sweep.order.reserve(total);
+            self.sweep.sorted.clear();
             self.sweep.sorted.reserve(total);
+            self.points.clear();
             self.points.reserve(2 * total);
         }
         for ((raw, corners), &safe) in self.raws.iter_mut().zip(&self.corners).zip(&self.safes) {
@@ -281,6 +309,7 @@ impl Eroder {
 
 /// One ring's raw offset: its points (not closed) and, for the segment from each point,
 /// the arc's centre where it is a chord of a reflex corner's arc.
+#[derive(Default)]
 struct Raw {
     pts: Vec<Coord>,
     centres: Vec<Option<Coord>>,
@@ -472,21 +501,24 @@ struct Cut {
     at: Coord,
 }
 
-/// A ring's corners toward the region's inside (`exterior`: an outline), the inner
-/// directions of its arcs appended to `directions`; `None` where it cannot be oriented.
+/// A ring's corners toward the region's inside (`exterior`: an outline) into `out`, the
+/// inner directions of its arcs appended to `directions`, and the distance below which
+/// no edge of its raw offset runs backwards; `None` where it cannot be oriented.
 fn prepare(
     ring: &[Coord],
     arc: f64,
     exterior: bool,
     directions: &mut Vec<Coord>,
-) -> Option<(Vec<Corner>, f64)> {
+    out: &mut Vec<Corner>,
+) -> Option<f64> {
     let pts = inside_left(ring, exterior)?;
     let n = pts.len();
     let unit = |e: Coord| e / math::hypot(e.x, e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
     // Each edge's direction once (edge i runs from point i to i + 1).
     let units: Vec<Coord> = (0..n).map(|i| unit(pts[(i + 1) % n] - pts[i])).collect();
-    let mut out = Vec::with_capacity(n);
+    out.clear();
+    out.reserve(n);
     let cos_arc = math::cos(arc);
     for i in 0..n {
         let b = pts[i];
@@ -548,7 +580,7 @@ fn prepare(
         }
     }
     // Well inside the rounding of the points' own test.
-    Some((out, safe * (1.0 - 1e-6)))
+    Some(safe * (1.0 - 1e-6))
 }
 
 /// An edge of the region as given, with its bounds.

@@ -117,8 +117,9 @@ struct Pool {
     last: Vec<Vec<Coord>>,
 }
 
-/// Buffers holding more points than this are let go rather than kept.
-const POOLED_POINTS: usize = 1 << 20;
+/// Buffers with room for more points than this are let go rather than kept (a few MB
+/// at most stay with a thread; a layer that large spends far more than its allocations).
+const POOLED_POINTS: usize = 1 << 16;
 
 thread_local! {
     static POOL: Cell<Option<Box<Pool>>> = const { Cell::new(None) };

@@ -67,6 +67,24 @@ fn a_reused_eroder_gives_the_rings_of_a_fresh_one() {
     }
 }
 
+/// One `Eroder` reset from region to region (concentric keeps one per thread from layer
+/// to layer) gives each the rings a fresh one gives: nothing of the last region is left.
+#[test]
+fn a_reset_eroder_gives_the_rings_of_a_fresh_one() {
+    let shapes = named_shapes();
+    let mut eroder = Eroder::new(&shapes[0].1, 0.5);
+    for (name, shape) in shapes.iter().rev().chain(&shapes) {
+        eroder.reset(shape, 0.5);
+        for d in [0.7, 3.2, 0.2, 6.3] {
+            assert_eq!(
+                eroder.rings(d),
+                Eroder::new(shape, 0.5).rings(d),
+                "{name} by {d}"
+            );
+        }
+    }
+}
+
 /// A ring of `n` points at the given radii (each between 0.3 and 1 of `size`) about the
 /// origin: star-like, concave where the radii dip.
 fn ring(radii: &[f64], size: f64, at: Coord) -> LineString<f64> {

@@ -1674,6 +1674,67 @@ fn preview_json(dir: &Path, args: &[&str]) -> (serde_json::Value, String) {
     (serde_json::from_slice(&out.stdout).unwrap(), stderr)
 }
 
+/// Every layer of a part, listed: `--layers all --format json` streams each layer as it
+/// is filled (a part taller than the 256 panels a picture holds), the same text to stdout
+/// and to `--out`, the same layers as a range asked for; a picture of them all is refused
+/// with the way to list them.
+#[test]
+fn preview_json_lists_every_layer_of_a_tall_part() {
+    let dir = TempDir::new("part-all-layers");
+    let stl = dir.0.join("tall.stl");
+    // 60 mm at 0.2 mm: 300 layers.
+    std::fs::write(
+        &stl,
+        rotlang_geometry::mesh::shapes::cuboid([8.0, 8.0, 60.0]).to_binary_stl(),
+    )
+    .unwrap();
+    let (all, _) = preview_json(&dir.0, &["+15", "--shape", "tall.stl", "--layers", "all"]);
+    let layers = all["layers"].as_array().unwrap();
+    assert_eq!(layers.len(), 300);
+    assert_eq!(all["summary"]["layers"], 300);
+    let indices: Vec<u64> = layers
+        .iter()
+        .map(|l| l["index"].as_u64().unwrap())
+        .collect();
+    assert_eq!(indices, (0..300).collect::<Vec<u64>>());
+    let (some, _) = preview_json(
+        &dir.0,
+        &["+15", "--shape", "tall.stl", "--layers", "280..=299"],
+    );
+    assert_eq!(some["layers"].as_array().unwrap()[..], layers[280..]);
+    assert_eq!(some["summary"], all["summary"]);
+    // To a file: the same bytes, and nothing left beside it.
+    let run = |extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_rotlang"))
+            .args(["preview", "+15", "--shape", "tall.stl", "--layers", "all"])
+            .args(extra)
+            .current_dir(&dir.0)
+            .output()
+            .unwrap()
+    };
+    let stdout = run(&["--format", "json"]);
+    assert!(
+        run(&["--format", "json", "--out", "all.json"])
+            .status
+            .success()
+    );
+    assert_eq!(
+        std::fs::read(dir.0.join("all.json")).unwrap(),
+        stdout.stdout
+    );
+    let names: Vec<String> = std::fs::read_dir(&dir.0)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    let svg = run(&[]);
+    assert_eq!(svg.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&svg.stderr).trim(),
+        "rotlang: --layers 0..300 is 300 layers; a picture shows at most 256 (--format json lists any number)"
+    );
+}
+
 /// Issue 20: top and bottom shells are areas. A 30 × 10 mm block with a 10 mm tower on its
 /// left end: the block's top beside the tower is solid on its last 4 layers (turned by
 /// --solid-template), the rest of those layers and the tower above stay sparse; the JSON

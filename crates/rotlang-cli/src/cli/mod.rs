@@ -22,6 +22,7 @@ pub mod paths;
 pub mod plot;
 pub mod preview;
 mod sources;
+mod stream;
 mod write;
 
 use std::io::{IsTerminal, Read};

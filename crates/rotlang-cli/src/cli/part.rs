@@ -5,11 +5,12 @@ use std::io::Write;
 use super::UsageError;
 use super::plot::emit;
 use super::preview::{Format, PreviewArgs};
+use super::stream::stream;
 use crate::infill::preview::{self, Panel, PreviewOptions};
 use crate::ir::Fill;
 use crate::mesh::Mesh;
 use crate::plot::{num, shorten};
-use crate::slice::json::{About, Document};
+use crate::slice::json::{self, About, Document};
 use crate::slice::{Part, PartLayer, PartOptions};
 use geo::Area;
 
@@ -128,20 +129,36 @@ pub fn run(
     // The layers of the 3D picture (every `step`-th): their sections and paths.
     let step = model.len().div_ceil(150).max(1);
     let mut stacked = Vec::new();
-    for layer in part {
-        let layer = layer.map_err(|e| UsageError(e.to_string()))?;
-        let show = range.contains(&layer.layer.index);
-        doc.add(&layer, show && json);
-        if args.part.three_d.is_some() && layer.layer.index % step == 0 {
-            stacked.push((
-                layer.section.z,
-                layer.section.region.clone(),
-                layer.paths.clone(),
-            ));
-        }
-        if show && !json {
+    let stack = args.part.three_d.is_some().then_some(step);
+    if json {
+        // A layer at a time (the same text as the whole document: `layers` is its first
+        // key), so that every layer of a tall part can be listed in one layer's memory.
+        stream(args.out.as_deref(), out, |w| {
+            w.text("{\"layers\":[");
+            let mut first = true;
+            each(part, &mut doc, &range, stack, &mut stacked, &mut |layer| {
+                if !std::mem::take(&mut first) {
+                    w.text(",");
+                }
+                w.value(&json::layer(&layer));
+                !w.closed()
+            })?;
+            // (No layer kept in it: a cheap copy.)
+            let mut rest = doc.clone().finish();
+            if let Some(map) = rest.as_object_mut() {
+                map.remove("layers");
+            }
+            let rest = serde_json::to_string(&rest).unwrap_or_default();
+            w.text("],");
+            w.text(rest.strip_prefix('{').unwrap_or(&rest));
+            w.text("\n");
+            Ok(())
+        })?;
+    } else {
+        each(part, &mut doc, &range, stack, &mut stacked, &mut |layer| {
             shown.push(layer);
-        }
+            true
+        })?;
     }
     if let Some(path) = &args.part.three_d {
         let slabs: Vec<preview::Slab<'_>> = stacked
@@ -169,6 +186,7 @@ pub fn run(
     }
     let summary = *doc.summary();
     let text = match args.format {
+        Format::Json => String::new(),
         Format::Svg => {
             let labels: Vec<(String, String)> = shown
                 .iter()
@@ -206,13 +224,10 @@ pub fn run(
             };
             preview::svg(&panels, settings.nozzle, &options)
         }
-        Format::Json => {
-            let mut text = serde_json::to_string(&doc.finish()).unwrap_or_default();
-            text.push('\n');
-            text
-        }
     };
-    emit(&text, args.out.as_deref(), out)?;
+    if !json {
+        emit(&text, args.out.as_deref(), out)?;
+    }
     let _ = writeln!(
         err,
         "{}: {} layers, infill {} m extruded ({} m solid), {} m travel, {} at {} mm/s (travel {} mm/s){}",
@@ -234,6 +249,37 @@ pub fn run(
         }
     );
     Ok(0)
+}
+
+/// The layers of the 3D picture: their height, section and paths.
+type Stacked = Vec<(f64, geo::MultiPolygon<f64>, crate::infill::Toolpaths)>;
+
+/// Fills every layer of `part`, counting each in `doc`'s summary, keeping every
+/// `stack`-th for the 3D picture, and giving those in `range` to `shown` (which answers
+/// whether to go on: not when nobody reads the answer any more).
+fn each(
+    part: Part<'_>,
+    doc: &mut Document<'_>,
+    range: &std::ops::Range<usize>,
+    stack: Option<usize>,
+    stacked: &mut Stacked,
+    shown: &mut dyn FnMut(PartLayer) -> bool,
+) -> Result<(), UsageError> {
+    for layer in part {
+        let layer = layer.map_err(|e| UsageError(e.to_string()))?;
+        doc.add(&layer, false);
+        if stack.is_some_and(|step| layer.layer.index % step == 0) {
+            stacked.push((
+                layer.section.z,
+                layer.section.region.clone(),
+                layer.paths.clone(),
+            ));
+        }
+        if range.contains(&layer.layer.index) && !shown(layer) {
+            break;
+        }
+    }
+    Ok(())
 }
 
 /// The subtitle's fill: the sparse pattern and density, and the solid area's share.

@@ -7,11 +7,13 @@ use std::path::PathBuf;
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 
 use super::plot::{emit, template};
+use super::stream::{JsonOut, stream};
 use super::{UsageError, read_file};
 use crate::infill::preview::{self, PreviewOptions};
 use crate::infill::{Centring, Settings, shapes};
 
 mod args;
+use args::MAX_PANELS;
 pub use args::{CentringArg, Format, PatternArg, PreviewArgs};
 
 impl PreviewArgs {
@@ -30,13 +32,24 @@ impl PreviewArgs {
     }
 
     /// The layers to draw (`--layers`, else the first eight) of `len`, which must start
-    /// inside them; `what` names the model or part in the message.
+    /// inside them, cut at the last; `what` names the model or part in the message. A
+    /// picture shows at most [`MAX_PANELS`]; JSON lists any number.
     pub(super) fn range(&self, len: usize, what: &str) -> Result<Range<usize>, UsageError> {
         let range = self.layers.clone().unwrap_or(0..8);
         if range.start >= len {
             return Err(UsageError(format!(
                 "--layers starts at layer {} but the {what} has {len} layers (0..{len})",
                 range.start
+            )));
+        }
+        let range = range.start..range.end.min(len);
+        if self.format == Format::Svg && range.len() > MAX_PANELS {
+            return Err(UsageError(format!(
+                "--layers {}..{} is {} layers; a picture shows at most {MAX_PANELS} \
+                 (--format json lists any number)",
+                range.start,
+                range.end,
+                range.len()
             )));
         }
         Ok(range)
@@ -324,31 +337,49 @@ pub fn run(
             .map_err(fail)?
         }
         Format::Json => {
-            json(&parse.template, &model, options, &region, &settings, range).map_err(fail)?
+            let prepared = crate::infill::Region::new(&region, settings.nozzle).map_err(fail)?;
+            stream(args.out.as_deref(), out, |w| {
+                json(
+                    &parse.template,
+                    &model,
+                    options,
+                    &prepared,
+                    &settings,
+                    range,
+                    w,
+                )
+            })?;
+            return Ok(0);
         }
     };
     emit(&text, args.out.as_deref(), out)?;
     Ok(0)
 }
 
+/// `{"layers": [...]}`, a layer at a time (memory bounded by one layer's paths).
 fn json(
     template: &crate::Template,
     model: &crate::eval::Model,
     options: crate::eval::Options,
-    region: &MultiPolygon<f64>,
+    prepared: &crate::infill::Region,
     settings: &Settings,
     range: Range<usize>,
-) -> Result<String, crate::infill::Error> {
-    let prepared = crate::infill::Region::new(region, settings.nozzle)?;
+    w: &mut JsonOut<'_>,
+) -> Result<(), UsageError> {
     let mut schedule =
         crate::infill::Schedule::new(template, model, options, *settings).with_shells(model);
-    let mut layers = Vec::new();
-    for index in range {
-        let Some(fill) = schedule.layer(index, &prepared)? else {
-            break;
+    w.text("{\"layers\":[");
+    for index in range.clone() {
+        let fill = match schedule.layer(index, prepared) {
+            Ok(Some(fill)) => fill,
+            Ok(None) => break,
+            Err(e) => return Err(UsageError(e.to_string())),
         };
+        if index > range.start {
+            w.text(",");
+        }
         let l = &fill.layer;
-        layers.push(serde_json::json!({
+        w.value(&serde_json::json!({
             "index": l.index,
             "bottom": l.bottom,
             "top": l.top,
@@ -362,11 +393,12 @@ fn json(
             "travel": fill.paths.travel,
             "polylines": fill.paths.polylines.iter().map(|p| p.0.iter().map(|c| [c.x, c.y]).collect::<Vec<_>>()).collect::<Vec<_>>(),
         }));
+        if w.closed() {
+            break;
+        }
     }
-    let mut text =
-        serde_json::to_string(&serde_json::json!({ "layers": layers })).unwrap_or_default();
-    text.push('\n');
-    Ok(text)
+    w.text("]}\n");
+    Ok(())
 }
 
 #[cfg(test)]

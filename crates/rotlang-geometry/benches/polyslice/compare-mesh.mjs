@@ -77,8 +77,9 @@ const job = readJson(`polyslice-${meshName}-${H}.json`);
 const gcode = readFileSync(join(out, `polyslice-${meshName}-${H}.gcode`), 'utf8');
 
 /// rotlang's whole job, timed (median of 3 runs), and every layer's JSON. `preview` fills every
-/// layer (its summary) but lists at most 256: a taller part's other layers come from more,
-/// untimed runs.
+/// layer (its summary); the timed run lists the first 256 (as MESH.md's figures were taken,
+/// when that was the most it listed: `--layers all` lists every one now), a taller part's
+/// other layers come from more, untimed runs.
 function rotlangJob() {
   const run = (from, to) => {
     const file = join(out, `rotlang-${meshName}-${H}-${from}.json`);

@@ -149,8 +149,8 @@ impl<'a> Document<'a> {
     }
 }
 
-/// One layer's JSON.
-fn layer(l: &PartLayer) -> Value {
+/// One layer's JSON (an element of the document's `layers`).
+pub fn layer(l: &PartLayer) -> Value {
     // The areas that are not empty: the sparse one, then the solid one.
     let areas: Vec<Value> = [&l.sparse, &l.solid]
         .into_iter()

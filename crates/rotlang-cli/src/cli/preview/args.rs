@@ -19,7 +19,7 @@ Examples:
   rotlang preview '+15' --pattern lines --shape part.svg --size 40 --centring global
   rotlang preview '+15' --shape outline.json --pattern triangles --density 15%
   rotlang preview '0MB, +30' --shape part.stl --layers 10..14 --walls 3
-  rotlang preview part.stl --format json > part.json          every layer at 0°
+  rotlang preview part.stl --layers all --format json > part.json    every layer, at 0°
   rotlang preview '+45' --shape part.stl --pattern gyroid --3d part.html --out layers.svg
   rotlang preview project.3mf --object Bracket --layers 20..24 --out bracket.svg
   rotlang preview '0, 90' --shape part.stl --solid-template '+90' --density 15
@@ -38,7 +38,8 @@ covered by all of the T layers above it (or the B layers below it) is filled sol
 (--solid-pattern, turned by --solid-template, else by the template), the rest sparse. A
 cube's first B and last T layers are solid throughout; a step's top is solid on the T
 layers under it, beside the tower, which stays sparse. --format json gives each layer's
-`areas` (sparse and solid, each with its region, angle and paths). A summary of the
+`areas` (sparse and solid, each with its region, angle and paths), a layer at a time:
+--layers all lists every one (a picture shows at most 256). A summary of the
 whole part (infill extrusion, solid included, travel, time at --speed) is printed to
 stderr, and under `summary` with --format json, so templates can be compared.
 
@@ -103,7 +104,8 @@ pub struct PreviewArgs {
     /// its centre so that its wider side is this long (without it, the file's own size).
     #[arg(long, value_name = "MM", help_heading = "Region")]
     pub size: Option<f64>,
-    /// The layers to show: A..B (B excluded), A..=B, or one index [default: 0..8].
+    /// The layers to show: A..B (B excluded), A..=B, one index, or `all` [default: 0..8].
+    /// A picture shows at most 256; `--format json` lists any number, a layer at a time.
     #[arg(long, value_name = "A..B", value_parser = parse_layers)]
     pub layers: Option<Range<usize>>,
     #[command(flatten)]
@@ -172,8 +174,8 @@ pub enum Format {
     Json,
 }
 
-/// The most panels one preview draws.
-const MAX_PANELS: usize = 256;
+/// The most panels one picture draws (JSON lists any number of layers).
+pub(crate) const MAX_PANELS: usize = 256;
 
 fn parse_density(s: &str) -> Result<f64, String> {
     let v: f64 = s
@@ -192,7 +194,10 @@ fn parse_density(s: &str) -> Result<f64, String> {
 }
 
 fn parse_layers(s: &str) -> Result<Range<usize>, String> {
-    let bad = || format!("expected A..B, A..=B or one layer index, found {s:?}");
+    if s.trim() == "all" {
+        return Ok(0..usize::MAX);
+    }
+    let bad = || format!("expected A..B, A..=B, one layer index or all, found {s:?}");
     let n = |v: &str| v.trim().parse::<usize>().map_err(|_| bad());
     let range = if let Some((a, b)) = s.split_once("..=") {
         n(a)?..n(b)?.checked_add(1).ok_or_else(bad)?
@@ -204,12 +209,6 @@ fn parse_layers(s: &str) -> Result<Range<usize>, String> {
     };
     if range.is_empty() {
         return Err(format!("the range {s:?} holds no layer"));
-    }
-    if range.len() > MAX_PANELS {
-        return Err(format!(
-            "{s:?} is {} layers; a preview shows at most {MAX_PANELS}",
-            range.len()
-        ));
     }
     Ok(range)
 }

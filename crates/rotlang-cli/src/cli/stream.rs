@@ -2,7 +2,8 @@
 //! so that listing every layer of a tall part holds one layer in memory, not all of them.
 //!
 //! To `--out FILE` it goes through a file beside it, renamed over `FILE` once whole: an
-//! error part-way leaves no half document there (and an older `FILE` as it was). To
+//! error part-way leaves no half document there (and an older `FILE` as it was); a
+//! `FILE` that is not a regular one (`/dev/null`, a named pipe) is written directly. To
 //! stdout it goes as it is made; a reader that stops reading (a closed pipe) ends the
 //! work quietly, as the whole-text answers do.
 
@@ -67,6 +68,23 @@ pub(super) fn stream(
         };
     };
     let cannot = |e: io::Error| UsageError(format!("cannot write {}: {e}", path.display()));
+    // Through links to the file they name (replaced, the links kept).
+    let resolved = std::fs::canonicalize(path).ok();
+    let path = resolved.as_deref().unwrap_or(path);
+    // Not a regular file (`/dev/null`, a pipe): written as it is, nothing to rename over.
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        let mut file = File::create(path).map_err(cannot)?;
+        let mut w = JsonOut {
+            sink: BufWriter::new(&mut file),
+            failed: None,
+        };
+        body(&mut w)?;
+        return match w.failed.take() {
+            Some(e) => Err(e),
+            None => w.sink.flush(),
+        }
+        .map_err(cannot);
+    }
     let tmp = beside(path);
     let mut file = File::create(&tmp).map_err(cannot)?;
     let mut w = JsonOut {
@@ -127,6 +145,48 @@ mod tests {
             r#"[1,{"a":1,"b":2}]"#
         );
         assert!(!beside(&path).exists());
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    /// A named pipe (as `/dev/null` is not a regular file either) is written into, not
+    /// replaced by a file; a link is followed to its file, which is replaced.
+    #[cfg(unix)]
+    #[test]
+    fn a_pipe_is_written_and_a_link_followed() {
+        let dir = tempfile_dir();
+        let fifo = dir.join("pipe");
+        assert!(
+            std::process::Command::new("mkfifo")
+                .arg(&fifo)
+                .status()
+                .unwrap()
+                .success()
+        );
+        let reading = fifo.clone();
+        let reader = std::thread::spawn(move || std::fs::read_to_string(reading).unwrap());
+        stream(Some(&fifo), &mut Vec::new(), |w| {
+            w.text("{}");
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(reader.join().unwrap(), "{}");
+        assert!(!std::fs::metadata(&fifo).unwrap().is_file());
+        let target = dir.join("target.json");
+        std::fs::write(&target, "old").unwrap();
+        let link = dir.join("link.json");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        stream(Some(&link), &mut Vec::new(), |w| {
+            w.text("[]");
+            Ok(())
+        })
+        .unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "[]");
         std::fs::remove_dir_all(dir).unwrap();
     }
 

@@ -119,20 +119,33 @@ proptest! {
         density in 0.05f64..0.6,
         theta in 0.0f64..6.3,
     ) {
-        let holes = hole
-            .map(|(r, x, y)| {
-                let circle = (0..24).map(|_| 1.0).collect::<Vec<_>>();
-                vec![ring(&circle, r * size, Coord { x: x * size, y: y * size })]
-            })
-            .unwrap_or_default();
         let radii = if regular { vec![1.0; radii.len()] } else { radii };
-        let shape = MultiPolygon::new(vec![Polygon::new(
-            ring(&radii, size, Coord { x: 0.0, y: 0.0 }),
-            holes,
-        )]);
+        let shape = star_like(&radii, size, hole);
         let (fast, slow) = loops(&shape, density, theta);
         prop_assert_eq!(fast, slow);
     }
+}
+
+/// A star-like outline about the origin (`ring`), with a round hole of radius `r·size`
+/// at `(x, y)·size` when given: the proptests' shapes.
+fn star_like(radii: &[f64], size: f64, hole: Option<(f64, f64, f64)>) -> MultiPolygon<f64> {
+    let holes = hole
+        .map(|(r, x, y)| {
+            let circle = [1.0; 24];
+            vec![ring(
+                &circle,
+                r * size,
+                Coord {
+                    x: x * size,
+                    y: y * size,
+                },
+            )]
+        })
+        .unwrap_or_default();
+    MultiPolygon::new(vec![Polygon::new(
+        ring(radii, size, Coord { x: 0.0, y: 0.0 }),
+        holes,
+    )])
 }
 
 /// Whether two sets of closed rings are the same rings, each maybe started elsewhere
@@ -171,16 +184,7 @@ proptest! {
         hole in prop::option::of((0.05f64..0.25, -0.1f64..0.1, -0.1f64..0.1)),
         depth in 0.02f64..0.6,
     ) {
-        let holes = hole
-            .map(|(r, x, y)| {
-                let circle = (0..24).map(|_| 1.0).collect::<Vec<_>>();
-                vec![ring(&circle, r * size, Coord { x: x * size, y: y * size })]
-            })
-            .unwrap_or_default();
-        let shape = MultiPolygon::new(vec![Polygon::new(
-            ring(&radii, size, Coord { x: 0.0, y: 0.0 }),
-            holes,
-        )]);
+        let shape = star_like(&radii, size, hole);
         let d = depth * size;
         let closed = Eroder::new(&shape, 0.5).rings(d);
         let cut = Eroder::new(&shape, 0.5).cutting_tips().rings(d);
@@ -203,10 +207,7 @@ proptest! {
     ) {
         use geo::algorithm::buffer::{BufferStyle, LineJoin};
         use geo::{Area, Buffer};
-        let shape = MultiPolygon::new(vec![Polygon::new(
-            ring(&radii, size, Coord { x: 0.0, y: 0.0 }),
-            vec![],
-        )]);
+        let shape = star_like(&radii, size, None);
         let d = depth * size;
         let Some(rings) = Eroder::new(&shape, 0.05).rings(d) else {
             return Ok(());

@@ -5,14 +5,18 @@ use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
 use super::{Error, MAX_COORDINATE};
 // Where they were (`super::region::cross`): ring helpers the offset shares.
-use super::offset::next;
+use super::offset::{RawRings, next};
 pub(crate) use super::offset::{cross, signed_area};
 
 /// The infill area of a layer: the region inset by half a nozzle.
 #[derive(Clone, Debug)]
 pub struct Region {
-    /// The inset area.
-    inset: MultiPolygon<f64>,
+    /// The inset area: made from `rings` when first asked where the raw offset made
+    /// them (a layer filled once, by `infill::fill`, never asks), else kept as made.
+    inset: std::sync::OnceLock<MultiPolygon<f64>>,
+    /// How many holes each polygon of the inset has, to make it from `rings` (empty when
+    /// none has any, or when it was kept as made).
+    holes: Vec<usize>,
     /// The region as given, without degenerate rings: concentric loops are offset from
     /// it (it has fewer vertices than the inset, whose holes have grown arcs).
     outline: MultiPolygon<f64>,
@@ -85,26 +89,31 @@ impl Region {
         };
         let arc = arc_step(nozzle / 2.0);
         // Which offset made the inset says, most of the time, whether it is convex (see
-        // `convex` below) without testing its ring again.
-        let (inset, made_by) = if let Some(inset) = convex_inset(&cleaned, nozzle / 2.0, arc) {
-            (inset, Offset::Convex)
-        } else if let Some(inset) = super::offset::raw_inset(&cleaned, nozzle / 2.0, arc) {
-            (inset, Offset::Raw)
-        } else if cleaned.0.is_empty() {
-            (cleaned.as_ref().clone(), Offset::Buffer)
-        } else {
-            (cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
-        };
-        let mut rings = Vec::with_capacity(inset.0.iter().map(|p| 1 + p.interiors().len()).sum());
-        for p in &inset.0 {
-            rings.push(open_ring(p.exterior()));
-        }
-        let outlines = rings.len();
-        for p in &inset.0 {
-            rings.extend(p.interiors().iter().map(open_ring));
-        }
-        rings.retain(|r| r.len() >= 3);
-        let area = inset.unsigned_area();
+        // `convex` below) without testing its ring again. The raw offset's rings are kept
+        // as they are (open, outlines first), its polygons made only if asked.
+        let (inset, rings, outlines, holes, area, made_by) =
+            if let Some(inset) = convex_inset(&cleaned, nozzle / 2.0, arc) {
+                from_polygons(inset, Offset::Convex)
+            } else if let Some(raw) = super::offset::raw_rings(&cleaned, nozzle / 2.0, arc) {
+                let area = raw.area();
+                let RawRings {
+                    rings,
+                    outlines,
+                    holes,
+                } = raw;
+                (
+                    std::sync::OnceLock::new(),
+                    rings,
+                    outlines,
+                    holes,
+                    area,
+                    Offset::Raw,
+                )
+            } else if cleaned.0.is_empty() {
+                from_polygons(cleaned.as_ref().clone(), Offset::Buffer)
+            } else {
+                from_polygons(cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
+            };
         if !min.x.is_finite() {
             min = Coord::zero();
             max = Coord::zero();
@@ -125,6 +134,7 @@ impl Region {
         Ok(Region {
             convex,
             inset,
+            holes,
             outline: if keep_outline {
                 cleaned.into_owned()
             } else {
@@ -146,7 +156,14 @@ impl Region {
     }
 
     pub fn inset(&self) -> &MultiPolygon<f64> {
-        &self.inset
+        self.inset.get_or_init(|| {
+            RawRings {
+                rings: self.rings.clone(),
+                outlines: self.outlines,
+                holes: self.holes.clone(),
+            }
+            .polygons()
+        })
     }
 
     /// The area of the inset (mm²): what densities are measured against.
@@ -179,6 +196,40 @@ impl Region {
     }
 }
 
+/// A region's inset as polygons (the convex offset's or the buffer's): kept, with its
+/// rings open, outlines first, then holes (rings of fewer than three points dropped).
+#[allow(clippy::type_complexity)]
+fn from_polygons(
+    inset: MultiPolygon<f64>,
+    made_by: Offset,
+) -> (
+    std::sync::OnceLock<MultiPolygon<f64>>,
+    Vec<Vec<Coord>>,
+    usize,
+    Vec<usize>,
+    f64,
+    Offset,
+) {
+    let mut rings = Vec::with_capacity(inset.0.iter().map(|p| 1 + p.interiors().len()).sum());
+    for p in &inset.0 {
+        rings.push(open_ring(p.exterior()));
+    }
+    let outlines = rings.len();
+    for p in &inset.0 {
+        rings.extend(p.interiors().iter().map(open_ring));
+    }
+    rings.retain(|r| r.len() >= 3);
+    let area = inset.unsigned_area();
+    (
+        std::sync::OnceLock::from(inset),
+        rings,
+        outlines,
+        Vec::new(),
+        area,
+        made_by,
+    )
+}
+
 /// Which offset made a region's inset.
 enum Offset {
     Convex,
@@ -190,7 +241,7 @@ enum Offset {
 /// 5 µm from the arc (`d·(1 − cos(step/2))`), at least 0.2 rad, at most 0.8. At half a
 /// 0.4 mm nozzle that is 0.45 rad: a star's reflex corner gets 4 chords instead of 10, and
 /// every line family, clip and travel route after has fewer edges to test.
-fn arc_step(d: f64) -> f64 {
+pub(crate) fn arc_step(d: f64) -> f64 {
     const CHORD: f64 = 0.005;
     if d <= CHORD {
         return 0.8;

@@ -41,12 +41,15 @@ pub(crate) struct Router<'a> {
     /// it), then the boxes of its chunks of `CHUNK` edges, grown by a little slack
     /// (below): one list, ring `r`'s from `at[r].0`.
     boxes: Vec<(Coord, Coord)>,
-    /// Where each ring's boxes and cumulative lengths start.
+    /// Where each ring's boxes and cumulative lengths start; empty for a single ring
+    /// (both at 0: no list to allocate for most layers).
     at: Vec<(usize, usize)>,
     /// `CHUNK`, or (in tests) a ring's whole length: every edge tested, as before chunks.
     chunk: usize,
-    /// Per ring, whether the region lies on its left (measured when first needed).
+    /// Per ring, whether the region lies on its left (measured when first needed); for
+    /// a single ring, in `left_one` (no list).
     left: std::cell::OnceCell<Vec<bool>>,
+    left_one: std::cell::OnceCell<bool>,
     /// Whether a move that leaves a ring clearly inward is taken as inside without the
     /// even-odd test of its middle (off in tests, for the general path).
     fast: bool,
@@ -67,14 +70,16 @@ impl<'a> Router<'a> {
     pub(crate) fn with_chunk(rings: &'a [Vec<Coord>], chunk: usize) -> Router<'a> {
         let vertices: usize = rings.iter().map(Vec::len).sum();
         let mut chunks = Vec::with_capacity(vertices / chunk + 2 * rings.len());
-        let mut at = Vec::with_capacity(rings.len());
+        let mut at = Vec::with_capacity(if rings.len() > 1 { rings.len() } else { 0 });
         let mut largest: f64 = 0.0;
         let mut lengths_at = 0;
         for r in rings {
             let n = r.len();
             // The ring's box first, set once its chunks are measured.
             let ring_at = chunks.len();
-            at.push((ring_at, lengths_at));
+            if rings.len() > 1 {
+                at.push((ring_at, lengths_at));
+            }
             lengths_at += n + 1;
             chunks.push((Coord::zero(), Coord::zero()));
             // Chunk c holds edges c·CHUNK.. (up to the ring's end), so vertices
@@ -130,12 +135,14 @@ impl<'a> Router<'a> {
         // in the tests a chunk's box stands for, so that skipping a chunk never skips an
         // edge the test would have taken.
         let slack = 1e-9 * (1.0 + largest);
-        for (r, &(ring_at, _)) in rings.iter().zip(&at) {
+        let mut ring_at = 0;
+        for r in rings {
             let count = r.len().div_ceil(chunk);
             for (lo, hi) in &mut chunks[ring_at + 1..ring_at + 1 + count] {
                 *lo = *lo - Coord { x: slack, y: slack };
                 *hi = *hi + Coord { x: slack, y: slack };
             }
+            ring_at += 1 + count;
         }
         Router {
             rings,
@@ -146,6 +153,7 @@ impl<'a> Router<'a> {
             at,
             chunk,
             left: std::cell::OnceCell::new(),
+            left_one: std::cell::OnceCell::new(),
             fast: true,
             divide_first: false,
             project_ends: false,
@@ -272,6 +280,12 @@ impl<'a> Router<'a> {
     /// Whether the region lies on ring `r`'s left: a counter-clockwise ring inside an even
     /// number of the others (an outline), or a clockwise one inside an odd number (a hole).
     fn region_left(&self, r: usize) -> bool {
+        if self.rings.len() == 1 {
+            // No other ring to be inside of: counter-clockwise is an outline.
+            return *self
+                .left_one
+                .get_or_init(|| super::offset::signed_area(&self.rings[0]) > 0.0);
+        }
         self.left.get_or_init(|| {
             self.rings
                 .iter()
@@ -296,10 +310,20 @@ impl<'a> Router<'a> {
         })[r]
     }
 
+    /// Where ring `r`'s boxes and cumulative lengths start.
+    #[inline]
+    fn at(&self, r: usize) -> (usize, usize) {
+        if self.at.is_empty() {
+            (0, 0)
+        } else {
+            self.at[r]
+        }
+    }
+
     /// Ring `r`'s bounding box.
     #[inline]
     fn ring_box(&self, r: usize) -> (Coord, Coord) {
-        self.boxes[self.at[r].0]
+        self.boxes[self.at(r).0]
     }
 
     /// Ring `r`'s chunk boxes, with the range of edges each holds.
@@ -310,7 +334,7 @@ impl<'a> Router<'a> {
         let n = self.rings[r].len();
         let chunk = self.chunk;
         let count = n.div_ceil(chunk);
-        let from = self.at[r].0 + 1;
+        let from = self.at(r).0 + 1;
         self.boxes[from..from + count]
             .iter()
             .enumerate()
@@ -339,7 +363,7 @@ impl<'a> Router<'a> {
             }
             cumulative
         });
-        let from = self.at[r].1;
+        let from = self.at(r).1;
         &cumulative[from..from + self.rings[r].len() + 1]
     }
 
@@ -361,6 +385,15 @@ impl<'a> Router<'a> {
             },
         );
         let moving = d.x != 0.0 || d.y != 0.0;
+        // A move within a millionth of a radian of an edge's direction is kept as one
+        // that may run along it (as an exactly parallel one is): a move between two line
+        // ends on one edge is then found on it (`along_edge`) without the even-odd test
+        // of its middle. First told by |denom| against a bound from the ring's box (no
+        // edge is longer than its diagonal), then by the edge's own length.
+        let d2 = d.x * d.x + d.y * d.y;
+        let (lo_r, hi_r) = self.ring_box(r);
+        let diagonal2 = (hi_r - lo_r).x * (hi_r - lo_r).x + (hi_r - lo_r).y * (hi_r - lo_r).y;
+        let along = 1e-6 * (d2 * diagonal2).sqrt();
         for (edges, a, b) in self.chunks(r) {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
@@ -385,6 +418,20 @@ impl<'a> Router<'a> {
                         ));
                     }
                     continue;
+                }
+                if self.fast
+                    && denom.abs() <= along
+                    && denom * denom <= 1e-12 * d2 * (e.x * e.x + e.y * e.y)
+                {
+                    out.push((
+                        f64::NAN,
+                        Cut {
+                            ring: r,
+                            edge: i,
+                            u: f64::NAN,
+                            near: true,
+                        },
+                    ));
                 }
                 let ap = a - p;
                 // Most edges are missed beside their ends: told by where the move's line

@@ -14,6 +14,9 @@ use super::offset::next;
 /// whole (a round hole's 64 edges are 8 boxes, of which a move near it meets one or two).
 const CHUNK: usize = 8;
 
+/// Up to this many edges in all, a region's chunks hold half as many.
+const SMALL: usize = 32;
+
 /// Where a move crosses a ring.
 #[derive(Clone, Copy, Debug)]
 struct Cut {
@@ -63,7 +66,10 @@ pub(crate) struct Router<'a> {
 
 impl<'a> Router<'a> {
     pub(crate) fn new(rings: &'a [Vec<Coord>]) -> Router<'a> {
-        Router::with_chunk(rings, CHUNK)
+        // A small region (a star's or an L's inset, a few dozen edges, whose runs of 8
+        // span most of it) in runs of 4: more of them missed by a move's box.
+        let vertices: usize = rings.iter().map(Vec::len).sum();
+        Router::with_chunk(rings, if vertices <= SMALL { CHUNK / 2 } else { CHUNK })
     }
 
     /// A router with chunks of `chunk` edges (`usize::MAX`: one per ring).
@@ -202,9 +208,11 @@ impl<'a> Router<'a> {
     /// Whether a move that crosses no ring inside it (`cuts`: where it meets the rings)
     /// starts or ends on an edge's middle and heads clearly into the region from it: then
     /// it is inside all along (it would have to cross a ring to leave), and the even-odd
-    /// test of its middle is not needed. Any doubt (a vertex, a grazing move, two rings
-    /// met at that end) answers `false`, for that test to decide.
-    fn leaves_inward(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> bool {
+    /// test of its middle is not needed. `Some(false)` where it heads clearly out of the
+    /// region there: outside all along, so that test could only find its middle on an
+    /// edge (`on_an_edge`). Any doubt (a vertex, a grazing move, two rings met at that
+    /// end) answers `None`, for that test to decide.
+    fn leaves_inward(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> Option<bool> {
         let d = q - p;
         let d2 = d.x * d.x + d.y * d.y;
         for (at_p, from, to) in [(true, p, q), (false, q, p)] {
@@ -224,18 +232,20 @@ impl<'a> Router<'a> {
             if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
                 continue;
             }
-            return (turn > 0.0) == self.region_left(c.ring);
+            return Some((turn > 0.0) == self.region_left(c.ring));
         }
-        false
+        None
     }
 
     /// Whether the stretch before bound `k` of a move (`d` its direction; bound `k` is
     /// `cuts[k]`, the move's end past the last) runs into the region from a crossing at
     /// either of its ends: a crossing inside the move, alone there (no other within a
     /// billionth of the move), through an edge's middle and clearly across it, enters
-    /// the region on one side of the edge. `false` where in doubt, for the even-odd test
-    /// of the stretch's middle to decide (as it does every stretch that leaves).
-    fn enters(&self, cuts: &[(f64, Cut)], k: usize, d: Coord) -> bool {
+    /// the region on one side of the edge; `Some(false)` where it runs out of the region
+    /// from such a crossing (outside all along: the even-odd test could only find its
+    /// middle on an edge, `on_an_edge`). `None` where in doubt, for the even-odd test of
+    /// the stretch's middle to decide.
+    fn enters(&self, cuts: &[(f64, Cut)], k: usize, d: Coord) -> Option<bool> {
         let d2 = d.x * d.x + d.y * d.y;
         let clean = |i: usize| {
             let (t, c) = cuts[i];
@@ -259,7 +269,36 @@ impl<'a> Router<'a> {
             if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
                 continue;
             }
-            return (turn > 0.0) == self.region_left(c.ring);
+            return Some((turn > 0.0) == self.region_left(c.ring));
+        }
+        None
+    }
+
+    /// Whether `inside(p)` finds `p` on an edge (within a nanometre, in a ring's box): its
+    /// answer for a point known to be outside by the crossings (a move or stretch that
+    /// runs out of the region from a clean crossing), without the ray's crossings. The
+    /// chunks it skips are those farther than a nanometre from `p`, where `on_edge`
+    /// cannot hold (the test `inside` makes on every chunk it reads).
+    fn on_an_edge(&self, p: Coord) -> bool {
+        for (r, ring) in self.rings.iter().enumerate() {
+            let (lo, hi) = self.ring_box(r);
+            if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
+                continue;
+            }
+            let n = ring.len();
+            for (edges, lo, hi) in self.chunks(r) {
+                let near = p.x >= lo.x - 1e-6
+                    && p.x <= hi.x + 1e-6
+                    && p.y >= lo.y - 1e-6
+                    && p.y <= hi.y + 1e-6;
+                if near
+                    && edges
+                        .into_iter()
+                        .any(|i| on_edge(ring[i], ring[next(i, n)], p))
+                {
+                    return true;
+                }
+            }
         }
         false
     }
@@ -488,9 +527,14 @@ impl<'a> Router<'a> {
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
         if !cuts.iter().any(|&(t, _)| interior(t))
-            && (self.fast
-                && (self.leaves_inward(p, q, &cuts) || self.along_edge((p + q) / 2.0, &cuts))
-                || self.inside((p + q) / 2.0))
+            && match self.fast.then(|| self.leaves_inward(p, q, &cuts)).flatten() {
+                Some(true) => true,
+                // Out of the region from one end, crossing nothing: outside all along.
+                Some(false) => self.on_an_edge((p + q) / 2.0),
+                None => {
+                    self.fast && self.along_edge((p + q) / 2.0, &cuts) || self.inside((p + q) / 2.0)
+                }
+            }
         {
             self.cuts.replace(cuts);
             return vec![p, q];
@@ -530,10 +574,13 @@ impl<'a> Router<'a> {
         for (k, (tb, rb)) in bounds.enumerate() {
             let (ta, ra) = std::mem::replace(&mut previous, (tb, rb));
             let (a, b) = (at(ta), at(tb));
-            if (tb - ta) * move_length < 1e-6
-                || (self.fast && self.enters(&cuts, k, q - p))
-                || self.inside(at((ta + tb) / 2.0))
-            {
+            let straight = (tb - ta) * move_length < 1e-6
+                || match self.fast.then(|| self.enters(&cuts, k, q - p)).flatten() {
+                    Some(true) => true,
+                    Some(false) => self.on_an_edge(at((ta + tb) / 2.0)),
+                    None => self.inside(at((ta + tb) / 2.0)),
+                };
+            if straight {
                 out.push(b);
                 continue;
             }

@@ -6,6 +6,7 @@
 //! with holes, concave or not; the half-open rule on edge ends (an edge owns its lower
 //! end) counts a vertex on the line once.
 
+use super::scratch;
 use crate::math;
 use geo::Coord;
 
@@ -160,7 +161,9 @@ impl Grid {
 
 impl Edges {
     pub fn new(rings: &[Vec<Coord>], frame: &Frame) -> Edges {
-        let mut edges = Vec::with_capacity(rings.iter().map(Vec::len).sum());
+        // Its lists are kept from one layer to the next (`scratch`, given back on drop).
+        let mut edges = scratch::take(&EDGE_LIST);
+        edges.reserve(rings.iter().map(Vec::len).sum());
         let mut min = Coord {
             x: f64::INFINITY,
             y: f64::INFINITY,
@@ -195,7 +198,7 @@ impl Edges {
                 a = b;
             }
         }
-        let n = (edges.len() / 4).clamp(1, 512);
+        let n = (edges.len() / 2).clamp(1, 512);
         let height = ((max.y - min.y) / n as f64).max(f64::MIN_POSITIVE);
         let span = |e: &Edge| {
             let (lo, hi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
@@ -204,7 +207,8 @@ impl Edges {
         // A counting sort by strip: counts, their running sums (each strip's end), then
         // the edges placed from each end down, in reverse, which leaves every strip's
         // start in `strip_start` and its edges in ascending order.
-        let mut strip_start = vec![0u32; n + 1];
+        let mut strip_start = scratch::take(&STRIP_START);
+        strip_start.resize(n + 1, 0);
         for e in &edges {
             for s in span(e) {
                 strip_start[s] += 1;
@@ -214,7 +218,8 @@ impl Edges {
             strip_start[s] += strip_start[s - 1];
         }
         strip_start[n] = strip_start[n - 1];
-        let mut strip_edges = vec![0u32; strip_start[n] as usize];
+        let mut strip_edges = scratch::take(&STRIP_EDGES);
+        strip_edges.resize(strip_start[n] as usize, 0);
         for (i, e) in edges.iter().enumerate().rev() {
             for s in span(e) {
                 strip_start[s] -= 1;
@@ -231,8 +236,8 @@ impl Edges {
             max,
             height,
             segment: 0,
-            cuts: Vec::new(),
-            piece: Vec::new(),
+            cuts: scratch::take(&CUTS),
+            piece: scratch::take(&PIECE),
             grid: None,
         }
     }
@@ -414,6 +419,26 @@ impl Edges {
             }
         }
     }
+}
+
+impl Drop for Edges {
+    /// The lists go back to the pool for the next layer's edges.
+    fn drop(&mut self) {
+        scratch::give(&EDGE_LIST, std::mem::take(&mut self.edges));
+        scratch::give(&STRIP_START, std::mem::take(&mut self.strip_start));
+        scratch::give(&STRIP_EDGES, std::mem::take(&mut self.strip_edges));
+        scratch::give(&CUTS, std::mem::take(&mut self.cuts));
+        scratch::give(&PIECE, std::mem::take(&mut self.piece));
+    }
+}
+
+thread_local! {
+    /// `Edges`' lists, kept from one layer to the next.
+    static EDGE_LIST: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
+    static STRIP_START: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
+    static STRIP_EDGES: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
+    static CUTS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
+    static PIECE: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// Up to this many edges, `clip` tests every edge: cheaper than building and walking the

@@ -277,16 +277,9 @@ pub(crate) fn clear_of_crossings<R: AsRef<[Coord]>>(rings: &[R], d: f64) -> bool
     let reach = 2.0 * d;
     // A millionth more than 2d, squared: far above the offset's rounding.
     let reach2 = reach * reach * (1.0 + 1e-6);
-    // Every edge once, with its box and squared length.
-    #[derive(Clone, Copy)]
-    struct Edge {
-        p: Coord,
-        q: Coord,
-        lo: Coord,
-        hi: Coord,
-        len2: f64,
-    }
-    let mut edges = Vec::with_capacity(total);
+    // Every edge once, with its box and squared length (a list kept between layers).
+    let mut edges = super::scratch::take(&EDGES);
+    edges.reserve(total);
     for ring in rings {
         let ring = ring.as_ref();
         let n = ring.len();
@@ -333,13 +326,30 @@ pub(crate) fn clear_of_crossings<R: AsRef<[Coord]>>(rings: &[R], d: f64) -> bool
                     || beyond(f.p, f.q, f.len2, e.p, e.q, reach2)
                     || apart(e.p, e.q, f.p, f.q, reach2))
                 {
+                    super::scratch::give(&EDGES, edges);
                     return false;
                 }
             }
         }
         from += n;
     }
+    super::scratch::give(&EDGES, edges);
     true
+}
+
+/// An edge of `clear_of_crossings`, with its box and squared length.
+#[derive(Clone, Copy)]
+struct Edge {
+    p: Coord,
+    q: Coord,
+    lo: Coord,
+    hi: Coord,
+    len2: f64,
+}
+
+thread_local! {
+    /// `clear_of_crossings`' edges, kept between layers.
+    static EDGES: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// Whether `r` and `s` are both on the same side of the line through `p` and `q` (`len2`

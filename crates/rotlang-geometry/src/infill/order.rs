@@ -61,7 +61,8 @@ pub(crate) fn order(
     };
     let router = super::travel::Router::new(rings);
     let mut last: Option<Coord> = None;
-    for path in ordered {
+    let mut ordered = ordered;
+    for path in ordered.drain(..) {
         if let (Some(l), Some(&first)) = (last, path.first()) {
             let route = router.route(l, first);
             toolpaths.travel += super::travel::length(&route);
@@ -71,7 +72,15 @@ pub(crate) fn order(
         last = path.last().copied();
         toolpaths.polylines.push(LineString::new(path));
     }
+    // The emptied list serves the next layer's paths.
+    super::scratch::give(&PATHS, ordered);
     toolpaths
+}
+
+thread_local! {
+    /// A layer's paths before they are ordered (`Region::fill` takes it), kept between
+    /// layers.
+    pub(crate) static PATHS: std::cell::Cell<Vec<Vec<Coord>>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// Every path running in +x of the pattern frame, in order of their y then x: the

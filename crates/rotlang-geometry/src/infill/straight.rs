@@ -2,8 +2,13 @@
 
 use geo::Coord;
 
-use super::Region;
 use super::clip::{Edges, Frame};
+use super::{Region, scratch};
+
+thread_local! {
+    /// `families`' crossings, kept between layers.
+    static CROSSINGS: std::cell::Cell<Vec<(i64, f64)>> = const { std::cell::Cell::new(Vec::new()) };
+}
 
 /// One family of lines per offset (degrees from θ), `spacing` apart, every family with a
 /// line through `centre` (so that three families at 60° meet in common points), or
@@ -24,8 +29,10 @@ pub(crate) fn families(
     shift: f64,
     out: &mut Vec<Vec<Coord>>,
 ) {
-    // Room for a few lines' crossings at once: a small layer's never grow it.
-    let mut crossings: Vec<(i64, f64)> = Vec::with_capacity(32);
+    // Room for a few lines' crossings at once: a small layer's never grow it. Kept from
+    // one layer to the next (`scratch`).
+    let mut crossings = scratch::take(&CROSSINGS);
+    crossings.reserve(32);
     for &offset in offsets {
         let frame = Frame::new(centre, theta + offset.to_radians());
         let shift = shift.rem_euclid(spacing);
@@ -56,6 +63,7 @@ pub(crate) fn families(
             }
         }
     }
+    scratch::give(&CROSSINGS, crossings);
 }
 
 /// A vertex in the family's frame with the range of lines it might be on: the lines

@@ -8,6 +8,15 @@
 use geo::Coord;
 
 use super::offset::next;
+use super::scratch;
+
+thread_local! {
+    /// A router's lists, kept from one layer to the next.
+    static BOXES: std::cell::Cell<Vec<(Coord, Coord)>> = const { std::cell::Cell::new(Vec::new()) };
+    static CUTS: std::cell::Cell<Vec<(f64, Cut)>> = const { std::cell::Cell::new(Vec::new()) };
+    static PATH: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    static LENGTHS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
+}
 
 /// Edges per chunk: each ring's edges are taken in runs of this many consecutive ones,
 /// each run with its bounding box, so that a move or a point far from a run skips it
@@ -75,7 +84,9 @@ impl<'a> Router<'a> {
     /// A router with chunks of `chunk` edges (`usize::MAX`: one per ring).
     pub(crate) fn with_chunk(rings: &'a [Vec<Coord>], chunk: usize) -> Router<'a> {
         let vertices: usize = rings.iter().map(Vec::len).sum();
-        let mut chunks = Vec::with_capacity(vertices / chunk + 2 * rings.len());
+        // The router's lists are kept from one layer to the next (`scratch`).
+        let mut chunks = scratch::take(&BOXES);
+        chunks.reserve(vertices / chunk + 2 * rings.len());
         let mut at = Vec::with_capacity(if rings.len() > 1 { rings.len() } else { 0 });
         let mut largest: f64 = 0.0;
         let mut lengths_at = 0;
@@ -153,8 +164,8 @@ impl<'a> Router<'a> {
         Router {
             rings,
             lengths: std::cell::OnceCell::new(),
-            cuts: std::cell::RefCell::new(Vec::new()),
-            path: std::cell::RefCell::new(Vec::new()),
+            cuts: std::cell::RefCell::new(scratch::take(&CUTS)),
+            path: std::cell::RefCell::new(scratch::take(&PATH)),
             boxes: chunks,
             at,
             chunk,
@@ -389,7 +400,8 @@ impl<'a> Router<'a> {
     fn cumulative(&self, r: usize) -> &[f64] {
         let cumulative = self.lengths.get_or_init(|| {
             let vertices: usize = self.rings.iter().map(Vec::len).sum();
-            let mut cumulative = Vec::with_capacity(vertices + self.rings.len());
+            let mut cumulative = scratch::take(&LENGTHS);
+            cumulative.reserve(vertices + self.rings.len());
             for ring in self.rings {
                 let n = ring.len();
                 let mut s = 0.0;
@@ -731,6 +743,18 @@ impl<'a> Router<'a> {
                     break;
                 }
             }
+        }
+    }
+}
+
+impl Drop for Router<'_> {
+    /// The lists go back to the pool for the next layer's router.
+    fn drop(&mut self) {
+        scratch::give(&BOXES, std::mem::take(&mut self.boxes));
+        scratch::give(&CUTS, self.cuts.take());
+        scratch::give(&PATH, self.path.take());
+        if let Some(lengths) = self.lengths.take() {
+            scratch::give(&LENGTHS, lengths);
         }
     }
 }

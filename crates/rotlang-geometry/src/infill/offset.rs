@@ -87,17 +87,29 @@ pub(crate) fn geo_ring_area(open: &[Coord]) -> f64 {
     let shift = open[0];
     let mut prev = open[1] - shift;
     let mut sum = 0.0;
-    for &point in open[2..].iter().chain(std::iter::once(&open[0])) {
+    for &point in &open[2..] {
         let shifted = point - shift;
         sum += prev.x * shifted.y - prev.y * shifted.x;
         prev = shifted;
     }
+    // The closing point, the first shifted: (0, 0).
+    let shifted = open[0] - shift;
+    sum += prev.x * shifted.y - prev.y * shifted.x;
     sum / 2.0
 }
 
 /// [`raw_inset`]'s rings without its polygons: what a layer's `Region` reads.
 pub(crate) fn raw_rings(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<RawRings> {
-    let step = ArcStep::new(arc);
+    raw_rings_stepped(region, d, ArcStep::new(arc))
+}
+
+/// [`raw_rings`] with the round corners' step made already (`Region` keeps the last
+/// nozzle's).
+pub(crate) fn raw_rings_stepped(
+    region: &MultiPolygon<f64>,
+    d: f64,
+    step: ArcStep,
+) -> Option<RawRings> {
     // The commonest region, one outline and no hole (a star, an L): read in place when
     // it needs no cleaning and turns the right way, offset into the ring kept.
     if let [polygon] = &region.0[..]
@@ -219,6 +231,13 @@ pub(crate) struct ArcStep {
 }
 
 impl ArcStep {
+    /// A placeholder (no step), for a cache not yet filled.
+    pub(crate) const NONE: ArcStep = ArcStep {
+        sin: 0.0,
+        cos: 1.0,
+        last_cos: 1.0,
+    };
+
     pub(crate) fn new(arc: f64) -> ArcStep {
         let step = arc / 1.2;
         let (sin, cos) = math::sin_cos(step);

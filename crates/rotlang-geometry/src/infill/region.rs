@@ -5,7 +5,7 @@ use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
 use super::{Error, MAX_COORDINATE};
 // Where they were (`super::region::cross`): ring helpers the offset shares.
-use super::offset::{RawRings, next};
+use super::offset::{ArcStep, RawRings, next};
 pub(crate) use super::offset::{cross, signed_area};
 
 /// The infill area of a layer: the region inset by half a nozzle.
@@ -69,14 +69,20 @@ impl Region {
                             return Err(Error::Coordinate(v));
                         }
                     }
-                    min = Coord {
-                        x: min.x.min(c.x),
-                        y: min.y.min(c.y),
-                    };
-                    max = Coord {
-                        x: max.x.max(c.x),
-                        y: max.y.max(c.y),
-                    };
+                    // By comparisons, not `min`/`max` (which handle NaN at several
+                    // instructions each): the coordinate was just found finite.
+                    if c.x < min.x {
+                        min.x = c.x;
+                    }
+                    if c.x > max.x {
+                        max.x = c.x;
+                    }
+                    if c.y < min.y {
+                        min.y = c.y;
+                    }
+                    if c.y > max.y {
+                        max.y = c.y;
+                    }
                 }
             }
         }
@@ -87,33 +93,34 @@ impl Region {
         } else {
             std::borrow::Cow::Borrowed(region)
         };
-        let arc = arc_step(nozzle / 2.0);
+        let (arc, step) = arc_and_step(nozzle / 2.0);
         // Which offset made the inset says, most of the time, whether it is convex (see
         // `convex` below) without testing its ring again. The raw offset's rings are kept
         // as they are (open, outlines first), its polygons made only if asked.
-        let (inset, rings, outlines, holes, area, made_by) =
-            if let Some(inset) = convex_inset(&cleaned, nozzle / 2.0, arc) {
-                from_polygons(inset, Offset::Convex)
-            } else if let Some(raw) = super::offset::raw_rings(&cleaned, nozzle / 2.0, arc) {
-                let area = raw.area();
-                let RawRings {
-                    rings,
-                    outlines,
-                    holes,
-                } = raw;
-                (
-                    std::sync::OnceLock::new(),
-                    rings,
-                    outlines,
-                    holes,
-                    area,
-                    Offset::Raw,
-                )
-            } else if cleaned.0.is_empty() {
-                from_polygons(cleaned.as_ref().clone(), Offset::Buffer)
-            } else {
-                from_polygons(cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
-            };
+        let (inset, rings, outlines, holes, area, made_by) = if let Some(inset) =
+            convex_inset(&cleaned, nozzle / 2.0, arc)
+        {
+            from_polygons(inset, Offset::Convex)
+        } else if let Some(raw) = super::offset::raw_rings_stepped(&cleaned, nozzle / 2.0, step) {
+            let area = raw.area();
+            let RawRings {
+                rings,
+                outlines,
+                holes,
+            } = raw;
+            (
+                std::sync::OnceLock::new(),
+                rings,
+                outlines,
+                holes,
+                area,
+                Offset::Raw,
+            )
+        } else if cleaned.0.is_empty() {
+            from_polygons(cleaned.as_ref().clone(), Offset::Buffer)
+        } else {
+            from_polygons(cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
+        };
         if !min.x.is_finite() {
             min = Coord::zero();
             max = Coord::zero();
@@ -235,6 +242,23 @@ enum Offset {
     Convex,
     Raw,
     Buffer,
+}
+
+/// `arc_step(d)` and its `ArcStep`, kept for the last `d` (a slicer's layers share one
+/// nozzle): an arc cosine, a sine and two cosines not computed again for every layer.
+pub(crate) fn arc_and_step(d: f64) -> (f64, ArcStep) {
+    thread_local! {
+        static LAST: std::cell::Cell<(f64, f64, ArcStep)> =
+            const { std::cell::Cell::new((f64::NAN, 0.0, ArcStep::NONE)) };
+    }
+    let (last, arc, step) = LAST.with(std::cell::Cell::get);
+    if last == d {
+        return (arc, step);
+    }
+    let arc = arc_step(d);
+    let step = ArcStep::new(arc);
+    LAST.with(|cell| cell.set((d, arc, step)));
+    (arc, step)
 }
 
 /// The angle step (radians) of the arcs of an inset by `d`: chords that stray at most

@@ -100,15 +100,15 @@ impl<'a> Router<'a> {
             lengths_at += n + 1;
             chunks.push((Coord::zero(), Coord::zero()));
             // Chunk c holds edges c·CHUNK.. (up to the ring's end), so vertices
-            // c·CHUNK..=(c + 1)·CHUNK, the last wrapping to the first.
-            for c in 0..n.div_ceil(chunk) {
-                let (from, to) = (
-                    c * chunk,
-                    (c.saturating_add(1).saturating_mul(chunk)).min(n),
-                );
-                // By comparisons, not `min`/`max` (which handle NaN, and cost several
-                // instructions each): the coordinates are finite, the box is the same.
-                let last = r[to % n];
+            // c·CHUNK..=(c + 1)·CHUNK, the last wrapping to the first. Boxes by
+            // comparisons, not `min`/`max` (which handle NaN, and cost several
+            // instructions each): the coordinates are finite, the boxes are the same. The
+            // ring's box grows with its chunks' (they hold every vertex).
+            let mut ring_box = bounds(&[]);
+            let mut from = 0;
+            while from < n {
+                let to = if n - from > chunk { from + chunk } else { n };
+                let last = if to < n { r[to] } else { r[0] };
                 let (mut lo, mut hi) = (last, last);
                 for c in &r[from..to] {
                     if c.x < lo.x {
@@ -125,22 +125,20 @@ impl<'a> Router<'a> {
                     }
                 }
                 chunks.push((lo, hi));
+                if lo.x < ring_box.0.x {
+                    ring_box.0.x = lo.x;
+                }
+                if lo.y < ring_box.0.y {
+                    ring_box.0.y = lo.y;
+                }
+                if hi.x > ring_box.1.x {
+                    ring_box.1.x = hi.x;
+                }
+                if hi.y > ring_box.1.y {
+                    ring_box.1.y = hi.y;
+                }
+                from = to;
             }
-            // The ring's box is its chunks' (they hold every vertex): not a second pass.
-            let ring_box = chunks[ring_at + 1..]
-                .iter()
-                .fold(bounds(&[]), |(lo, hi), &(a, b)| {
-                    (
-                        Coord {
-                            x: lo.x.min(a.x),
-                            y: lo.y.min(a.y),
-                        },
-                        Coord {
-                            x: hi.x.max(b.x),
-                            y: hi.y.max(b.y),
-                        },
-                    )
-                });
             largest = largest
                 .max(ring_box.0.x.abs())
                 .max(ring_box.0.y.abs())

@@ -536,18 +536,24 @@ impl<'a> Router<'a> {
         }
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
-        if !cuts.iter().any(|&(t, _)| interior(t))
-            && match self.fast.then(|| self.leaves_inward(p, q, &cuts)).flatten() {
+        // Whether the move is known to run outside all along (but for its ends): out of
+        // the region from one end, crossing nothing; then so is every stretch below.
+        let mut outside = false;
+        if !cuts.iter().any(|&(t, _)| interior(t)) {
+            let straight = match self.fast.then(|| self.leaves_inward(p, q, &cuts)).flatten() {
                 Some(true) => true,
-                // Out of the region from one end, crossing nothing: outside all along.
-                Some(false) => self.on_an_edge((p + q) / 2.0),
+                Some(false) => {
+                    outside = true;
+                    self.on_an_edge((p + q) / 2.0)
+                }
                 None => {
                     self.fast && self.along_edge((p + q) / 2.0, &cuts) || self.inside((p + q) / 2.0)
                 }
+            };
+            if straight {
+                self.cuts.replace(cuts);
+                return vec![p, q];
             }
-        {
-            self.cuts.replace(cuts);
-            return vec![p, q];
         }
         // A move between two points of one ring (line ends lie on the inset's rings) may
         // find no crossing at all, its ends being on the ring: the middle of each
@@ -585,7 +591,14 @@ impl<'a> Router<'a> {
             let (ta, ra) = std::mem::replace(&mut previous, (tb, rb));
             let (a, b) = (at(ta), at(tb));
             let straight = (tb - ta) * move_length < 1e-6
-                || match self.fast.then(|| self.enters(&cuts, k, q - p)).flatten() {
+                || match if outside {
+                    // The whole move runs outside: so does every stretch of it.
+                    Some(false)
+                } else if self.fast {
+                    self.enters(&cuts, k, q - p)
+                } else {
+                    None
+                } {
                     Some(true) => true,
                     Some(false) => self.on_an_edge(at((ta + tb) / 2.0)),
                     None => self.inside(at((ta + tb) / 2.0)),

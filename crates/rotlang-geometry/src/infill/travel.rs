@@ -383,16 +383,15 @@ impl<'a> Router<'a> {
         let chunk = self.chunk;
         let count = n.div_ceil(chunk);
         let from = self.at(r).0 + 1;
-        self.boxes[from..from + count]
-            .iter()
-            .enumerate()
-            .map(move |(c, &(lo, hi))| {
-                (
-                    c * chunk..(c.saturating_add(1).saturating_mul(chunk)).min(n),
-                    lo,
-                    hi,
-                )
-            })
+        // Each chunk's edges from where the last ended (no multiplication, nothing to
+        // saturate where a test's chunk is a whole ring).
+        let mut start = 0;
+        self.boxes[from..from + count].iter().map(move |&(lo, hi)| {
+            let end = if n - start > chunk { start + chunk } else { n };
+            let edges = start..end;
+            start = end;
+            (edges, lo, hi)
+        })
     }
 
     fn cumulative(&self, r: usize) -> &[f64] {

@@ -44,6 +44,23 @@ impl Frame {
 struct Edge {
     a: Coord,
     b: Coord,
+    /// Its box (the lesser and greater of its ends' coordinates), for the test that
+    /// passes an edge wholly beside a segment's box on one comparison a side.
+    lo: Coord,
+    hi: Coord,
+}
+
+impl Edge {
+    fn new(a: Coord, b: Coord) -> Edge {
+        let (x0, x1) = if a.x < b.x { (a.x, b.x) } else { (b.x, a.x) };
+        let (y0, y1) = if a.y < b.y { (a.y, b.y) } else { (b.y, a.y) };
+        Edge {
+            a,
+            b,
+            lo: Coord { x: x0, y: y0 },
+            hi: Coord { x: x1, y: y1 },
+        }
+    }
 }
 
 /// The region's edges in one frame, bucketed in horizontal strips so that a line or a
@@ -193,7 +210,7 @@ impl Edges {
                     y: max.y.max(a.y),
                 };
                 if a != b {
-                    edges.push(Edge { a, b });
+                    edges.push(Edge::new(a, b));
                 }
                 a = b;
             }
@@ -263,7 +280,7 @@ impl Edges {
         let s = self.strip(y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
         for &i in &self.strip_edges[from as usize..to as usize] {
-            let Edge { a, b } = self.edges[i as usize];
+            let Edge { a, b, .. } = self.edges[i as usize];
             if (a.y <= y) != (b.y <= y) {
                 crossings.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
             }
@@ -281,7 +298,7 @@ impl Edges {
         let s = self.strip(p.y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
         for &i in &self.strip_edges[from as usize..to as usize] {
-            let Edge { a, b } = self.edges[i as usize];
+            let Edge { a, b, .. } = self.edges[i as usize];
             if ray_crosses(a, b, p) {
                 inside = !inside;
             }
@@ -460,17 +477,13 @@ struct Segment {
 impl Segment {
     /// Where the segment crosses `edge`, as `k + t`, pushed to `cuts`.
     #[inline]
-    fn cut(&self, Edge { a, b }: Edge, cuts: &mut Vec<f64>) {
+    fn cut(&self, Edge { a, b, lo, hi }: Edge, cuts: &mut Vec<f64>) {
         let (p, d1) = (self.p, self.d);
-        // Both ends left of the segment's x range, or both right, below or above: by
-        // comparisons, not `max`/`min` (which handle NaN at several instructions each;
-        // coordinates are finite), in the loop over every edge of a small region. An edge
-        // wholly beside the segment's box cannot cross it.
-        if (a.x < self.x0 && b.x < self.x0)
-            || (a.x > self.x1 && b.x > self.x1)
-            || (a.y < self.y0 && b.y < self.y0)
-            || (a.y > self.y1 && b.y > self.y1)
-        {
+        // Both ends left of the segment's x range, or both right, below or above: told by
+        // the edge's box (made once, by comparisons), one comparison a side, in the loop
+        // over every edge of a small region. An edge wholly beside the segment's box
+        // cannot cross it.
+        if hi.x < self.x0 || lo.x > self.x1 || hi.y < self.y0 || lo.y > self.y1 {
             return;
         }
         // The edge's ends on opposite sides of the segment's line (cheap, and false for
@@ -520,4 +533,67 @@ fn cross(a: Coord, b: Coord) -> f64 {
 
 fn strip(y: f64, min: f64, height: f64, n: usize) -> usize {
     (((y - min) / height).max(0.0) as usize).min(n - 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// `cut` without the box test: the crossing as the sign test and the division find it.
+    fn cut_unboxed(s: &Segment, a: Coord, b: Coord, cuts: &mut Vec<f64>) {
+        let (p, d1) = (s.p, s.d);
+        let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
+        if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
+            return;
+        }
+        let d2 = b - a;
+        let den = d1.x * d2.y - d1.y * d2.x;
+        if den == 0.0 {
+            return;
+        }
+        let ap = a - p;
+        let t = (ap.x * d2.y - ap.y * d2.x) / den;
+        let u = (ap.x * d1.y - ap.y * d1.x) / den;
+        if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
+            cuts.push(s.k + t);
+        }
+    }
+
+    fn coord() -> impl Strategy<Value = Coord> {
+        // Whole numbers often, so that ends meet, lie on lines and share coordinates.
+        prop_oneof![
+            (-10.0f64..10.0, -10.0f64..10.0).prop_map(|(x, y)| Coord { x, y }),
+            (-4i32..4, -4i32..4).prop_map(|(x, y)| Coord {
+                x: x as f64,
+                y: y as f64
+            }),
+        ]
+    }
+
+    proptest! {
+        /// An edge's box (made once) passes the edges wholly beside a segment's box, and
+        /// `cut` finds what the sign test and the division find without it.
+        #[test]
+        fn cut_by_the_edge_box_is_the_unboxed_cut(
+            p in coord(), q in coord(), a in coord(), b in coord(), k in 0usize..4,
+        ) {
+            let segment = Segment {
+                p,
+                d: q - p,
+                x0: p.x.min(q.x),
+                x1: p.x.max(q.x),
+                y0: p.y.min(q.y),
+                y1: p.y.max(q.y),
+                k: k as f64,
+            };
+            let edge = Edge::new(a, b);
+            prop_assert_eq!(edge.lo, Coord { x: a.x.min(b.x), y: a.y.min(b.y) });
+            prop_assert_eq!(edge.hi, Coord { x: a.x.max(b.x), y: a.y.max(b.y) });
+            let (mut boxed, mut unboxed) = (Vec::new(), Vec::new());
+            segment.cut(edge, &mut boxed);
+            cut_unboxed(&segment, a, b, &mut unboxed);
+            prop_assert_eq!(boxed, unboxed);
+        }
+    }
 }

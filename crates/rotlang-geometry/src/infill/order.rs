@@ -42,17 +42,16 @@ pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
 }
 
 /// Puts the paths in print order and measures them; travel between them is routed
-/// inside `rings` (the inset's outlines and holes).
+/// inside `rings` (the inset's outlines and holes). `monotonic`: the pattern's frame
+/// for a monotonic order (made only then: its sine and cosine), else nearest first.
 pub(crate) fn order(
     paths: Vec<Vec<Coord>>,
-    monotonic: bool,
-    frame: Frame,
+    monotonic: Option<Frame>,
     rings: &[Vec<Coord>],
 ) -> Toolpaths {
-    let ordered = if monotonic {
-        monotonic_order(paths, &frame)
-    } else {
-        nearest(paths)
+    let ordered = match monotonic {
+        Some(frame) => monotonic_order(paths, &frame),
+        None => nearest(paths),
     };
     let mut toolpaths = Toolpaths {
         polylines: Vec::with_capacity(ordered.len()),

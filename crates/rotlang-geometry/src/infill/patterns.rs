@@ -128,8 +128,7 @@ impl Region {
         let monotonic = params.order == Order::Monotonic;
         Ok(order::order(
             paths,
-            monotonic,
-            Frame::new(centre, theta),
+            monotonic.then(|| Frame::new(centre, theta)),
             if self.convex { &[] } else { &self.rings },
         ))
     }

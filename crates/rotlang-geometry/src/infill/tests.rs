@@ -1622,7 +1622,7 @@ fn lightning_by_two_trees(region: &Region, params: &Params) -> Toolpaths {
     } else {
         region.rings()
     };
-    order::order(paths, false, clip::Frame::new(centre, theta), rings)
+    order::order(paths, None, rings)
 }
 
 proptest! {

@@ -131,7 +131,15 @@ fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
                 }
             }
             let (_, j, reversed) = best;
-            paths[i..=j].rotate_right(1);
+            // Path j to place i, the ones between moved up one: a rotation, by swaps
+            // over a few paths (no call to move memory), else by the library's.
+            if j - i <= 8 {
+                for k in (i..j).rev() {
+                    paths.swap(k, k + 1);
+                }
+            } else {
+                paths[i..=j].rotate_right(1);
+            }
             if reversed {
                 paths[i].reverse();
             }

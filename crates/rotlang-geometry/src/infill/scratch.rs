@@ -8,8 +8,10 @@
 use std::cell::Cell;
 use std::thread::LocalKey;
 
-/// The most elements a buffer kept may hold room for.
-const LARGEST: usize = 1 << 16;
+/// The most elements a buffer kept may hold room for: a small layer's lists (where an
+/// allocation is a noticeable part of the work) are kept, a large one's are not held on
+/// to (at most a few hundred kB a thread in all).
+const LARGEST: usize = 1 << 12;
 
 /// A pool of one buffer per thread.
 pub(crate) type Pool<T> = LocalKey<Cell<Vec<T>>>;

@@ -344,7 +344,7 @@ impl Edges {
             };
             if self.edges.len() <= PLAIN {
                 // Few edges (a star, an L): every one, no grid to build or walk.
-                for &edge in &self.edges {
+                for edge in &self.edges {
                     segment.cut(edge, &mut cuts);
                 }
             } else {
@@ -431,7 +431,7 @@ impl Edges {
                         }
                         self.stamp[i] = self.segment;
                     }
-                    segment.cut(self.edges[i], cuts);
+                    segment.cut(&self.edges[i], cuts);
                 }
             }
         }
@@ -477,7 +477,7 @@ struct Segment {
 impl Segment {
     /// Where the segment crosses `edge`, as `k + t`, pushed to `cuts`.
     #[inline]
-    fn cut(&self, Edge { a, b, lo, hi }: Edge, cuts: &mut Vec<f64>) {
+    fn cut(&self, &Edge { a, b, lo, hi }: &Edge, cuts: &mut Vec<f64>) {
         let (p, d1) = (self.p, self.d);
         // Both ends left of the segment's x range, or both right, below or above: told by
         // the edge's box (made once, by comparisons), one comparison a side, in the loop
@@ -591,7 +591,7 @@ mod tests {
             prop_assert_eq!(edge.lo, Coord { x: a.x.min(b.x), y: a.y.min(b.y) });
             prop_assert_eq!(edge.hi, Coord { x: a.x.max(b.x), y: a.y.max(b.y) });
             let (mut boxed, mut unboxed) = (Vec::new(), Vec::new());
-            segment.cut(edge, &mut boxed);
+            segment.cut(&edge, &mut boxed);
             cut_unboxed(&segment, a, b, &mut unboxed);
             prop_assert_eq!(boxed, unboxed);
         }

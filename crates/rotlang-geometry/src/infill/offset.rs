@@ -324,18 +324,19 @@ pub(crate) fn clear_of_crossings<R: AsRef<[Coord]>>(rings: &[R], d: f64) -> bool
     for ring in rings {
         let n = ring.as_ref().len();
         for i in 0..n {
-            let e = edges[from + i];
+            let e = &edges[from + i];
             // The edges after it, but not its neighbours in its ring: the next (unless it
             // is the last, whose next is the first, met before) and, for the first, the
             // last.
             let start = from + i + if i + 1 < n { 2 } else { 1 };
             let skip = if i == 0 { from + n - 1 } else { usize::MAX };
-            for (l, f) in edges.iter().enumerate().skip(start) {
-                if l == skip
-                    || f.lo.x - e.hi.x > reach
-                    || e.lo.x - f.hi.x > reach
-                    || f.lo.y - e.hi.y > reach
-                    || e.lo.y - f.hi.y > reach
+            let (lo, hi) = (e.lo, e.hi);
+            for (l, f) in (start..).zip(&edges[start.min(edges.len())..]) {
+                if f.lo.x - hi.x > reach
+                    || lo.x - f.hi.x > reach
+                    || f.lo.y - hi.y > reach
+                    || lo.y - f.hi.y > reach
+                    || l == skip
                 {
                     continue;
                 }

@@ -144,7 +144,14 @@ pub(crate) fn branches(
         let (mut i, mut along, mut next) = (0usize, 0.0, 0.0);
         let mut k = 0usize;
         while k < count && i < n {
-            let (a, b) = (ring[(start + i) % n], ring[(start + i + 1) % n]);
+            // Vertex start + i round the ring (both under n: one subtraction, not a
+            // division).
+            let at = if start + i >= n {
+                start + i - n
+            } else {
+                start + i
+            };
+            let (a, b) = (ring[at], ring[super::offset::next(at, n)]);
             let len = length(b - a);
             if along + len < next || len == 0.0 {
                 along += len;

@@ -300,12 +300,12 @@ impl<'a> Router<'a> {
                     && p.x <= hi.x + 1e-6
                     && p.y >= lo.y - 1e-6
                     && p.y <= hi.y + 1e-6;
-                if near
-                    && edges
-                        .into_iter()
-                        .any(|i| on_edge(ring[i], ring[next(i, n)], p))
-                {
-                    return true;
+                if near {
+                    for i in edges {
+                        if on_edge(ring[i], ring[next(i, n)], p) {
+                            return true;
+                        }
+                    }
                 }
             }
         }

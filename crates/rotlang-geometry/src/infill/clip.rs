@@ -44,29 +44,22 @@ impl Frame {
 struct Edge {
     a: Coord,
     b: Coord,
-    /// Its box (the lesser and greater of its ends' coordinates), for the test that
-    /// passes an edge wholly beside a segment's box on one comparison a side.
-    lo: Coord,
-    hi: Coord,
 }
 
-impl Edge {
-    fn new(a: Coord, b: Coord) -> Edge {
-        let (x0, x1) = if a.x < b.x { (a.x, b.x) } else { (b.x, a.x) };
-        let (y0, y1) = if a.y < b.y { (a.y, b.y) } else { (b.y, a.y) };
-        Edge {
-            a,
-            b,
-            lo: Coord { x: x0, y: y0 },
-            hi: Coord { x: x1, y: y1 },
-        }
-    }
+/// An edge's box (the lesser and greater of its ends' coordinates, by comparisons), for
+/// the test that passes an edge wholly beside a segment's box on one comparison a side.
+fn edge_box(Edge { a, b }: Edge) -> (Coord, Coord) {
+    let (x0, x1) = if a.x < b.x { (a.x, b.x) } else { (b.x, a.x) };
+    let (y0, y1) = if a.y < b.y { (a.y, b.y) } else { (b.y, a.y) };
+    (Coord { x: x0, y: y0 }, Coord { x: x1, y: y1 })
 }
 
 /// The region's edges in one frame, bucketed in horizontal strips so that a line or a
 /// short segment meets only the edges near it.
 pub(crate) struct Edges {
     edges: Vec<Edge>,
+    /// Each edge's box, for a region of at most `PLAIN` edges (`clip` tests them all).
+    boxes: Vec<(Coord, Coord)>,
     /// Strip `s` holds `strip_edges[strip_start[s]..strip_start[s + 1]]` (one flat list:
     /// two allocations, not one per strip).
     strip_start: Vec<u32>,
@@ -210,7 +203,7 @@ impl Edges {
                     y: max.y.max(a.y),
                 };
                 if a != b {
-                    edges.push(Edge::new(a, b));
+                    edges.push(Edge { a, b });
                 }
                 a = b;
             }
@@ -243,9 +236,14 @@ impl Edges {
                 strip_edges[strip_start[s] as usize] = i as u32;
             }
         }
+        let mut boxes = scratch::take(&BOXES);
+        if edges.len() <= PLAIN {
+            boxes.extend(edges.iter().map(|&e| edge_box(e)));
+        }
         Edges {
             // Allocated by the first `clip`: straight lines never need it.
             stamp: Vec::new(),
+            boxes,
             edges,
             strip_start,
             strip_edges,
@@ -280,7 +278,7 @@ impl Edges {
         let s = self.strip(y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
         for &i in &self.strip_edges[from as usize..to as usize] {
-            let Edge { a, b, .. } = self.edges[i as usize];
+            let Edge { a, b } = self.edges[i as usize];
             if (a.y <= y) != (b.y <= y) {
                 crossings.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
             }
@@ -298,7 +296,7 @@ impl Edges {
         let s = self.strip(p.y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
         for &i in &self.strip_edges[from as usize..to as usize] {
-            let Edge { a, b, .. } = self.edges[i as usize];
+            let Edge { a, b } = self.edges[i as usize];
             if ray_crosses(a, b, p) {
                 inside = !inside;
             }
@@ -344,8 +342,10 @@ impl Edges {
             };
             if self.edges.len() <= PLAIN {
                 // Few edges (a star, an L): every one, no grid to build or walk.
-                for edge in &self.edges {
-                    segment.cut(edge, &mut cuts);
+                // Each edge's box made once (the grid's edges, many more, go without:
+                // their twice longer list cost more than the comparisons saved).
+                for (&edge, &bounds) in self.edges.iter().zip(&self.boxes) {
+                    segment.cut_boxed(edge, bounds, &mut cuts);
                 }
             } else {
                 self.cut_through_grid(&segment, lo, hi, &mut cuts);
@@ -431,7 +431,7 @@ impl Edges {
                         }
                         self.stamp[i] = self.segment;
                     }
-                    segment.cut(&self.edges[i], cuts);
+                    segment.cut(self.edges[i], cuts);
                 }
             }
         }
@@ -442,6 +442,7 @@ impl Drop for Edges {
     /// The lists go back to the pool for the next layer's edges.
     fn drop(&mut self) {
         scratch::give(&EDGE_LIST, std::mem::take(&mut self.edges));
+        scratch::give(&BOXES, std::mem::take(&mut self.boxes));
         scratch::give(&STRIP_START, std::mem::take(&mut self.strip_start));
         scratch::give(&STRIP_EDGES, std::mem::take(&mut self.strip_edges));
         scratch::give(&CUTS, std::mem::take(&mut self.cuts));
@@ -452,6 +453,7 @@ impl Drop for Edges {
 thread_local! {
     /// `Edges`' lists, kept from one layer to the next.
     static EDGE_LIST: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
+    static BOXES: std::cell::Cell<Vec<(Coord, Coord)>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_START: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_EDGES: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
     static CUTS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
@@ -477,15 +479,36 @@ struct Segment {
 impl Segment {
     /// Where the segment crosses `edge`, as `k + t`, pushed to `cuts`.
     #[inline]
-    fn cut(&self, &Edge { a, b, lo, hi }: &Edge, cuts: &mut Vec<f64>) {
-        let (p, d1) = (self.p, self.d);
-        // Both ends left of the segment's x range, or both right, below or above: told by
-        // the edge's box (made once, by comparisons), one comparison a side, in the loop
-        // over every edge of a small region. An edge wholly beside the segment's box
-        // cannot cross it.
+    fn cut(&self, Edge { a, b }: Edge, cuts: &mut Vec<f64>) {
+        // Both ends left of the segment's x range, or both right, below or above: by
+        // comparisons, not `max`/`min` (which handle NaN at several instructions each;
+        // coordinates are finite). An edge wholly beside the segment's box cannot cross
+        // it.
+        if (a.x < self.x0 && b.x < self.x0)
+            || (a.x > self.x1 && b.x > self.x1)
+            || (a.y < self.y0 && b.y < self.y0)
+            || (a.y > self.y1 && b.y > self.y1)
+        {
+            return;
+        }
+        self.crossing(a, b, cuts);
+    }
+
+    /// `cut` with the edge's box made already (`edge_box`): the same test, one
+    /// comparison a side (the greater of two finite numbers is below `x0` exactly when
+    /// both are), in the loop over every edge of a small region.
+    #[inline]
+    fn cut_boxed(&self, edge: Edge, (lo, hi): (Coord, Coord), cuts: &mut Vec<f64>) {
         if hi.x < self.x0 || lo.x > self.x1 || hi.y < self.y0 || lo.y > self.y1 {
             return;
         }
+        self.crossing(edge.a, edge.b, cuts);
+    }
+
+    /// Where the segment crosses the edge from `a` to `b` (not wholly beside it).
+    #[inline]
+    fn crossing(&self, a: Coord, b: Coord, cuts: &mut Vec<f64>) {
+        let (p, d1) = (self.p, self.d);
         // The edge's ends on opposite sides of the segment's line (cheap, and false for
         // nearly every edge) before any division.
         let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
@@ -572,8 +595,9 @@ mod tests {
     }
 
     proptest! {
-        /// An edge's box (made once) passes the edges wholly beside a segment's box, and
-        /// `cut` finds what the sign test and the division find without it.
+        /// An edge's box (made once) passes the edges wholly beside a segment's box: `cut`
+        /// with it finds what `cut` without it and the sign test and the division alone
+        /// find.
         #[test]
         fn cut_by_the_edge_box_is_the_unboxed_cut(
             p in coord(), q in coord(), a in coord(), b in coord(), k in 0usize..4,
@@ -587,13 +611,16 @@ mod tests {
                 y1: p.y.max(q.y),
                 k: k as f64,
             };
-            let edge = Edge::new(a, b);
-            prop_assert_eq!(edge.lo, Coord { x: a.x.min(b.x), y: a.y.min(b.y) });
-            prop_assert_eq!(edge.hi, Coord { x: a.x.max(b.x), y: a.y.max(b.y) });
-            let (mut boxed, mut unboxed) = (Vec::new(), Vec::new());
-            segment.cut(&edge, &mut boxed);
+            let edge = Edge { a, b };
+            let (lo, hi) = edge_box(edge);
+            prop_assert_eq!(lo, Coord { x: a.x.min(b.x), y: a.y.min(b.y) });
+            prop_assert_eq!(hi, Coord { x: a.x.max(b.x), y: a.y.max(b.y) });
+            let (mut boxed, mut plain, mut unboxed) = (Vec::new(), Vec::new(), Vec::new());
+            segment.cut_boxed(edge, (lo, hi), &mut boxed);
+            segment.cut(edge, &mut plain);
             cut_unboxed(&segment, a, b, &mut unboxed);
-            prop_assert_eq!(boxed, unboxed);
+            prop_assert_eq!(&boxed, &unboxed);
+            prop_assert_eq!(&plain, &unboxed);
         }
     }
 }

@@ -85,6 +85,9 @@ impl Vertex {
         // `ceil(t − margin)` and `floor(t + margin)` from one floor of `t` (one
         // float-to-integer cast, not two): with the margin under a half, `t − margin` lies
         // in `(f − 1, f + 1)` and `t + margin` in `[f, f + 2)`, so each is `f` or `f + 1`.
+        // `t` is bounded (coordinates within MAX_COORDINATE over a spacing of 0.01 mm or
+        // more: under 10⁹), far from where `f + 1` could overflow.
+        debug_assert!(t.abs() < 1e15, "line number {t}");
         let f = floor(t);
         let whole = f as f64;
         Vertex {

@@ -35,22 +35,7 @@ pub(crate) struct RawRings {
 impl RawRings {
     /// The polygons, each ring closed (copies: `raw_rings` is what a layer reads).
     pub(crate) fn polygons(&self) -> MultiPolygon<f64> {
-        let closed = |ring: &Vec<Coord>| {
-            let mut c = Vec::with_capacity(ring.len() + 1);
-            c.extend_from_slice(ring);
-            c.push(ring[0]);
-            LineString::new(c)
-        };
-        let mut hole = self.outlines;
-        let out = (0..self.outlines)
-            .map(|i| {
-                let count = self.holes.get(i).copied().unwrap_or(0);
-                let interiors = self.rings[hole..hole + count].iter().map(closed).collect();
-                hole += count;
-                Polygon::new(closed(&self.rings[i]), interiors)
-            })
-            .collect();
-        MultiPolygon::new(out)
+        polygons(&self.rings, self.outlines, &self.holes)
     }
 
     /// The area of the polygons, to the bit as geo's `unsigned_area` of [`polygons`]
@@ -65,6 +50,31 @@ impl RawRings {
         }
         total
     }
+}
+
+/// Open rings as `Region` keeps them (`outlines` outlines, then each polygon's holes,
+/// `holes[i]` of them, none where `holes` is empty) made polygons, each ring closed.
+pub(crate) fn polygons(
+    rings: &[Vec<Coord>],
+    outlines: usize,
+    holes: &[usize],
+) -> MultiPolygon<f64> {
+    let closed = |ring: &Vec<Coord>| {
+        let mut c = Vec::with_capacity(ring.len() + 1);
+        c.extend_from_slice(ring);
+        c.push(ring[0]);
+        LineString::new(c)
+    };
+    let mut hole = outlines;
+    let out = (0..outlines)
+        .map(|i| {
+            let count = holes.get(i).copied().unwrap_or(0);
+            let interiors = rings[hole..hole + count].iter().map(closed).collect();
+            hole += count;
+            Polygon::new(closed(&rings[i]), interiors)
+        })
+        .collect();
+    MultiPolygon::new(out)
 }
 
 /// geo's unsigned area of a polygon (`Polygon::signed_area().abs()`) from open rings.

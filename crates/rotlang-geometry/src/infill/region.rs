@@ -5,7 +5,7 @@ use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
 use super::{Error, MAX_COORDINATE};
 // Where they were (`super::region::cross`): ring helpers the offset shares.
-use super::offset::{ArcStep, RawRings, next};
+use super::offset::{ArcStep, next};
 pub(crate) use super::offset::{cross, signed_area};
 
 /// The infill area of a layer: the region inset by half a nozzle.
@@ -97,29 +97,28 @@ impl Region {
         // Which offset made the inset says, most of the time, whether it is convex (see
         // `convex` below) without testing its ring again. The raw offset's rings are kept
         // as they are (open, outlines first), its polygons made only if asked.
-        let (inset, rings, outlines, holes, area, made_by) = if let Some(inset) =
-            convex_inset(&cleaned, nozzle / 2.0, arc)
-        {
-            from_polygons(inset, Offset::Convex)
+        let Inset {
+            inset,
+            rings,
+            outlines,
+            holes,
+            area,
+            made_by,
+        } = if let Some(inset) = convex_inset(&cleaned, nozzle / 2.0, arc) {
+            Inset::of_polygons(inset, Offset::Convex)
         } else if let Some(raw) = super::offset::raw_rings_stepped(&cleaned, nozzle / 2.0, step) {
-            let area = raw.area();
-            let RawRings {
-                rings,
-                outlines,
-                holes,
-            } = raw;
-            (
-                std::sync::OnceLock::new(),
-                rings,
-                outlines,
-                holes,
-                area,
-                Offset::Raw,
-            )
+            Inset {
+                inset: std::sync::OnceLock::new(),
+                area: raw.area(),
+                rings: raw.rings,
+                outlines: raw.outlines,
+                holes: raw.holes,
+                made_by: Offset::Raw,
+            }
         } else if cleaned.0.is_empty() {
-            from_polygons(cleaned.as_ref().clone(), Offset::Buffer)
+            Inset::of_polygons(cleaned.as_ref().clone(), Offset::Buffer)
         } else {
-            from_polygons(cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
+            Inset::of_polygons(cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
         };
         if !min.x.is_finite() {
             min = Coord::zero();
@@ -163,14 +162,8 @@ impl Region {
     }
 
     pub fn inset(&self) -> &MultiPolygon<f64> {
-        self.inset.get_or_init(|| {
-            RawRings {
-                rings: self.rings.clone(),
-                outlines: self.outlines,
-                holes: self.holes.clone(),
-            }
-            .polygons()
-        })
+        self.inset
+            .get_or_init(|| super::offset::polygons(&self.rings, self.outlines, &self.holes))
     }
 
     /// The area of the inset (mm²): what densities are measured against.
@@ -203,38 +196,39 @@ impl Region {
     }
 }
 
-/// A region's inset as polygons (the convex offset's or the buffer's): kept, with its
-/// rings open, outlines first, then holes (rings of fewer than three points dropped).
-#[allow(clippy::type_complexity)]
-fn from_polygons(
-    inset: MultiPolygon<f64>,
+/// A region's inset as it is kept: its polygons (if made), its rings open, outlines
+/// first, how many holes each polygon has, its area and which offset made it.
+struct Inset {
+    inset: std::sync::OnceLock<MultiPolygon<f64>>,
+    rings: Vec<Vec<Coord>>,
+    outlines: usize,
+    holes: Vec<usize>,
+    area: f64,
     made_by: Offset,
-) -> (
-    std::sync::OnceLock<MultiPolygon<f64>>,
-    Vec<Vec<Coord>>,
-    usize,
-    Vec<usize>,
-    f64,
-    Offset,
-) {
-    let mut rings = Vec::with_capacity(inset.0.iter().map(|p| 1 + p.interiors().len()).sum());
-    for p in &inset.0 {
-        rings.push(open_ring(p.exterior()));
+}
+
+impl Inset {
+    /// The inset as polygons (the convex offset's or the buffer's): kept, with its rings
+    /// opened (rings of fewer than three points dropped).
+    fn of_polygons(inset: MultiPolygon<f64>, made_by: Offset) -> Inset {
+        let mut rings = Vec::with_capacity(inset.0.iter().map(|p| 1 + p.interiors().len()).sum());
+        for p in &inset.0 {
+            rings.push(open_ring(p.exterior()));
+        }
+        let outlines = rings.len();
+        for p in &inset.0 {
+            rings.extend(p.interiors().iter().map(open_ring));
+        }
+        rings.retain(|r| r.len() >= 3);
+        Inset {
+            area: inset.unsigned_area(),
+            inset: std::sync::OnceLock::from(inset),
+            rings,
+            outlines,
+            holes: Vec::new(),
+            made_by,
+        }
     }
-    let outlines = rings.len();
-    for p in &inset.0 {
-        rings.extend(p.interiors().iter().map(open_ring));
-    }
-    rings.retain(|r| r.len() >= 3);
-    let area = inset.unsigned_area();
-    (
-        std::sync::OnceLock::from(inset),
-        rings,
-        outlines,
-        Vec::new(),
-        area,
-        made_by,
-    )
 }
 
 /// Which offset made a region's inset.

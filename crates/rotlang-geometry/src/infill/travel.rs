@@ -301,8 +301,11 @@ impl<'a> Router<'a> {
                     && p.y >= lo.y - 1e-6
                     && p.y <= hi.y + 1e-6;
                 if near {
+                    let mut b = ring[edges.start];
                     for i in edges {
-                        if on_edge(ring[i], ring[next(i, n)], p) {
+                        let a = b;
+                        b = ring[next(i, n)];
+                        if on_edge(a, b, p) {
                             return true;
                         }
                     }
@@ -446,8 +449,11 @@ impl<'a> Router<'a> {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
+            // Each edge's end is the next one's start: carried, not read again.
+            let mut b = ring[edges.start];
             for i in edges {
-                let (a, b) = (ring[i], ring[next(i, n)]);
+                let a = b;
+                b = ring[next(i, n)];
                 let e = b - a;
                 let denom = d.x * e.y - d.y * e.x;
                 if denom == 0.0 {
@@ -653,8 +659,10 @@ impl<'a> Router<'a> {
                 if !near && (hi.y < p.y || lo.y > p.y || hi.x < p.x) {
                     continue;
                 }
+                let mut b = ring[edges.start];
                 for i in edges {
-                    let (a, b) = (ring[i], ring[next(i, n)]);
+                    let a = b;
+                    b = ring[next(i, n)];
                     if super::clip::ray_crosses(a, b, p) {
                         inside = !inside;
                     }

@@ -194,14 +194,20 @@ impl Edges {
                     Some(&p) => frame.to_local(p),
                     None => first,
                 };
-                min = Coord {
-                    x: min.x.min(a.x),
-                    y: min.y.min(a.y),
-                };
-                max = Coord {
-                    x: max.x.max(a.x),
-                    y: max.y.max(a.y),
-                };
+                // By comparisons, not `min`/`max` (which handle NaN, at several
+                // instructions each): the region's coordinates are finite.
+                if a.x < min.x {
+                    min.x = a.x;
+                }
+                if a.x > max.x {
+                    max.x = a.x;
+                }
+                if a.y < min.y {
+                    min.y = a.y;
+                }
+                if a.y > max.y {
+                    max.y = a.y;
+                }
                 if a != b {
                     edges.push(Edge { a, b });
                 }
@@ -211,7 +217,11 @@ impl Edges {
         let n = (edges.len() / 2).clamp(1, 512);
         let height = ((max.y - min.y) / n as f64).max(f64::MIN_POSITIVE);
         let span = |e: &Edge| {
-            let (lo, hi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
+            let (lo, hi) = if e.a.y < e.b.y {
+                (e.a.y, e.b.y)
+            } else {
+                (e.b.y, e.a.y)
+            };
             strip(lo, min.y, height, n)..=strip(hi, min.y, height, n)
         };
         // A counting sort by strip: counts, their running sums (each strip's end), then

@@ -6,6 +6,7 @@
 //! with holes, concave or not; the half-open rule on edge ends (an edge owns its lower
 //! end) counts a vertex on the line once.
 
+use super::scratch;
 use crate::math;
 use geo::Coord;
 
@@ -45,10 +46,20 @@ struct Edge {
     b: Coord,
 }
 
+/// An edge's box (the lesser and greater of its ends' coordinates, by comparisons), for
+/// the test that passes an edge wholly beside a segment's box on one comparison a side.
+fn edge_box(Edge { a, b }: Edge) -> (Coord, Coord) {
+    let (x0, x1) = if a.x < b.x { (a.x, b.x) } else { (b.x, a.x) };
+    let (y0, y1) = if a.y < b.y { (a.y, b.y) } else { (b.y, a.y) };
+    (Coord { x: x0, y: y0 }, Coord { x: x1, y: y1 })
+}
+
 /// The region's edges in one frame, bucketed in horizontal strips so that a line or a
 /// short segment meets only the edges near it.
 pub(crate) struct Edges {
     edges: Vec<Edge>,
+    /// Each edge's box, for a region of at most `PLAIN` edges (`clip` tests them all).
+    boxes: Vec<(Coord, Coord)>,
     /// Strip `s` holds `strip_edges[strip_start[s]..strip_start[s + 1]]` (one flat list:
     /// two allocations, not one per strip).
     strip_start: Vec<u32>,
@@ -160,7 +171,9 @@ impl Grid {
 
 impl Edges {
     pub fn new(rings: &[Vec<Coord>], frame: &Frame) -> Edges {
-        let mut edges = Vec::with_capacity(rings.iter().map(Vec::len).sum());
+        // Its lists are kept from one layer to the next (`scratch`, given back on drop).
+        let mut edges = scratch::take(&EDGE_LIST);
+        edges.reserve(rings.iter().map(Vec::len).sum());
         let mut min = Coord {
             x: f64::INFINITY,
             y: f64::INFINITY,
@@ -181,30 +194,41 @@ impl Edges {
                     Some(&p) => frame.to_local(p),
                     None => first,
                 };
-                min = Coord {
-                    x: min.x.min(a.x),
-                    y: min.y.min(a.y),
-                };
-                max = Coord {
-                    x: max.x.max(a.x),
-                    y: max.y.max(a.y),
-                };
+                // By comparisons, not `min`/`max` (which handle NaN, at several
+                // instructions each): the region's coordinates are finite.
+                if a.x < min.x {
+                    min.x = a.x;
+                }
+                if a.x > max.x {
+                    max.x = a.x;
+                }
+                if a.y < min.y {
+                    min.y = a.y;
+                }
+                if a.y > max.y {
+                    max.y = a.y;
+                }
                 if a != b {
                     edges.push(Edge { a, b });
                 }
                 a = b;
             }
         }
-        let n = (edges.len() / 4).clamp(1, 512);
+        let n = (edges.len() / 2).clamp(1, 512);
         let height = ((max.y - min.y) / n as f64).max(f64::MIN_POSITIVE);
         let span = |e: &Edge| {
-            let (lo, hi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
+            let (lo, hi) = if e.a.y < e.b.y {
+                (e.a.y, e.b.y)
+            } else {
+                (e.b.y, e.a.y)
+            };
             strip(lo, min.y, height, n)..=strip(hi, min.y, height, n)
         };
         // A counting sort by strip: counts, their running sums (each strip's end), then
         // the edges placed from each end down, in reverse, which leaves every strip's
         // start in `strip_start` and its edges in ascending order.
-        let mut strip_start = vec![0u32; n + 1];
+        let mut strip_start = scratch::take(&STRIP_START);
+        strip_start.resize(n + 1, 0);
         for e in &edges {
             for s in span(e) {
                 strip_start[s] += 1;
@@ -214,16 +238,22 @@ impl Edges {
             strip_start[s] += strip_start[s - 1];
         }
         strip_start[n] = strip_start[n - 1];
-        let mut strip_edges = vec![0u32; strip_start[n] as usize];
+        let mut strip_edges = scratch::take(&STRIP_EDGES);
+        strip_edges.resize(strip_start[n] as usize, 0);
         for (i, e) in edges.iter().enumerate().rev() {
             for s in span(e) {
                 strip_start[s] -= 1;
                 strip_edges[strip_start[s] as usize] = i as u32;
             }
         }
+        let mut boxes = scratch::take(&BOXES);
+        if edges.len() <= PLAIN {
+            boxes.extend(edges.iter().map(|&e| edge_box(e)));
+        }
         Edges {
             // Allocated by the first `clip`: straight lines never need it.
             stamp: Vec::new(),
+            boxes,
             edges,
             strip_start,
             strip_edges,
@@ -231,8 +261,8 @@ impl Edges {
             max,
             height,
             segment: 0,
-            cuts: Vec::new(),
-            piece: Vec::new(),
+            cuts: scratch::take(&CUTS),
+            piece: scratch::take(&PIECE),
             grid: None,
         }
     }
@@ -322,8 +352,10 @@ impl Edges {
             };
             if self.edges.len() <= PLAIN {
                 // Few edges (a star, an L): every one, no grid to build or walk.
-                for &edge in &self.edges {
-                    segment.cut(edge, &mut cuts);
+                // Each edge's box made once (the grid's edges, many more, go without:
+                // their twice longer list cost more than the comparisons saved).
+                for (&edge, &bounds) in self.edges.iter().zip(&self.boxes) {
+                    segment.cut_boxed(edge, bounds, &mut cuts);
                 }
             } else {
                 self.cut_through_grid(&segment, lo, hi, &mut cuts);
@@ -416,6 +448,28 @@ impl Edges {
     }
 }
 
+impl Drop for Edges {
+    /// The lists go back to the pool for the next layer's edges.
+    fn drop(&mut self) {
+        scratch::give(&EDGE_LIST, std::mem::take(&mut self.edges));
+        scratch::give(&BOXES, std::mem::take(&mut self.boxes));
+        scratch::give(&STRIP_START, std::mem::take(&mut self.strip_start));
+        scratch::give(&STRIP_EDGES, std::mem::take(&mut self.strip_edges));
+        scratch::give(&CUTS, std::mem::take(&mut self.cuts));
+        scratch::give(&PIECE, std::mem::take(&mut self.piece));
+    }
+}
+
+thread_local! {
+    /// `Edges`' lists, kept from one layer to the next.
+    static EDGE_LIST: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
+    static BOXES: std::cell::Cell<Vec<(Coord, Coord)>> = const { std::cell::Cell::new(Vec::new()) };
+    static STRIP_START: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
+    static STRIP_EDGES: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
+    static CUTS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
+    static PIECE: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+}
+
 /// Up to this many edges, `clip` tests every edge: cheaper than building and walking the
 /// grid.
 const PLAIN: usize = 32;
@@ -436,11 +490,10 @@ impl Segment {
     /// Where the segment crosses `edge`, as `k + t`, pushed to `cuts`.
     #[inline]
     fn cut(&self, Edge { a, b }: Edge, cuts: &mut Vec<f64>) {
-        let (p, d1) = (self.p, self.d);
         // Both ends left of the segment's x range, or both right, below or above: by
         // comparisons, not `max`/`min` (which handle NaN at several instructions each;
-        // coordinates are finite), in the loop over every edge of a small region. An edge
-        // wholly beside the segment's box cannot cross it.
+        // coordinates are finite). An edge wholly beside the segment's box cannot cross
+        // it.
         if (a.x < self.x0 && b.x < self.x0)
             || (a.x > self.x1 && b.x > self.x1)
             || (a.y < self.y0 && b.y < self.y0)
@@ -448,6 +501,24 @@ impl Segment {
         {
             return;
         }
+        self.crossing(a, b, cuts);
+    }
+
+    /// `cut` with the edge's box made already (`edge_box`): the same test, one
+    /// comparison a side (the greater of two finite numbers is below `x0` exactly when
+    /// both are), in the loop over every edge of a small region.
+    #[inline]
+    fn cut_boxed(&self, edge: Edge, (lo, hi): (Coord, Coord), cuts: &mut Vec<f64>) {
+        if hi.x < self.x0 || lo.x > self.x1 || hi.y < self.y0 || lo.y > self.y1 {
+            return;
+        }
+        self.crossing(edge.a, edge.b, cuts);
+    }
+
+    /// Where the segment crosses the edge from `a` to `b` (not wholly beside it).
+    #[inline]
+    fn crossing(&self, a: Coord, b: Coord, cuts: &mut Vec<f64>) {
+        let (p, d1) = (self.p, self.d);
         // The edge's ends on opposite sides of the segment's line (cheap, and false for
         // nearly every edge) before any division.
         let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
@@ -495,4 +566,71 @@ fn cross(a: Coord, b: Coord) -> f64 {
 
 fn strip(y: f64, min: f64, height: f64, n: usize) -> usize {
     (((y - min) / height).max(0.0) as usize).min(n - 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// `cut` without the box test: the crossing as the sign test and the division find it.
+    fn cut_unboxed(s: &Segment, a: Coord, b: Coord, cuts: &mut Vec<f64>) {
+        let (p, d1) = (s.p, s.d);
+        let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
+        if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
+            return;
+        }
+        let d2 = b - a;
+        let den = d1.x * d2.y - d1.y * d2.x;
+        if den == 0.0 {
+            return;
+        }
+        let ap = a - p;
+        let t = (ap.x * d2.y - ap.y * d2.x) / den;
+        let u = (ap.x * d1.y - ap.y * d1.x) / den;
+        if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
+            cuts.push(s.k + t);
+        }
+    }
+
+    fn coord() -> impl Strategy<Value = Coord> {
+        // Whole numbers often, so that ends meet, lie on lines and share coordinates.
+        prop_oneof![
+            (-10.0f64..10.0, -10.0f64..10.0).prop_map(|(x, y)| Coord { x, y }),
+            (-4i32..4, -4i32..4).prop_map(|(x, y)| Coord {
+                x: x as f64,
+                y: y as f64
+            }),
+        ]
+    }
+
+    proptest! {
+        /// An edge's box (made once) passes the edges wholly beside a segment's box: `cut`
+        /// with it finds what `cut` without it and the sign test and the division alone
+        /// find.
+        #[test]
+        fn cut_by_the_edge_box_is_the_unboxed_cut(
+            p in coord(), q in coord(), a in coord(), b in coord(), k in 0usize..4,
+        ) {
+            let segment = Segment {
+                p,
+                d: q - p,
+                x0: p.x.min(q.x),
+                x1: p.x.max(q.x),
+                y0: p.y.min(q.y),
+                y1: p.y.max(q.y),
+                k: k as f64,
+            };
+            let edge = Edge { a, b };
+            let (lo, hi) = edge_box(edge);
+            prop_assert_eq!(lo, Coord { x: a.x.min(b.x), y: a.y.min(b.y) });
+            prop_assert_eq!(hi, Coord { x: a.x.max(b.x), y: a.y.max(b.y) });
+            let (mut boxed, mut plain, mut unboxed) = (Vec::new(), Vec::new(), Vec::new());
+            segment.cut_boxed(edge, (lo, hi), &mut boxed);
+            segment.cut(edge, &mut plain);
+            cut_unboxed(&segment, a, b, &mut unboxed);
+            prop_assert_eq!(&boxed, &unboxed);
+            prop_assert_eq!(&plain, &unboxed);
+        }
+    }
 }

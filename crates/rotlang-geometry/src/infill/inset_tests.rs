@@ -214,3 +214,106 @@ proptest! {
         prop_assert!(area.to_bits() == indexed.to_bits() || (area == 0.0 && indexed == 0.0));
     }
 }
+
+/// The region's inset as `Region` kept it before its rings were read from the raw
+/// offset directly: the polygons of `raw_inset`, their rings opened, outlines first, and
+/// geo's area of them.
+fn rings_and_area_of(inset: &geo::MultiPolygon<f64>) -> (Rings, f64) {
+    use geo::Area;
+    let open = |ring: &geo::LineString<f64>| {
+        let mut c = ring.0.clone();
+        if c.len() > 1 && c.first() == c.last() {
+            c.pop();
+        }
+        c
+    };
+    let mut rings: Rings = inset.0.iter().map(|p| open(p.exterior())).collect();
+    for p in &inset.0 {
+        rings.extend(p.interiors().iter().map(open));
+    }
+    (rings, inset.unsigned_area())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// The raw offset's rings as a layer reads them (outline rings borrowed where they
+    /// need no cleaning and turn the right way, outlines first, the area without the
+    /// polygons) are `raw_inset`'s polygons opened, to the bit, and its area is geo's; a
+    /// region's inset made from them when asked is `raw_inset`. Outlines turning either
+    /// way, with a repeated point or not, with up to two holes and a second island.
+    #[test]
+    fn raw_rings_are_the_raw_inset(
+        outer in prop::collection::vec(4.0f64..12.0, 3..24),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..10), 0..3),
+        island in prop::option::of(prop::collection::vec(1.0f64..3.0, 3..8)),
+        turn in 0.0f64..TAU,
+        clockwise in any::<bool>(),
+        repeat in prop::option::of(0usize..30),
+        d in 0.05f64..0.6,
+    ) {
+        let mut region = super::tests::holed_radial(&outer, &holes, turn, 3.0);
+        if clockwise {
+            region.0[0].exterior_mut(|ring| ring.0.reverse());
+        }
+        if let Some(i) = repeat {
+            region.0[0].exterior_mut(|ring| {
+                let i = i % (ring.0.len() - 1);
+                ring.0.insert(i, ring.0[i]);
+            });
+        }
+        if let Some(radii) = island {
+            let ring = super::tests::radial_ring(&radii, turn, Coord { x: 30.0, y: 0.0 }, false);
+            region.0.push(geo::Polygon::new(ring, vec![]));
+        }
+        let raw = offset::raw_rings(&region, d, 0.45);
+        let inset = offset::raw_inset(&region, d, 0.45);
+        prop_assert_eq!(raw.is_some(), inset.is_some());
+        if let (Some(raw), Some(inset)) = (raw, inset) {
+            let (rings, area) = rings_and_area_of(&inset);
+            prop_assert_eq!(&raw.rings, &rings);
+            prop_assert_eq!(raw.outlines, inset.0.len());
+            prop_assert_eq!(raw.area().to_bits(), area.to_bits());
+            prop_assert_eq!(&raw.polygons(), &inset);
+        }
+        for polygon in &region.0 {
+            let ring = &polygon.exterior().0;
+            for exterior in [true, false] {
+                prop_assert_eq!(
+                    offset::inside_left_cow(ring, exterior).map(|c| c.into_owned()),
+                    offset::inside_left(ring, exterior)
+                );
+            }
+        }
+        // A layer's region reads the rings so: the same rings, area and (when asked)
+        // inset as the polygons gave.
+        let cleaned = super::region::clean(&region);
+        let layer = super::Region::new(&region, 2.0 * d);
+        let inset = offset::raw_inset(&cleaned, d, super::region::arc_step(d));
+        if let (Ok(layer), Some(inset)) = (layer, inset)
+            && super::region::convex_inset(&cleaned, d, 0.45).is_none()
+        {
+            let (rings, area) = rings_and_area_of(&inset);
+            prop_assert_eq!(layer.rings(), &rings[..]);
+            prop_assert_eq!(layer.area().to_bits(), area.to_bits());
+            prop_assert_eq!(layer.inset(), &inset);
+        }
+    }
+}
+
+/// The round corners' step kept for the last half nozzle is the one computed for it,
+/// nozzles alternating; the same region's rings come out the same either way.
+#[test]
+fn arc_step_kept_for_the_last_nozzle_is_the_computed_one() {
+    let star = shapes::star(10.0, 4.5);
+    for d in [0.2, 0.2, 0.3, 0.2, 0.05, 0.05, 0.6] {
+        let (arc, step) = super::region::arc_and_step(d);
+        assert_eq!(arc.to_bits(), super::region::arc_step(d).to_bits(), "{d}");
+        let fresh = offset::raw_rings(&star, d, arc).unwrap().rings;
+        assert_eq!(
+            offset::raw_rings_stepped(&star, d, step).unwrap().rings,
+            fresh,
+            "{d}"
+        );
+    }
+}

@@ -10,12 +10,18 @@
 use crate::math;
 use geo::Coord;
 
-use super::Region;
 use super::clip::{Edges, Frame};
+use super::{Region, scratch};
+
+thread_local! {
+    /// `clip_tree`'s piece in world coordinates, kept between layers.
+    static WORLD: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+}
 use super::offset::next;
 
 /// How many branches each outline gets at `spacing`: all that the tree depends the
 /// spacing on (two spacings with the same counts make the same tree).
+#[cfg(test)]
 pub(crate) fn counts(region: &Region, spacing: f64) -> Vec<usize> {
     let gap = 2.5 * spacing;
     region
@@ -23,6 +29,17 @@ pub(crate) fn counts(region: &Region, spacing: f64) -> Vec<usize> {
         .iter()
         .map(|ring| (perimeter(ring) / gap).floor().max(1.0) as usize)
         .collect()
+}
+
+/// Whether every outline gets as many branches at `a` as at `b` (`counts` equal: the
+/// same tree), each perimeter measured once, nothing listed.
+pub(crate) fn same_counts(region: &Region, a: f64, b: f64) -> bool {
+    let (gap_a, gap_b) = (2.5 * a, 2.5 * b);
+    region.outlines().iter().all(|ring| {
+        let perimeter = perimeter(ring);
+        (perimeter / gap_a).floor().max(1.0) as usize
+            == (perimeter / gap_b).floor().max(1.0) as usize
+    })
 }
 
 fn perimeter(ring: &[Coord]) -> f64 {
@@ -71,8 +88,8 @@ fn clip_tree(
     mut piece: impl FnMut(&[Coord]),
 ) {
     let frame = frame(centre);
-    // Each piece back in world coordinates, in one buffer.
-    let mut world = Vec::new();
+    // Each piece back in world coordinates, in one buffer (kept between layers).
+    let mut world = scratch::take(&WORLD);
     // In a convex region a polyline whose ends are inside is inside whole. A branch starts
     // on the outline and its fork lies between its start and its tip, so with the tip
     // inside, each of its polylines is inside when its twig's end is: no clipping, which
@@ -92,6 +109,7 @@ fn clip_tree(
             });
         }
     }
+    scratch::give(&WORLD, world);
 }
 
 /// The tree's polylines before clipping, in world coordinates: per branch, its start, fork
@@ -112,9 +130,7 @@ pub(crate) fn branches(
     // ends needs two paths at least; three separate segments (as before) made three paths
     // and three travels per branch, each travel routed inside the region.
     let mut branches: Vec<[Coord; 3]> = Vec::new();
-    // The turns' sines and cosines, once a tree (not per branch: the same numbers).
-    let [even, odd, left_twig, right_twig] =
-        [10f64, -10.0, 45.0, -45.0].map(|angle| math::sin_cos(angle.to_radians()));
+    let [even, odd, left_twig, right_twig] = [EVEN, ODD, LEFT_TWIG, RIGHT_TWIG];
     for ring in region.outlines() {
         let n = ring.len();
         let start = (0..n)
@@ -128,7 +144,14 @@ pub(crate) fn branches(
         let (mut i, mut along, mut next) = (0usize, 0.0, 0.0);
         let mut k = 0usize;
         while k < count && i < n {
-            let (a, b) = (ring[(start + i) % n], ring[(start + i + 1) % n]);
+            // Vertex start + i round the ring (both under n: one subtraction, not a
+            // division).
+            let at = if start + i >= n {
+                start + i - n
+            } else {
+                start + i
+            };
+            let (a, b) = (ring[at], ring[super::offset::next(at, n)]);
             let len = length(b - a);
             if along + len < next || len == 0.0 {
                 along += len;
@@ -154,6 +177,26 @@ pub(crate) fn branches(
     }
     branches
 }
+
+/// The turns' sines and cosines: `math::sin_cos` of ±10° (the main branch, on alternate
+/// branches) and ±45° (the twigs), to the bit (a test computes them), not computed for
+/// every tree.
+const EVEN: (f64, f64) = (
+    f64::from_bits(0x3fc63a1a7e0b7389),
+    f64::from_bits(0x3fef838b8c811c17),
+);
+const ODD: (f64, f64) = (
+    f64::from_bits(0xbfc63a1a7e0b7389),
+    f64::from_bits(0x3fef838b8c811c17),
+);
+const LEFT_TWIG: (f64, f64) = (
+    f64::from_bits(0x3fe6a09e667f3bcc),
+    f64::from_bits(0x3fe6a09e667f3bcd),
+);
+const RIGHT_TWIG: (f64, f64) = (
+    f64::from_bits(0xbfe6a09e667f3bcc),
+    f64::from_bits(0x3fe6a09e667f3bcd),
+);
 
 /// The frame the tree is clipped in: unturned, about the pattern centre.
 pub(crate) fn frame(centre: Coord) -> Frame {

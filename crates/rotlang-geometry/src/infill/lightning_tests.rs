@@ -146,3 +146,35 @@ fn compared_shapes_print_their_segments() {
         }
     }
 }
+
+/// The turns' sines and cosines written as constants are `math::sin_cos`'s, to the bit;
+/// whether two spacings make the same tree is whether their branch counts are equal.
+#[test]
+fn turn_constants_are_the_computed_ones() {
+    for (angle, turn) in [
+        (10f64, EVEN),
+        (-10.0, ODD),
+        (45.0, LEFT_TWIG),
+        (-45.0, RIGHT_TWIG),
+    ] {
+        let (s, c) = crate::math::sin_cos(angle.to_radians());
+        assert_eq!(
+            (s.to_bits(), c.to_bits()),
+            (turn.0.to_bits(), turn.1.to_bits()),
+            "{angle}"
+        );
+    }
+    for shape in [
+        shapes::star(10.0, 4.5),
+        shapes::l_shape(20.0),
+        shapes::holed_square(40.0, 10.0),
+    ] {
+        let region = Region::new(&shape, 0.4).unwrap();
+        for (a, b) in [(1.0, 1.1), (4.0, 4.02), (2.0, 8.0), (3.3, 3.3)] {
+            assert_eq!(
+                same_counts(&region, a, b),
+                counts(&region, a) == counts(&region, b)
+            );
+        }
+    }
+}

@@ -100,6 +100,7 @@ mod patterns;
 pub mod preview;
 mod region;
 mod schedule;
+mod scratch;
 pub mod shapes;
 mod straight;
 pub(crate) mod travel;

@@ -17,24 +17,145 @@ const MAX_POINTS: usize = 20_000;
 /// The erosion of `region` by `d` (arcs in steps of at most `arc` radians), or `None`
 /// where the raw offset is not it.
 pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<MultiPolygon<f64>> {
-    let step = ArcStep::new(arc);
+    let raw = raw_rings(region, d, arc)?;
+    Some(raw.polygons())
+}
+
+/// The rings of [`raw_inset`], open (no closing point), as `Region` keeps them: every
+/// polygon's outline, then every polygon's holes in the same order.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct RawRings {
+    pub rings: Vec<Vec<Coord>>,
+    /// How many of `rings` are outlines (one per polygon).
+    pub outlines: usize,
+    /// How many holes each polygon has; empty when none has any (no allocation).
+    pub holes: Vec<usize>,
+}
+
+impl RawRings {
+    /// The polygons, each ring closed (copies: `raw_rings` is what a layer reads).
+    pub(crate) fn polygons(&self) -> MultiPolygon<f64> {
+        polygons(&self.rings, self.outlines, &self.holes)
+    }
+
+    /// The area of the polygons, to the bit as geo's `unsigned_area` of [`polygons`]
+    /// (`Region::area`, which densities are measured against), without making them.
+    pub(crate) fn area(&self) -> f64 {
+        let mut hole = self.outlines;
+        let mut total = 0.0;
+        for i in 0..self.outlines {
+            let count = self.holes.get(i).copied().unwrap_or(0);
+            total += polygon_area(&self.rings[i], &self.rings[hole..hole + count]);
+            hole += count;
+        }
+        total
+    }
+}
+
+/// Open rings as `Region` keeps them (`outlines` outlines, then each polygon's holes,
+/// `holes[i]` of them, none where `holes` is empty) made polygons, each ring closed.
+pub(crate) fn polygons(
+    rings: &[Vec<Coord>],
+    outlines: usize,
+    holes: &[usize],
+) -> MultiPolygon<f64> {
+    let closed = |ring: &Vec<Coord>| {
+        let mut c = Vec::with_capacity(ring.len() + 1);
+        c.extend_from_slice(ring);
+        c.push(ring[0]);
+        LineString::new(c)
+    };
+    let mut hole = outlines;
+    let out = (0..outlines)
+        .map(|i| {
+            let count = holes.get(i).copied().unwrap_or(0);
+            let interiors = rings[hole..hole + count].iter().map(closed).collect();
+            hole += count;
+            Polygon::new(closed(&rings[i]), interiors)
+        })
+        .collect();
+    MultiPolygon::new(out)
+}
+
+/// geo's unsigned area of a polygon (`Polygon::signed_area().abs()`) from open rings.
+pub(crate) fn polygon_area(exterior: &[Coord], holes: &[Vec<Coord>]) -> f64 {
+    let area = geo_ring_area(exterior);
+    let is_negative = area < 0.0;
+    let area = holes
+        .iter()
+        .fold(area.abs(), |total, h| total - geo_ring_area(h).abs());
+    (if is_negative { -area } else { area }).abs()
+}
+
+/// geo's signed area of an open ring closed (`get_linestring_area`): the determinants
+/// of its edges shifted by the first point, the same terms in the same order.
+pub(crate) fn geo_ring_area(open: &[Coord]) -> f64 {
+    // The closed ring has `open.len() + 1` points: fewer than 3 is no area.
+    if open.len() < 2 {
+        return 0.0;
+    }
+    let shift = open[0];
+    let mut prev = open[1] - shift;
+    let mut sum = 0.0;
+    for &point in &open[2..] {
+        let shifted = point - shift;
+        sum += prev.x * shifted.y - prev.y * shifted.x;
+        prev = shifted;
+    }
+    // The closing point, the first shifted: (0, 0).
+    let shifted = open[0] - shift;
+    sum += prev.x * shifted.y - prev.y * shifted.x;
+    sum / 2.0
+}
+
+/// [`raw_inset`]'s rings without its polygons: what a layer's `Region` reads.
+pub(crate) fn raw_rings(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<RawRings> {
+    raw_rings_stepped(region, d, ArcStep::new(arc))
+}
+
+/// [`raw_rings`] with the round corners' step made already (`Region` keeps the last
+/// nozzle's).
+pub(crate) fn raw_rings_stepped(
+    region: &MultiPolygon<f64>,
+    d: f64,
+    step: ArcStep,
+) -> Option<RawRings> {
+    // The commonest region, one outline and no hole (a star, an L): read in place when
+    // it needs no cleaning and turns the right way, offset into the ring kept.
+    if let [polygon] = &region.0[..]
+        && polygon.interiors().is_empty()
+    {
+        let pts = inside_left_cow(&polygon.exterior().0, true)?;
+        let exterior = offset_points(&pts, d, step, true)?;
+        if exterior.len() > MAX_POINTS {
+            return None;
+        }
+        let rings = vec![exterior];
+        if !clear_of_crossings(std::slice::from_ref(&pts), d) && crossings(&rings) {
+            return None;
+        }
+        return Some(RawRings {
+            rings,
+            outlines: 1,
+            holes: Vec::new(),
+        });
+    }
     // Every ring, outlines and holes (each outline followed by its holes): the crossing
-    // check needs them all, the polygons are built after it by moving them. The rings
-    // as offset (inside on the left) too: most regions are proved clear of crossings on
-    // them, without the sweep over the offset's edges.
+    // check needs them all. The rings as offset (inside on the left) too: most regions
+    // are proved clear of crossings on them, without the sweep over the offset's edges.
     let count = region.0.iter().map(|p| 1 + p.interiors().len()).sum();
     let mut rings: Vec<Vec<Coord>> = Vec::with_capacity(count);
-    let mut originals: Vec<Vec<Coord>> = Vec::with_capacity(count);
+    let mut originals: Vec<std::borrow::Cow<'_, [Coord]>> = Vec::with_capacity(count);
     let mut total = 0;
     for polygon in &region.0 {
-        let pts = inside_left(&polygon.exterior().0, true)?;
+        let pts = inside_left_cow(&polygon.exterior().0, true)?;
         let exterior = offset_points(&pts, d, step, true)?;
         originals.push(pts);
         total += exterior.len();
         rings.push(exterior);
         let outline = rings.len() - 1;
         for hole in polygon.interiors() {
-            let pts = inside_left(&hole.0, false)?;
+            let pts = inside_left_cow(&hole.0, false)?;
             let hole = offset_points(&pts, d, step, false)?;
             originals.push(pts);
             total += hole.len();
@@ -54,22 +175,55 @@ pub(crate) fn raw_inset(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<
     if !clear_of_crossings(&originals, d) && crossings(&rings) {
         return None;
     }
-    let closed = |mut ring: Vec<Coord>| {
-        ring.push(ring[0]);
-        LineString::new(ring)
+    // Outlines first, then holes, moved (not copied) out of the list.
+    let outlines = region.0.len();
+    let mut ordered = Vec::with_capacity(count);
+    let mut at = 0;
+    for polygon in &region.0 {
+        ordered.push(std::mem::take(&mut rings[at]));
+        at += 1 + polygon.interiors().len();
+    }
+    let mut at = 0;
+    for polygon in &region.0 {
+        let holes = polygon.interiors().len();
+        ordered.extend(rings[at + 1..at + 1 + holes].iter_mut().map(std::mem::take));
+        at += 1 + holes;
+    }
+    let holes = if region.0.iter().any(|p| !p.interiors().is_empty()) {
+        region.0.iter().map(|p| p.interiors().len()).collect()
+    } else {
+        Vec::new()
     };
-    let mut rings = rings.into_iter();
-    let out = region
-        .0
-        .iter()
-        .map(|polygon| polygon.interiors().len())
-        .filter_map(|holes| {
-            let exterior = closed(rings.next()?);
-            let interiors = rings.by_ref().take(holes).map(closed).collect();
-            Some(Polygon::new(exterior, interiors))
-        })
-        .collect();
-    Some(MultiPolygon::new(out))
+    Some(RawRings {
+        rings: ordered,
+        outlines,
+        holes,
+    })
+}
+
+/// [`inside_left`] borrowing the ring where that is the same: a ring with no repeated
+/// point in a row (its closing point aside) that already turns the asked way (most
+/// regions) is read where it is, not copied.
+pub(crate) fn inside_left_cow(
+    ring: &[Coord],
+    exterior: bool,
+) -> Option<std::borrow::Cow<'_, [Coord]>> {
+    let open = match ring {
+        [first, .., last] if first == last => &ring[..ring.len() - 1],
+        _ => ring,
+    };
+    let as_is =
+        open.len() >= 3 && open.first() != open.last() && open.windows(2).all(|w| w[0] != w[1]);
+    if as_is {
+        let area = signed_area(open);
+        if area == 0.0 {
+            return None;
+        }
+        if (area > 0.0) == exterior {
+            return Some(std::borrow::Cow::Borrowed(open));
+        }
+    }
+    inside_left(ring, exterior).map(std::borrow::Cow::Owned)
 }
 
 /// How a round corner's points are placed: turned from one moved edge's end toward the
@@ -87,6 +241,13 @@ pub(crate) struct ArcStep {
 }
 
 impl ArcStep {
+    /// A placeholder (no step), for a cache not yet filled.
+    pub(crate) const NONE: ArcStep = ArcStep {
+        sin: 0.0,
+        cos: 1.0,
+        last_cos: 1.0,
+    };
+
     pub(crate) fn new(arc: f64) -> ArcStep {
         let step = arc / 1.2;
         let (sin, cos) = math::sin_cos(step);
@@ -137,25 +298,19 @@ pub(crate) fn arc_points(
 /// circle's side of its tangents; the two round corners at the ends of an edge lie
 /// behind its start and beyond its end along it. `false` (the sweep decides) for a ring
 /// of three edges, and past 64 edges in all (the pairs grow as their square).
-pub(crate) fn clear_of_crossings(rings: &[Vec<Coord>], d: f64) -> bool {
-    let total: usize = rings.iter().map(Vec::len).sum();
-    if total > 64 || rings.iter().any(|r| r.len() < 4) {
+pub(crate) fn clear_of_crossings<R: AsRef<[Coord]>>(rings: &[R], d: f64) -> bool {
+    let total: usize = rings.iter().map(|r| r.as_ref().len()).sum();
+    if total > 64 || rings.iter().any(|r| r.as_ref().len() < 4) {
         return false;
     }
     let reach = 2.0 * d;
     // A millionth more than 2d, squared: far above the offset's rounding.
     let reach2 = reach * reach * (1.0 + 1e-6);
-    // Every edge once, with its box and squared length.
-    #[derive(Clone, Copy)]
-    struct Edge {
-        p: Coord,
-        q: Coord,
-        lo: Coord,
-        hi: Coord,
-        len2: f64,
-    }
-    let mut edges = Vec::with_capacity(total);
+    // Every edge once, with its box and squared length (a list kept between layers).
+    let mut edges = super::scratch::take(&EDGES);
+    edges.reserve(total);
     for ring in rings {
+        let ring = ring.as_ref();
         let n = ring.len();
         for i in 0..n {
             let (p, q) = (ring[i], ring[next(i, n)]);
@@ -177,20 +332,21 @@ pub(crate) fn clear_of_crossings(rings: &[Vec<Coord>], d: f64) -> bool {
     }
     let mut from = 0;
     for ring in rings {
-        let n = ring.len();
+        let n = ring.as_ref().len();
         for i in 0..n {
-            let e = edges[from + i];
+            let e = &edges[from + i];
             // The edges after it, but not its neighbours in its ring: the next (unless it
             // is the last, whose next is the first, met before) and, for the first, the
             // last.
             let start = from + i + if i + 1 < n { 2 } else { 1 };
             let skip = if i == 0 { from + n - 1 } else { usize::MAX };
-            for (l, f) in edges.iter().enumerate().skip(start) {
-                if l == skip
-                    || f.lo.x - e.hi.x > reach
-                    || e.lo.x - f.hi.x > reach
-                    || f.lo.y - e.hi.y > reach
-                    || e.lo.y - f.hi.y > reach
+            let (lo, hi) = (e.lo, e.hi);
+            for (l, f) in (start..).zip(&edges[start.min(edges.len())..]) {
+                if f.lo.x - hi.x > reach
+                    || lo.x - f.hi.x > reach
+                    || f.lo.y - hi.y > reach
+                    || lo.y - f.hi.y > reach
+                    || l == skip
                 {
                     continue;
                 }
@@ -200,13 +356,30 @@ pub(crate) fn clear_of_crossings(rings: &[Vec<Coord>], d: f64) -> bool {
                     || beyond(f.p, f.q, f.len2, e.p, e.q, reach2)
                     || apart(e.p, e.q, f.p, f.q, reach2))
                 {
+                    super::scratch::give(&EDGES, edges);
                     return false;
                 }
             }
         }
         from += n;
     }
+    super::scratch::give(&EDGES, edges);
     true
+}
+
+/// An edge of `clear_of_crossings`, with its box and squared length.
+#[derive(Clone, Copy)]
+struct Edge {
+    p: Coord,
+    q: Coord,
+    lo: Coord,
+    hi: Coord,
+    len2: f64,
+}
+
+thread_local! {
+    /// `clear_of_crossings`' edges, kept between layers.
+    static EDGES: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// Whether `r` and `s` are both on the same side of the line through `p` and `q` (`len2`

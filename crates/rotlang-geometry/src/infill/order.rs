@@ -42,17 +42,16 @@ pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
 }
 
 /// Puts the paths in print order and measures them; travel between them is routed
-/// inside `rings` (the inset's outlines and holes).
+/// inside `rings` (the inset's outlines and holes). `monotonic`: the pattern's frame
+/// for a monotonic order (made only then: its sine and cosine), else nearest first.
 pub(crate) fn order(
     paths: Vec<Vec<Coord>>,
-    monotonic: bool,
-    frame: Frame,
+    monotonic: Option<Frame>,
     rings: &[Vec<Coord>],
 ) -> Toolpaths {
-    let ordered = if monotonic {
-        monotonic_order(paths, &frame)
-    } else {
-        nearest(paths)
+    let ordered = match monotonic {
+        Some(frame) => monotonic_order(paths, &frame),
+        None => nearest(paths),
     };
     let mut toolpaths = Toolpaths {
         polylines: Vec::with_capacity(ordered.len()),
@@ -61,7 +60,8 @@ pub(crate) fn order(
     };
     let router = super::travel::Router::new(rings);
     let mut last: Option<Coord> = None;
-    for path in ordered {
+    let mut ordered = ordered;
+    for path in ordered.drain(..) {
         if let (Some(l), Some(&first)) = (last, path.first()) {
             let route = router.route(l, first);
             toolpaths.travel += super::travel::length(&route);
@@ -71,7 +71,15 @@ pub(crate) fn order(
         last = path.last().copied();
         toolpaths.polylines.push(LineString::new(path));
     }
+    // The emptied list serves the next layer's paths.
+    super::scratch::give(&PATHS, ordered);
     toolpaths
+}
+
+thread_local! {
+    /// A layer's paths before they are ordered (`Region::fill` takes it), kept between
+    /// layers.
+    pub(crate) static PATHS: std::cell::Cell<Vec<Vec<Coord>>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// Every path running in +x of the pattern frame, in order of their y then x: the
@@ -123,7 +131,15 @@ fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
                 }
             }
             let (_, j, reversed) = best;
-            paths[i..=j].rotate_right(1);
+            // Path j to place i, the ones between moved up one: a rotation, by swaps
+            // over a few paths (no call to move memory), else by the library's.
+            if j - i <= 8 {
+                for k in (i..j).rev() {
+                    paths.swap(k, k + 1);
+                }
+            } else {
+                paths[i..=j].rotate_right(1);
+            }
             if reversed {
                 paths[i].reverse();
             }

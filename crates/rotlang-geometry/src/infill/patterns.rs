@@ -43,7 +43,8 @@ impl Region {
             super::Centring::Global => Coord::zero(),
         };
         let theta = params.angle.rem_euclid(360.0).to_radians();
-        let mut paths: Vec<Vec<Coord>> = Vec::new();
+        // A list kept from one layer to the next (`order` gives it back emptied).
+        let mut paths: Vec<Vec<Coord>> = super::scratch::take(&order::PATHS);
         match params.pattern {
             Pattern::Lines => {
                 straight::families(self, centre, theta, &[0.0], w / rho, 0.0, &mut paths)
@@ -108,7 +109,7 @@ impl Region {
                 if printed.is_nan()
                     || printed <= 0.0
                     || (printed / rho - 1.0).abs() < 0.03
-                    || lightning::counts(self, respaced) == lightning::counts(self, spacing)
+                    || lightning::same_counts(self, respaced, spacing)
                 {
                     let mut start = 0;
                     paths.reserve(ends.len());
@@ -127,8 +128,7 @@ impl Region {
         let monotonic = params.order == Order::Monotonic;
         Ok(order::order(
             paths,
-            monotonic,
-            Frame::new(centre, theta),
+            monotonic.then(|| Frame::new(centre, theta)),
             if self.convex { &[] } else { &self.rings },
         ))
     }

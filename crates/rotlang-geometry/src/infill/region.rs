@@ -5,14 +5,18 @@ use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
 use super::{Error, MAX_COORDINATE};
 // Where they were (`super::region::cross`): ring helpers the offset shares.
-use super::offset::next;
+use super::offset::{ArcStep, next};
 pub(crate) use super::offset::{cross, signed_area};
 
 /// The infill area of a layer: the region inset by half a nozzle.
 #[derive(Clone, Debug)]
 pub struct Region {
-    /// The inset area.
-    inset: MultiPolygon<f64>,
+    /// The inset area: made from `rings` when first asked where the raw offset made
+    /// them (a layer filled once, by `infill::fill`, never asks), else kept as made.
+    inset: std::sync::OnceLock<MultiPolygon<f64>>,
+    /// How many holes each polygon of the inset has, to make it from `rings` (empty when
+    /// none has any, or when it was kept as made).
+    holes: Vec<usize>,
     /// The region as given, without degenerate rings: concentric loops are offset from
     /// it (it has fewer vertices than the inset, whose holes have grown arcs).
     outline: MultiPolygon<f64>,
@@ -65,14 +69,20 @@ impl Region {
                             return Err(Error::Coordinate(v));
                         }
                     }
-                    min = Coord {
-                        x: min.x.min(c.x),
-                        y: min.y.min(c.y),
-                    };
-                    max = Coord {
-                        x: max.x.max(c.x),
-                        y: max.y.max(c.y),
-                    };
+                    // By comparisons, not `min`/`max` (which handle NaN at several
+                    // instructions each): the coordinate was just found finite.
+                    if c.x < min.x {
+                        min.x = c.x;
+                    }
+                    if c.x > max.x {
+                        max.x = c.x;
+                    }
+                    if c.y < min.y {
+                        min.y = c.y;
+                    }
+                    if c.y > max.y {
+                        max.y = c.y;
+                    }
                 }
             }
         }
@@ -83,28 +93,33 @@ impl Region {
         } else {
             std::borrow::Cow::Borrowed(region)
         };
-        let arc = arc_step(nozzle / 2.0);
+        let (arc, step) = arc_and_step(nozzle / 2.0);
         // Which offset made the inset says, most of the time, whether it is convex (see
-        // `convex` below) without testing its ring again.
-        let (inset, made_by) = if let Some(inset) = convex_inset(&cleaned, nozzle / 2.0, arc) {
-            (inset, Offset::Convex)
-        } else if let Some(inset) = super::offset::raw_inset(&cleaned, nozzle / 2.0, arc) {
-            (inset, Offset::Raw)
+        // `convex` below) without testing its ring again. The raw offset's rings are kept
+        // as they are (open, outlines first), its polygons made only if asked.
+        let Inset {
+            inset,
+            rings,
+            outlines,
+            holes,
+            area,
+            made_by,
+        } = if let Some(inset) = convex_inset(&cleaned, nozzle / 2.0, arc) {
+            Inset::of_polygons(inset, Offset::Convex)
+        } else if let Some(raw) = super::offset::raw_rings_stepped(&cleaned, nozzle / 2.0, step) {
+            Inset {
+                inset: std::sync::OnceLock::new(),
+                area: raw.area(),
+                rings: raw.rings,
+                outlines: raw.outlines,
+                holes: raw.holes,
+                made_by: Offset::Raw,
+            }
         } else if cleaned.0.is_empty() {
-            (cleaned.as_ref().clone(), Offset::Buffer)
+            Inset::of_polygons(cleaned.as_ref().clone(), Offset::Buffer)
         } else {
-            (cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
+            Inset::of_polygons(cleaned.buffer(-nozzle / 2.0), Offset::Buffer)
         };
-        let mut rings = Vec::with_capacity(inset.0.iter().map(|p| 1 + p.interiors().len()).sum());
-        for p in &inset.0 {
-            rings.push(open_ring(p.exterior()));
-        }
-        let outlines = rings.len();
-        for p in &inset.0 {
-            rings.extend(p.interiors().iter().map(open_ring));
-        }
-        rings.retain(|r| r.len() >= 3);
-        let area = inset.unsigned_area();
         if !min.x.is_finite() {
             min = Coord::zero();
             max = Coord::zero();
@@ -125,6 +140,7 @@ impl Region {
         Ok(Region {
             convex,
             inset,
+            holes,
             outline: if keep_outline {
                 cleaned.into_owned()
             } else {
@@ -146,7 +162,8 @@ impl Region {
     }
 
     pub fn inset(&self) -> &MultiPolygon<f64> {
-        &self.inset
+        self.inset
+            .get_or_init(|| super::offset::polygons(&self.rings, self.outlines, &self.holes))
     }
 
     /// The area of the inset (mm²): what densities are measured against.
@@ -179,6 +196,41 @@ impl Region {
     }
 }
 
+/// A region's inset as it is kept: its polygons (if made), its rings open, outlines
+/// first, how many holes each polygon has, its area and which offset made it.
+struct Inset {
+    inset: std::sync::OnceLock<MultiPolygon<f64>>,
+    rings: Vec<Vec<Coord>>,
+    outlines: usize,
+    holes: Vec<usize>,
+    area: f64,
+    made_by: Offset,
+}
+
+impl Inset {
+    /// The inset as polygons (the convex offset's or the buffer's): kept, with its rings
+    /// opened (rings of fewer than three points dropped).
+    fn of_polygons(inset: MultiPolygon<f64>, made_by: Offset) -> Inset {
+        let mut rings = Vec::with_capacity(inset.0.iter().map(|p| 1 + p.interiors().len()).sum());
+        for p in &inset.0 {
+            rings.push(open_ring(p.exterior()));
+        }
+        let outlines = rings.len();
+        for p in &inset.0 {
+            rings.extend(p.interiors().iter().map(open_ring));
+        }
+        rings.retain(|r| r.len() >= 3);
+        Inset {
+            area: inset.unsigned_area(),
+            inset: std::sync::OnceLock::from(inset),
+            rings,
+            outlines,
+            holes: Vec::new(),
+            made_by,
+        }
+    }
+}
+
 /// Which offset made a region's inset.
 enum Offset {
     Convex,
@@ -186,11 +238,28 @@ enum Offset {
     Buffer,
 }
 
+/// `arc_step(d)` and its `ArcStep`, kept for the last `d` (a slicer's layers share one
+/// nozzle): an arc cosine, a sine and two cosines not computed again for every layer.
+pub(crate) fn arc_and_step(d: f64) -> (f64, ArcStep) {
+    thread_local! {
+        static LAST: std::cell::Cell<(f64, f64, ArcStep)> =
+            const { std::cell::Cell::new((f64::NAN, 0.0, ArcStep::NONE)) };
+    }
+    let (last, arc, step) = LAST.with(std::cell::Cell::get);
+    if last == d {
+        return (arc, step);
+    }
+    let arc = arc_step(d);
+    let step = ArcStep::new(arc);
+    LAST.with(|cell| cell.set((d, arc, step)));
+    (arc, step)
+}
+
 /// The angle step (radians) of the arcs of an inset by `d`: chords that stray at most
 /// 5 µm from the arc (`d·(1 − cos(step/2))`), at least 0.2 rad, at most 0.8. At half a
 /// 0.4 mm nozzle that is 0.45 rad: a star's reflex corner gets 4 chords instead of 10, and
 /// every line family, clip and travel route after has fewer edges to test.
-fn arc_step(d: f64) -> f64 {
+pub(crate) fn arc_step(d: f64) -> f64 {
     const CHORD: f64 = 0.005;
     if d <= CHORD {
         return 0.8;

@@ -2,8 +2,13 @@
 
 use geo::Coord;
 
-use super::Region;
 use super::clip::{Edges, Frame};
+use super::{Region, scratch};
+
+thread_local! {
+    /// `families`' crossings, kept between layers.
+    static CROSSINGS: std::cell::Cell<Vec<(i64, f64)>> = const { std::cell::Cell::new(Vec::new()) };
+}
 
 /// One family of lines per offset (degrees from θ), `spacing` apart, every family with a
 /// line through `centre` (so that three families at 60° meet in common points), or
@@ -24,8 +29,10 @@ pub(crate) fn families(
     shift: f64,
     out: &mut Vec<Vec<Coord>>,
 ) {
-    // Room for a few lines' crossings at once: a small layer's never grow it.
-    let mut crossings: Vec<(i64, f64)> = Vec::with_capacity(32);
+    // Room for a few lines' crossings at once: a small layer's never grow it. Kept from
+    // one layer to the next (`scratch`).
+    let mut crossings = scratch::take(&CROSSINGS);
+    crossings.reserve(32);
     for &offset in offsets {
         let frame = Frame::new(centre, theta + offset.to_radians());
         let shift = shift.rem_euclid(spacing);
@@ -56,6 +63,7 @@ pub(crate) fn families(
             }
         }
     }
+    scratch::give(&CROSSINGS, crossings);
 }
 
 /// A vertex in the family's frame with the range of lines it might be on: the lines
@@ -74,10 +82,18 @@ impl Vertex {
     fn new(p: Coord, shift: f64, inv: f64) -> Vertex {
         let t = (p.y - shift) * inv;
         let margin = 1e-9 + 1e-12 * t.abs();
+        // `ceil(t − margin)` and `floor(t + margin)` from one floor of `t` (one
+        // float-to-integer cast, not two): with the margin under a half, `t − margin` lies
+        // in `(f − 1, f + 1)` and `t + margin` in `[f, f + 2)`, so each is `f` or `f + 1`.
+        // `t` is bounded (coordinates within MAX_COORDINATE over a spacing of 0.01 mm or
+        // more: under 10⁹), far from where `f + 1` could overflow.
+        debug_assert!(t.abs() < 1e15, "line number {t}");
+        let f = floor(t);
+        let whole = f as f64;
         Vertex {
             p,
-            above: ceil(t - margin),
-            below: floor(t + margin),
+            above: f + i64::from(t - margin > whole),
+            below: f + i64::from(t + margin >= whole + 1.0),
         }
     }
 }
@@ -111,6 +127,7 @@ fn floor(x: f64) -> i64 {
     if (i as f64) > x { i - 1 } else { i }
 }
 
+#[cfg(test)]
 fn ceil(x: f64) -> i64 {
     let i = x as i64;
     if (i as f64) < x { i + 1 } else { i }
@@ -173,4 +190,38 @@ pub(crate) fn hexagons(
 
 fn to_world(frame: &Frame, piece: Vec<Coord>) -> Vec<Coord> {
     piece.into_iter().map(|q| frame.to_world(q)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// A vertex's range of lines from one floor is the two roundings of `t ∓ margin`,
+        /// whole lines and their neighbours within a few margins included.
+        #[test]
+        fn lines_from_one_floor_are_the_two_roundings(
+            k in -100_000_000i64..100_000_000,
+            off in prop_oneof![
+                -1.0f64..1.0,
+                -1e-8f64..1e-8,
+                Just(0.0),
+                Just(1e-9),
+                Just(-1e-9),
+            ],
+            spacing in prop_oneof![0.01f64..100.0, Just(0.5)],
+            shift in -5.0f64..5.0,
+        ) {
+            let t_wanted = k as f64 + off;
+            let y = t_wanted * spacing + shift;
+            let p = Coord { x: 0.0, y };
+            let inv = 1.0 / spacing;
+            let v = Vertex::new(p, shift, inv);
+            let t = (y - shift) * inv;
+            let margin = 1e-9 + 1e-12 * t.abs();
+            prop_assert_eq!(v.above, ceil(t - margin));
+            prop_assert_eq!(v.below, floor(t + margin));
+        }
+    }
 }

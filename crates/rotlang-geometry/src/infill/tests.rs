@@ -1364,6 +1364,49 @@ proptest! {
         }
     }
 
+    /// A move between two points of one edge (random fractions of it, on random radial
+    /// regions with holes: not exactly parallel to it, by rounding) keeps that edge as
+    /// one it may run along, so that the even-odd test of its middle is not needed; and
+    /// it routes as the general router does, as do moves from there to any vertex.
+    #[test]
+    fn moves_nearly_along_an_edge_keep_it(
+        outer in prop::collection::vec(4.0f64..12.0, 3..24),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..10), 0..3),
+        turn in 0.0f64..TAU,
+        moves in prop::collection::vec((0usize..1000, 0.0f64..1.0, 0.0f64..1.0, 0usize..1000), 1..24),
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.5);
+        let Ok(region) = Region::new(&shape, W) else {
+            return Ok(());
+        };
+        let rings = region.rings();
+        let edges: Vec<(usize, usize)> = rings
+            .iter()
+            .enumerate()
+            .flat_map(|(r, ring)| (0..ring.len()).map(move |i| (r, i)))
+            .collect();
+        prop_assume!(!edges.is_empty());
+        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
+        let fast = travel::Router::new(rings);
+        let general = travel::Router::new(rings).general();
+        for (e, s, t, j) in moves {
+            let (r, i) = edges[e % edges.len()];
+            let ring = &rings[r];
+            let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+            let (p, q) = (a + (b - a) * s, a + (b - a) * t);
+            if (q - p).x.abs() + (q - p).y.abs() > 1e-9 * (b - a).x.abs().max((b - a).y.abs()) {
+                let kept = fast.crossings_of_move(p, q).iter().any(|&(t, ring, edge, _, near)| {
+                    f64::from_bits(t).is_nan() && ring == r && edge == i && near
+                });
+                prop_assert!(kept, "the move from {:?} to {:?} along edge {} of ring {}", p, q, i, r);
+            }
+            let v = vertices[j % vertices.len()];
+            for (from, to) in [(p, q), (q, p), (p, v), (v, q)] {
+                prop_assert_eq!(fast.route(from, to), general.route(from, to));
+            }
+        }
+    }
+
     /// The inset's crossing sweep (edges sorted by their left ends, each tested against
     /// those that start before it ends and overlap it in y) finds a crossing exactly when
     /// testing every pair of non-neighbouring edges does: star-like rings, some crossing
@@ -1579,7 +1622,7 @@ fn lightning_by_two_trees(region: &Region, params: &Params) -> Toolpaths {
     } else {
         region.rings()
     };
-    order::order(paths, false, clip::Frame::new(centre, theta), rings)
+    order::order(paths, None, rings)
 }
 
 proptest! {

@@ -8,11 +8,23 @@
 use geo::Coord;
 
 use super::offset::next;
+use super::scratch;
+
+thread_local! {
+    /// A router's lists, kept from one layer to the next.
+    static BOXES: std::cell::Cell<Vec<(Coord, Coord)>> = const { std::cell::Cell::new(Vec::new()) };
+    static CUTS: std::cell::Cell<Vec<(f64, Cut)>> = const { std::cell::Cell::new(Vec::new()) };
+    static PATH: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    static LENGTHS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
+}
 
 /// Edges per chunk: each ring's edges are taken in runs of this many consecutive ones,
 /// each run with its bounding box, so that a move or a point far from a run skips it
 /// whole (a round hole's 64 edges are 8 boxes, of which a move near it meets one or two).
 const CHUNK: usize = 8;
+
+/// Up to this many edges in all, a region's chunks hold half as many.
+const SMALL: usize = 32;
 
 /// Where a move crosses a ring.
 #[derive(Clone, Copy, Debug)]
@@ -41,12 +53,15 @@ pub(crate) struct Router<'a> {
     /// it), then the boxes of its chunks of `CHUNK` edges, grown by a little slack
     /// (below): one list, ring `r`'s from `at[r].0`.
     boxes: Vec<(Coord, Coord)>,
-    /// Where each ring's boxes and cumulative lengths start.
+    /// Where each ring's boxes and cumulative lengths start; empty for a single ring
+    /// (both at 0: no list to allocate for most layers).
     at: Vec<(usize, usize)>,
     /// `CHUNK`, or (in tests) a ring's whole length: every edge tested, as before chunks.
     chunk: usize,
-    /// Per ring, whether the region lies on its left (measured when first needed).
+    /// Per ring, whether the region lies on its left (measured when first needed); for
+    /// a single ring, in `left_one` (no list).
     left: std::cell::OnceCell<Vec<bool>>,
+    left_one: std::cell::OnceCell<bool>,
     /// Whether a move that leaves a ring clearly inward is taken as inside without the
     /// even-odd test of its middle (off in tests, for the general path).
     fast: bool,
@@ -60,33 +75,40 @@ pub(crate) struct Router<'a> {
 
 impl<'a> Router<'a> {
     pub(crate) fn new(rings: &'a [Vec<Coord>]) -> Router<'a> {
-        Router::with_chunk(rings, CHUNK)
+        // A small region (a star's or an L's inset, a few dozen edges, whose runs of 8
+        // span most of it) in runs of 4: more of them missed by a move's box.
+        let vertices: usize = rings.iter().map(Vec::len).sum();
+        Router::with_chunk(rings, if vertices <= SMALL { CHUNK / 2 } else { CHUNK })
     }
 
     /// A router with chunks of `chunk` edges (`usize::MAX`: one per ring).
     pub(crate) fn with_chunk(rings: &'a [Vec<Coord>], chunk: usize) -> Router<'a> {
         let vertices: usize = rings.iter().map(Vec::len).sum();
-        let mut chunks = Vec::with_capacity(vertices / chunk + 2 * rings.len());
-        let mut at = Vec::with_capacity(rings.len());
+        // The router's lists are kept from one layer to the next (`scratch`).
+        let mut chunks = scratch::take(&BOXES);
+        chunks.reserve(vertices / chunk + 2 * rings.len());
+        let mut at = Vec::with_capacity(if rings.len() > 1 { rings.len() } else { 0 });
         let mut largest: f64 = 0.0;
         let mut lengths_at = 0;
         for r in rings {
             let n = r.len();
             // The ring's box first, set once its chunks are measured.
             let ring_at = chunks.len();
-            at.push((ring_at, lengths_at));
+            if rings.len() > 1 {
+                at.push((ring_at, lengths_at));
+            }
             lengths_at += n + 1;
             chunks.push((Coord::zero(), Coord::zero()));
             // Chunk c holds edges c·CHUNK.. (up to the ring's end), so vertices
-            // c·CHUNK..=(c + 1)·CHUNK, the last wrapping to the first.
-            for c in 0..n.div_ceil(chunk) {
-                let (from, to) = (
-                    c * chunk,
-                    (c.saturating_add(1).saturating_mul(chunk)).min(n),
-                );
-                // By comparisons, not `min`/`max` (which handle NaN, and cost several
-                // instructions each): the coordinates are finite, the box is the same.
-                let last = r[to % n];
+            // c·CHUNK..=(c + 1)·CHUNK, the last wrapping to the first. Boxes by
+            // comparisons, not `min`/`max` (which handle NaN, and cost several
+            // instructions each): the coordinates are finite, the boxes are the same. The
+            // ring's box grows with its chunks' (they hold every vertex).
+            let mut ring_box = bounds(&[]);
+            let mut from = 0;
+            while from < n {
+                let to = if n - from > chunk { from + chunk } else { n };
+                let last = if to < n { r[to] } else { r[0] };
                 let (mut lo, mut hi) = (last, last);
                 for c in &r[from..to] {
                     if c.x < lo.x {
@@ -103,22 +125,20 @@ impl<'a> Router<'a> {
                     }
                 }
                 chunks.push((lo, hi));
+                if lo.x < ring_box.0.x {
+                    ring_box.0.x = lo.x;
+                }
+                if lo.y < ring_box.0.y {
+                    ring_box.0.y = lo.y;
+                }
+                if hi.x > ring_box.1.x {
+                    ring_box.1.x = hi.x;
+                }
+                if hi.y > ring_box.1.y {
+                    ring_box.1.y = hi.y;
+                }
+                from = to;
             }
-            // The ring's box is its chunks' (they hold every vertex): not a second pass.
-            let ring_box = chunks[ring_at + 1..]
-                .iter()
-                .fold(bounds(&[]), |(lo, hi), &(a, b)| {
-                    (
-                        Coord {
-                            x: lo.x.min(a.x),
-                            y: lo.y.min(a.y),
-                        },
-                        Coord {
-                            x: hi.x.max(b.x),
-                            y: hi.y.max(b.y),
-                        },
-                    )
-                });
             largest = largest
                 .max(ring_box.0.x.abs())
                 .max(ring_box.0.y.abs())
@@ -130,22 +150,25 @@ impl<'a> Router<'a> {
         // in the tests a chunk's box stands for, so that skipping a chunk never skips an
         // edge the test would have taken.
         let slack = 1e-9 * (1.0 + largest);
-        for (r, &(ring_at, _)) in rings.iter().zip(&at) {
+        let mut ring_at = 0;
+        for r in rings {
             let count = r.len().div_ceil(chunk);
             for (lo, hi) in &mut chunks[ring_at + 1..ring_at + 1 + count] {
                 *lo = *lo - Coord { x: slack, y: slack };
                 *hi = *hi + Coord { x: slack, y: slack };
             }
+            ring_at += 1 + count;
         }
         Router {
             rings,
             lengths: std::cell::OnceCell::new(),
-            cuts: std::cell::RefCell::new(Vec::new()),
-            path: std::cell::RefCell::new(Vec::new()),
+            cuts: std::cell::RefCell::new(scratch::take(&CUTS)),
+            path: std::cell::RefCell::new(scratch::take(&PATH)),
             boxes: chunks,
             at,
             chunk,
             left: std::cell::OnceCell::new(),
+            left_one: std::cell::OnceCell::new(),
             fast: true,
             divide_first: false,
             project_ends: false,
@@ -194,9 +217,11 @@ impl<'a> Router<'a> {
     /// Whether a move that crosses no ring inside it (`cuts`: where it meets the rings)
     /// starts or ends on an edge's middle and heads clearly into the region from it: then
     /// it is inside all along (it would have to cross a ring to leave), and the even-odd
-    /// test of its middle is not needed. Any doubt (a vertex, a grazing move, two rings
-    /// met at that end) answers `false`, for that test to decide.
-    fn leaves_inward(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> bool {
+    /// test of its middle is not needed. `Some(false)` where it heads clearly out of the
+    /// region there: outside all along, so that test could only find its middle on an
+    /// edge (`on_an_edge`). Any doubt (a vertex, a grazing move, two rings met at that
+    /// end) answers `None`, for that test to decide.
+    fn leaves_inward(&self, p: Coord, q: Coord, cuts: &[(f64, Cut)]) -> Option<bool> {
         let d = q - p;
         let d2 = d.x * d.x + d.y * d.y;
         for (at_p, from, to) in [(true, p, q), (false, q, p)] {
@@ -216,18 +241,20 @@ impl<'a> Router<'a> {
             if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
                 continue;
             }
-            return (turn > 0.0) == self.region_left(c.ring);
+            return Some((turn > 0.0) == self.region_left(c.ring));
         }
-        false
+        None
     }
 
     /// Whether the stretch before bound `k` of a move (`d` its direction; bound `k` is
     /// `cuts[k]`, the move's end past the last) runs into the region from a crossing at
     /// either of its ends: a crossing inside the move, alone there (no other within a
     /// billionth of the move), through an edge's middle and clearly across it, enters
-    /// the region on one side of the edge. `false` where in doubt, for the even-odd test
-    /// of the stretch's middle to decide (as it does every stretch that leaves).
-    fn enters(&self, cuts: &[(f64, Cut)], k: usize, d: Coord) -> bool {
+    /// the region on one side of the edge; `Some(false)` where it runs out of the region
+    /// from such a crossing (outside all along: the even-odd test could only find its
+    /// middle on an edge, `on_an_edge`). `None` where in doubt, for the even-odd test of
+    /// the stretch's middle to decide.
+    fn enters(&self, cuts: &[(f64, Cut)], k: usize, d: Coord) -> Option<bool> {
         let d2 = d.x * d.x + d.y * d.y;
         let clean = |i: usize| {
             let (t, c) = cuts[i];
@@ -251,7 +278,39 @@ impl<'a> Router<'a> {
             if turn * turn <= 1e-6 * (e.x * e.x + e.y * e.y) * d2 {
                 continue;
             }
-            return (turn > 0.0) == self.region_left(c.ring);
+            return Some((turn > 0.0) == self.region_left(c.ring));
+        }
+        None
+    }
+
+    /// Whether `inside(p)` finds `p` on an edge (within a nanometre, in a ring's box): its
+    /// answer for a point known to be outside by the crossings (a move or stretch that
+    /// runs out of the region from a clean crossing), without the ray's crossings. The
+    /// chunks it skips are those farther than a nanometre from `p`, where `on_edge`
+    /// cannot hold (the test `inside` makes on every chunk it reads).
+    fn on_an_edge(&self, p: Coord) -> bool {
+        for (r, ring) in self.rings.iter().enumerate() {
+            let (lo, hi) = self.ring_box(r);
+            if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
+                continue;
+            }
+            let n = ring.len();
+            for (edges, lo, hi) in self.chunks(r) {
+                let near = p.x >= lo.x - 1e-6
+                    && p.x <= hi.x + 1e-6
+                    && p.y >= lo.y - 1e-6
+                    && p.y <= hi.y + 1e-6;
+                if near {
+                    let mut b = ring[edges.start];
+                    for i in edges {
+                        let a = b;
+                        b = ring[next(i, n)];
+                        if on_edge(a, b, p) {
+                            return true;
+                        }
+                    }
+                }
+            }
         }
         false
     }
@@ -272,6 +331,12 @@ impl<'a> Router<'a> {
     /// Whether the region lies on ring `r`'s left: a counter-clockwise ring inside an even
     /// number of the others (an outline), or a clockwise one inside an odd number (a hole).
     fn region_left(&self, r: usize) -> bool {
+        if self.rings.len() == 1 {
+            // No other ring to be inside of: counter-clockwise is an outline.
+            return *self
+                .left_one
+                .get_or_init(|| super::offset::signed_area(&self.rings[0]) > 0.0);
+        }
         self.left.get_or_init(|| {
             self.rings
                 .iter()
@@ -296,10 +361,20 @@ impl<'a> Router<'a> {
         })[r]
     }
 
+    /// Where ring `r`'s boxes and cumulative lengths start.
+    #[inline]
+    fn at(&self, r: usize) -> (usize, usize) {
+        if self.at.is_empty() {
+            (0, 0)
+        } else {
+            self.at[r]
+        }
+    }
+
     /// Ring `r`'s bounding box.
     #[inline]
     fn ring_box(&self, r: usize) -> (Coord, Coord) {
-        self.boxes[self.at[r].0]
+        self.boxes[self.at(r).0]
     }
 
     /// Ring `r`'s chunk boxes, with the range of edges each holds.
@@ -310,23 +385,23 @@ impl<'a> Router<'a> {
         let n = self.rings[r].len();
         let chunk = self.chunk;
         let count = n.div_ceil(chunk);
-        let from = self.at[r].0 + 1;
-        self.boxes[from..from + count]
-            .iter()
-            .enumerate()
-            .map(move |(c, &(lo, hi))| {
-                (
-                    c * chunk..(c.saturating_add(1).saturating_mul(chunk)).min(n),
-                    lo,
-                    hi,
-                )
-            })
+        let from = self.at(r).0 + 1;
+        // Each chunk's edges from where the last ended (no multiplication, nothing to
+        // saturate where a test's chunk is a whole ring).
+        let mut start = 0;
+        self.boxes[from..from + count].iter().map(move |&(lo, hi)| {
+            let end = if n - start > chunk { start + chunk } else { n };
+            let edges = start..end;
+            start = end;
+            (edges, lo, hi)
+        })
     }
 
     fn cumulative(&self, r: usize) -> &[f64] {
         let cumulative = self.lengths.get_or_init(|| {
             let vertices: usize = self.rings.iter().map(Vec::len).sum();
-            let mut cumulative = Vec::with_capacity(vertices + self.rings.len());
+            let mut cumulative = scratch::take(&LENGTHS);
+            cumulative.reserve(vertices + self.rings.len());
             for ring in self.rings {
                 let n = ring.len();
                 let mut s = 0.0;
@@ -339,7 +414,7 @@ impl<'a> Router<'a> {
             }
             cumulative
         });
-        let from = self.at[r].1;
+        let from = self.at(r).1;
         &cumulative[from..from + self.rings[r].len() + 1]
     }
 
@@ -361,12 +436,24 @@ impl<'a> Router<'a> {
             },
         );
         let moving = d.x != 0.0 || d.y != 0.0;
+        // A move within a millionth of a radian of an edge's direction is kept as one
+        // that may run along it (as an exactly parallel one is): a move between two line
+        // ends on one edge is then found on it (`along_edge`) without the even-odd test
+        // of its middle. First told by |denom| against a bound from the ring's box (no
+        // edge is longer than its diagonal), then by the edge's own length.
+        let d2 = d.x * d.x + d.y * d.y;
+        let (lo_r, hi_r) = self.ring_box(r);
+        let diagonal2 = (hi_r - lo_r).x * (hi_r - lo_r).x + (hi_r - lo_r).y * (hi_r - lo_r).y;
+        let along = 1e-6 * (d2 * diagonal2).sqrt();
         for (edges, a, b) in self.chunks(r) {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
+            // Each edge's end is the next one's start: carried, not read again.
+            let mut b = ring[edges.start];
             for i in edges {
-                let (a, b) = (ring[i], ring[next(i, n)]);
+                let a = b;
+                b = ring[next(i, n)];
                 let e = b - a;
                 let denom = d.x * e.y - d.y * e.x;
                 if denom == 0.0 {
@@ -385,6 +472,20 @@ impl<'a> Router<'a> {
                         ));
                     }
                     continue;
+                }
+                if self.fast
+                    && denom.abs() <= along
+                    && denom * denom <= 1e-12 * d2 * (e.x * e.x + e.y * e.y)
+                {
+                    out.push((
+                        f64::NAN,
+                        Cut {
+                            ring: r,
+                            edge: i,
+                            u: f64::NAN,
+                            near: true,
+                        },
+                    ));
                 }
                 let ap = a - p;
                 // Most edges are missed beside their ends: told by where the move's line
@@ -440,13 +541,24 @@ impl<'a> Router<'a> {
         }
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
-        if !cuts.iter().any(|&(t, _)| interior(t))
-            && (self.fast
-                && (self.leaves_inward(p, q, &cuts) || self.along_edge((p + q) / 2.0, &cuts))
-                || self.inside((p + q) / 2.0))
-        {
-            self.cuts.replace(cuts);
-            return vec![p, q];
+        // Whether the move is known to run outside all along (but for its ends): out of
+        // the region from one end, crossing nothing; then so is every stretch below.
+        let mut outside = false;
+        if !cuts.iter().any(|&(t, _)| interior(t)) {
+            let straight = match self.fast.then(|| self.leaves_inward(p, q, &cuts)).flatten() {
+                Some(true) => true,
+                Some(false) => {
+                    outside = true;
+                    self.on_an_edge((p + q) / 2.0)
+                }
+                None => {
+                    self.fast && self.along_edge((p + q) / 2.0, &cuts) || self.inside((p + q) / 2.0)
+                }
+            };
+            if straight {
+                self.cuts.replace(cuts);
+                return vec![p, q];
+            }
         }
         // A move between two points of one ring (line ends lie on the inset's rings) may
         // find no crossing at all, its ends being on the ring: the middle of each
@@ -483,10 +595,20 @@ impl<'a> Router<'a> {
         for (k, (tb, rb)) in bounds.enumerate() {
             let (ta, ra) = std::mem::replace(&mut previous, (tb, rb));
             let (a, b) = (at(ta), at(tb));
-            if (tb - ta) * move_length < 1e-6
-                || (self.fast && self.enters(&cuts, k, q - p))
-                || self.inside(at((ta + tb) / 2.0))
-            {
+            let straight = (tb - ta) * move_length < 1e-6
+                || match if outside {
+                    // The whole move runs outside: so does every stretch of it.
+                    Some(false)
+                } else if self.fast {
+                    self.enters(&cuts, k, q - p)
+                } else {
+                    None
+                } {
+                    Some(true) => true,
+                    Some(false) => self.on_an_edge(at((ta + tb) / 2.0)),
+                    None => self.inside(at((ta + tb) / 2.0)),
+                };
+            if straight {
                 out.push(b);
                 continue;
             }
@@ -537,8 +659,10 @@ impl<'a> Router<'a> {
                 if !near && (hi.y < p.y || lo.y > p.y || hi.x < p.x) {
                     continue;
                 }
+                let mut b = ring[edges.start];
                 for i in edges {
-                    let (a, b) = (ring[i], ring[next(i, n)]);
+                    let a = b;
+                    b = ring[next(i, n)];
                     if super::clip::ray_crosses(a, b, p) {
                         inside = !inside;
                     }
@@ -637,6 +761,18 @@ impl<'a> Router<'a> {
                     break;
                 }
             }
+        }
+    }
+}
+
+impl Drop for Router<'_> {
+    /// The lists go back to the pool for the next layer's router.
+    fn drop(&mut self) {
+        scratch::give(&BOXES, std::mem::take(&mut self.boxes));
+        scratch::give(&CUTS, self.cuts.take());
+        scratch::give(&PATH, self.path.take());
+        if let Some(lengths) = self.lengths.take() {
+            scratch::give(&LENGTHS, lengths);
         }
     }
 }

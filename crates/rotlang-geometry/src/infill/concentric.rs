@@ -279,6 +279,11 @@ fn near_two(rings: &Bounded, near: &Near, p: Coord, r: f64) -> bool {
 /// a spacing, before their offsets meet), both would be printed side by side, down to a
 /// fraction of a spacing apart: the later gives way to the earlier there.
 fn apart(loops: &[Vec<Coord>], gap: f64, scratch: &mut Scratch, out: &mut Vec<Vec<Coord>>) {
+    // One loop gives way to none.
+    if let [only] = loops {
+        out.push(only.clone());
+        return;
+    }
     let all: Bounded = loops.iter().map(|l| (l.as_slice(), span(l))).collect();
     let mut filed = false;
     for (j, ring) in loops.iter().enumerate() {

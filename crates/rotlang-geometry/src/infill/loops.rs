@@ -11,7 +11,7 @@
 use crate::math;
 use geo::{Coord, MultiPolygon};
 
-use super::offset::{cross, inside_left};
+use super::offset::{cross, inside_left_cow};
 
 /// More raw segments than this go to the buffer (the crossing sweep could go quadratic).
 const MAX_SEGMENTS: usize = 20_000;
@@ -42,6 +42,8 @@ pub(crate) struct Eroder {
     corners: Vec<Vec<Corner>>,
     /// Each ring's distance below which no segment of its raw offset runs backwards.
     safes: Vec<f64>,
+    /// Reused by `prepare`: a ring's edge directions.
+    units: Vec<Coord>,
     /// Whether the raw rings' buffers were sized for these corners.
     sized: bool,
     /// The unit directions of every reflex corner's inner arc points.
@@ -84,6 +86,7 @@ impl Eroder {
             boundary: Vec::new(),
             corners: Vec::new(),
             safes: Vec::new(),
+            units: Vec::new(),
             directions: Vec::new(),
             sized: false,
             raws: Vec::new(),
@@ -135,7 +138,14 @@ impl Eroder {
                     self.corners.push(Vec::new());
                 }
                 let corners = &mut self.corners[used];
-                if let Some(safe) = prepare(&ring.0, arc, i == 0, &mut self.directions, corners) {
+                if let Some(safe) = prepare(
+                    &ring.0,
+                    arc,
+                    i == 0,
+                    &mut self.directions,
+                    corners,
+                    &mut self.units,
+                ) {
                     used += 1;
                     self.safes.push(safe);
                 }
@@ -207,10 +217,14 @@ impl Eroder {
         }
         let raws = &self.raws;
         // Convex rings nested or apart cross nothing (a holed square's loops until the
-        // outline's meet the hole's): no sweep.
+        // outline's meet the hole's), nor does one ring star-shaped about its centroid (a
+        // star's or an L's loops until they pinch): no sweep.
         let cuts = &mut self.cuts;
         cuts.clear();
-        if !apart(raws, &mut self.turns) && !crossings(raws, &mut self.sweep, cuts) {
+        if !apart(raws, &mut self.turns)
+            && !(raws.len() == 1 && star_shaped(&raws[0].pts))
+            && !crossings(raws, &mut self.sweep, cuts)
+        {
             return None;
         }
         let cuts = &*cuts;
@@ -510,13 +524,16 @@ fn prepare(
     exterior: bool,
     directions: &mut Vec<Coord>,
     out: &mut Vec<Corner>,
+    units: &mut Vec<Coord>,
 ) -> Option<f64> {
-    let pts = inside_left(ring, exterior)?;
+    // The ring itself where it is clean and turns the right way (a copy otherwise).
+    let pts = inside_left_cow(ring, exterior)?;
     let n = pts.len();
     let unit = |e: Coord| e / math::hypot(e.x, e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
     // Each edge's direction once (edge i runs from point i to i + 1).
-    let units: Vec<Coord> = (0..n).map(|i| unit(pts[(i + 1) % n] - pts[i])).collect();
+    units.clear();
+    units.extend((0..n).map(|i| unit(pts[(i + 1) % n] - pts[i])));
     out.clear();
     out.reserve(n);
     let cos_arc = math::cos(arc);
@@ -620,6 +637,47 @@ fn apart(raws: &[Raw], turns: &mut Vec<f64>) -> bool {
         }
     }
     true
+}
+
+/// Whether a ring turns counter-clockwise about its centroid strictly all along (each
+/// edge by a margin over rounding) and once round: then every ray from the centroid
+/// meets it once, so it is simple, crossing and touching nothing (the sweep would find
+/// no cut). An outline's raw offset is, until an edge event or a pinch.
+fn star_shaped(pts: &[Coord]) -> bool {
+    let n = pts.len();
+    if n < 3 {
+        return false;
+    }
+    let next = |i: usize| pts[if i + 1 == n { 0 } else { i + 1 }];
+    let (mut twice, mut x, mut y) = (0.0, 0.0, 0.0);
+    for (i, &p) in pts.iter().enumerate() {
+        let q = next(i);
+        let c = p.x * q.y - q.x * p.y;
+        twice += c;
+        x += (p.x + q.x) * c;
+        y += (p.y + q.y) * c;
+    }
+    if !(twice > 0.0) {
+        return false;
+    }
+    let centre = Coord {
+        x: x / (3.0 * twice),
+        y: y / (3.0 * twice),
+    };
+    let mut east = 0;
+    for (i, &p) in pts.iter().enumerate() {
+        let (a, b) = (p - centre, next(i) - centre);
+        let scale = (a.x.abs() + a.y.abs()) * (b.x.abs() + b.y.abs());
+        if !(cross(a, b) > 1e-9 * scale) {
+            return false;
+        }
+        // Turning counter-clockwise by less than a half turn, an edge from below the
+        // centre to above it passes the ray east of it.
+        if a.y < 0.0 && b.y >= 0.0 {
+            east += 1;
+        }
+    }
+    east == 1
 }
 
 /// `1.0` for a strictly convex simple counter-clockwise ring, `-1.0` clockwise, `0.0`
@@ -1051,6 +1109,84 @@ mod tests {
                 }
             })
             .collect()
+    }
+
+    /// The star-shaped shortcut: a ring turning counter-clockwise about its centroid once
+    /// passes; one wound twice (a pentagram: every edge turns the same way about the
+    /// centre, but it crosses itself), one with an edge turning back, a clockwise one and
+    /// an L seen from a centroid outside its kernel do not.
+    #[test]
+    fn star_shaped_rings_go_round_their_centroid_once() {
+        let star: Vec<Coord> = (0..10)
+            .map(|i| {
+                let r = if i % 2 == 0 { 10.0 } else { 4.5 };
+                let a = std::f64::consts::TAU * i as f64 / 10.0;
+                Coord {
+                    x: r * math::cos(a),
+                    y: r * math::sin(a),
+                }
+            })
+            .collect();
+        assert!(star_shaped(&star));
+        let pentagram: Vec<Coord> = (0..5)
+            .map(|i| {
+                let a = std::f64::consts::TAU * (2 * i) as f64 / 5.0;
+                Coord {
+                    x: 10.0 * math::cos(a),
+                    y: 10.0 * math::sin(a),
+                }
+            })
+            .collect();
+        assert!(!star_shaped(&pentagram));
+        assert!(!star_shaped(&polygon(7, 3.0, (0.0, 0.0), 2, false)));
+        assert!(star_shaped(&polygon(7, 3.0, (5.0, -2.0), 1, false)));
+        assert!(!star_shaped(&polygon(7, 3.0, (5.0, -2.0), 1, true)));
+        // A notch whose far side turns back about the centroid.
+        let hooked = vec![
+            Coord { x: 0.0, y: 0.0 },
+            Coord { x: 10.0, y: 0.0 },
+            Coord { x: 10.0, y: 10.0 },
+            Coord { x: 2.0, y: 10.0 },
+            Coord { x: 2.0, y: 1.0 },
+            Coord { x: 1.0, y: 1.0 },
+            Coord { x: 1.0, y: 10.0 },
+            Coord { x: 0.0, y: 10.0 },
+        ];
+        assert!(!star_shaped(&hooked));
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(256))]
+
+        /// Where a raw offset is taken as star-shaped (no sweep), the sweep finds no
+        /// crossing and no touching in it: random star-like outlines, some with sharp
+        /// tips, eroded by distances up to past their middle.
+        #[test]
+        fn rings_taken_as_star_shaped_cross_nothing(
+            radii in proptest::collection::vec(0.2f64..1.0, 3..16),
+            size in 4.0f64..25.0,
+            depth in 0.01f64..0.6,
+        ) {
+            let n = radii.len();
+            let mut ring: Vec<Coord> = radii
+                .iter()
+                .enumerate()
+                .map(|(i, r)| {
+                    let a = std::f64::consts::TAU * i as f64 / n as f64;
+                    Coord { x: r * size * math::cos(a), y: r * size * math::sin(a) }
+                })
+                .collect();
+            ring.push(ring[0]);
+            let region = MultiPolygon::new(vec![geo::Polygon::new(ring.into(), vec![])]);
+            let mut eroder = Eroder::new(&region, 0.5);
+            eroder.rings(depth * size);
+            let raws = &eroder.raws;
+            if raws.len() == 1 && star_shaped(&raws[0].pts) {
+                let mut cuts = Vec::new();
+                proptest::prop_assert!(crossings(raws, &mut Sweep::default(), &mut cuts));
+                proptest::prop_assert_eq!(cuts.len(), 0);
+            }
+        }
     }
 
     /// The sweep's reused order: nearly sorted pairs are sorted within the budget, and a

@@ -221,10 +221,8 @@ impl Eroder {
         // star's or an L's loops until they pinch): no sweep.
         let cuts = &mut self.cuts;
         cuts.clear();
-        if !apart(raws, &mut self.turns)
-            && !(raws.len() == 1 && star_shaped(&raws[0].pts))
-            && !crossings(raws, &mut self.sweep, cuts)
-        {
+        let uncut = apart(raws, &mut self.turns) || (raws.len() == 1 && star_shaped(&raws[0].pts));
+        if !uncut && !crossings(raws, &mut self.sweep, cuts) {
             return None;
         }
         let cuts = &*cuts;
@@ -657,7 +655,7 @@ fn star_shaped(pts: &[Coord]) -> bool {
         x += (p.x + q.x) * c;
         y += (p.y + q.y) * c;
     }
-    if !(twice > 0.0) {
+    if twice.is_nan() || twice <= 0.0 {
         return false;
     }
     let centre = Coord {
@@ -668,7 +666,8 @@ fn star_shaped(pts: &[Coord]) -> bool {
     for (i, &p) in pts.iter().enumerate() {
         let (a, b) = (p - centre, next(i) - centre);
         let scale = (a.x.abs() + a.y.abs()) * (b.x.abs() + b.y.abs());
-        if !(cross(a, b) > 1e-9 * scale) {
+        let turn = cross(a, b);
+        if turn.is_nan() || turn <= 1e-9 * scale {
             return false;
         }
         // Turning counter-clockwise by less than a half turn, an edge from below the

@@ -255,6 +255,7 @@ impl Eroder {
                 // right): a simple curve turned inside out where edges ran backwards; no
                 // point of it is on the erosion (the L's arms gone, its corner too small).
                 let inverted = raws.len() == 1
+                    && raw.check
                     && (0..n).any(|i| raw.reversed(i))
                     && (0..n)
                         .map(|i| cross(raw.pts[i], raw.pts[if i + 1 == n { 0 } else { i + 1 }]))
@@ -637,34 +638,22 @@ fn apart(raws: &[Raw], turns: &mut Vec<f64>) -> bool {
     true
 }
 
-/// Whether a ring turns counter-clockwise about its centroid strictly all along (each
-/// edge by a margin over rounding) and once round: then every ray from the centroid
-/// meets it once, so it is simple, crossing and touching nothing (the sweep would find
-/// no cut). An outline's raw offset is, until an edge event or a pinch.
+/// Whether a ring turns counter-clockwise about the mean of its points strictly all
+/// along (each edge by a margin over rounding) and once round: then every ray from that
+/// centre meets it once, so it is simple, crossing and touching nothing (the sweep would
+/// find no cut). A star's raw offset is, until its tips close up; where the centre is
+/// not in a ring's kernel (an L's) the sweep decides as before.
 fn star_shaped(pts: &[Coord]) -> bool {
     let n = pts.len();
     if n < 3 {
         return false;
     }
-    let next = |i: usize| pts[if i + 1 == n { 0 } else { i + 1 }];
-    let (mut twice, mut x, mut y) = (0.0, 0.0, 0.0);
-    for (i, &p) in pts.iter().enumerate() {
-        let q = next(i);
-        let c = p.x * q.y - q.x * p.y;
-        twice += c;
-        x += (p.x + q.x) * c;
-        y += (p.y + q.y) * c;
-    }
-    if twice.is_nan() || twice <= 0.0 {
-        return false;
-    }
-    let centre = Coord {
-        x: x / (3.0 * twice),
-        y: y / (3.0 * twice),
-    };
+    let sum = pts.iter().fold(Coord { x: 0.0, y: 0.0 }, |s, &p| s + p);
+    let centre = sum / n as f64;
     let mut east = 0;
-    for (i, &p) in pts.iter().enumerate() {
-        let (a, b) = (p - centre, next(i) - centre);
+    let ends = pts.iter().zip(pts[1..].iter().chain(&pts[..1]));
+    for (&p, &q) in ends {
+        let (a, b) = (p - centre, q - centre);
         let scale = (a.x.abs() + a.y.abs()) * (b.x.abs() + b.y.abs());
         let turn = cross(a, b);
         if turn.is_nan() || turn <= 1e-9 * scale {
@@ -1110,12 +1099,12 @@ mod tests {
             .collect()
     }
 
-    /// The star-shaped shortcut: a ring turning counter-clockwise about its centroid once
+    /// The star-shaped shortcut: a ring turning counter-clockwise about its centre once
     /// passes; one wound twice (a pentagram: every edge turns the same way about the
     /// centre, but it crosses itself), one with an edge turning back, a clockwise one and
     /// an L seen from a centroid outside its kernel do not.
     #[test]
-    fn star_shaped_rings_go_round_their_centroid_once() {
+    fn star_shaped_rings_go_round_their_centre_once() {
         let star: Vec<Coord> = (0..10)
             .map(|i| {
                 let r = if i % 2 == 0 { 10.0 } else { 4.5 };

@@ -217,7 +217,7 @@ impl Eroder {
         }
         let raws = &self.raws;
         // Convex rings nested or apart cross nothing (a holed square's loops until the
-        // outline's meet the hole's), nor does one ring star-shaped about its centroid (a
+        // outline's meet the hole's), nor does one ring star-shaped about its centre (a
         // star's or an L's loops until they pinch): no sweep.
         let cuts = &mut self.cuts;
         cuts.clear();
@@ -1102,7 +1102,7 @@ mod tests {
     /// The star-shaped shortcut: a ring turning counter-clockwise about its centre once
     /// passes; one wound twice (a pentagram: every edge turns the same way about the
     /// centre, but it crosses itself), one with an edge turning back, a clockwise one and
-    /// an L seen from a centroid outside its kernel do not.
+    /// a notch seen from a centre outside its kernel do not.
     #[test]
     fn star_shaped_rings_go_round_their_centre_once() {
         let star: Vec<Coord> = (0..10)
@@ -1129,7 +1129,7 @@ mod tests {
         assert!(!star_shaped(&polygon(7, 3.0, (0.0, 0.0), 2, false)));
         assert!(star_shaped(&polygon(7, 3.0, (5.0, -2.0), 1, false)));
         assert!(!star_shaped(&polygon(7, 3.0, (5.0, -2.0), 1, true)));
-        // A notch whose far side turns back about the centroid.
+        // A notch whose far side turns back about the centre.
         let hooked = vec![
             Coord { x: 0.0, y: 0.0 },
             Coord { x: 10.0, y: 0.0 },

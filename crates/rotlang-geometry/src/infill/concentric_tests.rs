@@ -235,7 +235,10 @@ proptest! {
         }));
         prop_assert!((area - b).abs() <= 0.002 * b + 0.002 * m + 1e-9, "area {} here, {} by the buffer", area, b);
         // The arcs' chords are placed differently from the buffer's: a few hundredths of
-        // a mm on a small ring.
-        prop_assert!((l - m).abs() <= 0.002 * m + 0.03, "boundary {} here, {} by the buffer", l, m);
+        // a mm on a small ring; and where two arcs pinch the erosion within a chord's
+        // sagitta, one side's chords cross where the other's pass a few µm apart (two
+        // parts there, a thin neck here: 1.1% more boundary on one seed). A spike kept
+        // (11% more) is well past it.
+        prop_assert!((l - m).abs() <= 0.02 * m + 0.03, "boundary {} here, {} by the buffer", l, m);
     }
 }

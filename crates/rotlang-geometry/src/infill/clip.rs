@@ -77,6 +77,10 @@ pub(crate) struct Edges {
     /// For `clip`, built by its first call: the edges in a grid of square cells, so that a
     /// short segment well inside the region tests no edge at all.
     grid: Option<Grid>,
+    /// The last point `clip` tested with `contains`, by its bits, and the answer: a
+    /// lightning branch's two polylines share their fork, and where neither is cut both
+    /// test it (the answer depends on the point and the edges alone).
+    tested: ([u64; 2], bool),
 }
 
 /// Edges by cell, in one flat list: cell `c` holds `edges[start[c]..start[c + 1]]`.
@@ -264,6 +268,8 @@ impl Edges {
             cuts: scratch::take(&CUTS),
             piece: scratch::take(&PIECE),
             grid: None,
+            // No point has these bits (NaNs: never a middle that is tested).
+            tested: ([u64::MAX; 2], false),
         }
     }
 
@@ -373,7 +379,19 @@ impl Edges {
         };
         for w in cuts.windows(2) {
             let (g0, g1) = (w[0], w[1]);
-            if g1 <= g0 || !self.contains(at((g0 + g1) / 2.0)) {
+            if g1 <= g0 {
+                continue;
+            }
+            let middle = at((g0 + g1) / 2.0);
+            let bits = [middle.x.to_bits(), middle.y.to_bits()];
+            let inside = if bits == self.tested.0 {
+                self.tested.1
+            } else {
+                let inside = self.contains(middle);
+                self.tested = (bits, inside);
+                inside
+            };
+            if !inside {
                 continue;
             }
             let first = g0 as usize + 1;
@@ -604,7 +622,68 @@ mod tests {
         ]
     }
 
+    /// A ring of `radii.len()` vertices at those distances from the origin, evenly turned.
+    fn radial(radii: &[f64]) -> Vec<Coord> {
+        let n = radii.len() as f64;
+        radii
+            .iter()
+            .enumerate()
+            .map(|(i, &r)| {
+                let a = std::f64::consts::TAU * i as f64 / n;
+                Coord {
+                    x: r * a.cos(),
+                    y: r * a.sin(),
+                }
+            })
+            .collect()
+    }
+
+    /// Every piece `clip_each` hands out, by its coordinates' bits.
+    fn pieces_of(edges: &mut Edges, pts: &[Coord], out: &mut Vec<Vec<[u64; 2]>>) {
+        edges.clip_each(pts, |piece| {
+            out.push(
+                piece
+                    .iter()
+                    .map(|p| [p.x.to_bits(), p.y.to_bits()])
+                    .collect(),
+            )
+        });
+    }
+
     proptest! {
+        /// `clip_each` keeps the last point it tested and its answer: polylines clipped
+        /// one after another on one edge list (each often sharing its middle vertex with
+        /// the one before, as a lightning branch's two do, or only that vertex's x) give,
+        /// to the bit, what each clipped on an edge list of its own gives.
+        #[test]
+        fn clipping_after_a_shared_point_is_clipping_afresh(
+            radii in prop::collection::vec(1.0f64..10.0, 3..14),
+            lines in prop::collection::vec((coord(), coord(), coord(), 0u8..3), 1..12),
+        ) {
+            let rings = vec![radial(&radii)];
+            let frame = Frame::new(Coord { x: 0.0, y: 0.0 }, 0.0);
+            let mut shared = Edges::new(&rings, &frame);
+            let (mut kept, mut fresh) = (Vec::new(), Vec::new());
+            let mut previous: Option<Coord> = None;
+            for (a, mut m, b, share) in lines {
+                if let Some(p) = previous {
+                    match share {
+                        // The previous polyline's middle vertex: tested by both.
+                        0 => m = p,
+                        // Only its x: a different point with some of the same bits.
+                        1 => m = Coord { x: p.x, y: -p.y + 0.5 },
+                        _ => {}
+                    }
+                }
+                previous = Some(m);
+                // A polyline with no cut has its middle vertex tested (`[0, 2]`).
+                let pts = [a, m, b];
+                pieces_of(&mut shared, &pts, &mut kept);
+                pieces_of(&mut Edges::new(&rings, &frame), &pts, &mut fresh);
+                prop_assert_eq!(&kept, &fresh);
+            }
+        }
+
         /// An edge's box (made once) passes the edges wholly beside a segment's box: `cut`
         /// with it finds what `cut` without it and the sign test and the division alone
         /// find.

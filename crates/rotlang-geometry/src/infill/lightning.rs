@@ -16,6 +16,13 @@ use super::{Region, scratch};
 thread_local! {
     /// `clip_tree`'s piece in world coordinates, kept between layers.
     static WORLD: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    /// A tree's polylines before clipping (`branches_into`), kept between layers.
+    static BRANCHES: std::cell::Cell<Vec<[Coord; 3]>> = const { std::cell::Cell::new(Vec::new()) };
+    /// The first tree as one flat list and its pieces' ends (`Region::fill` measures it
+    /// there), kept between layers: grown from nothing, they cost four reallocations a
+    /// layer.
+    pub(crate) static FLAT: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    pub(crate) static ENDS: std::cell::Cell<Vec<usize>> = const { std::cell::Cell::new(Vec::new()) };
 }
 use super::offset::next;
 
@@ -57,12 +64,14 @@ pub(crate) fn lightning(
     edges: &mut Edges,
     out: &mut Vec<Vec<Coord>>,
 ) {
-    let branches = branches(region, centre, theta, spacing);
+    let mut branches = scratch::take(&BRANCHES);
+    branches_into(region, centre, theta, spacing, &mut branches);
     // A piece per polyline, unless one is cut: the list made at about its size, not grown.
     out.reserve(branches.len() + branches.len() / 4);
     clip_tree(&branches, centre, region.is_convex(), edges, |piece| {
         out.push(piece.to_vec())
     });
+    scratch::give(&BRANCHES, branches);
 }
 
 /// The tree's pieces, in world coordinates, each handed to `piece` (in the order
@@ -75,8 +84,10 @@ pub(crate) fn tree(
     edges: &mut Edges,
     piece: impl FnMut(&[Coord]),
 ) {
-    let branches = branches(region, centre, theta, spacing);
+    let mut branches = scratch::take(&BRANCHES);
+    branches_into(region, centre, theta, spacing, &mut branches);
     clip_tree(&branches, centre, region.is_convex(), edges, piece);
+    scratch::give(&BRANCHES, branches);
 }
 
 /// The polylines of [`branches`] clipped, each piece handed to `piece`.
@@ -114,12 +125,26 @@ fn clip_tree(
 
 /// The tree's polylines before clipping, in world coordinates: per branch, its start, fork
 /// and left twig's end, then its tip, fork and right twig's end.
+#[cfg(test)]
 pub(crate) fn branches(
     region: &Region,
     centre: Coord,
     theta: f64,
     spacing: f64,
 ) -> Vec<[Coord; 3]> {
+    let mut branches = Vec::new();
+    branches_into(region, centre, theta, spacing, &mut branches);
+    branches
+}
+
+/// [`branches`] appended to `branches` (a list kept between layers).
+fn branches_into(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    spacing: f64,
+    branches: &mut Vec<[Coord; 3]>,
+) {
     let gap = 2.5 * spacing;
     let direction = Coord {
         x: math::cos(theta),
@@ -129,7 +154,6 @@ pub(crate) fn branches(
     // twig, then the main branch's tip, back to the fork and the other twig. A tree of four
     // ends needs two paths at least; three separate segments (as before) made three paths
     // and three travels per branch, each travel routed inside the region.
-    let mut branches: Vec<[Coord; 3]> = Vec::new();
     let [even, odd, left_twig, right_twig] = [EVEN, ODD, LEFT_TWIG, RIGHT_TWIG];
     for ring in region.outlines() {
         let n = ring.len();
@@ -175,7 +199,6 @@ pub(crate) fn branches(
             next = k as f64 * step;
         }
     }
-    branches
 }
 
 /// The turns' sines and cosines: `math::sin_cos` of ±10° (the main branch, on alternate

@@ -178,3 +178,32 @@ fn turn_constants_are_the_computed_ones() {
         }
     }
 }
+
+/// A layer's lists are kept between layers (`scratch`): the L's and the star's lightning
+/// filled again, after other layers filled with other trees, is the same to the bit.
+#[test]
+fn layers_with_kept_lists_are_the_same() {
+    use crate::infill::{Params, Pattern};
+    let bits = |t: &crate::infill::Toolpaths| -> Vec<Vec<[u64; 2]>> {
+        t.polylines
+            .iter()
+            .chain(&t.travels)
+            .map(|l| l.0.iter().map(|p| [p.x.to_bits(), p.y.to_bits()]).collect())
+            .collect()
+    };
+    let shapes = [shapes::l_shape(20.0), shapes::star(10.0, 4.5)];
+    let regions: Vec<Region> = shapes.iter().map(|s| Region::new(s, W).unwrap()).collect();
+    let layer = |region: &Region, density: f64| {
+        let params = Params::new(Pattern::Lightning, density, W);
+        bits(&region.fill(&params).unwrap())
+    };
+    let first: Vec<_> = regions.iter().map(|r| layer(r, 0.1)).collect();
+    for density in [0.4, 0.05, 0.2] {
+        for region in &regions {
+            layer(region, density);
+        }
+        for (region, first) in regions.iter().zip(&first) {
+            assert_eq!(&layer(region, 0.1), first);
+        }
+    }
+}

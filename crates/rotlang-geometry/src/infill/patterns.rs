@@ -97,7 +97,12 @@ impl Region {
                 let mut spacing = 2.0 * w / rho;
                 // The region's edges (and their grid) serve both trees.
                 let mut edges = Edges::new(&self.rings, &lightning::frame(centre));
-                let (mut flat, mut ends, mut length) = (Vec::new(), Vec::new(), 0.0);
+                // Its lists kept between layers (`scratch`).
+                let (mut flat, mut ends, mut length) = (
+                    super::scratch::take(&lightning::FLAT),
+                    super::scratch::take(&lightning::ENDS),
+                    0.0,
+                );
                 lightning::tree(self, centre, theta, spacing, &mut edges, |piece| {
                     flat.extend_from_slice(piece);
                     ends.push(flat.len());
@@ -113,7 +118,7 @@ impl Region {
                 {
                     let mut start = 0;
                     paths.reserve(ends.len());
-                    for end in ends {
+                    for &end in &ends {
                         paths.push(flat[start..end].to_vec());
                         start = end;
                     }
@@ -121,6 +126,8 @@ impl Region {
                     spacing = respaced;
                     lightning::lightning(self, centre, theta, spacing, &mut edges, &mut paths);
                 }
+                super::scratch::give(&lightning::FLAT, flat);
+                super::scratch::give(&lightning::ENDS, ends);
             }
         }
         let min_segment = w / 10.0;

@@ -91,6 +91,9 @@ function viewState() {
     pattern: $('pattern').value,
     density: num('density'),
     shape: $('shape').value,
+    // Only while a part is open (empty values are left out of the link).
+    solidTemplate: part.info ? $('solid-template').value : '',
+    object: part.info ? $('object').value : '',
   };
 }
 
@@ -109,6 +112,11 @@ function applyState(s) {
   set('density', s.density);
   set('shape', s.shape);
   if (s.layer !== undefined) pendingLayer = Number(s.layer);
+  // A shared part's solid template and object: the part is a local file, not in the
+  // link; they are applied to it when it is opened (now, if one is).
+  if (s.solidTemplate !== undefined || s.object !== undefined) {
+    part.want({ solidTemplate: s.solidTemplate, object: s.object });
+  }
   if (typeof s.text === 'string' && s.text !== view.state.doc.toString()) replaceAll(view, s.text);
   schedule(0);
 }
@@ -642,7 +650,7 @@ document.addEventListener('drop', async (e) => {
 for (const id of ['target', 'dialect', 'layers', 'layer-height', 'first-layer', 'bottom-shells', 'top-shells', 'base', 'seed']) {
   $(id).addEventListener('input', () => { edited(); schedule(); });
 }
-for (const id of ['layer-slider', 'pattern', 'density', 'shape']) $(id).addEventListener('input', edited);
+for (const id of ['layer-slider', 'pattern', 'density', 'shape', 'solid-template', 'object']) $(id).addEventListener('input', edited);
 // "In words" is open on a wide screen; on a phone it would push the plot far down.
 if (matchMedia('(min-width: 821px)').matches) $('words').open = true;
 $('layers').max = String(MAX_LAYERS * 50);

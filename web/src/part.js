@@ -73,6 +73,8 @@ export class PartPanel {
     // The solid template's check (rotlang::check, solid target): the text last checked,
     // the checks under way, and the newest one's number.
     this.solid = { checked: '', inFlight: 0, seq: 0, diagnostics: [], refused: null };
+    // A share link's object and solid template, for the next part opened.
+    this.wanted = null;
     $('mesh').addEventListener('change', async (e) => {
       const file = e.target.files?.[0];
       if (file) await (onFile ?? ((f) => this.open(f)))(file);
@@ -85,6 +87,28 @@ export class PartPanel {
       this.checkSolid();
       this.schedule();
     });
+  }
+
+  /**
+   * A share link's object and solid template (either may be undefined): chosen on the
+   * part open now, else kept for the next one opened (the link holds no mesh). The
+   * link's solid template wins over a project's, as it was when the link was made.
+   */
+  async want({ object, solidTemplate }) {
+    if (!this.info) {
+      this.wanted = { object, solidTemplate };
+      return;
+    }
+    if (object !== undefined && (object === '' || this.info.objects.includes(object)) && $('object').value !== object) {
+      $('object').value = object;
+      this.fresh = true;
+      await this.fromProject();
+    }
+    if (typeof solidTemplate === 'string') {
+      $('solid-template').value = solidTemplate;
+      this.checkSolid();
+    }
+    this.schedule(0);
   }
 
   /** What the part is sliced with now: the page's request, this panel's object and solid template. */
@@ -204,7 +228,14 @@ export class PartPanel {
       $('view3d').hidden = false;
       $('solid-row').hidden = false;
       this.listObjects(info);
+      const wanted = this.wanted;
+      this.wanted = null;
+      if (wanted?.object && info.objects.includes(wanted.object)) $('object').value = wanted.object;
       await this.fromProject();
+      if (typeof wanted?.solidTemplate === 'string') {
+        $('solid-template').value = wanted.solidTemplate;
+        this.checkSolid();
+      }
       $('shape').disabled = true;
       // The part's height over the layer height gives the count (onAnswer in main.js).
       $('layers').disabled = true;

@@ -3,6 +3,8 @@ const FIELDS = {
   t: 'text', target: 'target', dialect: 'dialect', layers: 'layers', lh: 'layerHeight',
   flh: 'firstLayerHeight', b: 'bottomShells', top: 'topShells', base: 'base', seed: 'seed',
   layer: 'layer', pattern: 'pattern', density: 'density', shape: 'shape',
+  // The part panel's: applied when the part (not in the link) is opened again.
+  solid: 'solidTemplate', object: 'object',
 };
 
 export function encodeState(state) {

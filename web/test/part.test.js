@@ -25,12 +25,12 @@ after(async () => {
   server?.close();
 });
 
-async function open() {
+async function open(hash = '') {
   const page = await browser.context.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(e.message));
   page.errors = errors;
-  await page.goto(base);
+  await page.goto(base + hash);
   await page.waitForFunction(() => window.rotlangPlayground?.analysis() && window.rotlangPlayground.idle());
   return page;
 }
@@ -221,8 +221,9 @@ function extents(scene) {
     .map((l) => [l.outline.min[0], l.outline.min[1], l.outline.max[0], l.outline.max[1]].map((v) => Number(v.toFixed(4))));
 }
 
-test('a 3MF project\'s object chosen: only its geometry drawn, with its own settings', async () => {
-  const page = await open();
+// A project of two boxes with their own settings: Low (its own template, pattern, density
+// and walls) and Tall (its own layer height and solid template).
+function plate() {
   const settings = JSON.stringify({
     layer_height: '0.2', initial_layer_print_height: '0.2', sparse_infill_density: '15%',
     sparse_infill_pattern: 'zig-zag', wall_loops: '2', bottom_shell_layers: '3', top_shell_layers: '4',
@@ -238,7 +239,12 @@ test('a 3MF project\'s object chosen: only its geometry drawn, with its own sett
       Tall: { layer_height: '0.25', initial_layer_print_height: '0.25', solid_infill_rotate_template: '90, 0' },
     }),
   });
-  await page.locator('#mesh').setInputFiles({ name: 'plate.3mf', mimeType: 'model/3mf', buffer: Buffer.from(project) });
+  return { name: 'plate.3mf', mimeType: 'model/3mf', buffer: Buffer.from(project) };
+}
+
+test('a 3MF project\'s object chosen: only its geometry drawn, with its own settings', async () => {
+  const page = await open();
+  await page.locator('#mesh').setInputFiles(plate());
   let p = await shown(page, 'plate.3mf');
   // All objects at first (what `rotlang preview plate.3mf` slices): both boxes, the
   // project's templates and settings in the editor, the form and the solid template.
@@ -288,6 +294,35 @@ test('a 3MF project\'s object chosen: only its geometry drawn, with its own sett
   assert.deepEqual(page.errors, []);
   await page.screenshot({ path: join(artifacts, 'part-object.png'), fullPage: true });
   await page.close();
+});
+
+test('a share link carries the part\'s object and solid template, chosen when the part is opened again', async () => {
+  const page = await open();
+  await page.locator('#mesh').setInputFiles(plate());
+  await shown(page, 'plate.3mf');
+  await page.selectOption('#object', 'Tall');
+  await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().object === 'Tall');
+  await page.fill('#solid-template', '+15');
+  await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().solidTemplate === '+15');
+  await page.click('#share');
+  const link = await page.inputValue('#share-link');
+  assert.match(link, /[#&]solid=%2B15(&|$)/);
+  assert.match(link, /[#&]object=Tall(&|$)/);
+  // A change to either makes the link stale.
+  await page.fill('#solid-template', '+16');
+  assert.ok(await page.isHidden('#share-link'));
+  await page.close();
+  // The link holds no mesh: the same project opened on the linked page gets them.
+  const again = await open(link.slice(link.indexOf('#')));
+  await again.locator('#mesh').setInputFiles(plate());
+  await again.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().object === 'Tall'
+    && window.rotlangPlayground.part().solidTemplate === '+15' && window.rotlangPlayground.part().summary?.layers === 20);
+  assert.equal(await again.inputValue('#object'), 'Tall');
+  assert.equal(await again.inputValue('#solid-template'), '+15');
+  // Tall's own settings, as choosing it by hand gives.
+  assert.equal(await again.inputValue('#layer-height'), '0.25');
+  assert.deepEqual(again.errors, []);
+  await again.close();
 });
 
 test('a solid template typed turns the solid layers; a bad one is shown with its span and the last good view stays', async () => {

@@ -135,12 +135,8 @@ pub fn run(
         // key), so that every layer of a tall part can be listed in one layer's memory.
         stream(args.out.as_deref(), out, |w| {
             w.text("{\"layers\":[");
-            let mut first = true;
             each(part, &mut doc, &range, stack, &mut stacked, &mut |layer| {
-                if !std::mem::take(&mut first) {
-                    w.text(",");
-                }
-                w.value(&json::layer(&layer));
+                w.item(&json::layer(&layer));
                 !w.closed()
             })?;
             // (No layer kept in it: a cheap copy.)
@@ -185,9 +181,9 @@ pub fn run(
             .map_err(|e| UsageError(format!("cannot write {}: {e}", path.display())))?;
     }
     let summary = *doc.summary();
-    let text = match args.format {
-        Format::Json => String::new(),
-        Format::Svg => {
+    // The picture (the JSON went out above, a layer at a time).
+    if !json {
+        {
             let labels: Vec<(String, String)> = shown
                 .iter()
                 .map(|l| {
@@ -222,11 +218,9 @@ pub fn run(
                 columns: args.columns,
                 ..PreviewOptions::default()
             };
-            preview::svg(&panels, settings.nozzle, &options)
+            let text = preview::svg(&panels, settings.nozzle, &options);
+            emit(&text, args.out.as_deref(), out)?;
         }
-    };
-    if !json {
-        emit(&text, args.out.as_deref(), out)?;
     }
     let _ = writeln!(
         err,

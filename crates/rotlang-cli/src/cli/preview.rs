@@ -375,11 +375,8 @@ fn json(
             Ok(None) => break,
             Err(e) => return Err(UsageError(e.to_string())),
         };
-        if index > range.start {
-            w.text(",");
-        }
         let l = &fill.layer;
-        w.value(&serde_json::json!({
+        w.item(&serde_json::json!({
             "index": l.index,
             "bottom": l.bottom,
             "top": l.top,

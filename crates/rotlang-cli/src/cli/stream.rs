@@ -17,9 +17,19 @@ use super::UsageError;
 pub(super) struct JsonOut<'a> {
     sink: BufWriter<&'a mut dyn Write>,
     failed: Option<io::Error>,
+    /// Array items written so far (each after the first goes after a comma).
+    items: usize,
 }
 
-impl JsonOut<'_> {
+impl<'a> JsonOut<'a> {
+    fn new(sink: &'a mut dyn Write) -> JsonOut<'a> {
+        JsonOut {
+            sink: BufWriter::new(sink),
+            failed: None,
+            items: 0,
+        }
+    }
+
     /// Writes some JSON text as it is.
     pub(super) fn text(&mut self, s: &str) {
         if self.failed.is_none()
@@ -27,6 +37,16 @@ impl JsonOut<'_> {
         {
             self.failed = Some(e);
         }
+    }
+
+    /// Writes a value as the next item of the array being written: a comma before each
+    /// but the first.
+    pub(super) fn item(&mut self, v: &serde_json::Value) {
+        if self.items > 0 {
+            self.text(",");
+        }
+        self.items += 1;
+        self.value(v);
     }
 
     /// Writes a value as `serde_json::to_string` spells it.
@@ -51,10 +71,7 @@ pub(super) fn stream(
     body: impl FnOnce(&mut JsonOut<'_>) -> Result<(), UsageError>,
 ) -> Result<(), UsageError> {
     let Some(path) = path else {
-        let mut w = JsonOut {
-            sink: BufWriter::new(out),
-            failed: None,
-        };
+        let mut w = JsonOut::new(out);
         body(&mut w)?;
         let flushed = match w.failed.take() {
             Some(e) => Err(e),
@@ -74,10 +91,7 @@ pub(super) fn stream(
     // Not a regular file (`/dev/null`, a pipe): written as it is, nothing to rename over.
     if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
         let mut file = File::create(path).map_err(cannot)?;
-        let mut w = JsonOut {
-            sink: BufWriter::new(&mut file),
-            failed: None,
-        };
+        let mut w = JsonOut::new(&mut file);
         body(&mut w)?;
         return match w.failed.take() {
             Some(e) => Err(e),
@@ -87,10 +101,7 @@ pub(super) fn stream(
     }
     let tmp = beside(path);
     let mut file = File::create(&tmp).map_err(cannot)?;
-    let mut w = JsonOut {
-        sink: BufWriter::new(&mut file),
-        failed: None,
-    };
+    let mut w = JsonOut::new(&mut file);
     let made = body(&mut w);
     let written = match w.failed.take() {
         Some(e) => Err(e),
@@ -134,8 +145,9 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
         assert!(!beside(&path).exists());
         stream(Some(&path), &mut Vec::new(), |w| {
-            w.text("[1,");
-            w.value(&serde_json::json!({"b": 2, "a": 1}));
+            w.text("[");
+            w.item(&serde_json::json!(1));
+            w.item(&serde_json::json!({"b": 2, "a": 1}));
             w.text("]");
             Ok(())
         })

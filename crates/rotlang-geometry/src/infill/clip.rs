@@ -6,6 +6,7 @@
 //! with holes, concave or not; the half-open rule on edge ends (an edge owns its lower
 //! end) counts a vertex on the line once.
 
+use super::offset::cross;
 use super::scratch;
 use crate::math;
 use geo::Coord;
@@ -578,10 +579,6 @@ pub(crate) fn ray_crosses(a: Coord, b: Coord, p: Coord) -> bool {
     a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x
 }
 
-fn cross(a: Coord, b: Coord) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
 fn strip(y: f64, min: f64, height: f64, n: usize) -> usize {
     (((y - min) / height).max(0.0) as usize).min(n - 1)
 }
@@ -590,26 +587,6 @@ fn strip(y: f64, min: f64, height: f64, n: usize) -> usize {
 mod tests {
     use super::*;
     use proptest::prelude::*;
-
-    /// `cut` without the box test: the crossing as the sign test and the division find it.
-    fn cut_unboxed(s: &Segment, a: Coord, b: Coord, cuts: &mut Vec<f64>) {
-        let (p, d1) = (s.p, s.d);
-        let (sa, sb) = (cross(d1, a - p), cross(d1, b - p));
-        if (sa > 0.0) == (sb > 0.0) && sa != 0.0 && sb != 0.0 {
-            return;
-        }
-        let d2 = b - a;
-        let den = d1.x * d2.y - d1.y * d2.x;
-        if den == 0.0 {
-            return;
-        }
-        let ap = a - p;
-        let t = (ap.x * d2.y - ap.y * d2.x) / den;
-        let u = (ap.x * d1.y - ap.y * d1.x) / den;
-        if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&u) {
-            cuts.push(s.k + t);
-        }
-    }
 
     fn coord() -> impl Strategy<Value = Coord> {
         // Whole numbers often, so that ends meet, lie on lines and share coordinates.
@@ -707,7 +684,7 @@ mod tests {
             let (mut boxed, mut plain, mut unboxed) = (Vec::new(), Vec::new(), Vec::new());
             segment.cut_boxed(edge, (lo, hi), &mut boxed);
             segment.cut(edge, &mut plain);
-            cut_unboxed(&segment, a, b, &mut unboxed);
+            segment.crossing(a, b, &mut unboxed);
             prop_assert_eq!(&boxed, &unboxed);
             prop_assert_eq!(&plain, &unboxed);
         }

@@ -17,6 +17,7 @@ use geo::{Buffer, Coord, MultiPolygon};
 
 use crate::infill::Region;
 use crate::infill::loops::Eroder;
+use crate::infill::travel::bounds;
 use crate::math;
 
 /// Loops at `(k + ½)·spacing` inside the inset outline (and around its holes), each
@@ -27,7 +28,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         y: math::sin(theta),
     };
     let outline = region.outline();
-    let mut pool = POOL.with(Cell::take).unwrap_or_default();
+    let mut pool = POOL.try_with(Cell::take).ok().flatten().unwrap_or_default();
     let mut eroder = Shrink::new(outline, pool.eroder.take());
     // Each loop offset from the inset itself, not from the previous loop: offsets of
     // offsets pile up the arcs at reflex corners.
@@ -103,7 +104,8 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
             scratch,
             last: last_loops,
         };
-        POOL.with(|p| p.set(Some(pool)));
+        // During the thread's teardown the pool may be gone: the buffers are freed.
+        let _ = POOL.try_with(|p| p.set(Some(pool)));
     }
 }
 
@@ -229,11 +231,6 @@ impl Segments {
     }
 }
 
-/// The bounds of some points.
-fn span(points: &[Coord]) -> (Coord, Coord) {
-    crate::infill::travel::bounds(points)
-}
-
 /// The segments gathered near a run of points, ring by ring: a ring's bounds are
 /// tested once per point, and a ring found near is not searched further.
 #[derive(Default)]
@@ -284,7 +281,7 @@ fn apart(loops: &[Vec<Coord>], gap: f64, scratch: &mut Scratch, out: &mut Vec<Ve
         out.push(only.clone());
         return;
     }
-    let all: Bounded = loops.iter().map(|l| (l.as_slice(), span(l))).collect();
+    let all: Bounded = loops.iter().map(|l| (l.as_slice(), bounds(l))).collect();
     let mut filed = false;
     for (j, ring) in loops.iter().enumerate() {
         let (lo, hi) = all[j].1;
@@ -302,7 +299,7 @@ fn apart(loops: &[Vec<Coord>], gap: f64, scratch: &mut Scratch, out: &mut Vec<Ve
         }
         scratch.flags.clear();
         for run in ring.chunks(RUN) {
-            let (lo, hi) = span(run);
+            let (lo, hi) = bounds(run);
             scratch.segments.gather(lo, hi, j, &mut scratch.near);
             scratch
                 .flags
@@ -408,9 +405,9 @@ fn uncovered(
     let covered: Bounded = covered
         .rings
         .iter()
-        .map(|r| (r.as_slice(), span(r)))
+        .map(|r| (r.as_slice(), bounds(r)))
         .collect();
-    let last: Bounded = last.iter().map(|r| (r.as_slice(), span(r))).collect();
+    let last: Bounded = last.iter().map(|r| (r.as_slice(), bounds(r))).collect();
     scratch.segments.build(&covered, gap);
     // Near two of one loop is never asked: with one loop none of its segments is filed.
     let two: Bounded = if last.len() > 1 {
@@ -441,7 +438,7 @@ fn uncovered(
             if steps < 4 {
                 continue;
             }
-            let (lo, hi) = span(w);
+            let (lo, hi) = bounds(w);
             scratch
                 .segments
                 .gather(lo, hi, usize::MAX, &mut scratch.near);
@@ -503,7 +500,7 @@ fn far(
     scratch: &mut Scratch,
 ) {
     for run in points.chunks(RUN) {
-        let (lo, hi) = span(run);
+        let (lo, hi) = bounds(run);
         scratch
             .segments
             .gather(lo, hi, usize::MAX, &mut scratch.near);

@@ -162,23 +162,9 @@ proptest! {
         let shape = super::tests::holed_radial(&outer, &holes, turn, 2.2);
         let region = super::Region::new(&shape, 0.4).unwrap();
         let rings = region.rings();
-        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
-        let edges: Vec<(Coord, Coord)> = rings
-            .iter()
-            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
-            .collect();
-        let (lo, hi) = super::travel::bounds(&vertices);
-        let point = |(i, t): (usize, f64), kind: u8| match kind {
-            0 => {
-                let (a, b) = edges[i % edges.len()];
-                a + (b - a) * t
-            }
-            1 => vertices[i % vertices.len()],
-            _ => Coord {
-                x: lo.x + (hi.x - lo.x) * t,
-                y: lo.y + (hi.y - lo.y) * (i as f64 / 1000.0),
-            },
-        };
+        let ends = super::tests::MoveEnds::new(rings);
+        let point = |at, kind| ends.point(at, kind);
+        let edges = &ends.edges;
         let told = super::travel::Router::new(rings);
         let projecting = super::travel::Router::new(rings).projecting_ends();
         let divided = super::travel::Router::new(rings).dividing_first();

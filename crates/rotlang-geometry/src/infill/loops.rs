@@ -12,6 +12,7 @@ use crate::math;
 use geo::{Coord, MultiPolygon};
 
 use super::offset::{cross, inside_left_cow};
+use super::travel::bounds;
 
 /// More raw segments than this go to the buffer (the crossing sweep could go quadratic).
 const MAX_SEGMENTS: usize = 20_000;
@@ -738,34 +739,6 @@ fn inside(pts: &[Coord], (lo, hi): (Coord, Coord), ring: &[Coord], turn: f64) ->
                 cross(b - a, p - a) * turn > 0.0
             })
         })
-}
-
-/// The bounds of some points.
-fn bounds(pts: &[Coord]) -> (Coord, Coord) {
-    pts.iter().fold(
-        (
-            Coord {
-                x: f64::INFINITY,
-                y: f64::INFINITY,
-            },
-            Coord {
-                x: f64::NEG_INFINITY,
-                y: f64::NEG_INFINITY,
-            },
-        ),
-        |(lo, hi), p| {
-            (
-                Coord {
-                    x: lo.x.min(p.x),
-                    y: lo.y.min(p.y),
-                },
-                Coord {
-                    x: hi.x.max(p.x),
-                    y: hi.y.max(p.y),
-                },
-            )
-        },
-    )
 }
 
 /// The crossing sweep's buffers: the edges as built, their sort keys, and in order.

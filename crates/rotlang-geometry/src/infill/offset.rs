@@ -640,6 +640,7 @@ pub(crate) fn next(i: usize, n: usize) -> usize {
     if i + 1 >= n { 0 } else { i + 1 }
 }
 
+#[inline]
 pub(crate) fn cross(a: Coord, b: Coord) -> f64 {
     a.x * b.y - a.y * b.x
 }

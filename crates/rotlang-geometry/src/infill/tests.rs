@@ -711,6 +711,48 @@ pub(super) fn radial_ring(radii: &[f64], turn: f64, centre: Coord, hole: bool) -
     ring
 }
 
+/// Where the travel proptests' moves start and end in a region's rings: on an edge, at a
+/// vertex, or anywhere in the rings' box.
+pub(super) struct MoveEnds {
+    pub(super) vertices: Vec<Coord>,
+    pub(super) edges: Vec<(Coord, Coord)>,
+    lo: Coord,
+    hi: Coord,
+}
+
+impl MoveEnds {
+    pub(super) fn new(rings: &[Vec<Coord>]) -> MoveEnds {
+        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
+        let edges = rings
+            .iter()
+            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
+            .collect();
+        let (lo, hi) = travel::bounds(&vertices);
+        MoveEnds {
+            vertices,
+            edges,
+            lo,
+            hi,
+        }
+    }
+
+    /// Kind 0: a point `t` along edge `i` (mod their number); 1: vertex `i`; else the
+    /// point of the box at `t` across and `i / 1000` up.
+    pub(super) fn point(&self, (i, t): (usize, f64), kind: u8) -> Coord {
+        match kind {
+            0 => {
+                let (a, b) = self.edges[i % self.edges.len()];
+                a + (b - a) * t
+            }
+            1 => self.vertices[i % self.vertices.len()],
+            _ => Coord {
+                x: self.lo.x + (self.hi.x - self.lo.x) * t,
+                y: self.lo.y + (self.hi.y - self.lo.y) * (i as f64 / 1000.0),
+            },
+        }
+    }
+}
+
 /// A radial outline of `outer` radii with a radial hole of each of `holes`' radii, the
 /// holes' centres `spread` mm out, a third of a turn apart (the proptests' holed regions).
 pub(super) fn holed_radial(
@@ -1342,11 +1384,8 @@ proptest! {
         };
         let region = Region::new(&shape, W).unwrap();
         let rings = region.rings();
-        let edges: Vec<(Coord, Coord)> = rings
-            .iter()
-            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
-            .collect();
-        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
+        let ends = MoveEnds::new(rings);
+        let (edges, vertices) = (&ends.edges, &ends.vertices);
         let fast = travel::Router::new(rings);
         let general = travel::Router::new(rings).general();
         for (i, s, t, j) in moves {
@@ -1494,24 +1533,8 @@ proptest! {
         let shape = holed_radial(&outer, &holes, turn, 2.2);
         let region = Region::new(&shape, W).unwrap();
         let rings = region.rings();
-        let vertices: Vec<Coord> = rings.iter().flatten().copied().collect();
-        let edges: Vec<(Coord, Coord)> = rings
-            .iter()
-            .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
-            .collect();
-        let (lo, hi) = travel::bounds(&vertices);
-        // A point on an edge, a vertex, or a point of the box.
-        let point = |(i, t): (usize, f64), kind: u8| match kind {
-            0 => {
-                let (a, b) = edges[i % edges.len()];
-                a + (b - a) * t
-            }
-            1 => vertices[i % vertices.len()],
-            _ => Coord {
-                x: lo.x + (hi.x - lo.x) * t,
-                y: lo.y + (hi.y - lo.y) * (i as f64 / 1000.0),
-            },
-        };
+        let ends = MoveEnds::new(rings);
+        let point = |at, kind| ends.point(at, kind);
         let chunked = travel::Router::new(rings);
         let plain = travel::Router::with_chunk(rings, usize::MAX).general();
         let general = travel::Router::new(rings).general();

@@ -119,6 +119,12 @@ export interface PartLayer {
   bridged: number;
   /** The section: polygons, each its outline then its holes. */
   section: Point[][][];
+  /**
+   * The wall loops, outermost first: each wall's middle line, the section moved in by
+   * (k + ½) line widths, as closed rings (first point repeated); a loop with no room in
+   * the section is absent.
+   */
+  walls: Point[][];
   /** The areas that are not empty: the sparse one, then the solid one. */
   areas: PartArea[];
   /** Every path of the layer (the areas' in turn). */

@@ -20,8 +20,9 @@ const PART_TIMEOUT_MS = 60_000;
 export const isMesh = (name) => /\.(stl|3mf|obj)$/i.test(name);
 
 /**
- * One layer of the part from above, as SVG, at the mesh's scale: its section, its solid
- * area (tinted) and the paths of its sparse and solid areas in their own colours.
+ * One layer of the part from above, as SVG, at the mesh's scale: its section, its wall
+ * loops (grey), its solid area (tinted) and the paths of its sparse and solid areas in
+ * their own colours.
  */
 export function layerSvg(info, layer, nozzle = 0.4, side = 320) {
   const [x0, y0] = info.min;
@@ -32,6 +33,8 @@ export function layerSvg(info, layer, nozzle = 0.4, side = 320) {
   // y up, as seen from above (SVG's y goes down).
   const pt = ([x, y]) => `${mm(x - x0 + pad)},${mm(y1 + pad - y)}`;
   const section = layer.section.flat().map((r) => `M${r.map(pt).join('L')}Z`).join('');
+  // Each wall loop's middle line (closed rings, outermost first), a line wide.
+  const walls = (layer.walls ?? []).map((r) => `M${r.map(pt).join('L')}`).join('');
   const paths = splitPaths(layer);
   const d = (lines) => lines.map((p) => `M${p.map(pt).join('L')}`).join('');
   const solidArea = (layer.areas ?? []).filter((a) => a.solid).flatMap((a) => a.region.flat())
@@ -44,6 +47,7 @@ export function layerSvg(info, layer, nozzle = 0.4, side = 320) {
   return `<svg class="part-layer" xmlns="http://www.w3.org/2000/svg" viewBox="0 0 ${mm(w)} ${mm(h)}" width="${side}" height="${Math.round((side * h) / w)}" role="img" aria-label="${esc(label)}">`
     + `<path class="section" d="${section}" stroke-width="${mm(nozzle / 2)}"/>`
     + `<path class="solid-area" d="${solidArea}"/>`
+    + `<path class="walls" d="${walls}" stroke-width="${mm(nozzle)}"/>`
     + `<path class="infill" d="${d(paths.sparse)}" stroke-width="${mm(nozzle)}"/>`
     + `<path class="solid" d="${d(paths.solid)}" stroke-width="${mm(nozzle)}"/></svg>`;
 }

@@ -95,6 +95,20 @@ test('a cube STL from the file button: 50 square layers stacked, the slider cutt
   assert.ok((await top.locator('path.solid').getAttribute('d')).length > 20);
   assert.ok((await top.locator('path.solid-area').getAttribute('d')).length > 10);
   assert.equal(await top.locator('path.infill').getAttribute('d'), '');
+  // Its two wall loops, a line wide, round the infill: the middle lines of the walls,
+  // 0.2 and 0.6 mm inside the section (the picture's coordinates are mm).
+  const extent = async (cls) => {
+    const d = await top.locator(`path.${cls}`).getAttribute('d');
+    const rings = d.split('M').filter(Boolean).map((r) => r.replace(/Z/g, '').split('L').map((p) => p.split(',').map(Number)));
+    const xs = rings.flat().map((p) => p[0]);
+    return { rings: rings.length, min: Math.min(...xs), max: Math.max(...xs), each: rings.map((r) => Math.max(...r.map((p) => p[0])) - Math.min(...r.map((p) => p[0]))) };
+  };
+  const [section, walls] = [await extent('section'), await extent('walls')];
+  assert.equal(walls.rings, 2, 'two wall loops');
+  near(walls.min, section.min + 0.2, 0.011, 'the outer wall\'s middle line');
+  near(walls.max, section.max - 0.2, 0.011, 'the outer wall\'s middle line');
+  walls.each.sort((a, b) => b - a).forEach((w, k) => near(w, 19.6 - 0.8 * k, 0.021, `wall ${k}'s width`));
+  assert.equal(await top.locator('path.walls').getAttribute('stroke-width'), '0.4');
   const colours = await top.evaluate((svg) => ['infill', 'solid']
     .map((c) => getComputedStyle(svg.querySelector(`path.${c}`)).stroke));
   assert.notEqual(colours[0], colours[1]);

@@ -638,6 +638,28 @@ fn preview_of_a_mesh_fills_its_sections() {
         );
         let solid = !(3..46).contains(&i);
         assert_eq!(l["density"].as_f64().unwrap() == 1.0, solid, "layer {i}");
+        // The two wall loops' middle lines, outermost first: the outline moved in and the
+        // hole out by 0.2 mm, then by 0.6 mm (the 64-gon's chords within 0.03 mm).
+        let walls = l["walls"].as_array().unwrap();
+        let radii: Vec<(f64, f64)> = walls
+            .iter()
+            .map(|ring| {
+                let ring = ring.as_array().unwrap();
+                assert_eq!(ring.first(), ring.last(), "layer {i}: closed");
+                ring.iter()
+                    .map(|p| p[0].as_f64().unwrap().hypot(p[1].as_f64().unwrap()))
+                    .fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| {
+                        (lo.min(r), hi.max(r))
+                    })
+            })
+            .collect();
+        for ((lo, hi), want) in radii.iter().zip([14.8, 5.2, 14.4, 5.6]) {
+            assert!(
+                (lo - want).abs() < 0.03 && (hi - want).abs() < 0.03,
+                "layer {i}: walls at {radii:?}"
+            );
+        }
+        assert_eq!(radii.len(), 4, "layer {i}");
         // Every point of the infill lies in the ring less two walls and half a nozzle.
         for line in l["polylines"].as_array().unwrap() {
             for p in line.as_array().unwrap() {
@@ -659,6 +681,33 @@ fn preview_of_a_mesh_fills_its_sections() {
     );
     assert!(a > 0.0 && b > 0.0 && a != b, "{a} {b}");
     assert!(summary["time_s"].as_f64().unwrap() > a / 100.0);
+    // The picture draws the walls in grey round the infill, with a legend for them: on
+    // the line through the tube's centre, the outer wall's middle (r 14.8) is grey.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rotlang"))
+        .args(["preview", "+45", "--shape"])
+        .arg(&stl)
+        .args(["--layers", "20..21"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let svg = String::from_utf8(out.stdout).unwrap();
+    assert!(svg.contains(">walls</text>"), "the legend names the walls");
+    let section = rotlang_geometry::slice::Slicer::new(&rotlang_geometry::mesh::shapes::tube(
+        15.0, 5.0, 10.0, 64,
+    ))
+    .section(4.1)
+    .region;
+    let options = rotlang_geometry::infill::preview::PreviewOptions::default();
+    let (scale, offset) = rotlang_geometry::infill::preview::transform(&section, 0, &options);
+    let picture = render(&svg, "mesh-walls");
+    let grey = hex("#b8b8b8");
+    for x in [-14.8, 14.8] {
+        let (px, py) = (x * scale + offset.x, offset.y);
+        assert!(found(&picture, px, py, 1, grey), "a wall at x {x}");
+    }
+    // Between the walls and the hole's walls, infill, not wall grey.
+    let (px, py) = (10.0 * scale + offset.x, offset.y);
+    assert!(!found(&picture, px, py, 1, grey), "no wall at x 10");
 }
 
 /// `preview --3d`: the part's layers stacked in an isometric SVG (or an HTML page holding

@@ -204,11 +204,14 @@ pub fn run(
                     )
                 })
                 .collect();
+            let walls: Vec<_> = shown.iter().map(PartLayer::wall_loops).collect();
             let panels: Vec<Panel<'_>> = shown
                 .iter()
                 .zip(&labels)
-                .map(|(l, (title, subtitle))| Panel {
+                .zip(&walls)
+                .map(|((l, (title, subtitle)), walls)| Panel {
                     region: &l.section.region,
+                    walls,
                     paths: &l.paths,
                     title: title.clone(),
                     subtitle: subtitle.clone(),

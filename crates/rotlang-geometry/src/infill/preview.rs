@@ -10,7 +10,7 @@ use crate::math;
 use std::fmt::Write;
 use std::ops::Range;
 
-use geo::{Coord, MultiPolygon};
+use geo::{Coord, LineString, MultiPolygon};
 
 use super::{Error, Region, Schedule, Settings, Toolpaths};
 use crate::eval::{self, Model};
@@ -42,10 +42,16 @@ impl Default for PreviewOptions {
 #[derive(Clone, Debug)]
 pub struct Panel<'a> {
     pub region: &'a MultiPolygon<f64>,
+    /// Wall loops to draw round the infill (a part's layer; none for a bare region),
+    /// closed rings at the line width, in grey.
+    pub walls: &'a [LineString<f64>],
     pub paths: &'a Toolpaths,
     pub title: String,
     pub subtitle: String,
 }
+
+/// The wall loops' grey: apart from the print order's hues and the travel's dashes.
+const WALL: &str = "#b8b8b8";
 
 /// The height of a panel's label area above its drawing (pixels).
 pub const LABEL_HEIGHT: f64 = 40.0;
@@ -131,7 +137,14 @@ pub fn colour(i: usize, n: usize) -> String {
 pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> String {
     let columns = options.columns.max(1);
     let rows = panels.len().div_ceil(columns).max(1);
+    let walled = panels.iter().any(|p| !p.walls.is_empty());
     let width = GAP + columns.min(panels.len().max(1)) as f64 * (options.panel + GAP);
+    // The legend's last entry (the walls', at 410–480 px) stays inside the picture.
+    let width = if walled {
+        width.max(GAP + 480.0)
+    } else {
+        width
+    };
     let height = GAP + rows as f64 * (options.panel + LABEL_HEIGHT + GAP) + LEGEND_HEIGHT;
     let mut s = String::new();
     let _ = write!(
@@ -171,6 +184,17 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
         );
         let n = panel.paths.polylines.len();
         let stroke = (nozzle * scale).max(1.0);
+        if !panel.walls.is_empty() {
+            let mut walls = String::new();
+            for ring in panel.walls {
+                path_data(&mut walls, ring.0.iter().map(|&c| px(c)), 2);
+            }
+            let _ = write!(
+                s,
+                r##"<path class="walls" d="{walls}" fill="none" stroke="{WALL}" stroke-width="{}" stroke-linejoin="round"/>"##,
+                num(stroke, 2)
+            );
+        }
         if options.travel {
             let mut travel = String::new();
             for route in &panel.paths.travels {
@@ -216,6 +240,17 @@ pub fn svg(panels: &[Panel<'_>], nozzle: f64, options: &PreviewOptions) -> Strin
         tx = num(GAP + 68.0, 2),
         ty = num(y + 8.0, 2)
     );
+    if walled {
+        let _ = write!(
+            s,
+            r##"<path d="M{x1} {ym}L{x2} {ym}" fill="none" stroke="{WALL}" stroke-width="4"/><text x="{tx}" y="{ty}" fill="#444">walls</text>"##,
+            x1 = num(GAP + 410.0, 2),
+            x2 = num(GAP + 440.0, 2),
+            ym = num(y + 4.0, 2),
+            tx = num(GAP + 446.0, 2),
+            ty = num(y + 8.0, 2)
+        );
+    }
     if options.travel {
         let _ = write!(
             s,
@@ -299,6 +334,7 @@ pub fn render(
         .iter()
         .map(|(paths, title, subtitle)| Panel {
             region,
+            walls: &[],
             paths,
             title: title.clone(),
             subtitle: subtitle.clone(),

@@ -23,7 +23,7 @@
 //! assert_eq!(json["layers"][0]["printed"], "solid");
 //! ```
 
-use geo::{Area, MultiPolygon};
+use geo::{Area, LineString, MultiPolygon};
 use serde_json::{Value, json};
 
 use super::{FilledArea, PartLayer, Summary};
@@ -99,8 +99,9 @@ impl<'a> Document<'a> {
         self.summary
             .add(l, self.about.speed, self.about.travel_speed);
         if shown {
-            self.points += points(l);
-            self.layers.push(layer(l));
+            let walls = l.wall_loops();
+            self.points += points(l) + walls.iter().map(|r| r.0.len()).sum::<usize>();
+            self.layers.push(layer_with(l, &walls));
         }
     }
 
@@ -151,6 +152,11 @@ impl<'a> Document<'a> {
 
 /// One layer's JSON (an element of the document's `layers`).
 pub fn layer(l: &PartLayer) -> Value {
+    layer_with(l, &l.wall_loops())
+}
+
+/// One layer's JSON with its wall loops (`walls`: closed rings, outermost first).
+fn layer_with(l: &PartLayer, walls: &[LineString<f64>]) -> Value {
     // The areas that are not empty: the sparse one, then the solid one.
     let areas: Vec<Value> = [&l.sparse, &l.solid]
         .into_iter()
@@ -173,6 +179,10 @@ pub fn layer(l: &PartLayer) -> Value {
         "open": l.section.open,
         "bridged": l.section.bridged,
         "section": rings(&l.section.region),
+        "walls": walls
+            .iter()
+            .map(|r| r.0.iter().map(|c| [c.x, c.y]).collect::<Vec<_>>())
+            .collect::<Vec<_>>(),
         "areas": areas,
         "polylines": polylines(&l.paths),
     })

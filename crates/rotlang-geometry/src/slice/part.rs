@@ -65,6 +65,8 @@ pub struct PartLayer {
     pub section: Section,
     /// The section less its walls: what the infill fills.
     pub infill_area: MultiPolygon<f64>,
+    /// How many wall loops go round the infill area (see [`PartLayer::wall_loops`]).
+    pub walls: u32,
     /// The sparse part of the infill area.
     pub sparse: FilledArea,
     /// The solid part: top and bottom surfaces, or the whole area on a solid layer.
@@ -83,6 +85,28 @@ impl PartLayer {
         } else {
             &self.sparse.params
         }
+    }
+
+    /// The wall loops, outermost first: the middle line of each wall, the section moved in
+    /// by `(k + ½)` line widths for the `k`-th loop, each ring closed. Computed when asked
+    /// (a preview draws a few layers; a summary needs none), from the same section and
+    /// line width the infill area was inset from, so the infill starts where the last
+    /// loop's line ends. A loop too narrow for the section is absent, as in a slicer.
+    pub fn wall_loops(&self) -> Vec<LineString<f64>> {
+        let w = self.sparse.params.nozzle;
+        (0..self.walls)
+            .flat_map(|k| {
+                let inset = infill::inset(&self.section.region, (k as f64 + 0.5) * w);
+                inset
+                    .0
+                    .into_iter()
+                    .flat_map(|p| {
+                        let (exterior, interiors) = p.into_inner();
+                        std::iter::once(exterior).chain(interiors)
+                    })
+                    .collect::<Vec<_>>()
+            })
+            .collect()
     }
 
     /// Whether the layer is solid throughout (no sparse area, some solid one).
@@ -352,6 +376,7 @@ impl Iterator for Part<'_> {
             solid_angle,
             section,
             infill_area,
+            walls: self.options.walls,
             sparse,
             solid,
             paths,

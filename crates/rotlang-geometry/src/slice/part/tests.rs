@@ -199,3 +199,60 @@ fn solid_signs_make_whole_layers_solid_and_slopes_no_slivers() {
 fn layers_of(mesh: &Mesh) -> Vec<PartLayer> {
     layers(mesh, "+15", None)
 }
+
+/// The wall loops are each wall's middle line: a cube's two loops are squares 0.2 and
+/// 0.6 mm inside its section, closed, and the infill area starts where the inner one's
+/// line ends; a cylinder with a hole gets a loop round the hole as well.
+#[test]
+fn wall_loops_are_the_walls_middle_lines() {
+    let cube = shapes::cuboid([20.0, 20.0, 2.0]);
+    for l in layers(&cube, "+45", None) {
+        let loops = l.wall_loops();
+        assert_eq!(loops.len(), 2, "layer {}", l.layer.index);
+        for (k, ring) in loops.iter().enumerate() {
+            assert_eq!(ring.0.first(), ring.0.last(), "closed");
+            let r = ring.bounding_rect().unwrap();
+            let inside = 0.2 + 0.4 * k as f64;
+            for (got, want) in [
+                (r.min().x, inside),
+                (r.min().y, inside),
+                (r.max().x, 20.0 - inside),
+                (r.max().y, 20.0 - inside),
+            ] {
+                assert!((got - want).abs() < 1e-9, "loop {k}: {got} vs {want}");
+            }
+        }
+        // Half a line inside the inner loop: the infill area's edge.
+        let area = l.infill_area.bounding_rect().unwrap();
+        let inner = loops[1].bounding_rect().unwrap();
+        assert!((area.min().x - inner.min().x - 0.2).abs() < 1e-9);
+    }
+    // No walls asked, none drawn.
+    let sparse = template("+45", crate::Target::Sparse);
+    let model = model_for(&cube, 0.2, None).unwrap();
+    let options = PartOptions {
+        walls: 0,
+        ..PartOptions::default()
+    };
+    let mut part = Part::new(
+        &cube,
+        &sparse,
+        &model,
+        eval::Options::default(),
+        Settings::default(),
+        options,
+    );
+    assert!(part.next().unwrap().unwrap().wall_loops().is_empty());
+    // A ring of outer radius 8 and hole radius 3: each wall has an outline loop and a
+    // loop round the hole, outermost first.
+    let tube = shapes::tube(8.0, 3.0, 4.0, 96);
+    let l = &layers(&tube, "+45", None)[5];
+    let loops = l.wall_loops();
+    assert_eq!(loops.len(), 4);
+    let width = |r: &LineString<f64>| {
+        let b = r.bounding_rect().unwrap();
+        b.max().x - b.min().x
+    };
+    assert!(width(&loops[0]) > width(&loops[2]) && width(&loops[0]) > 15.0);
+    assert!(width(&loops[1]) < 7.0 && width(&loops[1]) < width(&loops[3]));
+}

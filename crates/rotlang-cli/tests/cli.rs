@@ -1903,6 +1903,27 @@ fn preview_of_a_project_takes_each_objects_settings() {
     assert_eq!(top["printed"], "solid");
     assert_eq!(top["areas"][0]["angle"], 30.0 * 30.0);
     assert_eq!(top["areas"][0]["pattern"], "concentric");
+    // --no-solid-template: the same layer's solid area turned by the sparse template
+    // (+45 a layer), and stderr says the project's solid template was left out.
+    let (v, stderr) = preview_json(
+        &dir.0,
+        &[
+            "project.3mf",
+            "--object",
+            "Box",
+            "--no-solid-template",
+            "--layers",
+            "29",
+        ],
+    );
+    let top = &v["layers"][0];
+    assert_eq!(top["printed"], "solid");
+    assert_eq!(top["areas"][0]["angle"], 45.0 * 30.0);
+    assert_eq!(v["solid_template"], serde_json::Value::Null);
+    assert!(
+        stderr.contains("solid_infill_rotate_template `+30` not used (--no-solid-template)"),
+        "{stderr}"
+    );
     // The tube: the project's template, density and walls; its own pattern, layers, shells.
     let (v, _) = preview_json(
         &dir.0,

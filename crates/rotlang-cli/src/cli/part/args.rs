@@ -18,6 +18,14 @@ pub struct PartArgs {
         help_heading = "Part (a mesh as --shape)"
     )]
     pub solid_template: Option<String>,
+    /// For a mesh: turn the solid areas with the template, even where a project or
+    /// --profile sets a solid template (to compare the two on the same part).
+    #[arg(
+        long,
+        conflicts_with = "solid_template",
+        help_heading = "Part (a mesh as --shape)"
+    )]
+    pub no_solid_template: bool,
     /// For a mesh: the infill print speed in mm/s, for the summary's time.
     #[arg(
         long,

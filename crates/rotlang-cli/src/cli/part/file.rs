@@ -100,7 +100,7 @@ pub(super) fn plan(
             text: t.clone(),
             path: None,
         }),
-        (None, Some(f), Some(p)) => {
+        (None, Some(f), Some(p)) if !args.part.no_solid_template => {
             let found = from_file(f, p, Target::Solid, object);
             found.path.is_some().then_some(found)
         }
@@ -200,6 +200,16 @@ pub(super) fn plan(
         };
         let solid_text = match (&args.part.solid_template, &solid) {
             (None, Some((i, _))) => format!("{} `{}`, ", label(Target::Solid), i.text),
+            (None, None)
+                if args.part.no_solid_template
+                    && from_file(f, p, Target::Solid, object).path.is_some() =>
+            {
+                format!(
+                    "{} `{}` not used (--no-solid-template), ",
+                    label(Target::Solid),
+                    from_file(f, p, Target::Solid, object).text
+                )
+            }
             _ => String::new(),
         };
         used.insert(

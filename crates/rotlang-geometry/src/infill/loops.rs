@@ -12,7 +12,6 @@ use crate::math;
 use geo::{Coord, MultiPolygon};
 
 use super::offset::{cross, inside_left_cow};
-use super::travel::bounds;
 
 /// More raw segments than this go to the buffer (the crossing sweep could go quadratic).
 const MAX_SEGMENTS: usize = 20_000;
@@ -54,7 +53,7 @@ pub(crate) struct Eroder {
     sweep: Sweep,
     here: Vec<(usize, usize, f64, usize)>,
     cuts: Vec<Cut>,
-    turns: Vec<f64>,
+    turns: Vec<(f64, (Coord, Coord))>,
     /// Reused by the chaining: the piece leaving each cut, and the pieces used.
     chained: (Vec<usize>, Vec<bool>),
     /// Reused: the kept pieces, their points one after another.
@@ -678,26 +677,26 @@ impl Boundary {
 
 /// Whether the raw rings are each strictly convex and simple, and each pair apart (bounds
 /// that do not meet) or one strictly inside the other: then nothing crosses or touches,
-/// and the sweep would find no cut.
-fn apart(raws: &[Raw], turns: &mut Vec<f64>) -> bool {
+/// and the sweep would find no cut. `turns` is reused: each ring's turn and bounds.
+fn apart(raws: &[Raw], turns: &mut Vec<(f64, (Coord, Coord))>) -> bool {
     turns.clear();
     for r in raws {
         // Most rings that fail fail here, at their first reflex turn.
-        let turn = convex(&r.pts);
+        let (turn, bounds) = convex_bounded(&r.pts);
         if turn == 0.0 {
             return false;
         }
-        turns.push(turn);
+        turns.push((turn, bounds));
     }
-    let bounds: Vec<(Coord, Coord)> = raws.iter().map(|r| bounds(&r.pts)).collect();
     for i in 0..raws.len() {
         for j in i + 1..raws.len() {
-            let ((a, b), (c, e)) = (bounds[i], bounds[j]);
+            let ((ti, bi), (tj, bj)) = (turns[i], turns[j]);
+            let ((a, b), (c, e)) = (bi, bj);
             if b.x < c.x || e.x < a.x || b.y < c.y || e.y < a.y {
                 continue;
             }
-            if !inside(&raws[j].pts, bounds[j], &raws[i].pts, turns[i])
-                && !inside(&raws[i].pts, bounds[i], &raws[j].pts, turns[j])
+            if !inside(&raws[j].pts, bj, &raws[i].pts, ti)
+                && !inside(&raws[i].pts, bi, &raws[j].pts, tj)
             {
                 return false;
             }
@@ -739,41 +738,74 @@ fn star_shaped(pts: &[Coord]) -> bool {
 /// `1.0` for a strictly convex simple counter-clockwise ring, `-1.0` clockwise, `0.0`
 /// otherwise: every turn strictly the same way, and the edges' direction passing east
 /// once (turns each under a half turn: it goes round once).
+#[cfg(test)]
 fn convex(pts: &[Coord]) -> f64 {
+    convex_bounded(pts).0
+}
+
+/// [`convex`]'s turn, and where it is not 0 the ring's bounds (as `travel::bounds`, found
+/// in the same pass).
+fn convex_bounded(pts: &[Coord]) -> (f64, (Coord, Coord)) {
+    let zero = Coord { x: 0.0, y: 0.0 };
     let n = pts.len();
     if n < 3 {
-        return 0.0;
+        return (0.0, (zero, zero));
     }
-    let edge = |i: usize| {
-        let j = if i + 1 == n { 0 } else { i + 1 };
-        pts[j] - pts[i]
-    };
-    let first = cross(edge(n - 1), edge(0));
-    let sign = if first > 0.0 {
-        1.0
+    let first = cross(pts[0] - pts[n - 1], pts[1] - pts[0]);
+    let bounds = if first > 0.0 {
+        turning::<true>(pts)
     } else if first < 0.0 {
-        -1.0
+        turning::<false>(pts)
     } else {
-        return 0.0;
+        None
     };
+    match bounds {
+        Some(b) => (if first > 0.0 { 1.0 } else { -1.0 }, b),
+        None => (0.0, (zero, zero)),
+    }
+}
+
+/// The bounds of a ring turning strictly counter-clockwise (`CCW`; else clockwise) at
+/// every corner and going round once; `None` otherwise. One pass over the points, each
+/// edge once (`convex` worked out each edge twice and the bounds in a pass of their own).
+fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
+    let n = pts.len();
+    let (mut lo, mut hi) = (pts[0], pts[0]);
+    let mut prev = pts[0] - pts[n - 1];
+    let mut a = pts[0];
     let mut east = 0;
-    let mut prev = edge(n - 1);
-    for i in 0..n {
-        let e = edge(i);
-        if cross(prev, e) * sign <= 0.0 {
-            return 0.0;
+    for k in 1..=n {
+        let b = if k == n { pts[0] } else { pts[k] };
+        let e = b - a;
+        let t = cross(prev, e);
+        // (`t·sign <= 0` as before: NaN passes.)
+        if if CCW { t <= 0.0 } else { t >= 0.0 } {
+            return None;
         }
-        let passes = if sign > 0.0 {
+        let passes = if CCW {
             prev.y < 0.0 && e.y >= 0.0
         } else {
             prev.y > 0.0 && e.y <= 0.0
         };
-        if passes {
-            east += 1;
+        east += usize::from(passes);
+        // The same extremes as `f64::min`/`max` over finite points (a zero's sign aside,
+        // which no test of the bounds tells apart).
+        if b.x < lo.x {
+            lo.x = b.x;
+        }
+        if b.x > hi.x {
+            hi.x = b.x;
+        }
+        if b.y < lo.y {
+            lo.y = b.y;
+        }
+        if b.y > hi.y {
+            hi.y = b.y;
         }
         prev = e;
+        a = b;
     }
-    if east == 1 { sign } else { 0.0 }
+    (east == 1).then_some((lo, hi))
 }
 
 /// Whether every point of `pts` (within the bounds `lo..hi`) is strictly inside the

@@ -101,6 +101,79 @@ proptest! {
     }
 }
 
+/// `convex` as it was: each edge worked out from its ends at every use.
+fn convex_as_before(pts: &[Coord]) -> f64 {
+    let n = pts.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let edge = |i: usize| {
+        let j = if i + 1 == n { 0 } else { i + 1 };
+        pts[j] - pts[i]
+    };
+    let first = cross(edge(n - 1), edge(0));
+    let sign = if first > 0.0 {
+        1.0
+    } else if first < 0.0 {
+        -1.0
+    } else {
+        return 0.0;
+    };
+    let mut east = 0;
+    let mut prev = edge(n - 1);
+    for i in 0..n {
+        let e = edge(i);
+        if cross(prev, e) * sign <= 0.0 {
+            return 0.0;
+        }
+        let passes = if sign > 0.0 {
+            prev.y < 0.0 && e.y >= 0.0
+        } else {
+            prev.y > 0.0 && e.y <= 0.0
+        };
+        if passes {
+            east += 1;
+        }
+        prev = e;
+    }
+    if east == 1 { sign } else { 0.0 }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// One pass for the turn and the bounds: the same turn as before and the same bounds
+    /// as `travel::bounds`, on rings convex or nearly (radii jittered), either way round,
+    /// some wound twice, some with a repeated or collinear point.
+    #[test]
+    fn convex_bounded_is_convex_and_bounds(
+        radii in proptest::collection::vec(0.9f64..1.0, 3..24),
+        at in (-50.0f64..50.0, -50.0f64..50.0),
+        clockwise in proptest::bool::ANY,
+        twice in proptest::bool::ANY,
+        repeat in proptest::option::of(0usize..24),
+    ) {
+        let n = radii.len();
+        let mut pts: Vec<Coord> = (0..n * if twice { 2 } else { 1 })
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                let a = if clockwise { -a } else { a };
+                let r = 10.0 * radii[i % n];
+                Coord { x: at.0 + r * math::cos(a), y: at.1 + r * math::sin(a) }
+            })
+            .collect();
+        if let Some(k) = repeat {
+            let k = k % pts.len();
+            pts.insert(k, pts[k]);
+        }
+        let (turn, (lo, hi)) = convex_bounded(&pts);
+        prop_assert_eq!(turn, convex_as_before(&pts));
+        if turn != 0.0 {
+            prop_assert_eq!((lo, hi), crate::infill::travel::bounds(&pts));
+        }
+    }
+}
+
 /// The runs cover every edge once, each run's edges one ring's, end to start.
 #[test]
 fn runs_cover_each_ring_end_to_start() {
@@ -126,4 +199,31 @@ fn runs_cover_each_ring_end_to_start() {
     assert_eq!(b.runs.len(), 1 + 8);
     let star = Eroder::new(&crate::infill::shapes::star(10.0, 4.5), 0.5);
     assert_eq!(star.boundary.runs.len(), 1);
+}
+
+/// For profiling only (`LOOPS_PROF=holed|star`): one eroder's loops again and again.
+#[test]
+#[ignore]
+fn profile_rings() {
+    let which = std::env::var("LOOPS_PROF").unwrap_or_default();
+    let (region, ds): (_, &[f64]) = if which == "star" {
+        (
+            crate::infill::shapes::star(10.0, 4.5),
+            &[0.7, 1.7, 1.2, 2.7, 2.2, 3.7, 3.2, 4.7],
+        )
+    } else {
+        (
+            crate::infill::shapes::holed_square(40.0, 10.0),
+            &[1.2, 3.2, 5.2, 4.2, 7.2, 6.2],
+        )
+    };
+    let mut eroder = Eroder::new(&region, 0.5);
+    let mut total = 0;
+    for _ in 0..200 {
+        eroder.reset(&region, 0.5);
+        for &d in ds {
+            total += eroder.rings(d).map_or(0, |r| r.len());
+        }
+    }
+    assert!(total > 0);
 }

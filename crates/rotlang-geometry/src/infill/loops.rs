@@ -111,8 +111,8 @@ impl Eroder {
         boundary.runs.clear();
         self.safes.clear();
         self.directions.clear();
-        // The sweep's order from another region means nothing (any order would do).
-        self.sweep.order.clear();
+        // The sweep's order is kept: the next layer's region is most often the same or
+        // close (any permutation of as many edges would do; another size starts afresh).
         self.sized = false;
         let mut used = 0;
         for polygon in &region.0 {
@@ -770,17 +770,28 @@ fn convex_bounded(pts: &[Coord]) -> (f64, (Coord, Coord)) {
 /// edge once (`convex` worked out each edge twice and the bounds in a pass of their own).
 fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
     let n = pts.len();
-    let (mut lo, mut hi) = (pts[0], pts[0]);
+    // Every point is some step's `b` (the first at the last step).
+    let (mut lo, mut hi) = (
+        Coord {
+            x: f64::INFINITY,
+            y: f64::INFINITY,
+        },
+        Coord {
+            x: f64::NEG_INFINITY,
+            y: f64::NEG_INFINITY,
+        },
+    );
     let mut prev = pts[0] - pts[n - 1];
     let mut a = pts[0];
     let mut east = 0;
-    for k in 1..=n {
-        let b = if k == n { pts[0] } else { pts[k] };
+    // Each point after the first, then the first again (a slice's iterator and one more
+    // step: an inclusive range with a test per point cost a third more).
+    let mut step = |b: Coord| {
         let e = b - a;
         let t = cross(prev, e);
         // (`t·sign <= 0` as before: NaN passes.)
         if if CCW { t <= 0.0 } else { t >= 0.0 } {
-            return None;
+            return false;
         }
         let passes = if CCW {
             prev.y < 0.0 && e.y >= 0.0
@@ -788,7 +799,7 @@ fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
             prev.y > 0.0 && e.y <= 0.0
         };
         east += usize::from(passes);
-        // The same extremes as `f64::min`/`max` over finite points (a zero's sign aside,
+        // The same extremes as `f64::min`/`max` (a NaN passed over; a zero's sign aside,
         // which no test of the bounds tells apart).
         if b.x < lo.x {
             lo.x = b.x;
@@ -804,6 +815,15 @@ fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
         }
         prev = e;
         a = b;
+        true
+    };
+    for &b in &pts[1..] {
+        if !step(b) {
+            return None;
+        }
+    }
+    if !step(pts[0]) {
+        return None;
     }
     (east == 1).then_some((lo, hi))
 }
@@ -860,8 +880,8 @@ struct Edge {
     next: u32,
 }
 
-/// A raw segment's bounds, in the sweep's order: what its inner loop reads for every
-/// pair (the segment's ends only where two boxes meet).
+/// A raw segment's bounds and place, in the sweep's order: what its inner loop reads for
+/// every pair (the segment's ends only where two boxes meet and they are not neighbours).
 #[derive(Clone, Copy)]
 struct Bounds {
     xlo: f64,
@@ -870,6 +890,23 @@ struct Bounds {
     yhi: f64,
     /// The segment in `Sweep::edges`.
     at: u32,
+    ring: u32,
+    seg: u32,
+    next: u32,
+}
+
+/// A segment's bounds: for finite ends by comparisons (the same as `f64::min`/`max`
+/// as far as comparisons tell, of two equal zeros either; `min` and `max` cost the
+/// sweep's bounds twice as much), else by `min` and `max` (a NaN gives way).
+#[inline]
+fn extent(a: f64, b: f64, finite: bool) -> (f64, f64) {
+    if !finite {
+        (a.min(b), a.max(b))
+    } else if b < a {
+        (b, a)
+    } else {
+        (a, b)
+    }
 }
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`
@@ -887,11 +924,14 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
     if !reuse {
         order.clear();
     }
+    let mut finite = true;
     for (r, raw) in raws.iter().enumerate() {
         let n = raw.pts.len();
         for i in 0..n {
             let next = if i + 1 == n { 0 } else { i + 1 };
             let (a, b) = (raw.pts[i], raw.pts[next]);
+            // (0 for a finite coordinate, NaN for any other: one test for both.)
+            finite &= (a.x - a.y) * 0.0 == 0.0;
             if !reuse {
                 order.push((sort_key(a.x.min(b.x)), edges.len() as u32));
             }
@@ -927,16 +967,22 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
         }
     }
     sorted.clear();
-    sorted.extend(order.iter().map(|&(_, i)| {
-        let e = &edges[i as usize];
-        Bounds {
-            xlo: e.a.x.min(e.b.x),
-            xhi: e.a.x.max(e.b.x),
-            ylo: e.a.y.min(e.b.y),
-            yhi: e.a.y.max(e.b.y),
+    // (A loop, not `extend` over a mapped iterator: that was a call costing a sixth of
+    // the sweep.)
+    for &(_, i) in order.iter() {
+        let e = edges[i as usize];
+        let ((xlo, xhi), (ylo, yhi)) = (extent(e.a.x, e.b.x, finite), extent(e.a.y, e.b.y, finite));
+        sorted.push(Bounds {
+            xlo,
+            xhi,
+            ylo,
+            yhi,
             at: i,
-        }
-    }));
+            ring: e.ring,
+            seg: e.seg,
+            next: e.next,
+        });
+    }
     let boxes = &*sorted;
     for (i, eb) in boxes.iter().enumerate() {
         let (xhi, ylo, yhi) = (eb.xhi, eb.ylo, eb.yhi);
@@ -947,10 +993,10 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
             if fb.yhi < ylo || fb.ylo > yhi {
                 continue;
             }
-            let (e, f) = (&edges[eb.at as usize], &edges[fb.at as usize]);
-            if e.ring == f.ring && (e.next == f.seg || f.next == e.seg || e.seg == f.seg) {
+            if eb.ring == fb.ring && (eb.next == fb.seg || fb.next == eb.seg || eb.seg == fb.seg) {
                 continue;
             }
+            let (e, f) = (&edges[eb.at as usize], &edges[fb.at as usize]);
             let (p, r) = (e.b - e.a, f.b - f.a);
             let d1 = cross(p, f.a - e.a);
             let d2 = cross(p, f.b - e.a);

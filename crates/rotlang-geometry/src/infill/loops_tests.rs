@@ -152,6 +152,7 @@ proptest! {
         clockwise in proptest::bool::ANY,
         twice in proptest::bool::ANY,
         repeat in proptest::option::of(0usize..24),
+        nan in proptest::option::of(0usize..24),
     ) {
         let n = radii.len();
         let mut pts: Vec<Coord> = (0..n * if twice { 2 } else { 1 })
@@ -165,6 +166,11 @@ proptest! {
         if let Some(k) = repeat {
             let k = k % pts.len();
             pts.insert(k, pts[k]);
+        }
+        // A NaN where a distance overflowed: passed over by the bounds, as by `min`.
+        if let Some(k) = nan {
+            let k = k % pts.len();
+            pts[k].x = f64::NAN;
         }
         let (turn, (lo, hi)) = convex_bounded(&pts);
         prop_assert_eq!(turn, convex_as_before(&pts));

@@ -910,7 +910,9 @@ fn extent(a: f64, b: f64, finite: bool) -> (f64, f64) {
 }
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`
-/// where two touch without crossing.
+/// where two touch without crossing. (Not inlined: inlined into `rings` it cost a holed
+/// square's layer 2k instructions more.)
+#[inline(never)]
 fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
     let Sweep {
         edges,

@@ -206,30 +206,3 @@ fn runs_cover_each_ring_end_to_start() {
     let star = Eroder::new(&crate::infill::shapes::star(10.0, 4.5), 0.5);
     assert_eq!(star.boundary.runs.len(), 1);
 }
-
-/// For profiling only (`LOOPS_PROF=holed|star`): one eroder's loops again and again.
-#[test]
-#[ignore]
-fn profile_rings() {
-    let which = std::env::var("LOOPS_PROF").unwrap_or_default();
-    let (region, ds): (_, &[f64]) = if which == "star" {
-        (
-            crate::infill::shapes::star(10.0, 4.5),
-            &[0.7, 1.7, 1.2, 2.7, 2.2, 3.7, 3.2, 4.7],
-        )
-    } else {
-        (
-            crate::infill::shapes::holed_square(40.0, 10.0),
-            &[1.2, 3.2, 5.2, 4.2, 7.2, 6.2],
-        )
-    };
-    let mut eroder = Eroder::new(&region, 0.5);
-    let mut total = 0;
-    for _ in 0..200 {
-        eroder.reset(&region, 0.5);
-        for &d in ds {
-            total += eroder.rings(d).map_or(0, |r| r.len());
-        }
-    }
-    assert!(total > 0);
-}

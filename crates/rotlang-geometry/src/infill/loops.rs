@@ -12,7 +12,6 @@ use crate::math;
 use geo::{Coord, MultiPolygon};
 
 use super::offset::{cross, inside_left_cow};
-use super::travel::bounds;
 
 /// More raw segments than this go to the buffer (the crossing sweep could go quadratic).
 const MAX_SEGMENTS: usize = 20_000;
@@ -36,9 +35,9 @@ pub(crate) fn eroded_rings(
 /// next. Every raw point is computed from the same numbers as before, so the rings are the
 /// same to the bit as a fresh `eroded_rings`.
 pub(crate) struct Eroder {
-    /// Every edge of the region as given with its bounds, for the test that a piece is
-    /// `d` away (the bounds do not depend on `d`: worked out once).
-    boundary: Vec<Side>,
+    /// Every edge of the region as given with its bounds, in runs with theirs, for the
+    /// test that a piece is `d` away (the bounds do not depend on `d`: worked out once).
+    boundary: Boundary,
     /// Each ring's corners (rings that cannot be oriented are left out, as before).
     corners: Vec<Vec<Corner>>,
     /// Each ring's distance below which no segment of its raw offset runs backwards.
@@ -54,7 +53,7 @@ pub(crate) struct Eroder {
     sweep: Sweep,
     here: Vec<(usize, usize, f64, usize)>,
     cuts: Vec<Cut>,
-    turns: Vec<f64>,
+    turns: Vec<(f64, (Coord, Coord))>,
     /// Reused by the chaining: the piece leaving each cut, and the pieces used.
     chained: (Vec<usize>, Vec<bool>),
     /// Reused: the kept pieces, their points one after another.
@@ -84,7 +83,7 @@ enum Corner {
 impl Eroder {
     pub(crate) fn new(region: &MultiPolygon<f64>, arc: f64) -> Eroder {
         let mut eroder = Eroder {
-            boundary: Vec::new(),
+            boundary: Boundary::default(),
             corners: Vec::new(),
             safes: Vec::new(),
             units: Vec::new(),
@@ -108,11 +107,12 @@ impl Eroder {
     /// afresh for each layer allocated some twenty vectors and grew them by doubling.
     pub(crate) fn reset(&mut self, region: &MultiPolygon<f64>, arc: f64) {
         let boundary = &mut self.boundary;
-        boundary.clear();
+        boundary.sides.clear();
+        boundary.runs.clear();
         self.safes.clear();
         self.directions.clear();
-        // The sweep's order from another region means nothing (any order would do).
-        self.sweep.order.clear();
+        // The sweep's order is kept: the next layer's region is most often the same or
+        // close (any permutation of as many edges would do; another size starts afresh).
         self.sized = false;
         let mut used = 0;
         for polygon in &region.0 {
@@ -120,7 +120,8 @@ impl Eroder {
                 .chain(polygon.interiors())
                 .enumerate()
             {
-                boundary.extend(ring.0.windows(2).map(|w| {
+                let first = boundary.sides.len();
+                boundary.sides.extend(ring.0.windows(2).map(|w| {
                     let (a, b) = (w[0], w[1]);
                     Side {
                         a,
@@ -135,6 +136,7 @@ impl Eroder {
                         },
                     }
                 }));
+                boundary.split(first);
                 if used == self.corners.len() {
                     self.corners.push(Vec::new());
                 }
@@ -157,7 +159,7 @@ impl Eroder {
 
     /// How many points its largest buffers hold room for (a pool lets a huge one go).
     pub(crate) fn capacity(&self) -> usize {
-        self.points.capacity() + self.boundary.capacity() + self.sweep.edges.capacity()
+        self.points.capacity() + self.boundary.sides.capacity() + self.sweep.edges.capacity()
     }
 
     /// The same eroder with sharp tips run through the vertex and cut, as before tips
@@ -609,28 +611,92 @@ struct Side {
     hi: Coord,
 }
 
+/// Edges per run of the boundary: a point far from a run passes its edges on one test.
+const RUN: usize = 8;
+
+/// The region's edges as given, and the same in runs of [`RUN`] consecutive ones
+/// of a ring (each ring's edges one after another, each edge's end the next's start).
+#[derive(Default)]
+pub(super) struct Boundary {
+    sides: Vec<Side>,
+    runs: Vec<Run>,
+}
+
+/// A run of consecutive edges of a ring: its bounds, the height where it starts and
+/// where it ends (the ray east of a point crosses a run wholly east of it an odd number
+/// of times exactly when the point's height is between those, as the per-edge test
+/// counts), and a margin over the rounding of that test's crossing abscissa.
+struct Run {
+    sides: std::ops::Range<usize>,
+    lo: Coord,
+    hi: Coord,
+    start: f64,
+    end: f64,
+    slack: f64,
+}
+
+impl Boundary {
+    /// The edges from `first` on (one ring's) split into runs; a ring of up to twice
+    /// [`RUN`] edges one run (a star's ten: runs would only add their tests).
+    fn split(&mut self, first: usize) {
+        let step = if self.sides.len() - first <= 2 * RUN {
+            2 * RUN
+        } else {
+            RUN
+        };
+        let mut from = first;
+        while from < self.sides.len() {
+            let to = (from + step).min(self.sides.len());
+            let sides = &self.sides[from..to];
+            let (mut lo, mut hi) = (sides[0].lo, sides[0].hi);
+            for s in &sides[1..] {
+                lo = Coord {
+                    x: lo.x.min(s.lo.x),
+                    y: lo.y.min(s.lo.y),
+                };
+                hi = Coord {
+                    x: hi.x.max(s.hi.x),
+                    y: hi.y.max(s.hi.y),
+                };
+            }
+            // The crossing abscissa `a.x + (p.y - a.y)·(b.x - a.x)/(b.y - a.y)` is off by
+            // a few roundings of the coordinates at most: far less than this.
+            let size = lo.x.abs().max(hi.x.abs()).max(lo.y.abs()).max(hi.y.abs());
+            self.runs.push(Run {
+                sides: from..to,
+                lo,
+                hi,
+                start: sides[0].a.y,
+                end: sides[sides.len() - 1].b.y,
+                slack: 1e-12 * (1.0 + size),
+            });
+            from = to;
+        }
+    }
+}
+
 /// Whether the raw rings are each strictly convex and simple, and each pair apart (bounds
 /// that do not meet) or one strictly inside the other: then nothing crosses or touches,
-/// and the sweep would find no cut.
-fn apart(raws: &[Raw], turns: &mut Vec<f64>) -> bool {
+/// and the sweep would find no cut. `turns` is reused: each ring's turn and bounds.
+fn apart(raws: &[Raw], turns: &mut Vec<(f64, (Coord, Coord))>) -> bool {
     turns.clear();
     for r in raws {
         // Most rings that fail fail here, at their first reflex turn.
-        let turn = convex(&r.pts);
+        let (turn, bounds) = convex_bounded(&r.pts);
         if turn == 0.0 {
             return false;
         }
-        turns.push(turn);
+        turns.push((turn, bounds));
     }
-    let bounds: Vec<(Coord, Coord)> = raws.iter().map(|r| bounds(&r.pts)).collect();
     for i in 0..raws.len() {
         for j in i + 1..raws.len() {
-            let ((a, b), (c, e)) = (bounds[i], bounds[j]);
+            let ((ti, bi), (tj, bj)) = (turns[i], turns[j]);
+            let ((a, b), (c, e)) = (bi, bj);
             if b.x < c.x || e.x < a.x || b.y < c.y || e.y < a.y {
                 continue;
             }
-            if !inside(&raws[j].pts, bounds[j], &raws[i].pts, turns[i])
-                && !inside(&raws[i].pts, bounds[i], &raws[j].pts, turns[j])
+            if !inside(&raws[j].pts, bj, &raws[i].pts, ti)
+                && !inside(&raws[i].pts, bi, &raws[j].pts, tj)
             {
                 return false;
             }
@@ -672,41 +738,94 @@ fn star_shaped(pts: &[Coord]) -> bool {
 /// `1.0` for a strictly convex simple counter-clockwise ring, `-1.0` clockwise, `0.0`
 /// otherwise: every turn strictly the same way, and the edges' direction passing east
 /// once (turns each under a half turn: it goes round once).
+#[cfg(test)]
 fn convex(pts: &[Coord]) -> f64 {
+    convex_bounded(pts).0
+}
+
+/// [`convex`]'s turn, and where it is not 0 the ring's bounds (as `travel::bounds`, found
+/// in the same pass).
+fn convex_bounded(pts: &[Coord]) -> (f64, (Coord, Coord)) {
+    let zero = Coord { x: 0.0, y: 0.0 };
     let n = pts.len();
     if n < 3 {
-        return 0.0;
+        return (0.0, (zero, zero));
     }
-    let edge = |i: usize| {
-        let j = if i + 1 == n { 0 } else { i + 1 };
-        pts[j] - pts[i]
-    };
-    let first = cross(edge(n - 1), edge(0));
-    let sign = if first > 0.0 {
-        1.0
+    let first = cross(pts[0] - pts[n - 1], pts[1] - pts[0]);
+    let bounds = if first > 0.0 {
+        turning::<true>(pts)
     } else if first < 0.0 {
-        -1.0
+        turning::<false>(pts)
     } else {
-        return 0.0;
+        None
     };
+    match bounds {
+        Some(b) => (if first > 0.0 { 1.0 } else { -1.0 }, b),
+        None => (0.0, (zero, zero)),
+    }
+}
+
+/// The bounds of a ring turning strictly counter-clockwise (`CCW`; else clockwise) at
+/// every corner and going round once; `None` otherwise. One pass over the points, each
+/// edge once (`convex` worked out each edge twice and the bounds in a pass of their own).
+fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
+    let n = pts.len();
+    // Every point is some step's `b` (the first at the last step).
+    let (mut lo, mut hi) = (
+        Coord {
+            x: f64::INFINITY,
+            y: f64::INFINITY,
+        },
+        Coord {
+            x: f64::NEG_INFINITY,
+            y: f64::NEG_INFINITY,
+        },
+    );
+    let mut prev = pts[0] - pts[n - 1];
+    let mut a = pts[0];
     let mut east = 0;
-    let mut prev = edge(n - 1);
-    for i in 0..n {
-        let e = edge(i);
-        if cross(prev, e) * sign <= 0.0 {
-            return 0.0;
+    // Each point after the first, then the first again (a slice's iterator and one more
+    // step: an inclusive range with a test per point cost a third more).
+    let mut step = |b: Coord| {
+        let e = b - a;
+        let t = cross(prev, e);
+        // (`t·sign <= 0` as before: NaN passes.)
+        if if CCW { t <= 0.0 } else { t >= 0.0 } {
+            return false;
         }
-        let passes = if sign > 0.0 {
+        let passes = if CCW {
             prev.y < 0.0 && e.y >= 0.0
         } else {
             prev.y > 0.0 && e.y <= 0.0
         };
-        if passes {
-            east += 1;
+        east += usize::from(passes);
+        // The same extremes as `f64::min`/`max` (a NaN passed over; a zero's sign aside,
+        // which no test of the bounds tells apart).
+        if b.x < lo.x {
+            lo.x = b.x;
+        }
+        if b.x > hi.x {
+            hi.x = b.x;
+        }
+        if b.y < lo.y {
+            lo.y = b.y;
+        }
+        if b.y > hi.y {
+            hi.y = b.y;
         }
         prev = e;
+        a = b;
+        true
+    };
+    for &b in &pts[1..] {
+        if !step(b) {
+            return None;
+        }
     }
-    if east == 1 { sign } else { 0.0 }
+    if !step(pts[0]) {
+        return None;
+    }
+    (east == 1).then_some((lo, hi))
 }
 
 /// Whether every point of `pts` (within the bounds `lo..hi`) is strictly inside the
@@ -741,31 +860,59 @@ fn inside(pts: &[Coord], (lo, hi): (Coord, Coord), ring: &[Coord], turn: f64) ->
         })
 }
 
-/// The crossing sweep's buffers: the edges as built, their sort keys, and in order.
+/// The crossing sweep's buffers: the edges as built, their sort keys, and their bounds
+/// in that order.
 #[derive(Default)]
 struct Sweep {
     edges: Vec<Edge>,
     order: Vec<(i64, u32)>,
-    sorted: Vec<Edge>,
+    sorted: Vec<Bounds>,
 }
 
 /// A raw segment in the crossing sweep.
 #[derive(Clone, Copy)]
 struct Edge {
-    /// `xlo` as an integer that sorts as `f64::total_cmp` does.
-    key: i64,
     a: Coord,
     b: Coord,
+    ring: u32,
+    seg: u32,
+    /// The segment after it on its ring (neighbours meet without crossing).
+    next: u32,
+}
+
+/// A raw segment's bounds and place, in the sweep's order: what its inner loop reads for
+/// every pair (the segment's ends only where two boxes meet and they are not neighbours).
+#[derive(Clone, Copy)]
+struct Bounds {
     xlo: f64,
     xhi: f64,
-    ring: usize,
-    seg: usize,
-    /// The segment after it on its ring (neighbours meet without crossing).
-    next: usize,
+    ylo: f64,
+    yhi: f64,
+    /// The segment in `Sweep::edges`.
+    at: u32,
+    ring: u32,
+    seg: u32,
+    next: u32,
+}
+
+/// A segment's bounds: for finite ends by comparisons (the same as `f64::min`/`max`
+/// as far as comparisons tell, of two equal zeros either; `min` and `max` cost the
+/// sweep's bounds twice as much), else by `min` and `max` (a NaN gives way).
+#[inline]
+fn extent(a: f64, b: f64, finite: bool) -> (f64, f64) {
+    if !finite {
+        (a.min(b), a.max(b))
+    } else if b < a {
+        (b, a)
+    } else {
+        (a, b)
+    }
 }
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`
-/// where two touch without crossing.
+/// where two touch without crossing. (Not inlined: inlined into `rings` it cost a holed
+/// square's layer 2k instructions more.)
+#[inline(never)]
 fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
     let Sweep {
         edges,
@@ -773,41 +920,48 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
         sorted,
     } = sweep;
     edges.clear();
+    let total: usize = raws.iter().map(|r| r.pts.len()).sum();
+    // The keys are renewed in place where the order is reused (below).
+    let reuse = order.len() == total;
+    if !reuse {
+        order.clear();
+    }
+    let mut finite = true;
     for (r, raw) in raws.iter().enumerate() {
         let n = raw.pts.len();
         for i in 0..n {
             let next = if i + 1 == n { 0 } else { i + 1 };
             let (a, b) = (raw.pts[i], raw.pts[next]);
-            let xlo = a.x.min(b.x);
+            // (0 for a finite coordinate, NaN for any other: one test for both.)
+            finite &= (a.x - a.y) * 0.0 == 0.0;
+            if !reuse {
+                order.push((sort_key(a.x.min(b.x)), edges.len() as u32));
+            }
             edges.push(Edge {
-                key: sort_key(xlo),
                 a,
                 b,
-                xlo,
-                xhi: a.x.max(b.x),
-                ring: r,
-                seg: i,
-                next,
+                ring: r as u32,
+                seg: i as u32,
+                next: next as u32,
             });
         }
     }
     // By `xlo` in `total_cmp`'s order, compared as integers, ties in the order built: the
-    // small (key, index) pairs are sorted, not the edges (moving 80-byte edges about was
-    // a tenth of a layer), then the edges are laid out in that order once.
+    // small (key, index) pairs are sorted, not the edges, then the edges' bounds are laid
+    // out in that order once (the inner loop reads nothing else for most pairs).
     // The pairs are distinct (the index breaks ties), so every sort gives the one order.
     // A ring's raw offset has as many edges at every distance: the previous loop's order,
     // its keys renewed, is nearly sorted (edges move little from one loop to the next),
     // and insertion sorts it in a few passes; where it is not, a full sort takes over.
-    if order.len() == edges.len() {
+    if reuse {
         for entry in order.iter_mut() {
-            entry.0 = edges[entry.1 as usize].key;
+            let e = &edges[entry.1 as usize];
+            entry.0 = sort_key(e.a.x.min(e.b.x));
         }
         if !insertion_sort(order, 4 * edges.len() + 64) {
             order.sort_unstable();
         }
     } else {
-        order.clear();
-        order.extend(edges.iter().enumerate().map(|(i, e)| (e.key, i as u32)));
         // A few dozen pairs by insertion (half the library sort's instructions on a
         // star's first loop), more by the library's sort.
         if order.len() > 48 || !insertion_sort(order, usize::MAX) {
@@ -815,20 +969,36 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
         }
     }
     sorted.clear();
-    sorted.extend(order.iter().map(|&(_, i)| edges[i as usize]));
-    let edges = &*sorted;
-    for (i, e) in edges.iter().enumerate() {
-        let (ylo, yhi) = (e.a.y.min(e.b.y), e.a.y.max(e.b.y));
-        for f in &edges[i + 1..] {
-            if f.xlo > e.xhi {
+    // (A loop, not `extend` over a mapped iterator: that was a call costing a sixth of
+    // the sweep.)
+    for &(_, i) in order.iter() {
+        let e = edges[i as usize];
+        let ((xlo, xhi), (ylo, yhi)) = (extent(e.a.x, e.b.x, finite), extent(e.a.y, e.b.y, finite));
+        sorted.push(Bounds {
+            xlo,
+            xhi,
+            ylo,
+            yhi,
+            at: i,
+            ring: e.ring,
+            seg: e.seg,
+            next: e.next,
+        });
+    }
+    let boxes = &*sorted;
+    for (i, eb) in boxes.iter().enumerate() {
+        let (xhi, ylo, yhi) = (eb.xhi, eb.ylo, eb.yhi);
+        for fb in &boxes[i + 1..] {
+            if fb.xlo > xhi {
                 break;
             }
-            if f.a.y.max(f.b.y) < ylo || f.a.y.min(f.b.y) > yhi {
+            if fb.yhi < ylo || fb.ylo > yhi {
                 continue;
             }
-            if e.ring == f.ring && (e.next == f.seg || f.next == e.seg || e.seg == f.seg) {
+            if eb.ring == fb.ring && (eb.next == fb.seg || fb.next == eb.seg || eb.seg == fb.seg) {
                 continue;
             }
+            let (e, f) = (&edges[eb.at as usize], &edges[fb.at as usize]);
             let (p, r) = (e.b - e.a, f.b - f.a);
             let d1 = cross(p, f.a - e.a);
             let d2 = cross(p, f.b - e.a);
@@ -839,8 +1009,8 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
                 let t = d3 / (d3 - d4);
                 let u = d1 / (d1 - d2);
                 cuts.push(Cut {
-                    ring: [e.ring, f.ring],
-                    seg: [e.seg, f.seg],
+                    ring: [e.ring as usize, f.ring as usize],
+                    seg: [e.seg as usize, f.seg as usize],
                     t: [t, u],
                     at: e.a + p * t,
                 });
@@ -899,7 +1069,7 @@ fn undecided(
     count: usize,
     point: impl Fn(usize) -> Coord,
     kept: bool,
-    boundary: &[Side],
+    boundary: &Boundary,
     d: f64,
 ) -> bool {
     if !raw.check {
@@ -925,8 +1095,13 @@ fn undecided(
 
 /// Whether a piece lies on the erosion's boundary: the point `mid` in its middle (moved
 /// onto the arc about `centre`, for a chord) at least `d` from every boundary edge and
-/// inside the region.
-fn keep(mid: Coord, centre: Option<Coord>, boundary: &[Side], d: f64) -> bool {
+/// inside the region. The edges are looked at run by run (`Boundary`): a run whose
+/// bounds, grown by `reach`, miss the point has no edge near it, and its edges' crossings
+/// of the ray east of the point are counted from its ends alone (every edge spanning the
+/// point's height crosses the ray where the run lies wholly east of it, none where it
+/// lies west, above or below); only the runs about the point are tested edge by edge, as
+/// before (a holed square's 68 edges were all tested for every piece).
+fn keep(mid: Coord, centre: Option<Coord>, boundary: &Boundary, d: f64) -> bool {
     let mut p = mid;
     if let Some(c) = centre {
         let r = p - c;
@@ -939,38 +1114,75 @@ fn keep(mid: Coord, centre: Option<Coord>, boundary: &[Side], d: f64) -> bool {
     // An edge whose bounds, grown by `limit` (and a margin for rounding), miss `p` is
     // farther than `limit`: only its crossing of the ray is counted.
     let reach = limit + 1e-9;
+    let band = reach.max(0.0);
+    let mut inside = false;
+    for run in &boundary.runs {
+        let grow = band + run.slack;
+        let (lo, hi) = (run.lo, run.hi);
+        if p.x >= lo.x - grow && p.x <= hi.x + grow && p.y >= lo.y - grow && p.y <= hi.y + grow {
+            match near(p, &boundary.sides[run.sides.clone()], reach, limit) {
+                Some(flips) => inside ^= flips,
+                None => return false,
+            }
+        } else if p.x < lo.x - grow {
+            inside ^= (run.start <= p.y) != (run.end <= p.y);
+        }
+    }
+    inside
+}
+
+/// Whether `p` is farther than `limit` from every one of these sides (`None` if not),
+/// and then whether the ray east of it crosses an odd number of them: [`keep`]'s test of
+/// one edge after another, for the runs about `p`.
+#[inline]
+fn near(p: Coord, sides: &[Side], reach: f64, limit: f64) -> Option<bool> {
     // An edge that misses the band `p.y ± reach` is neither near `p` nor crosses the ray
     // (a crossing edge spans `p.y`): most edges are passed on two comparisons.
     let band = reach.max(0.0);
     let mut inside = false;
-    for &Side { a, b, lo, hi } in boundary {
+    for &Side { a, b, lo, hi } in sides {
         if p.y < lo.y - band || p.y > hi.y + band {
             continue;
         }
+        if p.x >= lo.x - reach && p.x <= hi.x + reach && p.y >= lo.y - reach && p.y <= hi.y + reach
         {
-            if p.x >= lo.x - reach
-                && p.x <= hi.x + reach
-                && p.y >= lo.y - reach
-                && p.y <= hi.y + reach
-            {
-                let e = b - a;
-                let len2 = e.x * e.x + e.y * e.y;
-                let t = if len2 > 0.0 {
-                    (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                let q = a + e * t - p;
-                if q.x * q.x + q.y * q.y < limit * limit {
-                    return false;
-                }
-            }
-            if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
-                inside = !inside;
+            let e = b - a;
+            let len2 = e.x * e.x + e.y * e.y;
+            let t = if len2 > 0.0 {
+                (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let q = a + e * t - p;
+            if q.x * q.x + q.y * q.y < limit * limit {
+                return None;
             }
         }
+        if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
+            inside = !inside;
+        }
     }
-    inside
+    Some(inside)
+}
+
+/// [`keep`] as it was, every edge tested one after another (the tests compare the two).
+#[cfg(test)]
+pub(super) fn keep_edge_by_edge(
+    mid: Coord,
+    centre: Option<Coord>,
+    boundary: &Boundary,
+    d: f64,
+) -> bool {
+    let mut p = mid;
+    if let Some(c) = centre {
+        let r = p - c;
+        let len = math::hypot(r.x, r.y);
+        if len > 0.0 {
+            p = c + r * (d / len);
+        }
+    }
+    let limit = d * (1.0 - 1e-9);
+    near(p, &boundary.sides, limit + 1e-9, limit).unwrap_or(false)
 }
 
 /// The kept pieces joined end to start at their cuts into closed rings; `None` where a
@@ -1210,3 +1422,7 @@ mod tests {
         assert!(!apart_(&[raw(notched)]));
     }
 }
+
+#[cfg(test)]
+#[path = "loops_tests.rs"]
+mod loops_tests;

@@ -1,0 +1,208 @@
+//! The erosion's shortcuts against the general code they stand for: the same answers to
+//! the bit on random regions (star-like outlines, with and without a hole).
+
+use geo::{Coord, LineString, MultiPolygon, Polygon};
+use proptest::prelude::*;
+
+use super::*;
+
+/// A star-like ring: `radii` (fractions of `size`) at even angles about `at`.
+fn star_like(radii: &[f64], size: f64, at: Coord, clockwise: bool) -> LineString<f64> {
+    let n = radii.len();
+    let mut ring: Vec<Coord> = radii
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            let a = if clockwise { -a } else { a };
+            at + Coord {
+                x: r * size * math::cos(a),
+                y: r * size * math::sin(a),
+            }
+        })
+        .collect();
+    ring.push(ring[0]);
+    LineString::new(ring)
+}
+
+/// An outline of `radii` about the origin, with a hole of `hole` radii (a sixth of the
+/// outline's smallest radius at most, so that it stays inside) when there are any.
+fn region(radii: &[f64], size: f64, hole: &[f64]) -> MultiPolygon<f64> {
+    let outline = star_like(radii, size, Coord { x: 0.0, y: 0.0 }, false);
+    let smallest = radii.iter().copied().fold(f64::INFINITY, f64::min);
+    let holes = if hole.len() >= 3 {
+        let scaled: Vec<f64> = hole.iter().map(|r| r * smallest / 6.0).collect();
+        vec![star_like(&scaled, size, Coord { x: 0.0, y: 0.0 }, true)]
+    } else {
+        Vec::new()
+    };
+    MultiPolygon::new(vec![Polygon::new(outline, holes)])
+}
+
+/// Points to test `keep` at: anywhere about the region, and just inside and outside `d`
+/// from its edges and vertices (where rounding decides).
+fn probes(boundary: &Boundary, d: f64, picks: &[(f64, f64, f64)], size: f64) -> Vec<Coord> {
+    let mut out = Vec::new();
+    let sides = &boundary.sides;
+    for &(s, t, u) in picks {
+        out.push(Coord {
+            x: (s - 0.5) * 2.4 * size,
+            y: (t - 0.5) * 2.4 * size,
+        });
+        let side = &sides[((u * sides.len() as f64) as usize).min(sides.len() - 1)];
+        let e = side.b - side.a;
+        let len = math::hypot(e.x, e.y);
+        if len == 0.0 {
+            continue;
+        }
+        let normal = Coord {
+            x: -e.y / len,
+            y: e.x / len,
+        };
+        for scale in [1.0, 1.0 - 1e-9, 1.0 + 1e-9, 1.0 - 1e-12, -1.0, 0.5] {
+            out.push(side.a + e * t + normal * (d * scale));
+            out.push(side.a + normal * (d * scale));
+        }
+        // On the level of a vertex (the ray through it).
+        out.push(Coord {
+            x: side.a.x - (s - 0.5) * size,
+            y: side.a.y,
+        });
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// `keep` by runs of edges (far runs passed on one test, their ray crossings counted
+    /// from their ends) answers as every edge tested in turn: random regions with and
+    /// without a hole of many edges, points anywhere and a rounding from `d` off an edge.
+    #[test]
+    fn keep_by_runs_is_keep_edge_by_edge(
+        radii in proptest::collection::vec(0.3f64..1.0, 3..40),
+        hole in proptest::collection::vec(0.8f64..1.0, 0..70),
+        size in 1.0f64..200.0,
+        depth in 0.001f64..0.8,
+        picks in proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0), 1..12),
+        arc in proptest::option::of((0.0f64..1.0, 0.0f64..1.0)),
+    ) {
+        let region = region(&radii, size, &hole);
+        let eroder = Eroder::new(&region, 0.5);
+        let d = depth * size;
+        let centre = arc.map(|(x, y)| Coord { x: (x - 0.5) * size, y: (y - 0.5) * size });
+        for p in probes(&eroder.boundary, d, &picks, size) {
+            prop_assert_eq!(
+                keep(p, centre, &eroder.boundary, d),
+                keep_edge_by_edge(p, centre, &eroder.boundary, d),
+                "at {:?}, d {}", p, d
+            );
+        }
+    }
+}
+
+/// `convex` as it was: each edge worked out from its ends at every use.
+fn convex_as_before(pts: &[Coord]) -> f64 {
+    let n = pts.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let edge = |i: usize| {
+        let j = if i + 1 == n { 0 } else { i + 1 };
+        pts[j] - pts[i]
+    };
+    let first = cross(edge(n - 1), edge(0));
+    let sign = if first > 0.0 {
+        1.0
+    } else if first < 0.0 {
+        -1.0
+    } else {
+        return 0.0;
+    };
+    let mut east = 0;
+    let mut prev = edge(n - 1);
+    for i in 0..n {
+        let e = edge(i);
+        if cross(prev, e) * sign <= 0.0 {
+            return 0.0;
+        }
+        let passes = if sign > 0.0 {
+            prev.y < 0.0 && e.y >= 0.0
+        } else {
+            prev.y > 0.0 && e.y <= 0.0
+        };
+        if passes {
+            east += 1;
+        }
+        prev = e;
+    }
+    if east == 1 { sign } else { 0.0 }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// One pass for the turn and the bounds: the same turn as before and the same bounds
+    /// as `travel::bounds`, on rings convex or nearly (radii jittered), either way round,
+    /// some wound twice, some with a repeated or collinear point.
+    #[test]
+    fn convex_bounded_is_convex_and_bounds(
+        radii in proptest::collection::vec(0.9f64..1.0, 3..24),
+        at in (-50.0f64..50.0, -50.0f64..50.0),
+        clockwise in proptest::bool::ANY,
+        twice in proptest::bool::ANY,
+        repeat in proptest::option::of(0usize..24),
+        nan in proptest::option::of(0usize..24),
+    ) {
+        let n = radii.len();
+        let mut pts: Vec<Coord> = (0..n * if twice { 2 } else { 1 })
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                let a = if clockwise { -a } else { a };
+                let r = 10.0 * radii[i % n];
+                Coord { x: at.0 + r * math::cos(a), y: at.1 + r * math::sin(a) }
+            })
+            .collect();
+        if let Some(k) = repeat {
+            let k = k % pts.len();
+            pts.insert(k, pts[k]);
+        }
+        // A NaN where a distance overflowed: passed over by the bounds, as by `min`.
+        if let Some(k) = nan {
+            let k = k % pts.len();
+            pts[k].x = f64::NAN;
+        }
+        let (turn, (lo, hi)) = convex_bounded(&pts);
+        prop_assert_eq!(turn, convex_as_before(&pts));
+        if turn != 0.0 {
+            prop_assert_eq!((lo, hi), crate::infill::travel::bounds(&pts));
+        }
+    }
+}
+
+/// The runs cover every edge once, each run's edges one ring's, end to start.
+#[test]
+fn runs_cover_each_ring_end_to_start() {
+    let region = crate::infill::shapes::holed_square(40.0, 10.0);
+    let eroder = Eroder::new(&region, 0.5);
+    let b = &eroder.boundary;
+    assert_eq!(b.sides.len(), 4 + 64);
+    let mut next = 0;
+    for run in &b.runs {
+        assert_eq!(run.sides.start, next);
+        next = run.sides.end;
+        let sides = &b.sides[run.sides.clone()];
+        assert!(sides.len() <= RUN);
+        assert!(!sides.is_empty());
+        assert!(sides.windows(2).all(|w| w[0].b == w[1].a));
+        assert_eq!(
+            (run.start, run.end),
+            (sides[0].a.y, sides[sides.len() - 1].b.y)
+        );
+    }
+    assert_eq!(next, b.sides.len());
+    // The square's four edges one run, the hole's 64 eight.
+    assert_eq!(b.runs.len(), 1 + 8);
+    let star = Eroder::new(&crate::infill::shapes::star(10.0, 4.5), 0.5);
+    assert_eq!(star.boundary.runs.len(), 1);
+}

@@ -161,11 +161,20 @@ struct Scratch {
 /// Rings with their bounds.
 type Bounded<'a> = Vec<(&'a [Coord], (Coord, Coord))>;
 
-/// A segment near a run of points: its ends (its ring is its group's in [`Near`]).
+/// A segment near a run of points: its ends, and where it is (its ring, and its index
+/// there), to be asked first for the next points ([`Hint`]).
 #[derive(Clone, Copy)]
 struct Candidate {
     a: Coord,
     b: Coord,
+    at: Hint,
+}
+
+/// A segment of closed rings: the ring's index and the segment's there.
+#[derive(Clone, Copy, PartialEq, Debug)]
+struct Hint {
+    ring: u32,
+    seg: u32,
 }
 
 /// How many consecutive points share one gathering of near segments: a ring's points lie
@@ -189,20 +198,25 @@ impl Segments {
         };
         self.rings.clear();
         self.grown.clear();
-        for &(ring, (lo, hi)) in rings {
+        for (index, &(ring, (lo, hi))) in rings.iter().enumerate() {
             let first = self.grown.len();
-            self.grown.extend(ring.windows(2).map(|w| {
-                let (a, b) = (w[0], w[1]);
-                let lo = Coord {
-                    x: a.x.min(b.x),
-                    y: a.y.min(b.y),
-                };
-                let hi = Coord {
-                    x: a.x.max(b.x),
-                    y: a.y.max(b.y),
-                };
-                (lo - reach, hi + reach, Candidate { a, b })
-            }));
+            self.grown
+                .extend(ring.windows(2).enumerate().map(|(seg, w)| {
+                    let (a, b) = (w[0], w[1]);
+                    let lo = Coord {
+                        x: a.x.min(b.x),
+                        y: a.y.min(b.y),
+                    };
+                    let hi = Coord {
+                        x: a.x.max(b.x),
+                        y: a.y.max(b.y),
+                    };
+                    let at = Hint {
+                        ring: index as u32,
+                        seg: seg as u32,
+                    };
+                    (lo - reach, hi + reach, Candidate { a, b, at })
+                }));
             self.rings
                 .push((lo - reach, hi + reach, first..self.grown.len()));
         }
@@ -256,11 +270,63 @@ impl Near {
     }
 }
 
-/// Whether `p` is within `r` of a candidate (its ring's bounds first, then the segment,
+/// A candidate within `r` of `p`, if any (its ring's bounds first, then the segment,
 /// measured exactly as `within` measured it).
-fn near_any(rings: &Bounded, near: &Near, p: Coord, r: f64) -> bool {
+fn near_any(rings: &Bounded, near: &Near, p: Coord, r: f64) -> Option<Hint> {
     near.rings(rings, p, r)
-        .any(|cands| cands.iter().any(|c| segment_within(c.a, c.b, p, r)))
+        .find_map(|cands| cands.iter().find(|c| segment_within(c.a, c.b, p, r)))
+        .map(|c| c.at)
+}
+
+/// Whether `p` is within `r` of the segment `hint` or of one of its next neighbours on
+/// its ring (of the rings before `before`); `hint` becomes the one found. Consecutive
+/// points of a loop, or of a middle ring, run alongside the same few segments of the ring
+/// they are near: most are found here without gathering any (a point's answer is the
+/// same: any segment within `r`, its ring's bounds first as `within` asked them).
+fn hinted(rings: &Bounded, hint: &mut Option<Hint>, before: usize, p: Coord, r: f64) -> bool {
+    let Some(h) = *hint else {
+        return false;
+    };
+    let (ring, bounds) = rings[h.ring as usize];
+    if h.ring as usize >= before || !in_bounds(bounds, p, r) {
+        return false;
+    }
+    let n = ring.len() - 1;
+    let seg = h.seg as usize;
+    for k in [seg, seg + 1, seg + n - 1, seg + 2] {
+        let k = k % n;
+        if segment_within(ring[k], ring[k + 1], p, r) {
+            *hint = Some(Hint {
+                ring: h.ring,
+                seg: k as u32,
+            });
+            return true;
+        }
+    }
+    false
+}
+
+/// Whether both `a` and `b` are within `r` of one segment: `hint` or one of its next
+/// neighbours (as [`hinted`]).
+fn hinted_both(rings: &Bounded, hint: &mut Option<Hint>, a: Coord, b: Coord, r: f64) -> bool {
+    let Some(h) = *hint else {
+        return false;
+    };
+    let ring = rings[h.ring as usize].0;
+    let n = ring.len() - 1;
+    let seg = h.seg as usize;
+    for k in [seg, seg + 1, seg + n - 1, seg + 2] {
+        let k = k % n;
+        if segment_within(ring[k], ring[k + 1], a, r) && segment_within(ring[k], ring[k + 1], b, r)
+        {
+            *hint = Some(Hint {
+                ring: h.ring,
+                seg: k as u32,
+            });
+            return true;
+        }
+    }
+    false
 }
 
 /// Whether `p` is within `r` of segments of two different rings.
@@ -298,12 +364,28 @@ fn apart(loops: &[Vec<Coord>], gap: f64, scratch: &mut Scratch, out: &mut Vec<Ve
             filed = true;
         }
         scratch.flags.clear();
+        let mut hint = None;
         for run in ring.chunks(RUN) {
+            // The points the hint does not find near are measured against the segments
+            // gathered near their run.
+            let start = scratch.flags.len();
+            let mut open = false;
+            for &p in run {
+                let near = hinted(&all, &mut hint, j, p, gap);
+                scratch.flags.push(!near);
+                open |= !near;
+            }
+            if !open {
+                continue;
+            }
             let (lo, hi) = bounds(run);
             scratch.segments.gather(lo, hi, j, &mut scratch.near);
-            scratch
-                .flags
-                .extend(run.iter().map(|&p| !near_any(&all, &scratch.near, p, gap)));
+            for (flag, &p) in scratch.flags[start..].iter_mut().zip(run) {
+                if *flag && let Some(h) = near_any(&all, &scratch.near, p, gap) {
+                    *flag = false;
+                    hint = Some(h);
+                }
+            }
         }
         runs(ring, &scratch.flags, out);
     }
@@ -410,16 +492,17 @@ fn uncovered(
     let last: Bounded = last.iter().map(|r| (r.as_slice(), bounds(r))).collect();
     scratch.segments.build(&covered, gap);
     // Near two of one loop is never asked: with one loop none of its segments is filed.
-    let two: Bounded = if last.len() > 1 {
-        last.clone()
+    if last.len() > 1 {
+        scratch.last.build(&last, 2.0 * spacing);
     } else {
-        Vec::new()
-    };
-    scratch.last.build(&two, 2.0 * spacing);
+        scratch.last.build(&Vec::new(), 2.0 * spacing);
+    }
     // Inside `gap` by more than rounding: a segment of the middle ring whose both ends
     // are this near one covered segment lies that near it all along (the distance to a
     // segment is convex along a line), so none of its points is far.
     let inner = gap * (1.0 - 1e-9);
+    // The covered segment the last point (or segment) was found near.
+    let mut hint = None;
     for ring in &middle.rings {
         // Points every quarter spacing at least: a ring cut from the raw offset has
         // long edges, and a stretch is kept from vertex to vertex.
@@ -434,29 +517,35 @@ fn uncovered(
             let steps = ((math::hypot(e.x, e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
             let first = dense.len();
             dense.extend((0..steps).map(|i| w[0] + e * (i as f64 / steps as f64)));
-            // Worth asking for a segment of a few points only.
-            if steps < 4 {
-                continue;
-            }
-            let (lo, hi) = bounds(w);
-            scratch
-                .segments
-                .gather(lo, hi, usize::MAX, &mut scratch.near);
-            // All near one covered segment: none far. No covered segment near the
-            // segment's bounds (nor last loops' segments, where two are asked for): all far.
-            let all = if scratch.near.cands.iter().any(|c| {
-                segment_within(c.a, c.b, w[0], inner) && segment_within(c.a, c.b, w[1], inner)
-            }) {
+            // All near one covered segment: none far. Asked first of the segments the
+            // last points were near (no gathering), then, for a segment of a few points
+            // or more, of those near its bounds.
+            let all = if hinted_both(&covered, &mut hint, w[0], w[1], inner) {
                 Some(false)
-            } else if scratch.near.cands.is_empty() && {
-                scratch
-                    .last
-                    .gather(lo, hi, usize::MAX, &mut scratch.near_last);
-                scratch.near_last.cands.is_empty()
-            } {
-                Some(true)
-            } else {
+            } else if steps < 4 {
                 None
+            } else {
+                let (lo, hi) = bounds(w);
+                scratch
+                    .segments
+                    .gather(lo, hi, usize::MAX, &mut scratch.near);
+                if let Some(c) = scratch.near.cands.iter().find(|c| {
+                    segment_within(c.a, c.b, w[0], inner) && segment_within(c.a, c.b, w[1], inner)
+                }) {
+                    hint = Some(c.at);
+                    Some(false)
+                } else if scratch.near.cands.is_empty() && {
+                    // No covered segment near the segment's bounds (nor last loops'
+                    // segments, where two are asked for): all far.
+                    scratch
+                        .last
+                        .gather(lo, hi, usize::MAX, &mut scratch.near_last);
+                    scratch.near_last.cands.is_empty()
+                } {
+                    Some(true)
+                } else {
+                    None
+                }
             };
             if let Some(flag) = all {
                 far(
@@ -465,14 +554,45 @@ fn uncovered(
                     &last,
                     gap,
                     spacing,
+                    &mut hint,
                     scratch,
                 );
                 scratch.flags.resize(dense.len(), flag);
                 pending = dense.len();
+                continue;
+            }
+            // The points of a long segment in runs: a run (a straight stretch) whose
+            // ends are both near one covered segment is near it all along.
+            if steps < 2 * RUN {
+                continue;
+            }
+            for from in (first..dense.len()).step_by(RUN) {
+                let to = (from + RUN).min(dense.len());
+                let near = hinted_both(&covered, &mut hint, dense[from], dense[to - 1], inner);
+
+                far(
+                    &dense[pending..if near { from } else { to }],
+                    &covered,
+                    &last,
+                    gap,
+                    spacing,
+                    &mut hint,
+                    scratch,
+                );
+                scratch.flags.resize(to, false);
+                pending = to;
             }
         }
         dense.extend(ring.last().copied());
-        far(&dense[pending..], &covered, &last, gap, spacing, scratch);
+        far(
+            &dense[pending..],
+            &covered,
+            &last,
+            gap,
+            spacing,
+            &mut hint,
+            scratch,
+        );
         let mut pieces = Vec::new();
         runs(&dense, &scratch.flags, &mut pieces);
         scratch.dense = dense;
@@ -497,16 +617,29 @@ fn far(
     last: &Bounded,
     gap: f64,
     spacing: f64,
+    hint: &mut Option<Hint>,
     scratch: &mut Scratch,
 ) {
     for run in points.chunks(RUN) {
+        // Most points lie near the covered segments the point before was near: not far,
+        // and nothing gathered. The others are measured against the segments gathered
+        // near their run.
+        let start = scratch.flags.len();
+        let mut open = false;
+        for &p in run {
+            let near = hinted(covered, hint, usize::MAX, p, gap);
+            scratch.flags.push(!near);
+            open |= !near;
+        }
+        if !open {
+            continue;
+        }
         let (lo, hi) = bounds(run);
         scratch
             .segments
             .gather(lo, hi, usize::MAX, &mut scratch.near);
         if scratch.near.cands.is_empty() && last.len() < 2 {
-            // Nothing near the run: all of it far.
-            scratch.flags.resize(scratch.flags.len() + run.len(), true);
+            // Nothing near the run: all of it far (as flagged).
             continue;
         }
         scratch
@@ -517,13 +650,22 @@ fn far(
         if last.len() >= 2
             && let Some(flag) = together(lo, hi, &scratch.near, &scratch.near_last, gap, spacing)
         {
-            scratch.flags.resize(scratch.flags.len() + run.len(), flag);
+            for f in &mut scratch.flags[start..] {
+                *f &= flag;
+            }
             continue;
         }
-        scratch.flags.extend(run.iter().map(|&p| {
-            !near_any(covered, &scratch.near, p, gap)
-                && !near_two(last, &scratch.near_last, p, 2.0 * spacing)
-        }));
+        for (flag, &p) in scratch.flags[start..].iter_mut().zip(run) {
+            if !*flag {
+                continue;
+            }
+            if let Some(h) = near_any(covered, &scratch.near, p, gap) {
+                *flag = false;
+                *hint = Some(h);
+            } else {
+                *flag = !near_two(last, &scratch.near_last, p, 2.0 * spacing);
+            }
+        }
     }
 }
 

@@ -564,6 +564,20 @@ fn uncovered(
             // The points of a long segment in runs: a run (a straight stretch) whose
             // ends are both near one covered segment is near it all along.
             if steps < 2 * RUN {
+                // Measured as whole runs gather (the hint then follows the ring).
+                let whole = pending + (dense.len() - pending) / RUN * RUN;
+                if whole > pending {
+                    far(
+                        &dense[pending..whole],
+                        &covered,
+                        &last,
+                        gap,
+                        spacing,
+                        &mut hint,
+                        scratch,
+                    );
+                    pending = whole;
+                }
                 continue;
             }
             for from in (first..dense.len()).step_by(RUN) {

@@ -351,9 +351,30 @@ fn apart(loops: &[Vec<Coord>], gap: f64, scratch: &mut Scratch, out: &mut Vec<Ve
     let mut filed = false;
     for (j, ring) in loops.iter().enumerate() {
         let (lo, hi) = all[j].1;
-        // The earlier loops whose bounds come within `gap` of this one's.
-        let near = all[..j].iter().any(|&(_, (a, b))| {
-            a.x - gap <= hi.x && b.x + gap >= lo.x && a.y - gap <= hi.y && b.y + gap >= lo.y
+        // An earlier loop with a segment whose bounds come within `gap` of this one's (a
+        // hole's loop inside an outline's: the outline's bounds hold it, its segments
+        // pass it by).
+        // (With a margin for rounding: a point within `gap` of a segment is inside its
+        // bounds grown by `gap`.)
+        let reach = gap * (1.0 + 1e-9) + 1e-12;
+        let meets = |a: Coord, b: Coord| {
+            a.x - reach <= hi.x && b.x + reach >= lo.x && a.y - reach <= hi.y && b.y + reach >= lo.y
+        };
+        let near = all[..j].iter().any(|&(earlier, (a, b))| {
+            meets(a, b)
+                && earlier.windows(2).any(|w| {
+                    let (a, b) = (w[0], w[1]);
+                    meets(
+                        Coord {
+                            x: a.x.min(b.x),
+                            y: a.y.min(b.y),
+                        },
+                        Coord {
+                            x: a.x.max(b.x),
+                            y: a.y.max(b.y),
+                        },
+                    )
+                })
         });
         if !near {
             out.push(ring.clone());

@@ -433,6 +433,10 @@ fn segment_within(a: Coord, b: Coord, p: Coord, r: f64) -> bool {
 /// The runs of a closed ring's vertices whose flag is set (the whole ring when all are),
 /// each of two points or more (copied a run at a time).
 fn runs(pts: &[Coord], flags: &[bool], out: &mut Vec<Vec<Coord>>) {
+    // None flagged (most middle rings): nothing to read.
+    if !flags.contains(&true) {
+        return;
+    }
     if flags.iter().all(|&f| f) {
         out.push(pts.to_vec());
         return;
@@ -536,8 +540,7 @@ fn uncovered(
         for w in ring.windows(2) {
             let e = w[1] - w[0];
             let steps = ((math::hypot(e.x, e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
-            let first = dense.len();
-            dense.extend((0..steps).map(|i| w[0] + e * (i as f64 / steps as f64)));
+            let point = |i: usize| w[0] + e * (i as f64 / steps as f64);
             // All near one covered segment: none far. Asked first of the segments the
             // last points were near (no gathering), then, for a segment of a few points
             // or more, of those near its bounds.
@@ -568,23 +571,43 @@ fn uncovered(
                     None
                 }
             };
-            if let Some(flag) = all {
-                far(
-                    &dense[pending..first],
-                    &covered,
-                    &last,
-                    gap,
-                    spacing,
-                    &mut hint,
-                    scratch,
-                );
-                scratch.flags.resize(dense.len(), flag);
-                pending = dense.len();
-                continue;
+            match all {
+                Some(false) => {
+                    // None of its points is in a stretch: its first stands for all (a
+                    // stretch is cut by one point not far as by many).
+                    far(
+                        &dense[pending..],
+                        &covered,
+                        &last,
+                        gap,
+                        spacing,
+                        &mut hint,
+                        scratch,
+                    );
+                    dense.push(w[0]);
+                    scratch.flags.push(false);
+                    pending = dense.len();
+                    continue;
+                }
+                Some(true) => {
+                    far(
+                        &dense[pending..],
+                        &covered,
+                        &last,
+                        gap,
+                        spacing,
+                        &mut hint,
+                        scratch,
+                    );
+                    dense.extend((0..steps).map(point));
+                    scratch.flags.resize(dense.len(), true);
+                    pending = dense.len();
+                    continue;
+                }
+                None => {}
             }
-            // The points of a long segment in runs: a run (a straight stretch) whose
-            // ends are both near one covered segment is near it all along.
             if steps < 2 * RUN {
+                dense.extend((0..steps).map(point));
                 // Measured as whole runs gather (the hint then follows the ring).
                 let whole = pending + (dense.len() - pending) / RUN * RUN;
                 if whole > pending {
@@ -601,21 +624,36 @@ fn uncovered(
                 }
                 continue;
             }
-            for from in (first..dense.len()).step_by(RUN) {
-                let to = (from + RUN).min(dense.len());
-                let near = hinted_both(&covered, &mut hint, dense[from], dense[to - 1], inner);
-
-                far(
-                    &dense[pending..if near { from } else { to }],
-                    &covered,
-                    &last,
-                    gap,
-                    spacing,
-                    &mut hint,
-                    scratch,
-                );
-                scratch.flags.resize(to, false);
-                pending = to;
+            // The points of a long segment in runs: a run (a straight stretch) whose
+            // ends are both near one covered segment is near it all along (its first
+            // point stands for it, as above); the others measured.
+            for from in (0..steps).step_by(RUN) {
+                let to = (from + RUN).min(steps);
+                if hinted_both(&covered, &mut hint, point(from), point(to - 1), inner) {
+                    far(
+                        &dense[pending..],
+                        &covered,
+                        &last,
+                        gap,
+                        spacing,
+                        &mut hint,
+                        scratch,
+                    );
+                    dense.push(point(from));
+                    scratch.flags.push(false);
+                } else {
+                    dense.extend((from..to).map(point));
+                    far(
+                        &dense[pending..],
+                        &covered,
+                        &last,
+                        gap,
+                        spacing,
+                        &mut hint,
+                        scratch,
+                    );
+                }
+                pending = dense.len();
             }
         }
         dense.extend(ring.last().copied());

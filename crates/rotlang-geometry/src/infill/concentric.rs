@@ -546,7 +546,7 @@ fn uncovered(
             // or more, of those near its bounds.
             let all = if hinted_both(&covered, &mut hint, w[0], w[1], inner) {
                 Some(false)
-            } else if steps < 4 {
+            } else if !(4..2 * RUN).contains(&steps) {
                 None
             } else {
                 let (lo, hi) = bounds(w);

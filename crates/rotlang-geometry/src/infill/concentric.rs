@@ -700,7 +700,8 @@ fn far(
         let start = scratch.flags.len();
         let mut open = false;
         for &p in run {
-            let near = hinted(covered, hint, usize::MAX, p, gap);
+            // Past a point the hint missed, the run is gathered anyway: not asked again.
+            let near = !open && hinted(covered, hint, usize::MAX, p, gap);
             scratch.flags.push(!near);
             open |= !near;
         }

@@ -392,7 +392,8 @@ fn apart(loops: &[Vec<Coord>], gap: f64, scratch: &mut Scratch, out: &mut Vec<Ve
             let start = scratch.flags.len();
             let mut open = false;
             for &p in run {
-                let near = hinted(&all, &mut hint, j, p, gap);
+                // Past a point the hint missed, the run is gathered anyway.
+                let near = !open && hinted(&all, &mut hint, j, p, gap);
                 scratch.flags.push(!near);
                 open |= !near;
             }

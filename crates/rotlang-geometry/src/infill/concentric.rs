@@ -8,6 +8,13 @@
 //! every segment of every earlier loop, and the erosion past the last loop was computed in
 //! full to find it empty. The answers are the same to the bit (`concentric_tests.rs`
 //! checks them against the former code on random shapes).
+//!
+//! Then (the middle rings' stretches, a third to a half of a star's or a holed square's
+//! layer outside the erosions): each point is asked first of the segment the point before
+//! was near (`Hint`), a middle segment or a run of one near a covered segment all along is
+//! kept as one point, a hole's loop is measured against the outline's only where a segment
+//! of it comes near, and the middle ring's points lie half a spacing apart, not a quarter
+//! (`MIDDLE_STEP`, the one change of the output).
 
 use std::cell::Cell;
 use std::f64::consts::{PI, TAU};

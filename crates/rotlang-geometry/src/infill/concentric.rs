@@ -327,7 +327,12 @@ fn hinted_both(rings: &Bounded, hint: &mut Option<Hint>, a: Coord, b: Coord, r: 
     let Some(h) = *hint else {
         return false;
     };
-    let ring = rings[h.ring as usize].0;
+    let (ring, bounds) = rings[h.ring as usize];
+    // Both ends within `r` of the ring's bounds first (a cheap no where the hint's ring is
+    // elsewhere: the middle ring passing from one covered ring to the next).
+    if !in_bounds(bounds, a, r) || !in_bounds(bounds, b, r) {
+        return false;
+    }
     let n = ring.len() - 1;
     let seg = h.seg as usize;
     for k in [seg, seg + 1, seg + n - 1, seg + 2] {

@@ -17,6 +17,18 @@ use crate::math;
 /// Loops at `(k + ½)·spacing` inside the inset outline (and around its holes), each
 /// starting at its farthest vertex in direction θ and closed.
 pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Vec<Vec<Coord>>) {
+    with_middle_step(region, theta, spacing, super::concentric::MIDDLE_STEP, out);
+}
+
+/// As `concentric`, the middle ring's points `step` spacings apart at most (the former
+/// code's quarter, for the test of the half).
+pub(crate) fn with_middle_step(
+    region: &Region,
+    theta: f64,
+    spacing: f64,
+    step: f64,
+    out: &mut Vec<Vec<Coord>>,
+) {
     let direction = Coord {
         x: math::cos(theta),
         y: math::sin(theta),
@@ -47,7 +59,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
             let expected = TAU * spacing * turns;
             if !current.rings.is_empty() && length - shape.0 > expected + 4.0 * spacing {
                 let middle = shrink(region.outline(), region.nozzle() / 2.0 + d0 + spacing / 2.0);
-                uncovered(&middle, &current, &last_loops, spacing, out);
+                uncovered(&middle, &current, &last_loops, spacing, step, out);
             }
         }
         if current.rings.is_empty() {
@@ -179,6 +191,7 @@ fn uncovered(
     covered: &Loops,
     last: &[Vec<Coord>],
     spacing: f64,
+    step: f64,
     out: &mut Vec<Vec<Coord>>,
 ) {
     let gap = 0.75 * spacing;
@@ -202,12 +215,13 @@ fn uncovered(
                 .is_none()
     };
     for ring in &middle.rings {
-        // Points every quarter spacing at least: a ring cut from the raw offset has
-        // long edges, and a stretch is kept from vertex to vertex.
+        // Points every `step` spacing at least (`MIDDLE_STEP`; a quarter in the former
+        // code): a ring cut from the raw offset has long edges, and a stretch is kept from
+        // vertex to vertex.
         let mut dense = Vec::with_capacity(ring.len());
         for w in ring.windows(2) {
             let e = w[1] - w[0];
-            let steps = ((math::hypot(e.x, e.y) / (0.25 * spacing)).ceil() as usize).clamp(1, 1000);
+            let steps = ((math::hypot(e.x, e.y) / (step * spacing)).ceil() as usize).clamp(1, 1000);
             dense.extend((0..steps).map(|i| w[0] + e * (i as f64 / steps as f64)));
         }
         dense.extend(ring.last().copied());

@@ -1,6 +1,8 @@
 //! The quicker concentric loops (`concentric.rs`, `loops::Eroder`) against the code they
 //! replaced (`concentric_reference.rs`): the same polylines to the bit, on the comparison's
-//! shapes and on random ones.
+//! shapes and on random ones (the reference's middle ring at the quicker code's
+//! `MIDDLE_STEP`; against the former quarter step, the middle stretches within half a
+//! spacing of the former ones).
 
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use proptest::prelude::*;
@@ -49,6 +51,73 @@ fn concentric_gives_the_former_loops() {
             }
         }
     }
+}
+
+/// The middle ring's points half a spacing apart (`MIDDLE_STEP`), not a quarter as the
+/// former code had them: every loop is the same to the bit, and the middle stretches (the
+/// rest) move by where their ends fall between the points, less than a step: each point of
+/// a former stretch of two spacings or more (a shorter one may now end under a spacing,
+/// and go) lies within half a spacing of a stretch, and the stretches' length differs by
+/// less than a spacing per stretch (two short ones a near point cut apart may now be one).
+/// The density and largest gap of the Polyslice comparison stay (RESULTS.md).
+#[test]
+fn middle_stretches_at_half_steps_end_near_the_quarter_ones() {
+    let mut moved = 0;
+    for (name, shape) in named_shapes() {
+        for density in [0.1, 0.2, 0.3, 0.4, 0.6] {
+            let region = Region::new(&shape, W).expect("region");
+            let spacing = W / density;
+            let (mut half, mut quarter) = (Vec::new(), Vec::new());
+            concentric(&region, 45f64.to_radians(), spacing, &mut half);
+            concentric_reference::with_middle_step(
+                &region,
+                45f64.to_radians(),
+                spacing,
+                0.25,
+                &mut quarter,
+            );
+            // The polylines of both: the loops, and the stretches that did not move.
+            let only = |a: &[Vec<Coord>], b: &[Vec<Coord>]| -> Vec<Vec<Coord>> {
+                a.iter().filter(|p| !b.contains(p)).cloned().collect()
+            };
+            let (h, q) = (only(&half, &quarter), only(&quarter, &half));
+            assert_eq!(
+                half.len() - h.len(),
+                quarter.len() - q.len(),
+                "{name} at {density}"
+            );
+            moved += h.len() + q.len();
+            let reach = 0.5 * spacing + 1e-9;
+            let near = |p: Coord, set: &[Vec<Coord>]| {
+                set.iter().flat_map(|s| s.windows(2)).any(|w| {
+                    let e = w[1] - w[0];
+                    let t = (((p - w[0]).x * e.x + (p - w[0]).y * e.y) / (e.x * e.x + e.y * e.y))
+                        .clamp(0.0, 1.0);
+                    let d = p - (w[0] + e * t);
+                    math::hypot(d.x, d.y) <= reach
+                })
+            };
+            let length = |s: &[Coord]| -> f64 {
+                s.windows(2)
+                    .map(|w| math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y))
+                    .sum()
+            };
+            let total = |set: &[Vec<Coord>]| set.iter().map(|s| length(s)).sum::<f64>();
+            assert!(
+                (total(&h) - total(&q)).abs() <= spacing * (h.len() + q.len()) as f64,
+                "{name} at {density}: stretches {} long, {} before",
+                total(&h),
+                total(&q)
+            );
+            for s in q.iter().filter(|s| length(s) >= 2.0 * spacing) {
+                for p in s {
+                    assert!(near(*p, &h), "{name} at {density}: {p:?} far from the new");
+                }
+            }
+        }
+    }
+    // The holed square and the L have middle stretches that moved.
+    assert!(moved > 0);
 }
 
 /// One `Eroder` asked for many distances, in any order, gives each time the rings a fresh

@@ -311,3 +311,69 @@ proptest! {
         prop_assert!((l - m).abs() <= 0.02 * m + 0.03, "boundary {} here, {} by the buffer", l, m);
     }
 }
+
+/// The rate a loop's perimeter shrinks at per unit of erosion, read from its corners: a
+/// square's four right angles 8, a circle hole's growth −2π, the comparison's star's five
+/// sharp tips about 24.6 (a drop that 2π per outline took for a part ending); the same
+/// whichever way round a ring is stored.
+#[test]
+fn loops_shrink_by_their_corners() {
+    use super::concentric::shrink_rate;
+    let closed = |pts: Vec<Coord>| {
+        let mut pts = pts;
+        pts.push(pts[0]);
+        pts
+    };
+    let square = closed(vec![
+        Coord { x: 0.0, y: 0.0 },
+        Coord { x: 10.0, y: 0.0 },
+        Coord { x: 10.0, y: 10.0 },
+        Coord { x: 0.0, y: 10.0 },
+    ]);
+    let reversed = |r: &Vec<Coord>| r.iter().rev().copied().collect::<Vec<_>>();
+    assert!((shrink_rate(std::slice::from_ref(&square), &[true]) - 8.0).abs() < 1e-12);
+    assert!((shrink_rate(&[reversed(&square)], &[true]) - 8.0).abs() < 1e-12);
+    let circle = |clockwise: bool| {
+        closed(
+            (0..64)
+                .map(|i| {
+                    let t = i as f64 / 64.0
+                        * std::f64::consts::TAU
+                        * if clockwise { -1.0 } else { 1.0 };
+                    Coord {
+                        x: 5.0 * math::cos(t),
+                        y: 5.0 * math::sin(t),
+                    }
+                })
+                .collect(),
+        )
+    };
+    // A hole (the region outside it): small turns, 2·tan(φ/2) within 0.1% of φ.
+    for clockwise in [true, false] {
+        let rate = shrink_rate(&[circle(clockwise)], &[false]);
+        assert!((rate + std::f64::consts::TAU).abs() < 0.01, "{rate}");
+    }
+    // Square and hole together: 8 − 2π.
+    let both = shrink_rate(&[square.clone(), circle(true)], &[true, false]);
+    assert!((both - 8.0 + std::f64::consts::TAU).abs() < 0.01, "{both}");
+    // The star's outline: five tips turning by φ ≈ 135° (2·tan(φ/2) ≈ 4.8 each), five
+    // reflex corners turning back by ≈ 1.1 rad: about 17.9, nearly three times a circle's.
+    let star = shapes::star(10.0, 4.5);
+    let ring = star.0[0].exterior().0.clone();
+    let rate = shrink_rate(std::slice::from_ref(&ring), &[true]);
+    let n = ring.len() - 1;
+    let expected: f64 = (0..n)
+        .map(|i| {
+            let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[i + 1]);
+            let turn = math::atan2(c.y - b.y, c.x - b.x) - math::atan2(b.y - a.y, b.x - a.x);
+            let turn = (turn + 3.0 * std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI;
+            2.0 * (turn / 2.0).tan()
+        })
+        .sum();
+    assert!((rate - expected).abs() < 1e-9, "{rate} vs {expected}");
+    assert!(
+        rate > 2.5 * std::f64::consts::TAU && rate < 3.0 * std::f64::consts::TAU,
+        "{rate}"
+    );
+}

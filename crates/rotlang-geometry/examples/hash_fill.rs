@@ -1,8 +1,8 @@
 //! Hashes the toolpaths and travels of every pattern at several densities, angles and
 //! on the comparison's shapes, bit for bit, to check that a speed change kept the paths:
 //! `cargo run --release -p rotlang-geometry --example hash_fill` before and after. Now
-//! `all ae1715539efc27f3` (since concentric's middle ring at half steps and its part
-//! endings read from the loops' corners; before them `030ae57d1e1477a3`).
+//! `all 6a1eb91350c9c5b4` (since concentric's middle ring at half steps; before it
+//! `030ae57d1e1477a3`).
 use rotlang_geometry::infill::{self, Params, Pattern, shapes};
 use std::hash::{DefaultHasher, Hash, Hasher};
 

@@ -44,8 +44,6 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     // The previous loops themselves (closed rings).
     let mut last_loops = std::mem::take(&mut pool.last);
     last_loops.clear();
-    // Whether each of them is an outline's loop (else a hole's).
-    let mut last_outline = Vec::new();
     let mut scratch = std::mem::take(&mut pool.scratch);
     for k in 0.. {
         let mut d = (k as f64 + 0.5) * spacing;
@@ -61,18 +59,11 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         // a band up to two spacings wide would stay empty: its middle gets the pieces of
         // a loop half a spacing further in that no loop here is near. (Not where the
         // whole region ends: a last loop there costs more density than the gap.)
-        // An erosion shrinks the loops' perimeter by `shrink_rate` per unit while no part
-        // of them ends (at least 2π per outline, less 2π per hole): a larger drop says a
-        // part ended. (The star's tips shrink it three times faster than a circle's: 2π
-        // alone took each of its loops for a part ending, and measured a middle loop that
-        // found no gap.) The rate is measured only when the drop passes its least value.
+        // Offsets shrink each outline's perimeter by 2π per unit (and grow each hole's):
+        // a larger drop says a part ended.
         if let Some((d0, length, turns)) = previous {
-            let drop = length - shape.0;
-            let margin = 4.0 * spacing;
-            if !current.rings.is_empty()
-                && drop > TAU * turns * (d - d0) + margin
-                && drop > shrink_rate(&last_loops, &last_outline) * (d - d0) + margin
-            {
+            let expected = TAU * spacing * turns;
+            if !current.rings.is_empty() && length - shape.0 > expected + 4.0 * spacing {
                 let middle = eroder.shrink(region.nozzle() / 2.0 + d0 + spacing / 2.0);
                 uncovered(&middle, &current, &last_loops, spacing, &mut scratch, out);
             }
@@ -87,8 +78,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         let step = (k as f64 + 1.5) * spacing - d;
         let room = room(&current, shape.0, region.nozzle() / 2.0 + d);
         last_loops.clear();
-        last_outline.clear();
-        for (ring, outline) in current.rings.into_iter().zip(current.outline) {
+        for ring in current.rings {
             let mut pts = ring;
             if pts.len() > 1 && pts.first() == pts.last() {
                 pts.pop();
@@ -107,7 +97,6 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
             pts.rotate_left(start);
             pts.push(pts[0]);
             last_loops.push(pts);
-            last_outline.push(outline);
         }
         apart(&last_loops, 0.75 * spacing, &mut scratch, out);
         if room < step {
@@ -854,54 +843,6 @@ fn together(
 struct Loops {
     rings: Vec<Vec<Coord>>,
     turns: f64,
-    /// Whether each ring is an outline (else a hole).
-    outline: Vec<bool>,
-}
-
-fn signed_twice_area(r: &[Coord]) -> f64 {
-    r.windows(2)
-        .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
-        .sum()
-}
-
-/// How fast the perimeter of the loops `rings` (closed; `outline` says which are
-/// outlines', the others holes') shrinks per unit as they are moved further in, as long
-/// as no part of them ends: an erosion keeps a convex corner sharp (each of its sides
-/// shortened by `tan(φ/2)` per unit, φ its turn) and rounds a reflex one (an arc of its
-/// turn's angle, of radius the distance). Measured on the loops themselves: a star's tips
-/// shrink its perimeter three times faster than a circle's 2π, a hole's grows it. A
-/// reflex vertex is an arc's step of at most 0.5 rad, where `2·tan(φ/2)` is `φ` within
-/// 2%; a corner sharper than 170° counts as that.
-pub(super) fn shrink_rate(rings: &[Vec<Coord>], outline: &[bool]) -> f64 {
-    const SHARPEST: f64 = 22.9; // 2·tan(85°)
-    let mut rate = 0.0;
-    for (ring, &outline) in rings.iter().zip(outline) {
-        let n = ring.len().saturating_sub(1);
-        if n < 3 {
-            continue;
-        }
-        let (mut sum, mut twice_area) = (0.0, 0.0);
-        for i in 0..n {
-            let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[i + 1]);
-            let (e, f) = (b - a, c - b);
-            let cross = e.x * f.y - e.y * f.x;
-            let lengths = ((e.x * e.x + e.y * e.y) * (f.x * f.x + f.y * f.y)).sqrt();
-            let dot = e.x * f.x + e.y * f.y;
-            // 2·tan(φ/2) = 2·sin φ / (1 + cos φ), signed by the turn.
-            let denominator = lengths + dot;
-            sum += if denominator > lengths * (2.0 / SHARPEST / SHARPEST) {
-                (2.0 * cross / denominator).clamp(-SHARPEST, SHARPEST)
-            } else {
-                SHARPEST.copysign(cross)
-            };
-            twice_area += b.x * c.y - c.x * b.y;
-        }
-        // The region lies left of an outline traversed anticlockwise and of a hole
-        // traversed clockwise: the turns are read that way round.
-        let forward = (twice_area > 0.0) == outline;
-        rate += if forward { sum } else { -sum };
-    }
-    rate
 }
 
 /// The loops' offsets of one region: arcs in steps of 0.5 rad (not geo's 0.2): the loops
@@ -968,12 +909,7 @@ impl<'a> Shrink<'a> {
                     twice.signum()
                 })
                 .sum();
-            let outline = rings.iter().map(|r| signed_twice_area(r) > 0.0).collect();
-            return Loops {
-                rings,
-                turns,
-                outline,
-            };
+            return Loops { rings, turns };
         }
         let polygons = convex.unwrap_or_else(|| {
             if holes && let Some(inset) = crate::infill::region::convex_inset(area, d, 0.5) {
@@ -992,13 +928,6 @@ impl<'a> Shrink<'a> {
                 .iter()
                 .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
                 .map(|r| r.0.clone())
-                .collect(),
-            outline: polygons
-                .0
-                .iter()
-                .flat_map(|p| {
-                    std::iter::once(true).chain(std::iter::repeat_n(false, p.interiors().len()))
-                })
                 .collect(),
         }
     }

@@ -5,7 +5,7 @@
 //! at its mitre where its moved edges cross (`close_tips`), and a swallowtail that one
 //! point cannot decide left to the buffer (`undecided`).
 
-use super::concentric::shrink_rate;
+use std::f64::consts::TAU;
 
 use geo::algorithm::buffer::{BufferStyle, LineJoin};
 use geo::{Buffer, Coord, MultiPolygon};
@@ -53,10 +53,10 @@ pub(crate) fn with_middle_step(
         // a band up to two spacings wide would stay empty: its middle gets the pieces of
         // a loop half a spacing further in that no loop here is near. (Not where the
         // whole region ends: a last loop there costs more density than the gap.)
-        // An erosion shrinks the loops' perimeter by `shrink_rate` per unit while no part
-        // of them ends: a larger drop says a part ended.
-        if let Some((d0, length, rate)) = previous {
-            let expected = rate * (d - d0);
+        // Offsets shrink each outline's perimeter by 2π per unit (and grow each hole's):
+        // a larger drop says a part ended.
+        if let Some((d0, length, turns)) = previous {
+            let expected = TAU * spacing * turns;
             if !current.rings.is_empty() && length - shape.0 > expected + 4.0 * spacing {
                 let middle = shrink(region.outline(), region.nozzle() / 2.0 + d0 + spacing / 2.0);
                 uncovered(&middle, &current, &last_loops, spacing, step, out);
@@ -65,15 +65,7 @@ pub(crate) fn with_middle_step(
         if current.rings.is_empty() {
             break;
         }
-        let kept: Vec<(Vec<Coord>, bool)> = current
-            .rings
-            .iter()
-            .cloned()
-            .zip(current.outline.iter().copied())
-            .filter(|(r, _)| r.len() >= 4)
-            .collect();
-        let (rings, outline): (Vec<_>, Vec<_>) = kept.into_iter().unzip();
-        previous = Some((d, shape.0, shrink_rate(&rings, &outline)));
+        previous = Some((d, shape.0, shape.1));
         last_loops.clear();
         for ring in current.rings {
             let mut pts = ring;
@@ -250,8 +242,6 @@ fn uncovered(
 struct Loops {
     rings: Vec<Vec<Coord>>,
     turns: f64,
-    /// Whether each ring is an outline (else a hole).
-    outline: Vec<bool>,
 }
 
 /// The loops' offsets: arcs in steps of 0.5 rad (not geo's 0.2): the loops are far from
@@ -281,21 +271,7 @@ fn shrink(area: &MultiPolygon<f64>, d: f64) -> Loops {
                 twice.signum()
             })
             .sum();
-        // Outlines anticlockwise, holes clockwise.
-        let outline = rings
-            .iter()
-            .map(|r| {
-                r.windows(2)
-                    .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
-                    .sum::<f64>()
-                    > 0.0
-            })
-            .collect();
-        return Loops {
-            rings,
-            turns,
-            outline,
-        };
+        return Loops { rings, turns };
     }
     let polygons = convex.unwrap_or_else(|| {
         if holes && let Some(inset) = crate::infill::region::convex_inset(area, d, 0.5) {
@@ -314,11 +290,6 @@ fn shrink(area: &MultiPolygon<f64>, d: f64) -> Loops {
             .iter()
             .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
             .map(|r| r.0.clone())
-            .collect(),
-        outline: polygons
-            .0
-            .iter()
-            .flat_map(|p| std::iter::once(true).chain(p.interiors().iter().map(|_| false)))
             .collect(),
     }
 }

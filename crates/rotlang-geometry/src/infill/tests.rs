@@ -1548,6 +1548,33 @@ proptest! {
             prop_assert_eq!(chunked.route(q, from_edge), general.route(q, from_edge));
         }
     }
+
+    /// The router's cumulative lengths (each vertex and the next, then the closing edge)
+    /// are, to the bit, the sums edge by edge round each ring, on every ring of a holed
+    /// region.
+    #[test]
+    fn cumulative_lengths_are_the_sums_edge_by_edge(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let router = travel::Router::new(rings);
+        for (r, ring) in rings.iter().enumerate() {
+            let n = ring.len();
+            let mut s = 0.0;
+            let mut wanted = vec![0.0f64];
+            for i in 0..n {
+                let e = ring[(i + 1) % n] - ring[i];
+                s += (e.x * e.x + e.y * e.y).sqrt();
+                wanted.push(s);
+            }
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            prop_assert_eq!(bits(&router.cumulative_lengths(r)), bits(&wanted));
+        }
+    }
 }
 
 /// `Edges::clip` with every edge tested against every segment (no grid), for reference.

@@ -402,20 +402,34 @@ impl<'a> Router<'a> {
             let vertices: usize = self.rings.iter().map(Vec::len).sum();
             let mut cumulative = scratch::take(&LENGTHS);
             cumulative.reserve(vertices + self.rings.len());
+            // The same sums in the same order as edge by edge with `next`, by an extend
+            // of exact length (no capacity test per push) over each vertex and the next,
+            // then the closing edge.
             for ring in self.rings {
-                let n = ring.len();
-                let mut s = 0.0;
                 cumulative.push(0.0);
-                for i in 0..n {
-                    let e = ring[next(i, n)] - ring[i];
+                let (Some(&first), Some(&last)) = (ring.first(), ring.last()) else {
+                    continue;
+                };
+                let mut s = 0.0;
+                cumulative.extend(ring.windows(2).map(|w| {
+                    let e = w[1] - w[0];
                     s += (e.x * e.x + e.y * e.y).sqrt();
-                    cumulative.push(s);
-                }
+                    s
+                }));
+                let e = first - last;
+                s += (e.x * e.x + e.y * e.y).sqrt();
+                cumulative.push(s);
             }
             cumulative
         });
         let from = self.at(r).1;
         &cumulative[from..from + self.rings[r].len() + 1]
+    }
+
+    /// Ring `r`'s cumulative lengths (tests).
+    #[cfg(test)]
+    pub(crate) fn cumulative_lengths(&self, r: usize) -> Vec<f64> {
+        self.cumulative(r).to_vec()
     }
 
     /// Where a move from `p` to `q` crosses ring `r`: the fraction along the move, and

@@ -1549,6 +1549,35 @@ proptest! {
         }
     }
 
+    /// The line families found by scanning every line across the rings (a small region
+    /// at a low density) are, to the bit, those found edge by edge from each edge's
+    /// candidate lines: on holed regions, at any angle, spacing and shift, for one, two
+    /// and three families.
+    #[test]
+    fn lines_scanned_are_the_lines_found_edge_by_edge(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        theta in 0.0f64..TAU,
+        spacing in prop_oneof![0.3f64..20.0, Just(1.0), Just(0.5)],
+        shift in prop_oneof![Just(0.0f64), -5.0f64..5.0],
+        families in 0usize..3,
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let offsets = [&[0.0][..], &[0.0, 90.0], &[0.0, 60.0, 120.0]][families];
+        let centre = region.centre();
+        let (mut scanned, mut by_edge) = (Vec::new(), Vec::new());
+        straight::families_by(&region, centre, theta, offsets, spacing, shift, true, &mut scanned);
+        straight::families_by(&region, centre, theta, offsets, spacing, shift, false, &mut by_edge);
+        let bits = |v: &[Vec<Coord>]| {
+            v.iter()
+                .map(|l| l.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect::<Vec<_>>())
+                .collect::<Vec<_>>()
+        };
+        prop_assert_eq!(bits(&scanned), bits(&by_edge));
+    }
+
     /// The router's cumulative lengths (each vertex and the next, then the closing edge)
     /// are, to the bit, the sums edge by edge round each ring, on every ring of a holed
     /// region.

@@ -1578,6 +1578,67 @@ proptest! {
         prop_assert_eq!(bits(&scanned), bits(&by_edge));
     }
 
+    /// The router's even-odd test reading only the chunks that may cross the ray (for
+    /// the parity) or lie within a nanometre (for the edges' distance) is the test of
+    /// both on every edge of a chunk that is either: at line ends on edges, at vertices,
+    /// at points a nanometre or two off an edge, and anywhere in the box.
+    #[test]
+    fn inside_by_the_chunks_that_matter_is_inside_edge_by_edge(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        points in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), 0u8..3, -2e-6f64..2e-6, -2e-6f64..2e-6), 1..24),
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let ends = MoveEnds::new(rings);
+        for chunk in [4, 8, usize::MAX] {
+            let router = travel::Router::with_chunk(rings, chunk);
+            for &(at, kind, dx, dy) in &points {
+                let p = ends.point(at, kind);
+                for p in [p, p + Coord { x: dx, y: dy }] {
+                    prop_assert_eq!(router.inside(p), router.inside_each_edge(p), "{:?}", p);
+                }
+            }
+        }
+    }
+
+    /// Moves routed passing the edges whose ends are both clearly on one side of the
+    /// move's line are the moves routed testing every edge, and find the same crossings
+    /// (the edges they pass could only have been kept as edges the move runs along):
+    /// between line ends, vertices and points of the box, on holed star-like regions.
+    #[test]
+    fn edges_passed_by_their_sides_are_not_crossed(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3, 0u8..3), 1..24),
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let ends = MoveEnds::new(rings);
+        let sided = travel::Router::new(rings);
+        let every = travel::Router::new(rings).every_edge();
+        let crossed = |router: &travel::Router, p, q| {
+            router
+                .crossings_of_move(p, q)
+                .into_iter()
+                .filter(|c| !f64::from_bits(c.0).is_nan())
+                .collect::<Vec<_>>()
+        };
+        for (a, b, ka, kb) in moves {
+            let (p, q) = (ends.point(a, ka), ends.point(b, kb));
+            for (from, to) in [(p, q), (q, p), (p, p)] {
+                prop_assert_eq!(crossed(&sided, from, to), crossed(&every, from, to));
+                prop_assert_eq!(sided.route(from, to), every.route(from, to));
+            }
+        }
+    }
+
     /// The router's cumulative lengths (each vertex and the next, then the closing edge)
     /// are, to the bit, the sums edge by edge round each ring, on every ring of a holed
     /// region.

@@ -1639,6 +1639,48 @@ proptest! {
         }
     }
 
+    /// Nearest-first ordering of a few paths (the plain scan) takes, from the last end,
+    /// the nearest end of a path not yet taken, ties to the lowest index as generated
+    /// and then to its first end, reversing the path entered at its last: ends on a
+    /// small grid (many ties) and anywhere, up to the scan's 64 paths and past them (the
+    /// grid search, the same rule).
+    #[test]
+    fn nearest_first_takes_the_nearest_end_ties_to_the_first(
+        paths in prop::collection::vec(
+            prop::collection::vec(
+                prop_oneof![
+                    (-3i32..3, -3i32..3).prop_map(|(x, y)| Coord { x: x as f64, y: y as f64 }),
+                    (-5.0f64..5.0, -5.0f64..5.0).prop_map(|(x, y)| Coord { x, y }),
+                ],
+                2..4,
+            ),
+            1..70,
+        ),
+    ) {
+        let mut left: Vec<(usize, Vec<Coord>)> = paths.iter().cloned().enumerate().skip(1).collect();
+        let mut wanted = vec![paths[0].clone()];
+        let mut at = *paths[0].last().unwrap();
+        while !left.is_empty() {
+            let mut best = (f64::INFINITY, 0, false);
+            for (k, (_, p)) in left.iter().enumerate() {
+                for (reversed, q) in [(false, p[0]), (true, *p.last().unwrap())] {
+                    let d = (q - at).x * (q - at).x + (q - at).y * (q - at).y;
+                    if d < best.0 {
+                        best = (d, k, reversed);
+                    }
+                }
+            }
+            let (_, k, reversed) = best;
+            let (_, mut p) = left.remove(k);
+            if reversed {
+                p.reverse();
+            }
+            at = *p.last().unwrap();
+            wanted.push(p);
+        }
+        prop_assert_eq!(order::nearest(paths), wanted);
+    }
+
     /// The router's cumulative lengths (each vertex and the next, then the closing edge)
     /// are, to the bit, the sums edge by edge round each ring, on every ring of a holed
     /// region.

@@ -234,9 +234,15 @@ impl Edges {
         // start in `strip_start` and its edges in ascending order.
         let mut strip_start = scratch::take(&STRIP_START);
         strip_start.resize(n + 1, 0);
-        for e in &edges {
-            for s in span(e) {
-                strip_start[s] += 1;
+        // Each edge's strips found once (two divisions), for both passes.
+        let mut spans = scratch::take(&SPANS);
+        spans.extend(edges.iter().map(|e| {
+            let s = span(e);
+            (*s.start() as u32, *s.end() as u32)
+        }));
+        for &(first, last) in &spans {
+            for s in first..=last {
+                strip_start[s as usize] += 1;
             }
         }
         for s in 1..n {
@@ -245,12 +251,14 @@ impl Edges {
         strip_start[n] = strip_start[n - 1];
         let mut strip_edges = scratch::take(&STRIP_EDGES);
         strip_edges.resize(strip_start[n] as usize, 0);
-        for (i, e) in edges.iter().enumerate().rev() {
-            for s in span(e) {
+        for (i, &(first, last)) in spans.iter().enumerate().rev() {
+            for s in first..=last {
+                let s = s as usize;
                 strip_start[s] -= 1;
                 strip_edges[strip_start[s] as usize] = i as u32;
             }
         }
+        scratch::give(&SPANS, spans);
         let mut boxes = scratch::take(&BOXES);
         if edges.len() <= PLAIN {
             boxes.extend(edges.iter().map(|&e| edge_box(e)));
@@ -485,6 +493,8 @@ thread_local! {
     static BOXES: std::cell::Cell<Vec<(Coord, Coord)>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_START: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_EDGES: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
+    /// Each edge's first and last strip while `Edges::new` sorts them.
+    static SPANS: std::cell::Cell<Vec<(u32, u32)>> = const { std::cell::Cell::new(Vec::new()) };
     static CUTS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
     static PIECE: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
 }

@@ -1681,6 +1681,35 @@ proptest! {
         prop_assert_eq!(order::nearest(paths), wanted);
     }
 
+    /// The edge index's even-odd test (the edges of the point's strip only) is the ray's
+    /// parity over every edge: at vertices, on edges, at strip bounds and anywhere in the
+    /// box, in a turned frame, on holed star-like regions.
+    #[test]
+    fn strips_hold_every_edge_the_ray_may_cross(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        theta in 0.0f64..TAU,
+        points in prop::collection::vec(((0usize..1000, 0.0f64..1.0), 0u8..3), 1..32),
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let frame = clip::Frame::new(region.centre(), theta);
+        let edges = clip::Edges::new(region.rings(), &frame);
+        let local: Vec<Vec<Coord>> = region
+            .rings()
+            .iter()
+            .map(|r| r.iter().map(|&p| frame.to_local(p)).collect())
+            .collect();
+        let ends = MoveEnds::new(&local);
+        let segments: Vec<(Coord, Coord)> = edges.segments().collect();
+        for (at, kind) in points {
+            let p = ends.point(at, kind);
+            let parity = segments.iter().filter(|&&(a, b)| clip::ray_crosses(a, b, p)).count() % 2 == 1;
+            prop_assert_eq!(edges.contains(p), parity, "{:?}", p);
+        }
+    }
+
     /// The router's cumulative lengths (each vertex and the next, then the closing edge)
     /// are, to the bit, the sums edge by edge round each ring, on every ring of a holed
     /// region.

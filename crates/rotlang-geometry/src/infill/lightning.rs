@@ -57,10 +57,10 @@ pub(crate) struct Outlines {
 
 impl Outlines {
     pub(crate) fn new(region: &Region, theta: f64) -> Outlines {
-        let direction = Coord {
-            x: math::cos(theta),
-            y: math::sin(theta),
-        };
+        // One call for both (the same kernels as `cos` and `sin`, to the bit: a test
+        // compares them).
+        let (sin, cos) = math::sin_cos(theta);
+        let direction = Coord { x: cos, y: sin };
         let mut each = scratch::take(&OUTLINES);
         each.extend(region.outlines().iter().map(|ring| {
             let n = ring.len();

@@ -247,3 +247,14 @@ fn trees_sharing_the_outlines_are_the_trees_on_their_own() {
         }
     }
 }
+
+proptest! {
+    /// The outlines' direction from one `sin_cos` is `cos` and `sin` apart, to the bit,
+    /// at any angle the layer's θ may be (reduced to a turn, and beyond).
+    #[test]
+    fn sin_cos_is_sin_and_cos(theta in prop_oneof![0.0f64..TAU, -1e3f64..1e3, Just(0.0), Just(TAU)]) {
+        let (s, c) = crate::math::sin_cos(theta);
+        prop_assert_eq!(s.to_bits(), crate::math::sin(theta).to_bits());
+        prop_assert_eq!(c.to_bits(), crate::math::cos(theta).to_bits());
+    }
+}

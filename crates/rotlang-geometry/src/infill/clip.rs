@@ -59,8 +59,11 @@ fn edge_box(Edge { a, b }: Edge) -> (Coord, Coord) {
 /// short segment meets only the edges near it.
 pub(crate) struct Edges {
     edges: Vec<Edge>,
-    /// Each edge's box, for a region of at most `PLAIN` edges (`clip` tests them all).
-    boxes: Vec<(Coord, Coord)>,
+    /// Each edge with its box, for a region of at most `PLAIN` edges (`clip` tests them
+    /// all), by the box's least x: a segment's scan stops at the first edge wholly to
+    /// its right (the crossings are sorted by where they are after, so the order they
+    /// are found in is not seen).
+    boxes: Vec<(Coord, Coord, Edge)>,
     /// Strip `s` holds `strip_edges[strip_start[s]..strip_start[s + 1]]` (one flat list:
     /// two allocations, not one per strip).
     strip_start: Vec<u32>,
@@ -261,7 +264,20 @@ impl Edges {
         scratch::give(&SPANS, spans);
         let mut boxes = scratch::take(&BOXES);
         if edges.len() <= PLAIN {
-            boxes.extend(edges.iter().map(|&e| edge_box(e)));
+            boxes.extend(edges.iter().map(|&e| {
+                let (lo, hi) = edge_box(e);
+                (lo, hi, e)
+            }));
+            // By insertion: a few dozen edges at most.
+            for i in 1..boxes.len() {
+                let held = boxes[i];
+                let mut j = i;
+                while j > 0 && boxes[j - 1].0.x > held.0.x {
+                    boxes[j] = boxes[j - 1];
+                    j -= 1;
+                }
+                boxes[j] = held;
+            }
         }
         Edges {
             // Allocated by the first `clip`: straight lines never need it.
@@ -369,8 +385,11 @@ impl Edges {
                 // Few edges (a star, an L): every one, no grid to build or walk.
                 // Each edge's box made once (the grid's edges, many more, go without:
                 // their twice longer list cost more than the comparisons saved).
-                for (&edge, &bounds) in self.edges.iter().zip(&self.boxes) {
-                    segment.cut_boxed(edge, bounds, &mut cuts);
+                for &(lo, hi, edge) in &self.boxes {
+                    if lo.x > segment.x1 {
+                        break;
+                    }
+                    segment.cut_boxed(edge, (lo, hi), &mut cuts);
                 }
             } else {
                 self.cut_through_grid(&segment, lo, hi, &mut cuts);
@@ -490,7 +509,7 @@ impl Drop for Edges {
 thread_local! {
     /// `Edges`' lists, kept from one layer to the next.
     static EDGE_LIST: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
-    static BOXES: std::cell::Cell<Vec<(Coord, Coord)>> = const { std::cell::Cell::new(Vec::new()) };
+    static BOXES: std::cell::Cell<Vec<(Coord, Coord, Edge)>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_START: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_EDGES: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
     /// Each edge's first and last strip while `Edges::new` sorts them.

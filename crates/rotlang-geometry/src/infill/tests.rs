@@ -1805,6 +1805,31 @@ proptest! {
             prop_assert_eq!(fast, clip_plain(&edges, &pts));
         }
     }
+
+    /// A small region's clip (its edges by their boxes' least x, a segment's scan
+    /// stopped at the first wholly to its right) cuts where every edge tested in the
+    /// region's order would: star-like outlines of a few points (at most 32 edges once
+    /// inset), segments from short to across the region, polylines of several.
+    #[test]
+    fn clip_of_a_few_edges_by_their_least_x_is_the_plain_clip(
+        outer in prop::collection::vec(2.0f64..15.0, 3..9),
+        turn in 0.0f64..TAU,
+        lines in prop::collection::vec(
+            prop::collection::vec((-16.0f64..16.0, -16.0f64..16.0), 2..6), 1..12),
+    ) {
+        let shape = polygon(&outer, turn);
+        let Ok(region) = Region::new(&shape, W) else {
+            return Ok(());
+        };
+        let mut edges = clip::Edges::new(region.rings(), &clip::Frame::new(Coord::zero(), turn));
+        prop_assume!(edges.segments().count() <= 32);
+        for line in lines {
+            let pts: Vec<Coord> = line.into_iter().map(|(x, y)| Coord { x, y }).collect();
+            let mut fast = Vec::new();
+            edges.clip(&pts, &mut fast);
+            prop_assert_eq!(fast, clip_plain(&edges, &pts));
+        }
+    }
 }
 
 /// Lightning as it was filled before the first tree was only measured: two trees built

@@ -264,20 +264,24 @@ impl Edges {
         scratch::give(&SPANS, spans);
         let mut boxes = scratch::take(&BOXES);
         if edges.len() <= PLAIN {
-            boxes.extend(edges.iter().map(|&e| {
+            // The edges' least x with their index sorted by insertion (a few dozen at
+            // most, each key a pair of words moved, not a box and an edge), then the
+            // boxes listed in that order.
+            let mut keys = [(0.0f64, 0u8); PLAIN];
+            for (i, e) in edges.iter().enumerate() {
+                let key = (if e.a.x < e.b.x { e.a.x } else { e.b.x }, i as u8);
+                let mut j = i;
+                while j > 0 && keys[j - 1].0 > key.0 {
+                    keys[j] = keys[j - 1];
+                    j -= 1;
+                }
+                keys[j] = key;
+            }
+            boxes.extend(keys[..edges.len()].iter().map(|&(_, i)| {
+                let e = edges[usize::from(i)];
                 let (lo, hi) = edge_box(e);
                 (lo, hi, e)
             }));
-            // By insertion: a few dozen edges at most.
-            for i in 1..boxes.len() {
-                let held = boxes[i];
-                let mut j = i;
-                while j > 0 && boxes[j - 1].0.x > held.0.x {
-                    boxes[j] = boxes[j - 1];
-                    j -= 1;
-                }
-                boxes[j] = held;
-            }
         }
         Edges {
             // Allocated by the first `clip`: straight lines never need it.

@@ -112,11 +112,11 @@ impl<'a> Router<'a> {
             // ring's box grows with its chunks' (they hold every vertex).
             let mut ring_box = bounds(&[]);
             let mut from = 0;
-            while from < n {
-                let to = if n - from > chunk { from + chunk } else { n };
+            for edges in r.chunks(chunk) {
+                let to = from + edges.len();
                 let last = if to < n { r[to] } else { r[0] };
                 let (mut lo, mut hi) = (last, last);
-                for c in &r[from..to] {
+                for c in edges {
                     if c.x < lo.x {
                         lo.x = c.x;
                     }

@@ -85,6 +85,9 @@ pub(crate) struct Edges {
     /// lightning branch's two polylines share their fork, and where neither is cut both
     /// test it (the answer depends on the point and the edges alone).
     tested: ([u64; 2], bool),
+    /// Whether a polyline crossing nothing is cut as any other (in tests: the general
+    /// path its shortcut is compared with).
+    whole_as_cut: bool,
 }
 
 /// Edges by cell, in one flat list: cell `c` holds `edges[start[c]..start[c + 1]]`.
@@ -299,7 +302,16 @@ impl Edges {
             grid: None,
             // No point has these bits (NaNs: never a middle that is tested).
             tested: ([u64::MAX; 2], false),
+            whole_as_cut: false,
         }
+    }
+
+    /// The same edges clipping a polyline that crosses nothing as any other (tests
+    /// compare the two).
+    #[cfg(test)]
+    pub fn cutting_whole(mut self) -> Edges {
+        self.whole_as_cut = true;
+        self
     }
 
     /// The edges, in the frame.
@@ -409,6 +421,32 @@ impl Edges {
             let t = g - k as f64;
             pts[k] + (pts[k + 1] - pts[k]) * t
         };
+        if cuts.len() == 2 && !self.whole_as_cut {
+            // Nothing crossed (most of a tree's polylines): the one stretch is the whole
+            // polyline, its ends `at(0)` and `at(end)` with their segment and fraction
+            // known (the first segment at 0, the last at 1: the same products as `at`'s),
+            // and its points between, without the casts that find them for a cut.
+            let n = pts.len();
+            let middle = at(end / 2.0);
+            let bits = [middle.x.to_bits(), middle.y.to_bits()];
+            let inside = if bits == self.tested.0 {
+                self.tested.1
+            } else {
+                let inside = self.contains(middle);
+                self.tested = (bits, inside);
+                inside
+            };
+            if inside {
+                buffer.clear();
+                buffer.push(pts[0] + (pts[1] - pts[0]) * 0.0);
+                buffer.extend(pts[1..n - 1].iter().copied());
+                buffer.push(pts[n - 2] + (pts[n - 1] - pts[n - 2]) * 1.0);
+                piece(&buffer);
+            }
+            self.cuts = cuts;
+            self.piece = buffer;
+            return;
+        }
         for w in cuts.windows(2) {
             let (g0, g1) = (w[0], w[1]);
             if g1 <= g0 {
@@ -691,6 +729,29 @@ mod tests {
                 pieces_of(&mut shared, &pts, &mut kept);
                 pieces_of(&mut Edges::new(&rings, &frame), &pts, &mut fresh);
                 prop_assert_eq!(&kept, &fresh);
+            }
+        }
+
+        /// A polyline that crosses no edge is handed out whole (its ends recomputed as
+        /// a cut's are) or not at all, to the bit as the general path cuts it: short
+        /// polylines inside, outside and across star-shaped regions of a few edges (the
+        /// plain scan) and of many (the grid), each clipped on its own.
+        #[test]
+        fn a_polyline_crossing_nothing_is_clipped_as_any_other(
+            radii in prop::collection::vec(1.0f64..10.0, 3..60),
+            lines in prop::collection::vec((coord(), coord(), coord(), 0u8..2), 1..12),
+            scale in prop_oneof![Just(1.0f64), Just(0.05), Just(0.3)],
+        ) {
+            let rings = vec![radial(&radii)];
+            let frame = Frame::new(Coord { x: 0.0, y: 0.0 }, 0.0);
+            let (mut shortcut, mut general) = (Vec::new(), Vec::new());
+            for (a, m, b, three) in lines {
+                // Small polylines about a point: most cross nothing.
+                let (m, b) = (a + (m - a) * scale, a + (b - a) * scale);
+                let pts: Vec<Coord> = if three == 1 { vec![a, m, b] } else { vec![a, b] };
+                pieces_of(&mut Edges::new(&rings, &frame), &pts, &mut shortcut);
+                pieces_of(&mut Edges::new(&rings, &frame).cutting_whole(), &pts, &mut general);
+                prop_assert_eq!(&shortcut, &general);
             }
         }
 

@@ -379,20 +379,21 @@ impl Edges {
         cuts.push(0.0);
         for (k, w) in pts.windows(2).enumerate() {
             let (p, q) = (w[0], w[1]);
-            let (lo, hi) = (p.y.min(q.y), p.y.max(q.y));
-            if hi < self.min.y
-                || lo > self.max.y
-                || p.x.max(q.x) < self.min.x
-                || p.x.min(q.x) > self.max.x
-            {
+            // The segment's box by comparisons, not `min`/`max` (which handle NaN at
+            // several instructions each): a pattern's points are finite, and a segment
+            // with a NaN end is cut nowhere either way (its fractions are NaN), so the box
+            // only says which edges are tested.
+            let (x0, x1) = if p.x < q.x { (p.x, q.x) } else { (q.x, p.x) };
+            let (lo, hi) = if p.y < q.y { (p.y, q.y) } else { (q.y, p.y) };
+            if hi < self.min.y || lo > self.max.y || x1 < self.min.x || x0 > self.max.x {
                 continue;
             }
             let first = cuts.len();
             let segment = Segment {
                 p,
                 d: q - p,
-                x0: p.x.min(q.x),
-                x1: p.x.max(q.x),
+                x0,
+                x1,
                 y0: lo,
                 y1: hi,
                 k: k as f64,
@@ -410,7 +411,10 @@ impl Edges {
             } else {
                 self.cut_through_grid(&segment, lo, hi, &mut cuts);
             }
-            cuts[first..].sort_unstable_by(f64::total_cmp);
+            // One crossing or none (most segments): nothing to sort.
+            if cuts.len() - first > 1 {
+                cuts[first..].sort_unstable_by(f64::total_cmp);
+            }
         }
         let end = (pts.len() - 1) as f64;
         cuts.push(end);

@@ -456,16 +456,7 @@ impl<'a> Router<'a> {
         let ring = &self.rings[r];
         let n = ring.len();
         let d = q - p;
-        let (lo, hi) = (
-            Coord {
-                x: p.x.min(q.x),
-                y: p.y.min(q.y),
-            },
-            Coord {
-                x: p.x.max(q.x),
-                y: p.y.max(q.y),
-            },
-        );
+        let (lo, hi) = move_box(p, q);
         let moving = d.x != 0.0 || d.y != 0.0;
         // A move within a millionth of a radian of an edge's direction is kept as one
         // that may run along it (as an exactly parallel one is): a move between two line
@@ -576,16 +567,7 @@ impl<'a> Router<'a> {
         cuts.clear();
         // Room for a few crossings at once (not grown from nothing, one at a time).
         cuts.reserve(16);
-        let (lo, hi) = (
-            Coord {
-                x: p.x.min(q.x),
-                y: p.y.min(q.y),
-            },
-            Coord {
-                x: p.x.max(q.x),
-                y: p.y.max(q.y),
-            },
-        );
+        let (lo, hi) = move_box(p, q);
         for r in 0..self.rings.len() {
             let (a, b) = self.ring_box(r);
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
@@ -887,6 +869,17 @@ impl Drop for Router<'_> {
             scratch::give(&LENGTHS, lengths);
         }
     }
+}
+
+/// A move's box, its lowest and highest corner, by comparisons (not `min`/`max`, which
+/// handle NaN at several instructions each): a move's ends are finite, and a move with a
+/// NaN end crosses nothing either way (its fractions are NaN), so the box only says
+/// which rings and chunks are tested.
+#[inline]
+fn move_box(p: Coord, q: Coord) -> (Coord, Coord) {
+    let (x0, x1) = if p.x < q.x { (p.x, q.x) } else { (q.x, p.x) };
+    let (y0, y1) = if p.y < q.y { (p.y, q.y) } else { (q.y, p.y) };
+    (Coord { x: x0, y: y0 }, Coord { x: x1, y: y1 })
 }
 
 /// Whether `p` is on the edge from `a` to `b` within a nanometre (a millionth of a

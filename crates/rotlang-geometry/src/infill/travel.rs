@@ -423,19 +423,26 @@ impl<'a> Router<'a> {
             // of exact length (no capacity test per push) over each vertex and the next,
             // then the closing edge.
             for ring in self.rings {
-                cumulative.push(0.0);
                 let (Some(&first), Some(&last)) = (ring.first(), ring.last()) else {
+                    cumulative.push(0.0);
                     continue;
                 };
+                // The ring's slots made first and written in place (the running sum in
+                // a register, not a closure's captured place).
+                let from = cumulative.len();
+                cumulative.resize(from + ring.len() + 1, 0.0);
+                let slots = &mut cumulative[from + 1..];
                 let mut s = 0.0;
-                cumulative.extend(ring.windows(2).map(|w| {
+                for (slot, w) in slots.iter_mut().zip(ring.windows(2)) {
                     let e = w[1] - w[0];
                     s += (e.x * e.x + e.y * e.y).sqrt();
-                    s
-                }));
+                    *slot = s;
+                }
                 let e = first - last;
                 s += (e.x * e.x + e.y * e.y).sqrt();
-                cumulative.push(s);
+                if let Some(end) = slots.last_mut() {
+                    *end = s;
+                }
             }
             cumulative
         });

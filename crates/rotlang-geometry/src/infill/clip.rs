@@ -59,8 +59,11 @@ fn edge_box(Edge { a, b }: Edge) -> (Coord, Coord) {
 /// short segment meets only the edges near it.
 pub(crate) struct Edges {
     edges: Vec<Edge>,
-    /// Each edge's box, for a region of at most `PLAIN` edges (`clip` tests them all).
-    boxes: Vec<(Coord, Coord)>,
+    /// Each edge with its box, for a region of at most `PLAIN` edges (`clip` tests them
+    /// all), by the box's least x: a segment's scan stops at the first edge wholly to
+    /// its right (the crossings are sorted by where they are after, so the order they
+    /// are found in is not seen).
+    boxes: Vec<(Coord, Coord, Edge)>,
     /// Strip `s` holds `strip_edges[strip_start[s]..strip_start[s + 1]]` (one flat list:
     /// two allocations, not one per strip).
     strip_start: Vec<u32>,
@@ -82,6 +85,9 @@ pub(crate) struct Edges {
     /// lightning branch's two polylines share their fork, and where neither is cut both
     /// test it (the answer depends on the point and the edges alone).
     tested: ([u64; 2], bool),
+    /// Whether a polyline crossing nothing is cut as any other (in tests: the general
+    /// path its shortcut is compared with).
+    whole_as_cut: bool,
 }
 
 /// Edges by cell, in one flat list: cell `c` holds `edges[start[c]..start[c + 1]]`.
@@ -234,9 +240,15 @@ impl Edges {
         // start in `strip_start` and its edges in ascending order.
         let mut strip_start = scratch::take(&STRIP_START);
         strip_start.resize(n + 1, 0);
-        for e in &edges {
-            for s in span(e) {
-                strip_start[s] += 1;
+        // Each edge's strips found once (two divisions), for both passes.
+        let mut spans = scratch::take(&SPANS);
+        spans.extend(edges.iter().map(|e| {
+            let s = span(e);
+            (*s.start() as u32, *s.end() as u32)
+        }));
+        for &(first, last) in &spans {
+            for s in first..=last {
+                strip_start[s as usize] += 1;
             }
         }
         for s in 1..n {
@@ -245,15 +257,34 @@ impl Edges {
         strip_start[n] = strip_start[n - 1];
         let mut strip_edges = scratch::take(&STRIP_EDGES);
         strip_edges.resize(strip_start[n] as usize, 0);
-        for (i, e) in edges.iter().enumerate().rev() {
-            for s in span(e) {
+        for (i, &(first, last)) in spans.iter().enumerate().rev() {
+            for s in first..=last {
+                let s = s as usize;
                 strip_start[s] -= 1;
                 strip_edges[strip_start[s] as usize] = i as u32;
             }
         }
+        scratch::give(&SPANS, spans);
         let mut boxes = scratch::take(&BOXES);
         if edges.len() <= PLAIN {
-            boxes.extend(edges.iter().map(|&e| edge_box(e)));
+            // The edges' least x with their index sorted by insertion (a few dozen at
+            // most, each key a pair of words moved, not a box and an edge), then the
+            // boxes listed in that order.
+            let mut keys = [(0.0f64, 0u8); PLAIN];
+            for (i, e) in edges.iter().enumerate() {
+                let key = (if e.a.x < e.b.x { e.a.x } else { e.b.x }, i as u8);
+                let mut j = i;
+                while j > 0 && keys[j - 1].0 > key.0 {
+                    keys[j] = keys[j - 1];
+                    j -= 1;
+                }
+                keys[j] = key;
+            }
+            boxes.extend(keys[..edges.len()].iter().map(|&(_, i)| {
+                let e = edges[usize::from(i)];
+                let (lo, hi) = edge_box(e);
+                (lo, hi, e)
+            }));
         }
         Edges {
             // Allocated by the first `clip`: straight lines never need it.
@@ -271,7 +302,16 @@ impl Edges {
             grid: None,
             // No point has these bits (NaNs: never a middle that is tested).
             tested: ([u64::MAX; 2], false),
+            whole_as_cut: false,
         }
+    }
+
+    /// The same edges clipping a polyline that crosses nothing as any other (tests
+    /// compare the two).
+    #[cfg(test)]
+    pub fn cutting_whole(mut self) -> Edges {
+        self.whole_as_cut = true;
+        self
     }
 
     /// The edges, in the frame.
@@ -339,20 +379,21 @@ impl Edges {
         cuts.push(0.0);
         for (k, w) in pts.windows(2).enumerate() {
             let (p, q) = (w[0], w[1]);
-            let (lo, hi) = (p.y.min(q.y), p.y.max(q.y));
-            if hi < self.min.y
-                || lo > self.max.y
-                || p.x.max(q.x) < self.min.x
-                || p.x.min(q.x) > self.max.x
-            {
+            // The segment's box by comparisons, not `min`/`max` (which handle NaN at
+            // several instructions each): a pattern's points are finite, and a segment
+            // with a NaN end is cut nowhere either way (its fractions are NaN), so the box
+            // only says which edges are tested.
+            let (x0, x1) = if p.x < q.x { (p.x, q.x) } else { (q.x, p.x) };
+            let (lo, hi) = if p.y < q.y { (p.y, q.y) } else { (q.y, p.y) };
+            if hi < self.min.y || lo > self.max.y || x1 < self.min.x || x0 > self.max.x {
                 continue;
             }
             let first = cuts.len();
             let segment = Segment {
                 p,
                 d: q - p,
-                x0: p.x.min(q.x),
-                x1: p.x.max(q.x),
+                x0,
+                x1,
                 y0: lo,
                 y1: hi,
                 k: k as f64,
@@ -361,13 +402,19 @@ impl Edges {
                 // Few edges (a star, an L): every one, no grid to build or walk.
                 // Each edge's box made once (the grid's edges, many more, go without:
                 // their twice longer list cost more than the comparisons saved).
-                for (&edge, &bounds) in self.edges.iter().zip(&self.boxes) {
-                    segment.cut_boxed(edge, bounds, &mut cuts);
+                for &(lo, hi, edge) in &self.boxes {
+                    if lo.x > segment.x1 {
+                        break;
+                    }
+                    segment.cut_boxed(edge, (lo, hi), &mut cuts);
                 }
             } else {
                 self.cut_through_grid(&segment, lo, hi, &mut cuts);
             }
-            cuts[first..].sort_unstable_by(f64::total_cmp);
+            // One crossing or none (most segments): nothing to sort.
+            if cuts.len() - first > 1 {
+                cuts[first..].sort_unstable_by(f64::total_cmp);
+            }
         }
         let end = (pts.len() - 1) as f64;
         cuts.push(end);
@@ -378,6 +425,32 @@ impl Edges {
             let t = g - k as f64;
             pts[k] + (pts[k + 1] - pts[k]) * t
         };
+        if cuts.len() == 2 && !self.whole_as_cut {
+            // Nothing crossed (most of a tree's polylines): the one stretch is the whole
+            // polyline, its ends `at(0)` and `at(end)` with their segment and fraction
+            // known (the first segment at 0, the last at 1: the same products as `at`'s),
+            // and its points between, without the casts that find them for a cut.
+            let n = pts.len();
+            let middle = at(end / 2.0);
+            let bits = [middle.x.to_bits(), middle.y.to_bits()];
+            let inside = if bits == self.tested.0 {
+                self.tested.1
+            } else {
+                let inside = self.contains(middle);
+                self.tested = (bits, inside);
+                inside
+            };
+            if inside {
+                buffer.clear();
+                buffer.push(pts[0] + (pts[1] - pts[0]) * 0.0);
+                buffer.extend(pts[1..n - 1].iter().copied());
+                buffer.push(pts[n - 2] + (pts[n - 1] - pts[n - 2]) * 1.0);
+                piece(&buffer);
+            }
+            self.cuts = cuts;
+            self.piece = buffer;
+            return;
+        }
         for w in cuts.windows(2) {
             let (g0, g1) = (w[0], w[1]);
             if g1 <= g0 {
@@ -482,9 +555,11 @@ impl Drop for Edges {
 thread_local! {
     /// `Edges`' lists, kept from one layer to the next.
     static EDGE_LIST: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
-    static BOXES: std::cell::Cell<Vec<(Coord, Coord)>> = const { std::cell::Cell::new(Vec::new()) };
+    static BOXES: std::cell::Cell<Vec<(Coord, Coord, Edge)>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_START: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_EDGES: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
+    /// Each edge's first and last strip while `Edges::new` sorts them.
+    static SPANS: std::cell::Cell<Vec<(u32, u32)>> = const { std::cell::Cell::new(Vec::new()) };
     static CUTS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
     static PIECE: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
 }
@@ -658,6 +733,29 @@ mod tests {
                 pieces_of(&mut shared, &pts, &mut kept);
                 pieces_of(&mut Edges::new(&rings, &frame), &pts, &mut fresh);
                 prop_assert_eq!(&kept, &fresh);
+            }
+        }
+
+        /// A polyline that crosses no edge is handed out whole (its ends recomputed as
+        /// a cut's are) or not at all, to the bit as the general path cuts it: short
+        /// polylines inside, outside and across star-shaped regions of a few edges (the
+        /// plain scan) and of many (the grid), each clipped on its own.
+        #[test]
+        fn a_polyline_crossing_nothing_is_clipped_as_any_other(
+            radii in prop::collection::vec(1.0f64..10.0, 3..60),
+            lines in prop::collection::vec((coord(), coord(), coord(), 0u8..2), 1..12),
+            scale in prop_oneof![Just(1.0f64), Just(0.05), Just(0.3)],
+        ) {
+            let rings = vec![radial(&radii)];
+            let frame = Frame::new(Coord { x: 0.0, y: 0.0 }, 0.0);
+            let (mut shortcut, mut general) = (Vec::new(), Vec::new());
+            for (a, m, b, three) in lines {
+                // Small polylines about a point: most cross nothing.
+                let (m, b) = (a + (m - a) * scale, a + (b - a) * scale);
+                let pts: Vec<Coord> = if three == 1 { vec![a, m, b] } else { vec![a, b] };
+                pieces_of(&mut Edges::new(&rings, &frame), &pts, &mut shortcut);
+                pieces_of(&mut Edges::new(&rings, &frame).cutting_whole(), &pts, &mut general);
+                prop_assert_eq!(&shortcut, &general);
             }
         }
 

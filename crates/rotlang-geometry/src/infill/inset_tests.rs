@@ -303,3 +303,34 @@ fn arc_step_kept_for_the_last_nozzle_is_the_computed_one() {
         );
     }
 }
+
+/// A one-ring region gives its lists back to the raw offset's pools when dropped, and the
+/// next region's inset is made in them: regions built one after another (each dropping
+/// the last, shapes of more and fewer points in turn) have the rings, area and fill of
+/// each built while the others live.
+#[test]
+fn regions_built_in_a_dropped_regions_lists_are_the_fresh_ones() {
+    let shapes = [
+        shapes::star(10.0, 4.5),
+        shapes::l_shape(20.0),
+        shapes::star(30.0, 2.0),
+        shapes::holed_square(40.0, 10.0),
+        shapes::l_shape(5.0),
+    ];
+    let params = super::Params::new(super::Pattern::Triangles, 0.2, 0.4).angle(30.0);
+    let alive: Vec<super::Region> = shapes
+        .iter()
+        .map(|s| super::Region::new(s, 0.4).unwrap())
+        .collect();
+    for _ in 0..2 {
+        for (shape, fresh) in shapes.iter().zip(&alive) {
+            let region = super::Region::new(shape, 0.4).unwrap();
+            assert_eq!(region.rings(), fresh.rings());
+            assert_eq!(region.area().to_bits(), fresh.area().to_bits());
+            assert_eq!(
+                super::fill(shape, &params).unwrap(),
+                fresh.fill(&params).unwrap()
+            );
+        }
+    }
+}

@@ -23,6 +23,8 @@ thread_local! {
     /// layer.
     pub(crate) static FLAT: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
     pub(crate) static ENDS: std::cell::Cell<Vec<usize>> = const { std::cell::Cell::new(Vec::new()) };
+    /// `Outlines`' list, kept between layers.
+    static OUTLINES: std::cell::Cell<Vec<(usize, f64)>> = const { std::cell::Cell::new(Vec::new()) };
 }
 use super::offset::next;
 
@@ -40,13 +42,51 @@ pub(crate) fn counts(region: &Region, spacing: f64) -> Vec<usize> {
 
 /// Whether every outline gets as many branches at `a` as at `b` (`counts` equal: the
 /// same tree), each perimeter measured once, nothing listed.
+#[cfg(test)]
 pub(crate) fn same_counts(region: &Region, a: f64, b: f64) -> bool {
-    let (gap_a, gap_b) = (2.5 * a, 2.5 * b);
-    region.outlines().iter().all(|ring| {
-        let perimeter = perimeter(ring);
-        (perimeter / gap_a).floor().max(1.0) as usize
-            == (perimeter / gap_b).floor().max(1.0) as usize
-    })
+    Outlines::new(region, 0.0).same_counts(a, b)
+}
+
+/// What both trees of a layer share: per outline the vertex farthest in the direction
+/// θ (where the branches start) and the perimeter, found once for the layer
+/// (`Region::fill` builds two trees), by the same sums as each tree found them.
+pub(crate) struct Outlines {
+    /// Per outline: its start vertex and its perimeter.
+    each: Vec<(usize, f64)>,
+}
+
+impl Outlines {
+    pub(crate) fn new(region: &Region, theta: f64) -> Outlines {
+        // One call for both (the same kernels as `cos` and `sin`, to the bit: a test
+        // compares them).
+        let (sin, cos) = math::sin_cos(theta);
+        let direction = Coord { x: cos, y: sin };
+        let mut each = scratch::take(&OUTLINES);
+        each.extend(region.outlines().iter().map(|ring| {
+            let n = ring.len();
+            let start = (0..n)
+                .max_by(|&i, &j| dot(ring[i], direction).total_cmp(&dot(ring[j], direction)))
+                .unwrap_or(0);
+            (start, perimeter(ring))
+        }));
+        Outlines { each }
+    }
+
+    /// Whether every outline gets as many branches at `a` as at `b` (`counts` equal: the
+    /// same tree), nothing listed.
+    pub(crate) fn same_counts(&self, a: f64, b: f64) -> bool {
+        let (gap_a, gap_b) = (2.5 * a, 2.5 * b);
+        self.each.iter().all(|&(_, perimeter)| {
+            (perimeter / gap_a).floor().max(1.0) as usize
+                == (perimeter / gap_b).floor().max(1.0) as usize
+        })
+    }
+}
+
+impl Drop for Outlines {
+    fn drop(&mut self) {
+        scratch::give(&OUTLINES, std::mem::take(&mut self.each));
+    }
 }
 
 fn perimeter(ring: &[Coord]) -> f64 {
@@ -56,6 +96,7 @@ fn perimeter(ring: &[Coord]) -> f64 {
 
 /// The tree for one spacing, appended to `out`. `edges` are the region's in `frame`
 /// ([`frame`]): built once for every tree of the layer (`Region::fill` builds two).
+#[cfg(test)]
 pub(crate) fn lightning(
     region: &Region,
     centre: Coord,
@@ -64,8 +105,27 @@ pub(crate) fn lightning(
     edges: &mut Edges,
     out: &mut Vec<Vec<Coord>>,
 ) {
+    lightning_of(
+        region,
+        &Outlines::new(region, theta),
+        centre,
+        spacing,
+        edges,
+        out,
+    );
+}
+
+/// [`lightning`] with the layer's [`Outlines`] found already.
+pub(crate) fn lightning_of(
+    region: &Region,
+    outlines: &Outlines,
+    centre: Coord,
+    spacing: f64,
+    edges: &mut Edges,
+    out: &mut Vec<Vec<Coord>>,
+) {
     let mut branches = scratch::take(&BRANCHES);
-    branches_into(region, centre, theta, spacing, &mut branches);
+    branches_into(region, outlines, centre, spacing, &mut branches);
     // A piece per polyline, unless one is cut: the list made at about its size, not grown.
     out.reserve(branches.len() + branches.len() / 4);
     clip_tree(&branches, centre, region.is_convex(), edges, |piece| {
@@ -78,14 +138,14 @@ pub(crate) fn lightning(
 /// `lightning` appends them).
 pub(crate) fn tree(
     region: &Region,
+    outlines: &Outlines,
     centre: Coord,
-    theta: f64,
     spacing: f64,
     edges: &mut Edges,
     piece: impl FnMut(&[Coord]),
 ) {
     let mut branches = scratch::take(&BRANCHES);
-    branches_into(region, centre, theta, spacing, &mut branches);
+    branches_into(region, outlines, centre, spacing, &mut branches);
     clip_tree(&branches, centre, region.is_convex(), edges, piece);
     scratch::give(&BRANCHES, branches);
 }
@@ -133,34 +193,32 @@ pub(crate) fn branches(
     spacing: f64,
 ) -> Vec<[Coord; 3]> {
     let mut branches = Vec::new();
-    branches_into(region, centre, theta, spacing, &mut branches);
+    branches_into(
+        region,
+        &Outlines::new(region, theta),
+        centre,
+        spacing,
+        &mut branches,
+    );
     branches
 }
 
 /// [`branches`] appended to `branches` (a list kept between layers).
 fn branches_into(
     region: &Region,
+    outlines: &Outlines,
     centre: Coord,
-    theta: f64,
     spacing: f64,
     branches: &mut Vec<[Coord; 3]>,
 ) {
     let gap = 2.5 * spacing;
-    let direction = Coord {
-        x: math::cos(theta),
-        y: math::sin(theta),
-    };
     // Each branch as two polylines through its fork: the main branch's first part and one
     // twig, then the main branch's tip, back to the fork and the other twig. A tree of four
     // ends needs two paths at least; three separate segments (as before) made three paths
     // and three travels per branch, each travel routed inside the region.
     let [even, odd, left_twig, right_twig] = [EVEN, ODD, LEFT_TWIG, RIGHT_TWIG];
-    for ring in region.outlines() {
+    for (ring, &(start, perimeter)) in region.outlines().iter().zip(&outlines.each) {
         let n = ring.len();
-        let start = (0..n)
-            .max_by(|&i, &j| dot(ring[i], direction).total_cmp(&dot(ring[j], direction)))
-            .unwrap_or(0);
-        let perimeter = perimeter(ring);
         let count = (perimeter / gap).floor().max(1.0) as usize;
         let step = perimeter / count as f64;
         branches.reserve(2 * count);

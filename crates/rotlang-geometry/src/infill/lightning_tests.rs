@@ -44,9 +44,14 @@ fn tree_pieces(region: &Region, theta: f64, spacing: f64) -> Vec<Vec<Coord>> {
     let centre = region.centre();
     let mut edges = Edges::new(region.rings(), &frame(centre));
     let mut out = Vec::new();
-    tree(region, centre, theta, spacing, &mut edges, |p| {
-        out.push(p.to_vec())
-    });
+    tree(
+        region,
+        &Outlines::new(region, theta),
+        centre,
+        spacing,
+        &mut edges,
+        |p| out.push(p.to_vec()),
+    );
     out
 }
 
@@ -205,5 +210,51 @@ fn layers_with_kept_lists_are_the_same() {
         for (region, first) in regions.iter().zip(&first) {
             assert_eq!(&layer(region, 0.1), first);
         }
+    }
+}
+
+/// The outlines' starts and perimeters found once for a layer serve both of its trees:
+/// a tree built with those found for another spacing (and the other tree of the layer
+/// built before it) is, to the bit, the tree built with its own.
+#[test]
+fn trees_sharing_the_outlines_are_the_trees_on_their_own() {
+    for shape in [
+        shapes::star(10.0, 4.5),
+        shapes::l_shape(20.0),
+        shapes::holed_square(40.0, 10.0),
+        shapes::circle(10.0),
+    ] {
+        let region = Region::new(&shape, 0.4).unwrap();
+        let centre = region.centre();
+        for theta in [0.0, 0.8, 2.5, 4.0] {
+            let shared = Outlines::new(&region, theta);
+            let mut edges = Edges::new(region.rings(), &frame(centre));
+            for spacing in [8.0, 5.3, 2.0] {
+                let mut first = Vec::new();
+                tree(&region, &shared, centre, spacing, &mut edges, |p| {
+                    first.push(p.to_vec())
+                });
+                let mut second = Vec::new();
+                lightning_of(&region, &shared, centre, spacing, &mut edges, &mut second);
+                let fresh = tree_pieces(&region, theta, spacing);
+                let mut own = Vec::new();
+                lightning(&region, centre, theta, spacing, &mut edges, &mut own);
+                assert!(!fresh.is_empty());
+                assert_eq!(first, fresh);
+                assert_eq!(second, own);
+                assert_eq!(second, fresh);
+            }
+        }
+    }
+}
+
+proptest! {
+    /// The outlines' direction from one `sin_cos` is `cos` and `sin` apart, to the bit,
+    /// at any angle the layer's θ may be (reduced to a turn, and beyond).
+    #[test]
+    fn sin_cos_is_sin_and_cos(theta in prop_oneof![0.0f64..TAU, -1e3f64..1e3, Just(0.0), Just(TAU)]) {
+        let (s, c) = crate::math::sin_cos(theta);
+        prop_assert_eq!(s.to_bits(), crate::math::sin(theta).to_bits());
+        prop_assert_eq!(c.to_bits(), crate::math::cos(theta).to_bits());
     }
 }

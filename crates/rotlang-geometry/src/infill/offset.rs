@@ -130,7 +130,9 @@ pub(crate) fn raw_rings_stepped(
         if exterior.len() > MAX_POINTS {
             return None;
         }
-        let rings = vec![exterior];
+        // The list from the pool a dropped `Region` gave it back to (`scratch`).
+        let mut rings = super::scratch::take(&RINGS);
+        rings.push(exterior);
         if !clear_of_crossings(std::slice::from_ref(&pts), d) && crossings(&rings) {
             return None;
         }
@@ -378,6 +380,10 @@ struct Edge {
 }
 
 thread_local! {
+    /// A one-ring `Region`'s ring and list of rings, given back when it is dropped and
+    /// taken by the next raw offset (a layer's region filled once).
+    pub(crate) static RING: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    pub(crate) static RINGS: std::cell::Cell<Vec<Vec<Coord>>> = const { std::cell::Cell::new(Vec::new()) };
     /// `clear_of_crossings`' edges, kept between layers.
     static EDGES: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
 }
@@ -438,8 +444,10 @@ fn offset_points(pts: &[Coord], d: f64, step: ArcStep, exterior: bool) -> Option
     let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
     // Room for the arcs (a few points per reflex corner) and the closing point the
-    // polygon adds: a star's ring is not grown twice.
-    let mut out = Vec::with_capacity(3 * n + 1);
+    // polygon adds: a star's ring is not grown twice. From the pool a dropped `Region`
+    // gave its ring back to (`scratch`).
+    let mut out = super::scratch::take(&RING);
+    out.reserve(3 * n + 1);
     // Each vertex's moved point(s) run from `end` (where the edge before it ends) to
     // `start` (where the edge after it starts); edge i runs from vertex i's start to
     // vertex i+1's end and must keep its direction: checked as each vertex is moved

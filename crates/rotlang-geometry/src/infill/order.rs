@@ -109,7 +109,7 @@ fn monotonic_order(mut paths: Vec<Vec<Coord>>, frame: &Frame) -> Vec<Vec<Coord>>
 /// Greedy nearest neighbour with reversal, starting with the first path as generated.
 /// Path ends are kept in a grid of about one end per cell, rebuilt coarser as paths are
 /// used up, so that a layer of many thousand short walls orders in O(n) rather than O(n²).
-fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
+pub(crate) fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
     let n = paths.len();
     // One path has no order to choose; two still may need the second reversed.
     if n <= 1 {
@@ -122,11 +122,16 @@ fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
         let mut at = paths[0][paths[0].len() - 1];
         for i in 1..n {
             let mut best = (f64::INFINITY, i, false);
+            // Each path's first end, then its last (a tie goes to the first found).
             for (j, p) in paths.iter().enumerate().skip(i) {
-                for (reversed, q) in [(false, p[0]), (true, p[p.len() - 1])] {
-                    let d = dist2(at, q);
+                if let (Some(&first), Some(&last)) = (p.first(), p.last()) {
+                    let d = dist2(at, first);
                     if d < best.0 {
-                        best = (d, j, reversed);
+                        best = (d, j, false);
+                    }
+                    let d = dist2(at, last);
+                    if d < best.0 {
+                        best = (d, j, true);
                     }
                 }
             }

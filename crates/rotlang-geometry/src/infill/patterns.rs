@@ -103,7 +103,9 @@ impl Region {
                     super::scratch::take(&lightning::ENDS),
                     0.0,
                 );
-                lightning::tree(self, centre, theta, spacing, &mut edges, |piece| {
+                // The outlines' starts and perimeters serve both trees too.
+                let outlines = lightning::Outlines::new(self, theta);
+                lightning::tree(self, &outlines, centre, spacing, &mut edges, |piece| {
                     flat.extend_from_slice(piece);
                     ends.push(flat.len());
                     // Summed path by path, as the paths' lengths would be.
@@ -114,7 +116,7 @@ impl Region {
                 if printed.is_nan()
                     || printed <= 0.0
                     || (printed / rho - 1.0).abs() < 0.03
-                    || lightning::same_counts(self, respaced, spacing)
+                    || outlines.same_counts(respaced, spacing)
                 {
                     let mut start = 0;
                     paths.reserve(ends.len());
@@ -124,7 +126,9 @@ impl Region {
                     }
                 } else {
                     spacing = respaced;
-                    lightning::lightning(self, centre, theta, spacing, &mut edges, &mut paths);
+                    lightning::lightning_of(
+                        self, &outlines, centre, spacing, &mut edges, &mut paths,
+                    );
                 }
                 super::scratch::give(&lightning::FLAT, flat);
                 super::scratch::give(&lightning::ENDS, ends);

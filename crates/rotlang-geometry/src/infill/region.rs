@@ -31,6 +31,8 @@ pub struct Region {
     nozzle: f64,
     /// One convex outline, no hole: every straight travel stays inside, none is routed.
     pub(super) convex: bool,
+    /// Whether `rings` (one ring) goes back to the raw offset's pools when dropped.
+    pooled: bool,
 }
 
 impl Region {
@@ -137,8 +139,14 @@ impl Region {
                 Offset::Raw => false,
                 _ => convex_ring(&rings[0]).is_some(),
             };
+        // The raw offset's one ring came from its pools (`offset::RING`): given back
+        // when the region is dropped. A ring made otherwise is freed as made (held in the
+        // pool, where no offset takes it, it would only keep the allocator from reusing
+        // its memory for the next layer's).
+        let pooled = made_by == Offset::Raw && rings.len() == 1;
         Ok(Region {
             convex,
+            pooled,
             inset,
             holes,
             outline: if keep_outline {
@@ -196,6 +204,19 @@ impl Region {
     }
 }
 
+impl Drop for Region {
+    /// A one-ring region's lists (the commonest: a star's, an L's inset) go back to the
+    /// raw offset's pools for the next layer's (`scratch`): two allocations and frees
+    /// fewer per layer filled once.
+    fn drop(&mut self) {
+        if self.pooled && self.rings.len() == 1 {
+            let ring = self.rings.pop().unwrap_or_default();
+            super::scratch::give(&super::offset::RING, ring);
+            super::scratch::give(&super::offset::RINGS, std::mem::take(&mut self.rings));
+        }
+    }
+}
+
 /// A region's inset as it is kept: its polygons (if made), its rings open, outlines
 /// first, how many holes each polygon has, its area and which offset made it.
 struct Inset {
@@ -232,6 +253,7 @@ impl Inset {
 }
 
 /// Which offset made a region's inset.
+#[derive(Clone, Copy, PartialEq, Eq)]
 enum Offset {
     Convex,
     Raw,

@@ -8,6 +8,8 @@ use super::{Region, scratch};
 thread_local! {
     /// `families`' crossings, kept between layers.
     static CROSSINGS: std::cell::Cell<Vec<(i64, f64)>> = const { std::cell::Cell::new(Vec::new()) };
+    /// The rings turned into a family's frame (`scan_lines`), kept between layers.
+    static LOCAL: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// One family of lines per offset (degrees from θ), `spacing` apart, every family with a
@@ -29,26 +31,72 @@ pub(crate) fn families(
     shift: f64,
     out: &mut Vec<Vec<Coord>>,
 ) {
+    // The most lines a family can have: the region's diagonal over the spacing, and one
+    // more at each end.
+    let extent = region.max - region.min;
+    let few = (extent.x * extent.x + extent.y * extent.y).sqrt() / spacing + 2.0 <= FEW as f64;
+    families_by(region, centre, theta, offsets, spacing, shift, few, out);
+}
+
+/// Up to this many lines a family (a small region at a low density: a star's or an L's
+/// triangles or grid at 10–20%), each line is scanned against every edge of the rings
+/// turned once into the family's frame, rather than each edge's lines found from its
+/// ends' line numbers: a comparison per edge and line against a rounding and two
+/// comparisons per vertex.
+const FEW: usize = 8;
+
+/// [`families`] by the scan of every line (`few`) or by each edge's candidate lines: the
+/// same crossings either way (the half-open rule decides both; the candidates are only
+/// the lines it could take), with the same formula, so the same lines to the bit (a test
+/// compares the two).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn families_by(
+    region: &Region,
+    centre: Coord,
+    theta: f64,
+    offsets: &[f64],
+    spacing: f64,
+    shift: f64,
+    few: bool,
+    out: &mut Vec<Vec<Coord>>,
+) {
     // Room for a few lines' crossings at once: a small layer's never grow it. Kept from
     // one layer to the next (`scratch`).
     let mut crossings = scratch::take(&CROSSINGS);
     crossings.reserve(32);
+    let mut local = if few {
+        scratch::take(&LOCAL)
+    } else {
+        Vec::new()
+    };
     for &offset in offsets {
         let frame = Frame::new(centre, theta + offset.to_radians());
         let shift = shift.rem_euclid(spacing);
         let inv = 1.0 / spacing;
         crossings.clear();
-        for ring in region.rings() {
-            // Each vertex turned into the family's frame as its edge is reached (the
-            // last one first, for the closing edge): no copy of the ring.
-            let Some(&last) = ring.last() else {
-                continue;
-            };
-            let mut a = Vertex::new(frame.to_local(last), shift, inv);
-            for &b in ring {
-                let b = Vertex::new(frame.to_local(b), shift, inv);
-                crossings_of(&a, &b, spacing, shift, &mut crossings);
-                a = b;
+        if few {
+            scan_lines(
+                region.rings(),
+                &frame,
+                spacing,
+                shift,
+                inv,
+                &mut local,
+                &mut crossings,
+            );
+        } else {
+            for ring in region.rings() {
+                // Each vertex turned into the family's frame as its edge is reached (the
+                // last one first, for the closing edge): no copy of the ring.
+                let Some(&last) = ring.last() else {
+                    continue;
+                };
+                let mut a = Vertex::new(frame.to_local(last), shift, inv);
+                for &b in ring {
+                    let b = Vertex::new(frame.to_local(b), shift, inv);
+                    crossings_of(&a, &b, spacing, shift, &mut crossings);
+                    a = b;
+                }
             }
         }
         crossings.sort_unstable_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
@@ -64,6 +112,60 @@ pub(crate) fn families(
         }
     }
     scratch::give(&CROSSINGS, crossings);
+    scratch::give(&LOCAL, local);
+}
+
+/// The crossings of every line across the rings (turned into `frame`, in `local`) with
+/// every edge, by the half-open rule, each edge from the vertex before to the vertex (as
+/// `crossings_of` takes them). The lines run from the first line above the lowest
+/// vertex to the last below the highest, by `Vertex`'s margins: every line the rule can
+/// take on some edge.
+fn scan_lines(
+    rings: &[Vec<Coord>],
+    frame: &Frame,
+    spacing: f64,
+    shift: f64,
+    inv: f64,
+    local: &mut Vec<Coord>,
+    out: &mut Vec<(i64, f64)>,
+) {
+    local.clear();
+    for ring in rings {
+        local.extend(ring.iter().map(|&p| frame.to_local(p)));
+    }
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for q in local.iter() {
+        // By comparisons, not `min`/`max` (which handle NaN): coordinates are finite.
+        if q.y < lo {
+            lo = q.y;
+        }
+        if q.y > hi {
+            hi = q.y;
+        }
+    }
+    if local.is_empty() {
+        return;
+    }
+    let first = Vertex::new(Coord { x: 0.0, y: lo }, shift, inv).above;
+    let last = Vertex::new(Coord { x: 0.0, y: hi }, shift, inv).below;
+    for k in first..=last {
+        let y = k as f64 * spacing + shift;
+        let mut from = 0;
+        for ring in rings {
+            let r = &local[from..from + ring.len()];
+            from += ring.len();
+            let Some(&last) = r.last() else {
+                continue;
+            };
+            let mut a = last;
+            for &b in r {
+                if (a.y <= y) != (b.y <= y) {
+                    out.push((k, a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y)));
+                }
+                a = b;
+            }
+        }
+    }
 }
 
 /// A vertex in the family's frame with the range of lines it might be on: the lines

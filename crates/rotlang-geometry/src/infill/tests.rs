@@ -1548,6 +1548,194 @@ proptest! {
             prop_assert_eq!(chunked.route(q, from_edge), general.route(q, from_edge));
         }
     }
+
+    /// The line families found by scanning every line across the rings (a small region
+    /// at a low density) are, to the bit, those found edge by edge from each edge's
+    /// candidate lines: on holed regions, at any angle, spacing and shift, for one, two
+    /// and three families.
+    #[test]
+    fn lines_scanned_are_the_lines_found_edge_by_edge(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        theta in 0.0f64..TAU,
+        spacing in prop_oneof![0.3f64..20.0, Just(1.0), Just(0.5)],
+        shift in prop_oneof![Just(0.0f64), -5.0f64..5.0],
+        families in 0usize..3,
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let offsets = [&[0.0][..], &[0.0, 90.0], &[0.0, 60.0, 120.0]][families];
+        let centre = region.centre();
+        let (mut scanned, mut by_edge) = (Vec::new(), Vec::new());
+        straight::families_by(&region, centre, theta, offsets, spacing, shift, true, &mut scanned);
+        straight::families_by(&region, centre, theta, offsets, spacing, shift, false, &mut by_edge);
+        let bits = |v: &[Vec<Coord>]| {
+            v.iter()
+                .map(|l| l.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect::<Vec<_>>())
+                .collect::<Vec<_>>()
+        };
+        prop_assert_eq!(bits(&scanned), bits(&by_edge));
+    }
+
+    /// The router's even-odd test reading only the chunks that may cross the ray (for
+    /// the parity) or lie within a nanometre (for the edges' distance) is the test of
+    /// both on every edge of a chunk that is either: at line ends on edges, at vertices,
+    /// at points a nanometre or two off an edge, and anywhere in the box.
+    #[test]
+    fn inside_by_the_chunks_that_matter_is_inside_edge_by_edge(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        points in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), 0u8..3, -2e-6f64..2e-6, -2e-6f64..2e-6), 1..24),
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let ends = MoveEnds::new(rings);
+        for chunk in [4, 8, usize::MAX] {
+            let router = travel::Router::with_chunk(rings, chunk);
+            for &(at, kind, dx, dy) in &points {
+                let p = ends.point(at, kind);
+                for p in [p, p + Coord { x: dx, y: dy }] {
+                    prop_assert_eq!(router.inside(p), router.inside_each_edge(p), "{:?}", p);
+                }
+            }
+        }
+    }
+
+    /// Moves routed passing the edges whose ends are both clearly on one side of the
+    /// move's line are the moves routed testing every edge, and find the same crossings
+    /// (the edges they pass could only have been kept as edges the move runs along):
+    /// between line ends, vertices and points of the box, on holed star-like regions.
+    #[test]
+    fn edges_passed_by_their_sides_are_not_crossed(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3, 0u8..3), 1..24),
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let ends = MoveEnds::new(rings);
+        let sided = travel::Router::new(rings);
+        let every = travel::Router::new(rings).every_edge();
+        let crossed = |router: &travel::Router, p, q| {
+            router
+                .crossings_of_move(p, q)
+                .into_iter()
+                .filter(|c| !f64::from_bits(c.0).is_nan())
+                .collect::<Vec<_>>()
+        };
+        for (a, b, ka, kb) in moves {
+            let (p, q) = (ends.point(a, ka), ends.point(b, kb));
+            for (from, to) in [(p, q), (q, p), (p, p)] {
+                prop_assert_eq!(crossed(&sided, from, to), crossed(&every, from, to));
+                prop_assert_eq!(sided.route(from, to), every.route(from, to));
+            }
+        }
+    }
+
+    /// Nearest-first ordering of a few paths (the plain scan) takes, from the last end,
+    /// the nearest end of a path not yet taken, ties to the lowest index as generated
+    /// and then to its first end, reversing the path entered at its last: ends on a
+    /// small grid (many ties) and anywhere, up to the scan's 64 paths and past them (the
+    /// grid search, the same rule).
+    #[test]
+    fn nearest_first_takes_the_nearest_end_ties_to_the_first(
+        paths in prop::collection::vec(
+            prop::collection::vec(
+                prop_oneof![
+                    (-3i32..3, -3i32..3).prop_map(|(x, y)| Coord { x: x as f64, y: y as f64 }),
+                    (-5.0f64..5.0, -5.0f64..5.0).prop_map(|(x, y)| Coord { x, y }),
+                ],
+                2..4,
+            ),
+            1..70,
+        ),
+    ) {
+        let mut left: Vec<(usize, Vec<Coord>)> = paths.iter().cloned().enumerate().skip(1).collect();
+        let mut wanted = vec![paths[0].clone()];
+        let mut at = *paths[0].last().unwrap();
+        while !left.is_empty() {
+            let mut best = (f64::INFINITY, 0, false);
+            for (k, (_, p)) in left.iter().enumerate() {
+                for (reversed, q) in [(false, p[0]), (true, *p.last().unwrap())] {
+                    let d = (q - at).x * (q - at).x + (q - at).y * (q - at).y;
+                    if d < best.0 {
+                        best = (d, k, reversed);
+                    }
+                }
+            }
+            let (_, k, reversed) = best;
+            let (_, mut p) = left.remove(k);
+            if reversed {
+                p.reverse();
+            }
+            at = *p.last().unwrap();
+            wanted.push(p);
+        }
+        prop_assert_eq!(order::nearest(paths), wanted);
+    }
+
+    /// The edge index's even-odd test (the edges of the point's strip only) is the ray's
+    /// parity over every edge: at vertices, on edges, at strip bounds and anywhere in the
+    /// box, in a turned frame, on holed star-like regions.
+    #[test]
+    fn strips_hold_every_edge_the_ray_may_cross(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        theta in 0.0f64..TAU,
+        points in prop::collection::vec(((0usize..1000, 0.0f64..1.0), 0u8..3), 1..32),
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let frame = clip::Frame::new(region.centre(), theta);
+        let edges = clip::Edges::new(region.rings(), &frame);
+        let local: Vec<Vec<Coord>> = region
+            .rings()
+            .iter()
+            .map(|r| r.iter().map(|&p| frame.to_local(p)).collect())
+            .collect();
+        let ends = MoveEnds::new(&local);
+        let segments: Vec<(Coord, Coord)> = edges.segments().collect();
+        for (at, kind) in points {
+            let p = ends.point(at, kind);
+            let parity = segments.iter().filter(|&&(a, b)| clip::ray_crosses(a, b, p)).count() % 2 == 1;
+            prop_assert_eq!(edges.contains(p), parity, "{:?}", p);
+        }
+    }
+
+    /// The router's cumulative lengths (each vertex and the next, then the closing edge)
+    /// are, to the bit, the sums edge by edge round each ring, on every ring of a holed
+    /// region.
+    #[test]
+    fn cumulative_lengths_are_the_sums_edge_by_edge(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let router = travel::Router::new(rings);
+        for (r, ring) in rings.iter().enumerate() {
+            let n = ring.len();
+            let mut s = 0.0;
+            let mut wanted = vec![0.0f64];
+            for i in 0..n {
+                let e = ring[(i + 1) % n] - ring[i];
+                s += (e.x * e.x + e.y * e.y).sqrt();
+                wanted.push(s);
+            }
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            prop_assert_eq!(bits(&router.cumulative_lengths(r)), bits(&wanted));
+        }
+    }
 }
 
 /// `Edges::clip` with every edge tested against every segment (no grid), for reference.
@@ -1610,6 +1798,31 @@ proptest! {
         let shape = holed_radial(&outer, &holes, turn, 2.2);
         let region = Region::new(&shape, W).unwrap();
         let mut edges = clip::Edges::new(region.rings(), &clip::Frame::new(Coord::zero(), turn));
+        for line in lines {
+            let pts: Vec<Coord> = line.into_iter().map(|(x, y)| Coord { x, y }).collect();
+            let mut fast = Vec::new();
+            edges.clip(&pts, &mut fast);
+            prop_assert_eq!(fast, clip_plain(&edges, &pts));
+        }
+    }
+
+    /// A small region's clip (its edges by their boxes' least x, a segment's scan
+    /// stopped at the first wholly to its right) cuts where every edge tested in the
+    /// region's order would: star-like outlines of a few points (at most 32 edges once
+    /// inset), segments from short to across the region, polylines of several.
+    #[test]
+    fn clip_of_a_few_edges_by_their_least_x_is_the_plain_clip(
+        outer in prop::collection::vec(2.0f64..15.0, 3..9),
+        turn in 0.0f64..TAU,
+        lines in prop::collection::vec(
+            prop::collection::vec((-16.0f64..16.0, -16.0f64..16.0), 2..6), 1..12),
+    ) {
+        let shape = polygon(&outer, turn);
+        let Ok(region) = Region::new(&shape, W) else {
+            return Ok(());
+        };
+        let mut edges = clip::Edges::new(region.rings(), &clip::Frame::new(Coord::zero(), turn));
+        prop_assume!(edges.segments().count() <= 32);
         for line in lines {
             let pts: Vec<Coord> = line.into_iter().map(|(x, y)| Coord { x, y }).collect();
             let mut fast = Vec::new();

@@ -71,6 +71,12 @@ pub(crate) struct Router<'a> {
     /// Whether a walk projects the move's ends on the ring even where a crossing at the
     /// end says where they are (in tests: the general path).
     project_ends: bool,
+    /// Whether an edge with both ends clearly on one side of a move's line is passed
+    /// without its crossing's divisions (`hits`; off in tests, for the general path).
+    sides: bool,
+    /// A billionth of a millimetre per millimetre of the rings' largest coordinate (the
+    /// chunks' slack): the scale of `hits`' side test.
+    unit: f64,
 }
 
 impl<'a> Router<'a> {
@@ -106,11 +112,11 @@ impl<'a> Router<'a> {
             // ring's box grows with its chunks' (they hold every vertex).
             let mut ring_box = bounds(&[]);
             let mut from = 0;
-            while from < n {
-                let to = if n - from > chunk { from + chunk } else { n };
+            for edges in r.chunks(chunk) {
+                let to = from + edges.len();
                 let last = if to < n { r[to] } else { r[0] };
                 let (mut lo, mut hi) = (last, last);
-                for c in &r[from..to] {
+                for c in edges {
                     if c.x < lo.x {
                         lo.x = c.x;
                     }
@@ -172,6 +178,8 @@ impl<'a> Router<'a> {
             fast: true,
             divide_first: false,
             project_ends: false,
+            sides: true,
+            unit: slack,
         }
     }
 
@@ -179,6 +187,14 @@ impl<'a> Router<'a> {
     #[cfg(test)]
     pub(crate) fn general(mut self) -> Router<'a> {
         self.fast = false;
+        self
+    }
+
+    /// The same router testing every edge of a chunk a move's box meets for a crossing,
+    /// wherever its ends lie (tests compare the two).
+    #[cfg(test)]
+    pub(crate) fn every_edge(mut self) -> Router<'a> {
+        self.sides = false;
         self
     }
 
@@ -378,6 +394,7 @@ impl<'a> Router<'a> {
     }
 
     /// Ring `r`'s chunk boxes, with the range of edges each holds.
+    #[inline]
     fn chunks(
         &self,
         r: usize,
@@ -402,20 +419,41 @@ impl<'a> Router<'a> {
             let vertices: usize = self.rings.iter().map(Vec::len).sum();
             let mut cumulative = scratch::take(&LENGTHS);
             cumulative.reserve(vertices + self.rings.len());
+            // The same sums in the same order as edge by edge with `next`, by an extend
+            // of exact length (no capacity test per push) over each vertex and the next,
+            // then the closing edge.
             for ring in self.rings {
-                let n = ring.len();
+                let (Some(&first), Some(&last)) = (ring.first(), ring.last()) else {
+                    cumulative.push(0.0);
+                    continue;
+                };
+                // The ring's slots made first and written in place (the running sum in
+                // a register, not a closure's captured place).
+                let from = cumulative.len();
+                cumulative.resize(from + ring.len() + 1, 0.0);
+                let slots = &mut cumulative[from + 1..];
                 let mut s = 0.0;
-                cumulative.push(0.0);
-                for i in 0..n {
-                    let e = ring[next(i, n)] - ring[i];
+                for (slot, w) in slots.iter_mut().zip(ring.windows(2)) {
+                    let e = w[1] - w[0];
                     s += (e.x * e.x + e.y * e.y).sqrt();
-                    cumulative.push(s);
+                    *slot = s;
+                }
+                let e = first - last;
+                s += (e.x * e.x + e.y * e.y).sqrt();
+                if let Some(end) = slots.last_mut() {
+                    *end = s;
                 }
             }
             cumulative
         });
         let from = self.at(r).1;
         &cumulative[from..from + self.rings[r].len() + 1]
+    }
+
+    /// Ring `r`'s cumulative lengths (tests).
+    #[cfg(test)]
+    pub(crate) fn cumulative_lengths(&self, r: usize) -> Vec<f64> {
+        self.cumulative(r).to_vec()
     }
 
     /// Where a move from `p` to `q` crosses ring `r`: the fraction along the move, and
@@ -425,16 +463,7 @@ impl<'a> Router<'a> {
         let ring = &self.rings[r];
         let n = ring.len();
         let d = q - p;
-        let (lo, hi) = (
-            Coord {
-                x: p.x.min(q.x),
-                y: p.y.min(q.y),
-            },
-            Coord {
-                x: p.x.max(q.x),
-                y: p.y.max(q.y),
-            },
-        );
+        let (lo, hi) = move_box(p, q);
         let moving = d.x != 0.0 || d.y != 0.0;
         // A move within a millionth of a radian of an edge's direction is kept as one
         // that may run along it (as an exactly parallel one is): a move between two line
@@ -445,15 +474,38 @@ impl<'a> Router<'a> {
         let (lo_r, hi_r) = self.ring_box(r);
         let diagonal2 = (hi_r - lo_r).x * (hi_r - lo_r).x + (hi_r - lo_r).y * (hi_r - lo_r).y;
         let along = 1e-6 * (d2 * diagonal2).sqrt();
+        // An edge whose ends are both farther than `beyond` on one side of the move's
+        // line (`side`: the same products as the crossing's fraction along the edge, `u`'s
+        // numerator negated) is not crossed: `u` would be negative, or 1 or more (the
+        // edge's denominator, rounded, is at most the nearer end's side, far above the
+        // roundings, which are about 10⁻¹⁶ of the coordinates where `beyond` is 10⁻⁹). It
+        // could only be kept as an edge the move runs along (a NaN cut), whose middle
+        // would be on it (`along_edge`): not so far from its line. Off for a move of no
+        // length (every edge is "parallel" to it, and none is kept).
+        let beyond = if self.sides {
+            self.unit * (d.x.abs() + d.y.abs()) * (1.0 + p.x.abs() + p.y.abs())
+        } else {
+            f64::INFINITY
+        };
+        let side = |v: Coord| {
+            let vp = v - p;
+            d.x * vp.y - d.y * vp.x
+        };
         for (edges, a, b) in self.chunks(r) {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
             // Each edge's end is the next one's start: carried, not read again.
             let mut b = ring[edges.start];
+            let mut side_b = side(b);
             for i in edges {
                 let a = b;
+                let side_a = side_b;
                 b = ring[next(i, n)];
+                side_b = side(b);
+                if (side_a > beyond && side_b > beyond) || (side_a < -beyond && side_b < -beyond) {
+                    continue;
+                }
                 let e = b - a;
                 let denom = d.x * e.y - d.y * e.x;
                 if denom == 0.0 {
@@ -522,16 +574,7 @@ impl<'a> Router<'a> {
         cuts.clear();
         // Room for a few crossings at once (not grown from nothing, one at a time).
         cuts.reserve(16);
-        let (lo, hi) = (
-            Coord {
-                x: p.x.min(q.x),
-                y: p.y.min(q.y),
-            },
-            Coord {
-                x: p.x.max(q.x),
-                y: p.y.max(q.y),
-            },
-        );
+        let (lo, hi) = move_box(p, q);
         for r in 0..self.rings.len() {
             let (a, b) = self.ring_box(r);
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
@@ -640,10 +683,68 @@ impl<'a> Router<'a> {
 
     /// Even-odd over every ring; a point on an edge (within a nanometre) counts as
     /// inside: a move along an edge (between two line ends on one side of the outline)
-    /// stays on the boundary, and need not be walked around. A chunk is skipped when
-    /// none of its edges can cross the ray to the right of `p` (all at or below it, all
-    /// above it, or all to its left) and `p` is not within a nanometre of its box.
-    fn inside(&self, p: Coord) -> bool {
+    /// stays on the boundary, and need not be walked around. A chunk none of whose edges
+    /// can cross the ray to the right of `p` (all at or below it, all above it, or all to
+    /// its left) has none of them tested for the ray, and one farther than a nanometre
+    /// from `p` none for `on_edge` (which cannot hold there): the parity and the first
+    /// edge `p` is on are those of every edge tested for both.
+    pub(crate) fn inside(&self, p: Coord) -> bool {
+        let mut inside = false;
+        for (r, ring) in self.rings.iter().enumerate() {
+            let (lo, hi) = self.ring_box(r);
+            if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
+                continue;
+            }
+            let n = ring.len();
+            for (edges, lo, hi) in self.chunks(r) {
+                let near = p.x >= lo.x - 1e-6
+                    && p.x <= hi.x + 1e-6
+                    && p.y >= lo.y - 1e-6
+                    && p.y <= hi.y + 1e-6;
+                let crossing = !(hi.y < p.y || lo.y > p.y || hi.x < p.x);
+                let mut b = ring[edges.start];
+                match (crossing, near) {
+                    (false, false) => {}
+                    (true, false) => {
+                        for i in edges {
+                            let a = b;
+                            b = ring[next(i, n)];
+                            if super::clip::ray_crosses(a, b, p) {
+                                inside = !inside;
+                            }
+                        }
+                    }
+                    (false, true) => {
+                        for i in edges {
+                            let a = b;
+                            b = ring[next(i, n)];
+                            if on_edge(a, b, p) {
+                                return true;
+                            }
+                        }
+                    }
+                    (true, true) => {
+                        for i in edges {
+                            let a = b;
+                            b = ring[next(i, n)];
+                            if super::clip::ray_crosses(a, b, p) {
+                                inside = !inside;
+                            }
+                            if on_edge(a, b, p) {
+                                return true;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        inside
+    }
+
+    /// `inside` as it was: every edge of a chunk near `p` or that may cross its ray
+    /// tested for both the ray and `on_edge` (tests compare the two).
+    #[cfg(test)]
+    pub(crate) fn inside_each_edge(&self, p: Coord) -> bool {
         let mut inside = false;
         for (r, ring) in self.rings.iter().enumerate() {
             let (lo, hi) = self.ring_box(r);
@@ -775,6 +876,17 @@ impl Drop for Router<'_> {
             scratch::give(&LENGTHS, lengths);
         }
     }
+}
+
+/// A move's box, its lowest and highest corner, by comparisons (not `min`/`max`, which
+/// handle NaN at several instructions each): a move's ends are finite, and a move with a
+/// NaN end crosses nothing either way (its fractions are NaN), so the box only says
+/// which rings and chunks are tested.
+#[inline]
+fn move_box(p: Coord, q: Coord) -> (Coord, Coord) {
+    let (x0, x1) = if p.x < q.x { (p.x, q.x) } else { (q.x, p.x) };
+    let (y0, y1) = if p.y < q.y { (p.y, q.y) } else { (q.y, p.y) };
+    (Coord { x: x0, y: y0 }, Coord { x: x1, y: y1 })
 }
 
 /// Whether `p` is on the edge from `a` to `b` within a nanometre (a millionth of a

@@ -98,8 +98,10 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
             pts.push(pts[0]);
             last_loops.push(pts);
         }
-        apart(&last_loops, 0.75 * spacing, &mut scratch, out);
-        if room < step {
+        // The last loops are not read again: a lone one is moved out, not copied.
+        let last = room < step;
+        apart(&mut last_loops, last, 0.75 * spacing, &mut scratch, out);
+        if last {
             break;
         }
     }
@@ -365,12 +367,23 @@ fn near_two(rings: &Bounded, near: &Near, p: Coord, r: f64) -> bool {
 /// Where an outline's loop and a hole's approach (the band between them narrower than
 /// a spacing, before their offsets meet), both would be printed side by side, down to a
 /// fraction of a spacing apart: the later gives way to the earlier there.
-fn apart(loops: &[Vec<Coord>], gap: f64, scratch: &mut Scratch, out: &mut Vec<Vec<Coord>>) {
-    // One loop gives way to none.
+fn apart(
+    loops: &mut [Vec<Coord>],
+    last: bool,
+    gap: f64,
+    scratch: &mut Scratch,
+    out: &mut Vec<Vec<Coord>>,
+) {
+    // One loop gives way to none (the layer's last: moved, not copied).
     if let [only] = loops {
-        out.push(only.clone());
+        out.push(if last {
+            std::mem::take(only)
+        } else {
+            only.clone()
+        });
         return;
     }
+    let loops = &*loops;
     let all: Bounded = loops.iter().map(|l| (l.as_slice(), bounds(l))).collect();
     let mut filed = false;
     for (j, ring) in loops.iter().enumerate() {

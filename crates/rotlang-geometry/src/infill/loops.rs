@@ -534,14 +534,18 @@ fn prepare(
     let unit = |e: Coord| e / math::hypot(e.x, e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
     // Each edge's direction once (edge i runs from point i to i + 1).
+    // (No division per edge: the last edge closes the ring.)
     units.clear();
-    units.extend((0..n).map(|i| unit(pts[(i + 1) % n] - pts[i])));
+    units.extend(pts.windows(2).map(|w| unit(w[1] - w[0])));
+    if n > 0 {
+        units.push(unit(pts[0] - pts[n - 1]));
+    }
     out.clear();
     out.reserve(n);
     let cos_arc = math::cos(arc);
     for i in 0..n {
         let b = pts[i];
-        let (u, v) = (units[(i + n - 1) % n], units[i]);
+        let (u, v) = (units[if i == 0 { n - 1 } else { i - 1 }], units[i]);
         let (nu, nv) = (left(u), left(v));
         let turn = cross(u, v);
         let dot = u.x * v.x + u.y * v.y;
@@ -564,7 +568,12 @@ fn prepare(
             let angle = math::atan2(turn, dot);
             let steps = (-angle / arc).ceil().max(1.0) as usize;
             let start = directions.len();
-            let (s, co) = math::sin_cos(angle / steps as f64);
+            // One step has no inner direction (and needs no sine).
+            let (s, co) = if steps > 1 {
+                math::sin_cos(angle / steps as f64)
+            } else {
+                (0.0, 1.0)
+            };
             let mut w = nu;
             for _ in 1..steps {
                 w = Coord {

@@ -36,7 +36,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     };
     let outline = region.outline();
     let mut pool = POOL.try_with(Cell::take).ok().flatten().unwrap_or_default();
-    let mut eroder = Shrink::new(outline, pool.eroder.take());
+    let mut eroder = Shrink::new(outline, pool.eroder.take(), known_concave(region));
     // Each loop offset from the inset itself, not from the previous loop: offsets of
     // offsets pile up the arcs at reflex corners.
     // The previous loops' distance and (perimeter, outline rings − hole rings).
@@ -141,17 +141,13 @@ thread_local! {
 /// drawn in steps of 0.5 rad (a chord or a mitre strays 3.2% of `d` from the exact
 /// boundary): the rings are widened by 4% of `d` all round for it.
 fn room(loops: &Loops, length: f64, d: f64) -> f64 {
-    let area = loops
-        .rings
-        .iter()
-        .map(|r| {
-            r.windows(2)
-                .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
-                .sum::<f64>()
-                .abs()
-                / 2.0
-        })
-        .fold(0.0, f64::max);
+    let area = loops.largest.unwrap_or_else(|| {
+        loops
+            .rings
+            .iter()
+            .map(|r| twice_area(r).abs() / 2.0)
+            .fold(0.0, f64::max)
+    });
     let widen = 0.04 * d + 1e-6;
     ((area + length * widen + PI * widen * widen) / PI).sqrt()
 }
@@ -852,10 +848,33 @@ fn together(
     None
 }
 
+/// Whether the region's outline is one polygon without holes that the exact convex
+/// inset declines at every distance (it has a reflex corner): the region's own inset
+/// was made from that outline (`Region::outline`, kept as cleaned) by the convex inset
+/// where it could, and such an inset, not empty, is one convex ring: a region of one
+/// holeless polygon, not empty and not convex, had its convex inset declined. The first
+/// loop then does not ask it again (some 280 instructions of a star's layer of 23k).
+pub(super) fn known_concave(region: &Region) -> bool {
+    let outline = region.outline();
+    !region.is_convex()
+        && !region.outlines().is_empty()
+        && outline.0.len() == 1
+        && outline.0[0].interiors().is_empty()
+}
+
 /// A region's rings (closed), and its outline rings less its hole rings.
 struct Loops {
     rings: Vec<Vec<Coord>>,
     turns: f64,
+    /// The largest ring's area where it was measured already (for `room`).
+    largest: Option<f64>,
+}
+
+/// Twice a closed ring's signed area (counter-clockwise positive).
+fn twice_area(ring: &[Coord]) -> f64 {
+    ring.windows(2)
+        .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
+        .sum()
 }
 
 /// The loops' offsets of one region: arcs in steps of 0.5 rad (not geo's 0.2): the loops
@@ -876,11 +895,11 @@ struct Shrink<'a> {
 }
 
 impl<'a> Shrink<'a> {
-    fn new(area: &'a MultiPolygon<f64>, spare: Option<Eroder>) -> Shrink<'a> {
+    fn new(area: &'a MultiPolygon<f64>, spare: Option<Eroder>, concave: bool) -> Shrink<'a> {
         Shrink {
             area,
             holes: area.0.iter().any(|p| !p.interiors().is_empty()),
-            concave: false,
+            concave,
             eroder: spare,
             ready: false,
         }
@@ -912,17 +931,21 @@ impl<'a> Shrink<'a> {
         if convex.is_none()
             && let Some(rings) = self.eroder().rings(d)
         {
+            // Each ring's area once, for its turn and for `room` (the same sums).
+            let mut largest = 0.0;
             let turns = rings
                 .iter()
                 .map(|r| {
-                    let twice: f64 = r
-                        .windows(2)
-                        .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
-                        .sum();
+                    let twice = twice_area(r);
+                    largest = f64::max(largest, twice.abs() / 2.0);
                     twice.signum()
                 })
                 .sum();
-            return Loops { rings, turns };
+            return Loops {
+                rings,
+                turns,
+                largest: Some(largest),
+            };
         }
         let polygons = convex.unwrap_or_else(|| {
             if holes && let Some(inset) = crate::infill::region::convex_inset(area, d, 0.5) {
@@ -931,6 +954,7 @@ impl<'a> Shrink<'a> {
             area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
         });
         Loops {
+            largest: None,
             turns: polygons
                 .0
                 .iter()

@@ -7,9 +7,10 @@
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use proptest::prelude::*;
 
-use super::concentric::concentric;
+use super::concentric::{concentric, known_concave};
 use super::concentric_reference;
 use crate::infill::loops::Eroder;
+use crate::infill::region::convex_inset;
 use crate::infill::{Region, shapes};
 use crate::math;
 
@@ -192,6 +193,66 @@ proptest! {
         let shape = star_like(&radii, size, hole);
         let (fast, slow) = loops(&shape, density, theta);
         prop_assert_eq!(fast, slow);
+    }
+}
+
+/// Where `known_concave` says so, the exact convex inset of the outline declines at every
+/// distance concentric asks (so the loops skip it rightly), and it says so for the star
+/// and the L (the fast path is taken), never for a convex region.
+#[test]
+fn a_known_concave_outline_has_no_convex_inset() {
+    let mut taken = Vec::new();
+    let mut shapes = named_shapes();
+    for radii in [
+        vec![1.0, 0.4, 1.0, 0.4, 1.0, 0.4],
+        vec![1.0; 7],
+        vec![0.9, 0.3, 0.8, 0.95, 0.5],
+    ] {
+        shapes.push(("star-like", star_like(&radii, 12.0, None)));
+        shapes.push(("holed", star_like(&radii, 12.0, Some((0.1, 0.0, 0.0)))));
+    }
+    for (name, shape) in shapes {
+        let region = Region::new(&shape, W).expect("region");
+        if !known_concave(&region) {
+            continue;
+        }
+        taken.push(name);
+        assert!(!region.is_convex(), "{name}");
+        for d in [0.0, W / 2.0, 0.5, 1.0, 2.2, 4.0, 9.0, 40.0] {
+            assert!(
+                convex_inset(region.outline(), d, 0.5).is_none(),
+                "{name}: a convex inset at {d}"
+            );
+        }
+    }
+    for name in ["star", "L"] {
+        assert!(taken.contains(&name), "{name} not known concave: {taken:?}");
+    }
+    assert!(!taken.contains(&"square") && !taken.contains(&"circle"));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Random star-like outlines and regular polygons, some holed: where `known_concave`
+    /// says so, no convex inset at the loops' distances.
+    #[test]
+    fn known_concave_random_outlines_have_no_convex_inset(
+        radii in prop::collection::vec(0.3f64..1.0, 3..24),
+        regular in any::<bool>(),
+        size in 1.0f64..25.0,
+        hole in prop::option::of((0.05f64..0.25, -0.1f64..0.1, -0.1f64..0.1)),
+        d in 0.0f64..10.0,
+    ) {
+        let radii = if regular { vec![1.0; radii.len()] } else { radii };
+        let shape = star_like(&radii, size, hole);
+        let region = Region::new(&shape, W).expect("region");
+        if known_concave(&region) {
+            prop_assert!(convex_inset(region.outline(), d, 0.5).is_none());
+        }
+        if regular && hole.is_none() && !region.outlines().is_empty() {
+            prop_assert!(!known_concave(&region));
+        }
     }
 }
 

@@ -78,7 +78,8 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         let step = (k as f64 + 1.5) * spacing - d;
         let room = room(&current, shape.0, region.nozzle() / 2.0 + d);
         last_loops.clear();
-        for ring in current.rings {
+        let mut rings = current.rings;
+        for ring in rings.drain(..) {
             let mut pts = ring;
             if pts.len() > 1 && pts.first() == pts.last() {
                 pts.pop();
@@ -86,18 +87,21 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
             if pts.len() < 3 {
                 continue;
             }
-            let start = pts
-                .iter()
-                .enumerate()
-                .max_by(|(_, a), (_, b)| {
-                    (a.x * direction.x + a.y * direction.y)
-                        .total_cmp(&(b.x * direction.x + b.y * direction.y))
-                })
-                .map_or(0, |(i, _)| i);
+            // The last of the farthest (as `max_by`), each point measured once.
+            let along = |a: Coord| a.x * direction.x + a.y * direction.y;
+            let mut start = 0;
+            let mut top = along(pts[0]);
+            for (i, &p) in pts.iter().enumerate().skip(1) {
+                let x = along(p);
+                if x.total_cmp(&top).is_ge() {
+                    (start, top) = (i, x);
+                }
+            }
             pts.rotate_left(start);
             pts.push(pts[0]);
             last_loops.push(pts);
         }
+        eroder.recycle(rings);
         // The last loops are not read again: a lone one is moved out, not copied.
         let last = room < step;
         apart(&mut last_loops, last, 0.75 * spacing, &mut scratch, out);
@@ -915,6 +919,13 @@ impl<'a> Shrink<'a> {
             }
         }
         self.eroder.as_mut().expect("made above")
+    }
+
+    /// The list of an erosion's rings, emptied, back for the next erosion's.
+    fn recycle(&mut self, rings: Vec<Vec<Coord>>) {
+        if let Some(e) = &mut self.eroder {
+            e.recycle(rings);
+        }
     }
 
     fn shrink(&mut self, d: f64) -> Loops {

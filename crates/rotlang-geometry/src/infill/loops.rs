@@ -59,6 +59,8 @@ pub(crate) struct Eroder {
     /// Reused: the kept pieces, their points one after another.
     pieces: Vec<Piece>,
     points: Vec<Coord>,
+    /// A list of rings given back (`recycle`), empty: the next erosion's rings go in it.
+    spare: Vec<Vec<Coord>>,
     /// Whether sharp tips are closed at their mitre (`Raw::close_tips`); the tests turn
     /// it off to compare with the tips cut.
     close: bool,
@@ -95,6 +97,7 @@ impl Eroder {
             cuts: Vec::new(),
             turns: Vec::new(),
             chained: (Vec::new(), Vec::new()),
+            spare: Vec::new(),
             pieces: Vec::new(),
             points: Vec::new(),
             close: true,
@@ -155,6 +158,15 @@ impl Eroder {
             }
         }
         self.corners.truncate(used);
+    }
+
+    /// A list of rings emptied, kept for the next erosion's (one allocation and free
+    /// fewer a loop).
+    pub(crate) fn recycle(&mut self, mut rings: Vec<Vec<Coord>>) {
+        rings.clear();
+        if rings.capacity() <= 64 {
+            self.spare = rings;
+        }
     }
 
     /// How many points its largest buffers hold room for (a pool lets a huge one go).
@@ -319,7 +331,8 @@ impl Eroder {
                 }
             }
         }
-        chain(pieces, points, cuts.len(), &mut self.chained)
+        let rings = std::mem::take(&mut self.spare);
+        chain(pieces, points, cuts.len(), &mut self.chained, rings)
     }
 }
 
@@ -1215,10 +1228,11 @@ fn chain(
     points: &[Coord],
     cuts: usize,
     (leaving, used): &mut (Vec<usize>, Vec<bool>),
+    mut rings: Vec<Vec<Coord>>,
 ) -> Option<Vec<Vec<Coord>>> {
     leaving.clear();
     leaving.resize(cuts, usize::MAX);
-    let mut rings = Vec::new();
+    rings.clear();
     for (i, p) in pieces.iter().enumerate() {
         if p.from == usize::MAX {
             continue;

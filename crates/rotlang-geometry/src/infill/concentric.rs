@@ -36,15 +36,20 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     };
     let outline = region.outline();
     let mut pool = POOL.try_with(Cell::take).ok().flatten().unwrap_or_default();
-    let mut eroder = Shrink::new(outline, pool.eroder.take(), known_concave(region));
+    // Its buffers used where they are in the box: moving them out and back in copied
+    // the eroder's and the scratch's some forty vectors eight times a layer.
+    let Pool {
+        eroder: spare,
+        scratch,
+        last: last_loops,
+    } = &mut *pool;
+    let mut eroder = Shrink::new(outline, spare, known_concave(region));
     // Each loop offset from the inset itself, not from the previous loop: offsets of
     // offsets pile up the arcs at reflex corners.
     // The previous loops' distance and (perimeter, outline rings − hole rings).
     let mut previous: Option<(f64, f64, f64)> = None;
     // The previous loops themselves (closed rings).
-    let mut last_loops = std::mem::take(&mut pool.last);
     last_loops.clear();
-    let mut scratch = std::mem::take(&mut pool.scratch);
     for k in 0.. {
         let mut d = (k as f64 + 0.5) * spacing;
         // From the region itself: the inset's offset by d is its offset by w/2 + d.
@@ -65,7 +70,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
             let expected = TAU * spacing * turns;
             if !current.rings.is_empty() && length - shape.0 > expected + 4.0 * spacing {
                 let middle = eroder.shrink(region.nozzle() / 2.0 + d0 + spacing / 2.0);
-                uncovered(&middle, &current, &last_loops, spacing, &mut scratch, out);
+                uncovered(&middle, &current, last_loops, spacing, scratch, out);
             }
         }
         if current.rings.is_empty() {
@@ -104,7 +109,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         eroder.recycle(rings);
         // The last loops are not read again: a lone one is moved out, not copied.
         let last = room < step;
-        apart(&mut last_loops, last, 0.75 * spacing, &mut scratch, out);
+        apart(last_loops, last, 0.75 * spacing, scratch, out);
         if last {
             break;
         }
@@ -112,11 +117,13 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     // Kept for the next layer on this thread, unless a huge region made them huge.
     if scratch.dense.capacity() + scratch.flags.capacity() < POOLED_POINTS {
         last_loops.clear();
-        *pool = Pool {
-            eroder: eroder.eroder.filter(|e| e.capacity() < POOLED_POINTS),
-            scratch,
-            last: last_loops,
-        };
+        if eroder
+            .eroder
+            .as_ref()
+            .is_some_and(|e| e.capacity() >= POOLED_POINTS)
+        {
+            *eroder.eroder = None;
+        }
         // During the thread's teardown the pool may be gone: the buffers are freed.
         let _ = POOL.try_with(|p| p.set(Some(pool)));
     }
@@ -893,13 +900,17 @@ struct Shrink<'a> {
     /// a reflex corner, whatever the distance): not asked again for the later loops.
     concave: bool,
     /// Made (or an earlier layer's reset) at the first loop that needs it (a convex
-    /// region never does).
-    eroder: Option<Eroder>,
+    /// region never does), in the thread's pool.
+    eroder: &'a mut Option<Eroder>,
     ready: bool,
 }
 
 impl<'a> Shrink<'a> {
-    fn new(area: &'a MultiPolygon<f64>, spare: Option<Eroder>, concave: bool) -> Shrink<'a> {
+    fn new(
+        area: &'a MultiPolygon<f64>,
+        spare: &'a mut Option<Eroder>,
+        concave: bool,
+    ) -> Shrink<'a> {
         Shrink {
             area,
             holes: area.0.iter().any(|p| !p.interiors().is_empty()),
@@ -913,9 +924,9 @@ impl<'a> Shrink<'a> {
     fn eroder(&mut self) -> &mut Eroder {
         if !self.ready {
             self.ready = true;
-            match &mut self.eroder {
+            match self.eroder {
                 Some(e) => e.reset(self.area, 0.5),
-                None => self.eroder = Some(Eroder::new(self.area, 0.5)),
+                None => *self.eroder = Some(Eroder::new(self.area, 0.5)),
             }
         }
         self.eroder.as_mut().expect("made above")
@@ -923,7 +934,7 @@ impl<'a> Shrink<'a> {
 
     /// The list of an erosion's rings, emptied, back for the next erosion's.
     fn recycle(&mut self, rings: Vec<Vec<Coord>>) {
-        if let Some(e) = &mut self.eroder {
+        if let Some(e) = self.eroder {
             e.recycle(rings);
         }
     }

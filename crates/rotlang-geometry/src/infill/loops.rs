@@ -758,8 +758,8 @@ fn star_shaped(pts: &[Coord]) -> bool {
         let b = q - centre;
         let next = b.x.abs() + b.y.abs();
         let turn = cross(a, b);
-        // (Not above the margin, or NaN.)
-        if !(turn > 1e-9 * (size * next)) {
+        // Not above the margin, or NaN (one comparison).
+        if turn.partial_cmp(&(1e-9 * (size * next))) != Some(std::cmp::Ordering::Greater) {
             return false;
         }
         // Turning counter-clockwise by less than a half turn, an edge from below the

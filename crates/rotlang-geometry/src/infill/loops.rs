@@ -40,8 +40,9 @@ pub(crate) struct Eroder {
     boundary: Boundary,
     /// Each ring's corners (rings that cannot be oriented are left out, as before).
     corners: Vec<Vec<Corner>>,
-    /// Each ring's distance below which no segment of its raw offset runs backwards.
-    safes: Vec<f64>,
+    /// Each ring's distance below which no segment of its raw offset runs backwards, and
+    /// how many points its raw offset has (before its tips are closed).
+    safes: Vec<(f64, usize)>,
     /// Reused by `prepare`: a ring's edge directions.
     units: Vec<Coord>,
     /// Whether the raw rings' buffers were sized for these corners.
@@ -187,18 +188,9 @@ impl Eroder {
         // Each raw ring's size is known from its corners: the buffers are made once at
         // their size (growing them by doubling was a tenth of a star's layer).
         if !self.sized {
-            let directions = &self.directions;
             self.raws.resize_with(self.corners.len(), Raw::default);
             let mut total = 0;
-            for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
-                let n: usize = corners
-                    .iter()
-                    .map(|c| match c {
-                        Corner::Mitre { .. } => 1,
-                        Corner::Tip { .. } => 3,
-                        Corner::Arc { inner, .. } => 2 + directions[inner.clone()].len(),
-                    })
-                    .sum();
+            for (raw, &(_, n)) in self.raws.iter_mut().zip(&self.safes) {
                 total += n;
                 // (`reserve` counts from the length: the vectors are emptied first.)
                 for v in [&mut raw.pts, &mut raw.closed.0] {
@@ -224,7 +216,8 @@ impl Eroder {
             self.points.clear();
             self.points.reserve(2 * total);
         }
-        for ((raw, corners), &safe) in self.raws.iter_mut().zip(&self.corners).zip(&self.safes) {
+        for ((raw, corners), &(safe, _)) in self.raws.iter_mut().zip(&self.corners).zip(&self.safes)
+        {
             raw.fill(corners, &self.directions, d, self.close, d >= safe);
         }
         if self.raws.iter().map(|r| r.pts.len()).sum::<usize>() > MAX_SEGMENTS {
@@ -446,9 +439,10 @@ impl Raw {
         let count = self.tips.len();
         for i in 0..count {
             let (at, x) = self.tips[i];
-            let (next, y) = self.tips[(i + 1) % count];
+            // (A tip's three points end before n: at + 3 is n at most.)
+            let (next, y) = self.tips[if i + 1 == count { 0 } else { i + 1 }];
             if let (Some(x), Some(y)) = (x, y)
-                && next == (at + 3) % n
+                && next == if at + 3 == n { 0 } else { at + 3 }
             {
                 let e = pts[next] - pts[at + 2];
                 let m = y - x;
@@ -532,7 +526,8 @@ struct Cut {
 
 /// A ring's corners toward the region's inside (`exterior`: an outline) into `out`, the
 /// inner directions of its arcs appended to `directions`, and the distance below which
-/// no edge of its raw offset runs backwards; `None` where it cannot be oriented.
+/// no edge of its raw offset runs backwards, with the number of its raw offset's points;
+/// `None` where it cannot be oriented.
 fn prepare(
     ring: &[Coord],
     arc: f64,
@@ -540,9 +535,10 @@ fn prepare(
     directions: &mut Vec<Coord>,
     out: &mut Vec<Corner>,
     units: &mut Vec<Coord>,
-) -> Option<f64> {
+) -> Option<(f64, usize)> {
     // The ring itself where it is clean and turns the right way (a copy otherwise).
     let pts = inside_left_cow(ring, exterior)?;
+    let first = directions.len();
     let n = pts.len();
     let unit = |e: Coord| e / math::hypot(e.x, e.y);
     let left = |u: Coord| Coord { x: -u.y, y: u.x };
@@ -556,6 +552,8 @@ fn prepare(
     out.clear();
     out.reserve(n);
     let cos_arc = math::cos(arc);
+    // The points of tips and arcs beyond one a corner.
+    let mut extra = 0;
     for i in 0..n {
         let b = pts[i];
         let (u, v) = (units[if i == 0 { n - 1 } else { i - 1 }], units[i]);
@@ -571,6 +569,7 @@ fn prepare(
                 // A sharp tip: its mitre would be far away; through the vertex instead
                 // (that stretch is nearer the boundary than `d`, and is cut away).
                 out.push(Corner::Tip { b, nu, nv });
+                extra += 2;
             }
         } else if dot >= cos_arc {
             // A reflex corner within one step (a round hole's): the mitre, which strays
@@ -601,6 +600,7 @@ fn prepare(
                 nv,
                 inner: start..directions.len(),
             });
+            extra += 1;
         }
     }
     // Edge i (from corner i to i + 1) moved by `d` runs from the foot of corner i's last
@@ -620,8 +620,10 @@ fn prepare(
             safe = safe.min(length / rate);
         }
     }
+    // One point a mitre, three a tip, two an arc and its inner directions.
+    let points = out.len() + extra + directions.len() - first;
     // Well inside the rounding of the points' own test.
-    Some(safe * (1.0 - 1e-6))
+    Some((safe * (1.0 - 1e-6), points))
 }
 
 /// `x.ceil().max(1.0) as usize` without the call `ceil` is here (no SSE4.1 assumed): an
@@ -1400,6 +1402,22 @@ mod tests {
 
     /// The sweep's reused order: nearly sorted pairs are sorted within the budget, and a
     /// reversed order runs past it (the caller then sorts in full) without losing a pair.
+    /// The raw offsets' sizes counted as the corners are prepared (the buffers are
+    /// reserved at them) are the points `fill` makes, tips not closed.
+    #[test]
+    fn each_raw_offset_has_the_points_counted() {
+        for (name, shape) in crate::infill::tests::ring_shapes() {
+            let mut eroder = Eroder::new(&shape, 0.5).cutting_tips();
+            for d in [0.3, 2.0, 5.0] {
+                let _ = eroder.rings(d);
+                assert_eq!(eroder.raws.len(), eroder.safes.len(), "{name}");
+                for (raw, &(_, n)) in eroder.raws.iter().zip(&eroder.safes) {
+                    assert_eq!(raw.pts.len(), n, "{name} by {d}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn an_arcs_steps_are_its_quotient_rounded_up() {
         let mut xs = vec![0.0, -0.0, -0.5, 1e-300, 0.5, 1.0, 2.0, 3.5, 1e6, f64::NAN];

@@ -15,6 +15,12 @@
 //! kept as one point, a hole's loop is measured against the outline's only where a segment
 //! of it comes near, and the middle ring's points lie half a spacing apart, not a quarter
 //! (`MIDDLE_STEP`, the one change of the output).
+//!
+//! Then (a star's layer at 10%, one loop: 21.8k → 19.4k instructions, the same output):
+//! the thread's pool used in its box (moving the eroder out and back copied it eight
+//! times), the convex inset not asked of a region known concave, the last lone loop moved
+//! out, the loops' ring list reused, and the eroder's preparation without a division or a
+//! `ceil` call per corner.
 
 use std::cell::Cell;
 use std::f64::consts::{PI, TAU};

@@ -334,3 +334,67 @@ fn regions_built_in_a_dropped_regions_lists_are_the_fresh_ones() {
         }
     }
 }
+
+/// The one-pass proof (`star_clear`): the star's inset winds once around its centre and
+/// passes; the L's, around the mean of its corners (its reflex corner, behind the round
+/// corner's chords), declines; a pentagram (every edge turning the same way about its
+/// centre, but twice round) and a bow tie decline, and the sweep finds their crossings.
+#[test]
+fn one_turn_about_a_point_proves_a_ring_clear() {
+    let star = shapes::star(10.0, 4.5);
+    let (originals, moved) =
+        offsets(&[(star.0[0].exterior().0.clone(), true)], 0.2).expect("an offset");
+    assert!(offset::star_clear(&moved[0], offset::mean(&originals[0])));
+    let l = shapes::l_shape(20.0);
+    let (originals, moved) =
+        offsets(&[(l.0[0].exterior().0.clone(), true)], 0.2).expect("an offset");
+    assert!(!offset::star_clear(&moved[0], offset::mean(&originals[0])));
+    let pentagram = radial(&[5.0; 5], 0.3, Coord::zero());
+    let pentagram: Vec<Coord> = (0..5).map(|i| pentagram[(2 * i) % 5]).collect();
+    assert!(!offset::star_clear(&pentagram, Coord::zero()));
+    assert!(offset::crossings(&[pentagram]));
+    let bow_tie = vec![
+        Coord { x: 0.0, y: 0.0 },
+        Coord { x: 4.0, y: 4.0 },
+        Coord { x: 4.0, y: 0.0 },
+        Coord { x: 0.0, y: 4.0 },
+    ];
+    assert!(!offset::star_clear(&bow_tie, Coord { x: 2.0, y: 1.0 }));
+    assert!(offset::crossings(&[bow_tie]));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Wherever a ring is proved clear in one pass, the sweep finds no crossing: star-like
+    /// rings (some scrambled, crossing themselves, some wound twice) and their offsets,
+    /// about points near and far from their centre.
+    #[test]
+    fn rings_proved_clear_in_one_pass_have_no_crossing(
+        radii in prop::collection::vec(0.5f64..12.0, 3..24),
+        turn in 0.0f64..TAU,
+        scramble in 0usize..3,
+        d in 0.05f64..3.0,
+        c in (-3.0f64..3.0, -3.0f64..3.0),
+    ) {
+        let mut ring = radial(&radii, turn, Coord::zero());
+        if scramble == 1 {
+            for pair in ring.chunks_exact_mut(2).step_by(3) {
+                pair.swap(0, 1);
+            }
+        } else if scramble == 2 && ring.len() % 2 == 1 {
+            // Every second point: twice round the centre.
+            let n = ring.len();
+            ring = (0..n).map(|i| ring[(2 * i) % n]).collect();
+        }
+        let c = Coord { x: c.0, y: c.1 };
+        if offset::star_clear(&ring, c) {
+            prop_assert!(!offset::crossings(std::slice::from_ref(&ring)));
+        }
+        if let Some(moved) = offset::offset_ring(&ring, d, 0.45, true)
+            && offset::star_clear(&moved, c)
+        {
+            prop_assert!(!offset::crossings(&[moved]));
+        }
+    }
+}

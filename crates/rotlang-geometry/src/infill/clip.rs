@@ -65,9 +65,10 @@ pub(crate) struct Edges {
     /// are found in is not seen).
     boxes: Vec<(Coord, Coord, Edge)>,
     /// Strip `s` holds `strip_edges[strip_start[s]..strip_start[s + 1]]` (one flat list:
-    /// two allocations, not one per strip).
+    /// two allocations, not one per strip), the edges themselves (copies, in ascending
+    /// order of index): `contains` reads them in a row, not through an index each.
     strip_start: Vec<u32>,
-    strip_edges: Vec<u32>,
+    strip_edges: Vec<Edge>,
     pub min: Coord,
     pub max: Coord,
     height: f64,
@@ -256,12 +257,16 @@ impl Edges {
         }
         strip_start[n] = strip_start[n - 1];
         let mut strip_edges = scratch::take(&STRIP_EDGES);
-        strip_edges.resize(strip_start[n] as usize, 0);
+        let placeholder = Edge {
+            a: Coord { x: 0.0, y: 0.0 },
+            b: Coord { x: 0.0, y: 0.0 },
+        };
+        strip_edges.resize(strip_start[n] as usize, placeholder);
         for (i, &(first, last)) in spans.iter().enumerate().rev() {
             for s in first..=last {
                 let s = s as usize;
                 strip_start[s] -= 1;
-                strip_edges[strip_start[s] as usize] = i as u32;
+                strip_edges[strip_start[s] as usize] = edges[i];
             }
         }
         scratch::give(&SPANS, spans);
@@ -334,8 +339,7 @@ impl Edges {
         let mut crossings = Vec::new();
         let s = self.strip(y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
-        for &i in &self.strip_edges[from as usize..to as usize] {
-            let Edge { a, b } = self.edges[i as usize];
+        for &Edge { a, b } in &self.strip_edges[from as usize..to as usize] {
             if (a.y <= y) != (b.y <= y) {
                 crossings.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
             }
@@ -352,8 +356,7 @@ impl Edges {
         let mut inside = false;
         let s = self.strip(p.y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
-        for &i in &self.strip_edges[from as usize..to as usize] {
-            let Edge { a, b } = self.edges[i as usize];
+        for &Edge { a, b } in &self.strip_edges[from as usize..to as usize] {
             if ray_crosses(a, b, p) {
                 inside = !inside;
             }
@@ -557,7 +560,7 @@ thread_local! {
     static EDGE_LIST: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
     static BOXES: std::cell::Cell<Vec<(Coord, Coord, Edge)>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_START: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
-    static STRIP_EDGES: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
+    static STRIP_EDGES: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
     /// Each edge's first and last strip while `Edges::new` sorts them.
     static SPANS: std::cell::Cell<Vec<(u32, u32)>> = const { std::cell::Cell::new(Vec::new()) };
     static CUTS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
@@ -654,8 +657,10 @@ pub(crate) fn ray_crosses(a: Coord, b: Coord, p: Coord) -> bool {
     a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x
 }
 
+/// The strip of `y` (`height` positive). The cast saturates: below `min` (and NaN) is
+/// strip 0 without a `max(0.0)` (several instructions for its NaN rule).
 fn strip(y: f64, min: f64, height: f64, n: usize) -> usize {
-    (((y - min) / height).max(0.0) as usize).min(n - 1)
+    (((y - min) / height) as usize).min(n - 1)
 }
 
 #[cfg(test)]

@@ -182,9 +182,13 @@ fn clip_tree(
     // inside, each of its polylines is inside when its twig's end is: no clipping, which
     // is most of the work.
     for pair in branches.chunks_exact(2) {
-        let tip_inside = convex && edges.contains(frame.to_local(pair[1][0]));
+        // The fork, shared by both polylines, mapped once.
+        let fork = frame.to_local(pair[0][1]);
+        let local =
+            |branch: &[Coord; 3]| [frame.to_local(branch[0]), fork, frame.to_local(branch[2])];
+        let pair = [local(&pair[0]), local(&pair[1])];
+        let tip_inside = convex && edges.contains(pair[1][0]);
         for branch in pair {
-            let branch = branch.map(|p| frame.to_local(p));
             if tip_inside && edges.contains(branch[2]) {
                 piece(&branch.map(|q| frame.to_world(q)));
                 continue;

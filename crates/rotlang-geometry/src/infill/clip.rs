@@ -381,16 +381,18 @@ impl Edges {
 
     /// Even-odd: whether `p` is inside the region (on an edge: either).
     pub fn contains(&self, p: Coord) -> bool {
-        if !(p.y >= self.min.y && p.y <= self.max.y && p.x >= self.min.x && p.x <= self.max.x) {
-            return false;
-        }
         let mut inside = false;
         if self.strip_start.is_empty() {
             // No strips (`FEW` edges at most): every edge, the same parity (an edge not
             // in the point's strip does not reach its height).
             // By their lower end, so the scan stops at the first edge wholly above `p`;
             // an edge reaches its height (`(a.y <= p.y) != (b.y <= p.y)`, the half-open
-            // rule) exactly when `lo <= p.y < hi`.
+            // rule) exactly when `lo <= p.y < hi`. Below the box (or NaN) no edge reaches
+            // `p`'s height, nor above it: outside, as the box's test says, so only its
+            // x half is made.
+            if !(p.x >= self.min.x && p.x <= self.max.x) {
+                return false;
+            }
             for &(lo, hi, Edge { a, b }) in &self.by_y {
                 if lo > p.y {
                     break;
@@ -400,6 +402,9 @@ impl Edges {
                 }
             }
             return inside;
+        }
+        if !(p.y >= self.min.y && p.y <= self.max.y && p.x >= self.min.x && p.x <= self.max.x) {
+            return false;
         }
         let s = self.strip(p.y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);

@@ -245,9 +245,7 @@ fn branches_into(
         // Walk the ring from `start`, dropping a branch every `step` of arc length.
         let (mut i, mut along, mut next) = (0usize, 0.0, 0.0);
         let mut k = 0usize;
-        // The edge from vertex start + i and its length, found once per edge (several
-        // branches may start on one).
-        let edge = |i: usize| {
+        while k < count && i < n {
             // Vertex start + i round the ring (both under n: one subtraction, not a
             // division).
             let at = if start + i >= n {
@@ -256,20 +254,10 @@ fn branches_into(
                 start + i
             };
             let (a, b) = (ring[at], ring[super::offset::next(at, n)]);
-            (a, b, length(b - a))
-        };
-        let (mut a, mut b, mut len) = if n > 0 {
-            edge(0)
-        } else {
-            (Coord { x: 0.0, y: 0.0 }, Coord { x: 0.0, y: 0.0 }, 0.0)
-        };
-        while k < count && i < n {
+            let len = length(b - a);
             if along + len < next || len == 0.0 {
                 along += len;
                 i += 1;
-                if i < n {
-                    (a, b, len) = edge(i);
-                }
                 continue;
             }
             let p = a + (b - a) * ((next - along) / len);

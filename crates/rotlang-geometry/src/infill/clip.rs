@@ -68,10 +68,9 @@ pub(crate) struct Edges {
     /// lower and upper y, by the lower, for `contains`.
     by_y: Vec<(f64, f64, Edge)>,
     /// Strip `s` holds `strip_edges[strip_start[s]..strip_start[s + 1]]` (one flat list:
-    /// two allocations, not one per strip), the edges themselves (copies, in ascending
-    /// order of index): `contains` reads them in a row, not through an index each.
+    /// two allocations, not one per strip), by index, ascending.
     strip_start: Vec<u32>,
-    strip_edges: Vec<Edge>,
+    strip_edges: Vec<u32>,
     pub min: Coord,
     pub max: Coord,
     height: f64,
@@ -264,15 +263,11 @@ impl Edges {
                 strip_start[s] += strip_start[s - 1];
             }
             strip_start[n] = strip_start[n - 1];
-            let placeholder = Edge {
-                a: Coord { x: 0.0, y: 0.0 },
-                b: Coord { x: 0.0, y: 0.0 },
-            };
-            strip_edges.resize(strip_start[n] as usize, placeholder);
-            for (&(first, end), &edge) in spans.iter().zip(edges.iter()).rev() {
+            strip_edges.resize(strip_start[n] as usize, 0);
+            for (i, &(first, end)) in spans.iter().enumerate().rev() {
                 for at in &mut strip_start[first as usize..end as usize] {
                     *at -= 1;
-                    strip_edges[*at as usize] = edge;
+                    strip_edges[*at as usize] = i as u32;
                 }
             }
             scratch::give(&SPANS, spans);
@@ -363,14 +358,17 @@ impl Edges {
             return;
         }
         let mut crossings = Vec::new();
-        let strip = if self.strip_start.is_empty() {
-            &self.edges[..]
+        let strip: Vec<Edge> = if self.strip_start.is_empty() {
+            self.edges.clone()
         } else {
             let s = self.strip(y);
             let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
-            &self.strip_edges[from as usize..to as usize]
+            self.strip_edges[from as usize..to as usize]
+                .iter()
+                .map(|&i| self.edges[i as usize])
+                .collect()
         };
-        for &Edge { a, b } in strip {
+        for Edge { a, b } in strip {
             if (a.y <= y) != (b.y <= y) {
                 crossings.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
             }
@@ -408,7 +406,8 @@ impl Edges {
         }
         let s = self.strip(p.y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
-        for &Edge { a, b } in &self.strip_edges[from as usize..to as usize] {
+        for &i in &self.strip_edges[from as usize..to as usize] {
+            let Edge { a, b } = self.edges[i as usize];
             if ray_crosses(a, b, p) {
                 inside = !inside;
             }
@@ -614,7 +613,7 @@ thread_local! {
     static BOXES: std::cell::Cell<Vec<(Coord, Coord, Edge)>> = const { std::cell::Cell::new(Vec::new()) };
     static BY_Y: std::cell::Cell<Vec<(f64, f64, Edge)>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_START: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
-    static STRIP_EDGES: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
+    static STRIP_EDGES: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
     /// Each edge's first and last strip while `Edges::new` sorts them.
     static SPANS: std::cell::Cell<Vec<(u32, u32)>> = const { std::cell::Cell::new(Vec::new()) };
     static CUTS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };

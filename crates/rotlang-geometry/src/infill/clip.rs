@@ -64,8 +64,11 @@ pub(crate) struct Edges {
     /// its right (the crossings are sorted by where they are after, so the order they
     /// are found in is not seen).
     boxes: Vec<(Coord, Coord, Edge)>,
+    /// For a region of at most `FEW` edges (which gets no strips): each edge with its
+    /// lower and upper y, by the lower, for `contains`.
+    by_y: Vec<(f64, f64, Edge)>,
     /// Strip `s` holds `strip_edges[strip_start[s]..strip_start[s + 1]]` (one flat list:
-    /// two allocations, not one per strip).
+    /// two allocations, not one per strip), by index, ascending.
     strip_start: Vec<u32>,
     strip_edges: Vec<u32>,
     pub min: Coord,
@@ -233,38 +236,60 @@ impl Edges {
             } else {
                 (e.b.y, e.a.y)
             };
-            strip(lo, min.y, height, n)..=strip(hi, min.y, height, n)
+            // The first strip and one past the last (an exclusive range: an inclusive
+            // one costs a flag and a test per step).
+            (strip(lo, min.y, height, n), strip(hi, min.y, height, n) + 1)
         };
-        // A counting sort by strip: counts, their running sums (each strip's end), then
-        // the edges placed from each end down, in reverse, which leaves every strip's
-        // start in `strip_start` and its edges in ascending order.
         let mut strip_start = scratch::take(&STRIP_START);
-        strip_start.resize(n + 1, 0);
-        // Each edge's strips found once (two divisions), for both passes.
-        let mut spans = scratch::take(&SPANS);
-        spans.extend(edges.iter().map(|e| {
-            let s = span(e);
-            (*s.start() as u32, *s.end() as u32)
-        }));
-        for &(first, last) in &spans {
-            for s in first..=last {
-                strip_start[s as usize] += 1;
-            }
-        }
-        for s in 1..n {
-            strip_start[s] += strip_start[s - 1];
-        }
-        strip_start[n] = strip_start[n - 1];
         let mut strip_edges = scratch::take(&STRIP_EDGES);
-        strip_edges.resize(strip_start[n] as usize, 0);
-        for (i, &(first, last)) in spans.iter().enumerate().rev() {
-            for s in first..=last {
-                let s = s as usize;
-                strip_start[s] -= 1;
-                strip_edges[strip_start[s] as usize] = i as u32;
+        // A region of `FEW` edges or fewer gets no strips (`by_y` instead).
+        if edges.len() > FEW {
+            // A counting sort by strip: counts, their running sums (each strip's end), then
+            // the edges placed from each end down, in reverse, which leaves every strip's
+            // start in `strip_start` and its edges in ascending order.
+            strip_start.resize(n + 1, 0);
+            // Each edge's strips found once (two divisions), for both passes.
+            let mut spans = scratch::take(&SPANS);
+            spans.extend(edges.iter().map(|e| {
+                let (first, end) = span(e);
+                (first as u32, end as u32)
+            }));
+            for &(first, end) in &spans {
+                for count in &mut strip_start[first as usize..end as usize] {
+                    *count += 1;
+                }
             }
+            for s in 1..n {
+                strip_start[s] += strip_start[s - 1];
+            }
+            strip_start[n] = strip_start[n - 1];
+            strip_edges.resize(strip_start[n] as usize, 0);
+            for (i, &(first, end)) in spans.iter().enumerate().rev() {
+                for at in &mut strip_start[first as usize..end as usize] {
+                    *at -= 1;
+                    strip_edges[*at as usize] = i as u32;
+                }
+            }
+            scratch::give(&SPANS, spans);
         }
-        scratch::give(&SPANS, spans);
+        let mut by_y = scratch::take(&BY_Y);
+        if edges.len() <= FEW {
+            // The edges' lower y with their index sorted by insertion (as `boxes` below).
+            let mut keys = [(0.0f64, 0u8); FEW];
+            for (i, e) in edges.iter().enumerate() {
+                let key = (if e.a.y < e.b.y { e.a.y } else { e.b.y }, i as u8);
+                let mut j = i;
+                while j > 0 && keys[j - 1].0 > key.0 {
+                    keys[j] = keys[j - 1];
+                    j -= 1;
+                }
+                keys[j] = key;
+            }
+            by_y.extend(keys[..edges.len()].iter().map(|&(lo, i)| {
+                let e = edges[usize::from(i)];
+                (lo, if e.a.y < e.b.y { e.b.y } else { e.a.y }, e)
+            }));
+        }
         let mut boxes = scratch::take(&BOXES);
         if edges.len() <= PLAIN {
             // The edges' least x with their index sorted by insertion (a few dozen at
@@ -290,6 +315,7 @@ impl Edges {
             // Allocated by the first `clip`: straight lines never need it.
             stamp: Vec::new(),
             boxes,
+            by_y,
             edges,
             strip_start,
             strip_edges,
@@ -332,10 +358,17 @@ impl Edges {
             return;
         }
         let mut crossings = Vec::new();
-        let s = self.strip(y);
-        let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
-        for &i in &self.strip_edges[from as usize..to as usize] {
-            let Edge { a, b } = self.edges[i as usize];
+        let strip: Vec<Edge> = if self.strip_start.is_empty() {
+            self.edges.clone()
+        } else {
+            let s = self.strip(y);
+            let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
+            self.strip_edges[from as usize..to as usize]
+                .iter()
+                .map(|&i| self.edges[i as usize])
+                .collect()
+        };
+        for Edge { a, b } in strip {
             if (a.y <= y) != (b.y <= y) {
                 crossings.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
             }
@@ -346,10 +379,31 @@ impl Edges {
 
     /// Even-odd: whether `p` is inside the region (on an edge: either).
     pub fn contains(&self, p: Coord) -> bool {
+        let mut inside = false;
+        if self.strip_start.is_empty() {
+            // No strips (`FEW` edges at most): every edge, the same parity (an edge not
+            // in the point's strip does not reach its height).
+            // By their lower end, so the scan stops at the first edge wholly above `p`;
+            // an edge reaches its height (`(a.y <= p.y) != (b.y <= p.y)`, the half-open
+            // rule) exactly when `lo <= p.y < hi`. Below the box (or NaN) no edge reaches
+            // `p`'s height, nor above it: outside, as the box's test says, so only its
+            // x half is made.
+            if !(p.x >= self.min.x && p.x <= self.max.x) {
+                return false;
+            }
+            for &(lo, hi, Edge { a, b }) in &self.by_y {
+                if lo > p.y {
+                    break;
+                }
+                if hi > p.y && crosses_right(a, b, p) {
+                    inside = !inside;
+                }
+            }
+            return inside;
+        }
         if !(p.y >= self.min.y && p.y <= self.max.y && p.x >= self.min.x && p.x <= self.max.x) {
             return false;
         }
-        let mut inside = false;
         let s = self.strip(p.y);
         let (from, to) = (self.strip_start[s], self.strip_start[s + 1]);
         for &i in &self.strip_edges[from as usize..to as usize] {
@@ -545,6 +599,7 @@ impl Drop for Edges {
     fn drop(&mut self) {
         scratch::give(&EDGE_LIST, std::mem::take(&mut self.edges));
         scratch::give(&BOXES, std::mem::take(&mut self.boxes));
+        scratch::give(&BY_Y, std::mem::take(&mut self.by_y));
         scratch::give(&STRIP_START, std::mem::take(&mut self.strip_start));
         scratch::give(&STRIP_EDGES, std::mem::take(&mut self.strip_edges));
         scratch::give(&CUTS, std::mem::take(&mut self.cuts));
@@ -556,6 +611,7 @@ thread_local! {
     /// `Edges`' lists, kept from one layer to the next.
     static EDGE_LIST: std::cell::Cell<Vec<Edge>> = const { std::cell::Cell::new(Vec::new()) };
     static BOXES: std::cell::Cell<Vec<(Coord, Coord, Edge)>> = const { std::cell::Cell::new(Vec::new()) };
+    static BY_Y: std::cell::Cell<Vec<(f64, f64, Edge)>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_START: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
     static STRIP_EDGES: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
     /// Each edge's first and last strip while `Edges::new` sorts them.
@@ -563,6 +619,11 @@ thread_local! {
     static CUTS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
     static PIECE: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
 }
+
+/// Up to this many edges (an L's inset, a square's, a holed square's) the region gets no
+/// strips: `contains` scans the edges by their lower y (`by_y`), about half of them, for
+/// less than the strips cost to build.
+const FEW: usize = 16;
 
 /// Up to this many edges, `clip` tests every edge: cheaper than building and walking the
 /// grid.
@@ -643,6 +704,13 @@ pub(crate) fn ray_crosses(a: Coord, b: Coord, p: Coord) -> bool {
     if (a.y <= p.y) == (b.y <= p.y) {
         return false;
     }
+    crosses_right(a, b, p)
+}
+
+/// [`ray_crosses`] for an edge known to reach `p`'s height: whether it crosses to the
+/// right of `p`.
+#[inline]
+fn crosses_right(a: Coord, b: Coord, p: Coord) -> bool {
     let (lo, hi) = if a.x < b.x { (a.x, b.x) } else { (b.x, a.x) };
     let margin = 1e-12 * (lo.abs() + hi.abs() + p.x.abs()) + f64::MIN_POSITIVE;
     if lo > p.x + margin {
@@ -654,8 +722,10 @@ pub(crate) fn ray_crosses(a: Coord, b: Coord, p: Coord) -> bool {
     a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x
 }
 
+/// The strip of `y` (`height` positive). The cast saturates: below `min` (and NaN) is
+/// strip 0 without a `max(0.0)` (several instructions for its NaN rule).
 fn strip(y: f64, min: f64, height: f64, n: usize) -> usize {
-    (((y - min) / height).max(0.0) as usize).min(n - 1)
+    (((y - min) / height) as usize).min(n - 1)
 }
 
 #[cfg(test)]
@@ -756,6 +826,41 @@ mod tests {
                 pieces_of(&mut Edges::new(&rings, &frame), &pts, &mut shortcut);
                 pieces_of(&mut Edges::new(&rings, &frame).cutting_whole(), &pts, &mut general);
                 prop_assert_eq!(&shortcut, &general);
+            }
+        }
+
+        /// A region of `FEW` edges or fewer (no strips: `contains` scans them by their
+        /// lower y and stops at the first above the point) answers as the ray's parity
+        /// over every edge: at its vertices, at their heights, on its edges and anywhere
+        /// about it, with a hole or not.
+        #[test]
+        fn contains_on_few_edges_is_the_parity_over_every_edge(
+            radii in prop::collection::vec(1.0f64..10.0, 3..9),
+            hole in prop::collection::vec(0.2f64..0.8, 0..8),
+            points in prop::collection::vec((coord(), 0usize..16, 0u8..4), 1..24),
+        ) {
+            let mut rings = vec![radial(&radii)];
+            if hole.len() >= 3 {
+                // Inside the outline (every radius of the hole under its least).
+                rings.push(radial(&hole).into_iter().rev().collect());
+            }
+            let frame = Frame::new(Coord { x: 0.0, y: 0.0 }, 0.0);
+            let edges = Edges::new(&rings, &frame);
+            prop_assert!(edges.edges.len() <= FEW);
+            prop_assert!(edges.strip_start.is_empty());
+            prop_assert_eq!(edges.by_y.len(), edges.edges.len());
+            let segments: Vec<(Coord, Coord)> = edges.segments().collect();
+            for (free, at, kind) in points {
+                let (a, b) = segments[at % segments.len()];
+                let p = match kind {
+                    0 => free,
+                    // A vertex, a point at its height, a point on the edge.
+                    1 => a,
+                    2 => Coord { x: free.x, y: a.y },
+                    _ => a + (b - a) * 0.5,
+                };
+                let parity = segments.iter().filter(|&&(a, b)| ray_crosses(a, b, p)).count() % 2 == 1;
+                prop_assert_eq!(edges.contains(p), parity, "{:?}", p);
             }
         }
 

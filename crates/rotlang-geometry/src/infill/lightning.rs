@@ -62,13 +62,12 @@ impl Outlines {
         let (sin, cos) = math::sin_cos(theta);
         let direction = Coord { x: cos, y: sin };
         let mut each = scratch::take(&OUTLINES);
-        each.extend(region.outlines().iter().map(|ring| {
-            let n = ring.len();
-            let start = (0..n)
-                .max_by(|&i, &j| dot(ring[i], direction).total_cmp(&dot(ring[j], direction)))
-                .unwrap_or(0);
-            (start, perimeter(ring))
-        }));
+        each.extend(
+            region
+                .outlines()
+                .iter()
+                .map(|ring| (farthest(ring, direction), perimeter(ring))),
+        );
         Outlines { each }
     }
 
@@ -87,6 +86,23 @@ impl Drop for Outlines {
     fn drop(&mut self) {
         scratch::give(&OUTLINES, std::mem::take(&mut self.each));
     }
+}
+
+/// The vertex of `ring` farthest in `direction` (0 for an empty ring): the last of
+/// equals, by `total_cmp`, as `Iterator::max_by` picks, each vertex's projection found
+/// once (`max_by` finds both sides' at each comparison).
+fn farthest(ring: &[Coord], direction: Coord) -> usize {
+    let Some(&first) = ring.first() else {
+        return 0;
+    };
+    let (mut best, mut at) = (dot(first, direction), 0);
+    for (i, &p) in ring.iter().enumerate().skip(1) {
+        let d = dot(p, direction);
+        if d.total_cmp(&best) != std::cmp::Ordering::Less {
+            (best, at) = (d, i);
+        }
+    }
+    at
 }
 
 fn perimeter(ring: &[Coord]) -> f64 {
@@ -166,9 +182,13 @@ fn clip_tree(
     // inside, each of its polylines is inside when its twig's end is: no clipping, which
     // is most of the work.
     for pair in branches.chunks_exact(2) {
-        let tip_inside = convex && edges.contains(frame.to_local(pair[1][0]));
+        // The fork, shared by both polylines, mapped once.
+        let fork = frame.to_local(pair[0][1]);
+        let local =
+            |branch: &[Coord; 3]| [frame.to_local(branch[0]), fork, frame.to_local(branch[2])];
+        let pair = [local(&pair[0]), local(&pair[1])];
+        let tip_inside = convex && edges.contains(pair[1][0]);
         for branch in pair {
-            let branch = branch.map(|p| frame.to_local(p));
             if tip_inside && edges.contains(branch[2]) {
                 piece(&branch.map(|q| frame.to_world(q)));
                 continue;

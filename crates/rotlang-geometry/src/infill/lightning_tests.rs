@@ -258,3 +258,29 @@ proptest! {
         prop_assert_eq!(c.to_bits(), crate::math::cos(theta).to_bits());
     }
 }
+
+proptest! {
+    /// `farthest` (each projection found once) is the vertex `Iterator::max_by` over the
+    /// projections picks, ties included (whole coordinates and axis directions make
+    /// many: the last of equals), and 0 for an empty ring.
+    #[test]
+    fn farthest_is_max_by_of_the_projections(
+        ring in prop::collection::vec((-3i32..4, -3i32..4), 0..12),
+        direction in prop_oneof![
+            Just((1.0f64, 0.0f64)),
+            Just((0.0, -1.0)),
+            Just((0.6, 0.8)),
+            (-1.0f64..1.0, -1.0f64..1.0),
+        ],
+    ) {
+        let ring: Vec<Coord> = ring
+            .into_iter()
+            .map(|(x, y)| Coord { x: x as f64, y: y as f64 })
+            .collect();
+        let direction = Coord { x: direction.0, y: direction.1 };
+        let wanted = (0..ring.len())
+            .max_by(|&i, &j| dot(ring[i], direction).total_cmp(&dot(ring[j], direction)))
+            .unwrap_or(0);
+        prop_assert_eq!(farthest(&ring, direction), wanted);
+    }
+}

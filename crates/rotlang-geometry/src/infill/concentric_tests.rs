@@ -33,7 +33,7 @@ fn named_shapes() -> Vec<(&'static str, MultiPolygon<f64>)> {
         ("square", shapes::square(20.0)),
         ("circle", shapes::circle(10.0)),
     ];
-    named.extend(crate::infill::tests::ring_shapes());
+    named.extend(shapes::ring_shapes());
     named
 }
 

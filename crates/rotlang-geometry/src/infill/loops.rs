@@ -1400,13 +1400,11 @@ mod tests {
         }
     }
 
-    /// The sweep's reused order: nearly sorted pairs are sorted within the budget, and a
-    /// reversed order runs past it (the caller then sorts in full) without losing a pair.
     /// The raw offsets' sizes counted as the corners are prepared (the buffers are
     /// reserved at them) are the points `fill` makes, tips not closed.
     #[test]
     fn each_raw_offset_has_the_points_counted() {
-        for (name, shape) in crate::infill::tests::ring_shapes() {
+        for (name, shape) in crate::infill::shapes::ring_shapes() {
             let mut eroder = Eroder::new(&shape, 0.5).cutting_tips();
             for d in [0.3, 2.0, 5.0] {
                 let _ = eroder.rings(d);
@@ -1430,6 +1428,8 @@ mod tests {
         }
     }
 
+    /// The sweep's reused order: nearly sorted pairs are sorted within the budget, and a
+    /// reversed order runs past it (the caller then sorts in full) without losing a pair.
     #[test]
     fn the_reused_order_is_sorted_or_declined() {
         let mut near: Vec<(i64, u32)> = (0..40).map(|i| (i64::from(i / 2), i)).collect();

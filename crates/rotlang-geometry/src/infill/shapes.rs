@@ -137,3 +137,32 @@ pub fn from_json(text: &str) -> Result<MultiPolygon<f64>, String> {
     }
     Ok(MultiPolygon::new(out))
 }
+
+/// The concave and many-ringed shapes the erosion and concentric are tested on: the
+/// comparison's L, star and holed square, a star with a hole, two islands, and a square
+/// with two round holes.
+#[cfg(test)]
+pub(crate) fn ring_shapes() -> Vec<(&'static str, MultiPolygon<f64>)> {
+    use geo::Translate;
+    let star_with_hole = MultiPolygon::new(vec![Polygon::new(
+        star(10.0, 4.5).0[0].exterior().clone(),
+        vec![circle(1.5).0[0].exterior().clone()],
+    )]);
+    let mut islands = star(10.0, 4.5);
+    islands.0.extend(l_shape(10.0).translate(30.0, 0.0).0);
+    let two_holes = MultiPolygon::new(vec![Polygon::new(
+        square(40.0).0[0].exterior().clone(),
+        vec![
+            circle(6.0).0[0].exterior().clone().translate(-8.3, 0.0),
+            circle(6.0).0[0].exterior().clone().translate(8.5, 1.3),
+        ],
+    )]);
+    vec![
+        ("L", l_shape(20.0)),
+        ("star", star(10.0, 4.5)),
+        ("holed square", holed_square(40.0, 10.0)),
+        ("star with a hole", star_with_hole),
+        ("islands", islands),
+        ("two holes", two_holes),
+    ]
+}

@@ -970,41 +970,6 @@ fn raw_inset_matches_the_general_buffer() {
     assert!(offset::raw_inset(&shapes::star(10.0, 4.5), 4.0, 0.2).is_none());
 }
 
-/// The concave and many-ringed shapes concentric is tested on: the comparison's L, star
-/// and holed square, a star with a hole, two islands, and a square with two round holes.
-pub(super) fn ring_shapes() -> Vec<(&'static str, MultiPolygon<f64>)> {
-    use geo::Translate;
-    let star_with_hole = MultiPolygon::new(vec![Polygon::new(
-        shapes::star(10.0, 4.5).0[0].exterior().clone(),
-        vec![shapes::circle(1.5).0[0].exterior().clone()],
-    )]);
-    let mut islands = shapes::star(10.0, 4.5);
-    islands
-        .0
-        .extend(shapes::l_shape(10.0).translate(30.0, 0.0).0);
-    let two_holes = MultiPolygon::new(vec![Polygon::new(
-        shapes::square(40.0).0[0].exterior().clone(),
-        vec![
-            shapes::circle(6.0).0[0]
-                .exterior()
-                .clone()
-                .translate(-8.3, 0.0),
-            shapes::circle(6.0).0[0]
-                .exterior()
-                .clone()
-                .translate(8.5, 1.3),
-        ],
-    )]);
-    vec![
-        ("L", shapes::l_shape(20.0)),
-        ("star", shapes::star(10.0, 4.5)),
-        ("holed square", shapes::holed_square(40.0, 10.0)),
-        ("star with a hole", star_with_hole),
-        ("islands", islands),
-        ("two holes", two_holes),
-    ]
-}
-
 /// Concentric loops where parts pinch off (the star's tips, the L's arms) or a grown hole
 /// meets the outline: the raw offset cut at its crossings bounds the same area as geo's
 /// buffer, with the same length of boundary, and declines none of these (before, each
@@ -1013,7 +978,7 @@ pub(super) fn ring_shapes() -> Vec<(&'static str, MultiPolygon<f64>)> {
 fn eroded_rings_match_the_general_buffer() {
     use geo::algorithm::buffer::{BufferStyle, LineJoin};
     use geo::{Area, Buffer};
-    let cases = ring_shapes();
+    let cases = shapes::ring_shapes();
     let length = |rings: &[Vec<Coord>]| -> f64 {
         rings
             .iter()

@@ -46,9 +46,9 @@ pub(crate) struct Router<'a> {
     /// around (most layers' moves are straight).
     lengths: std::cell::OnceCell<Vec<f64>>,
     /// The crossings of the move being routed, kept for the next.
-    cuts: std::cell::RefCell<Vec<(f64, Cut)>>,
+    cuts: std::cell::Cell<Vec<(f64, Cut)>>,
     /// The route being built, kept for the next.
-    path: std::cell::RefCell<Vec<Coord>>,
+    path: std::cell::Cell<Vec<Coord>>,
     /// Per ring, its bounding box (a move or point outside it cannot cross it or be in
     /// it), then the boxes of its chunks of `CHUNK` edges, grown by a little slack
     /// (below): one list, ring `r`'s from `at[r].0`.
@@ -145,11 +145,12 @@ impl<'a> Router<'a> {
                 }
                 from = to;
             }
-            largest = largest
-                .max(ring_box.0.x.abs())
-                .max(ring_box.0.y.abs())
-                .max(ring_box.1.x.abs())
-                .max(ring_box.1.y.abs());
+            // By comparisons, as the boxes (the coordinates are finite).
+            for v in [ring_box.0.x, ring_box.0.y, ring_box.1.x, ring_box.1.y] {
+                if v.abs() > largest {
+                    largest = v.abs();
+                }
+            }
             chunks[ring_at] = ring_box;
         }
         // A millionth of a nanometre per millimetre of coordinate: more than any rounding
@@ -168,8 +169,8 @@ impl<'a> Router<'a> {
         Router {
             rings,
             lengths: std::cell::OnceCell::new(),
-            cuts: std::cell::RefCell::new(scratch::take(&CUTS)),
-            path: std::cell::RefCell::new(scratch::take(&PATH)),
+            cuts: std::cell::Cell::new(scratch::take(&CUTS)),
+            path: std::cell::Cell::new(scratch::take(&PATH)),
             boxes: chunks,
             at,
             chunk,
@@ -599,7 +600,7 @@ impl<'a> Router<'a> {
                 }
             };
             if straight {
-                self.cuts.replace(cuts);
+                self.cuts.set(cuts);
                 return vec![p, q];
             }
         }
@@ -674,10 +675,10 @@ impl<'a> Router<'a> {
             self.walk(r, place(ends.0, a), place(ends.1, b), &mut out);
             out.push(b);
         }
-        self.cuts.replace(cuts);
+        self.cuts.set(cuts);
         out.dedup();
         let route = out.clone();
-        self.path.replace(out);
+        self.path.set(out);
         route
     }
 

@@ -966,8 +966,10 @@ fn move_box(p: Coord, q: Coord) -> (Coord, Coord) {
 }
 
 /// How far beyond a nanometre `near_an_edge` looks: a tenth of a nanometre, far above
-/// the roundings of a move's middle and far below anything a route's stretch moves it
-/// by (a stretch ends within a billionth of the move's length of its end).
+/// the roundings of a point (about 10⁻¹⁶ of its coordinates) and above how far the
+/// middle of a stretch of a move that crosses nothing lies from the move's (its ends
+/// are within a billionth of the move's length of the move's: a hundredth of a
+/// nanometre on a 10 mm move). A stretch's middle farther than `CLEAR / 2` is searched.
 const CLEAR: f64 = 1e-7;
 
 /// `on_edge` within `tol` (the same tests).

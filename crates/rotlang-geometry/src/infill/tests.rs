@@ -1604,6 +1604,64 @@ proptest! {
         }
     }
 
+    /// A point `near_an_edge` finds clear of every edge answers for every point within
+    /// `CLEAR / 2` of it: none of them is on an edge (`on_an_edge`). Points on edges, at
+    /// vertices and in the box, moved by up to a little more than a nanometre (across
+    /// the band `CLEAR` adds), then by up to `CLEAR / 2`.
+    #[test]
+    fn a_point_clear_of_the_edges_answers_for_its_neighbours(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        points in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), 0u8..3, -1.2e-6f64..1.2e-6, -1.2e-6f64..1.2e-6,
+             -0.5f64..0.5, -0.5f64..0.5), 1..48),
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let ends = MoveEnds::new(rings);
+        let router = travel::Router::new(rings);
+        let clear = travel::Router::CLEAR;
+        for (at, kind, dx, dy, ex, ey) in points {
+            let p = ends.point(at, kind) + Coord { x: dx, y: dy };
+            let (near, on) = router.near_and_on_an_edge(p);
+            prop_assert!(near || !on, "{:?} on an edge, not near one", p);
+            if !near {
+                let m = p + Coord { x: ex * clear, y: ey * clear };
+                prop_assert!(!router.near_and_on_an_edge(m).1, "{:?} near {:?}", m, p);
+            }
+        }
+    }
+
+    /// A walked move whose middle is clearly off every edge answers for its stretch's
+    /// middle nearby without a second search: the routes are those testing every
+    /// stretch's middle, between line ends, vertices and points of the box (and points
+    /// a nanometre or so off them), on holed star-like regions.
+    #[test]
+    fn a_middle_clear_of_the_edges_answers_for_its_stretch(
+        outer in prop::collection::vec(4.0f64..15.0, 6..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3, 0u8..3,
+             -2e-6f64..2e-6), 1..24),
+    ) {
+        let shape = holed_radial(&outer, &holes, turn, 2.2);
+        let region = Region::new(&shape, W).unwrap();
+        let rings = region.rings();
+        let ends = MoveEnds::new(rings);
+        let reusing = travel::Router::new(rings);
+        let every = travel::Router::new(rings).testing_every_middle();
+        for (a, b, ka, kb, off) in moves {
+            let (p, q) = (ends.point(a, ka), ends.point(b, kb));
+            let shifted = q + Coord { x: off, y: -off };
+            for (from, to) in [(p, q), (q, p), (p, shifted), (shifted, p)] {
+                prop_assert_eq!(reusing.route(from, to), every.route(from, to));
+            }
+        }
+    }
+
     /// Nearest-first ordering of a few paths (the plain scan) takes, from the last end,
     /// the nearest end of a path not yet taken, ties to the lowest index as generated
     /// and then to its first end, reversing the path entered at its last: ends on a

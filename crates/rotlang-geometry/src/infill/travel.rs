@@ -46,9 +46,9 @@ pub(crate) struct Router<'a> {
     /// around (most layers' moves are straight).
     lengths: std::cell::OnceCell<Vec<f64>>,
     /// The crossings of the move being routed, kept for the next.
-    cuts: std::cell::RefCell<Vec<(f64, Cut)>>,
+    cuts: std::cell::Cell<Vec<(f64, Cut)>>,
     /// The route being built, kept for the next.
-    path: std::cell::RefCell<Vec<Coord>>,
+    path: std::cell::Cell<Vec<Coord>>,
     /// Per ring, its bounding box (a move or point outside it cannot cross it or be in
     /// it), then the boxes of its chunks of `CHUNK` edges, grown by a little slack
     /// (below): one list, ring `r`'s from `at[r].0`.
@@ -74,6 +74,9 @@ pub(crate) struct Router<'a> {
     /// Whether an edge with both ends clearly on one side of a move's line is passed
     /// without its crossing's divisions (`hits`; off in tests, for the general path).
     sides: bool,
+    /// Whether a walked move's middle, found clearly off every edge, answers for its
+    /// stretch's middle nearby without a second `on_an_edge` (off in tests).
+    reuse: bool,
     /// A billionth of a millimetre per millimetre of the rings' largest coordinate (the
     /// chunks' slack): the scale of `hits`' side test.
     unit: f64,
@@ -145,11 +148,12 @@ impl<'a> Router<'a> {
                 }
                 from = to;
             }
-            largest = largest
-                .max(ring_box.0.x.abs())
-                .max(ring_box.0.y.abs())
-                .max(ring_box.1.x.abs())
-                .max(ring_box.1.y.abs());
+            // By comparisons, as the boxes (the coordinates are finite).
+            for v in [ring_box.0.x, ring_box.0.y, ring_box.1.x, ring_box.1.y] {
+                if v.abs() > largest {
+                    largest = v.abs();
+                }
+            }
             chunks[ring_at] = ring_box;
         }
         // A millionth of a nanometre per millimetre of coordinate: more than any rounding
@@ -168,8 +172,8 @@ impl<'a> Router<'a> {
         Router {
             rings,
             lengths: std::cell::OnceCell::new(),
-            cuts: std::cell::RefCell::new(scratch::take(&CUTS)),
-            path: std::cell::RefCell::new(scratch::take(&PATH)),
+            cuts: std::cell::Cell::new(scratch::take(&CUTS)),
+            path: std::cell::Cell::new(scratch::take(&PATH)),
             boxes: chunks,
             at,
             chunk,
@@ -179,6 +183,7 @@ impl<'a> Router<'a> {
             divide_first: false,
             project_ends: false,
             sides: true,
+            reuse: true,
             unit: slack,
         }
     }
@@ -197,6 +202,24 @@ impl<'a> Router<'a> {
         self.sides = false;
         self
     }
+
+    /// The same router testing every stretch's middle for an edge, however near the
+    /// move's middle found clearly off them all.
+    #[cfg(test)]
+    pub(crate) fn testing_every_middle(mut self) -> Router<'a> {
+        self.reuse = false;
+        self
+    }
+
+    /// `near_an_edge` and `on_an_edge` (tests).
+    #[cfg(test)]
+    pub(crate) fn near_and_on_an_edge(&self, p: Coord) -> (bool, bool) {
+        (self.near_an_edge(p), self.on_an_edge(p))
+    }
+
+    /// How far from a point found clear of the edges another is answered for (tests).
+    #[cfg(test)]
+    pub(crate) const CLEAR: f64 = CLEAR;
 
     /// The same router projecting the move's ends on the ring before every walk.
     #[cfg(test)]
@@ -322,6 +345,39 @@ impl<'a> Router<'a> {
                         let a = b;
                         b = ring[next(i, n)];
                         if on_edge(a, b, p) {
+                            return true;
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
+
+    /// Whether `p` is within `CLEAR` more than a nanometre of an edge (rings' boxes
+    /// grown by as much): where it is not, no point within `CLEAR / 2` of it is within
+    /// a nanometre of one (the roundings, about 10⁻¹⁶ of the coordinates, are far
+    /// below), and `on_an_edge` answers false there without its search.
+    fn near_an_edge(&self, p: Coord) -> bool {
+        const TOL: f64 = 1e-6 + CLEAR;
+        for (r, ring) in self.rings.iter().enumerate() {
+            let (lo, hi) = self.ring_box(r);
+            if p.x < lo.x - CLEAR || p.x > hi.x + CLEAR || p.y < lo.y - CLEAR || p.y > hi.y + CLEAR
+            {
+                continue;
+            }
+            let n = ring.len();
+            for (edges, lo, hi) in self.chunks(r) {
+                let near = p.x >= lo.x - TOL
+                    && p.x <= hi.x + TOL
+                    && p.y >= lo.y - TOL
+                    && p.y <= hi.y + TOL;
+                if near {
+                    let mut b = ring[edges.start];
+                    for i in edges {
+                        let a = b;
+                        b = ring[next(i, n)];
+                        if within(a, b, p, TOL) {
                             return true;
                         }
                     }
@@ -587,19 +643,27 @@ impl<'a> Router<'a> {
         // Whether the move is known to run outside all along (but for its ends): out of
         // the region from one end, crossing nothing; then so is every stretch below.
         let mut outside = false;
+        // The move's middle, when found clearly off every edge (`near_an_edge`).
+        let mut clear_of: Option<Coord> = None;
         if !cuts.iter().any(|&(t, _)| interior(t)) {
             let straight = match self.fast.then(|| self.leaves_inward(p, q, &cuts)).flatten() {
                 Some(true) => true,
                 Some(false) => {
                     outside = true;
-                    self.on_an_edge((p + q) / 2.0)
+                    let m = (p + q) / 2.0;
+                    if self.reuse && !self.near_an_edge(m) {
+                        clear_of = Some(m);
+                        false
+                    } else {
+                        self.on_an_edge(m)
+                    }
                 }
                 None => {
                     self.fast && self.along_edge((p + q) / 2.0, &cuts) || self.inside((p + q) / 2.0)
                 }
             };
             if straight {
-                self.cuts.replace(cuts);
+                self.cuts.set(cuts);
                 return vec![p, q];
             }
         }
@@ -648,7 +712,19 @@ impl<'a> Router<'a> {
                     None
                 } {
                     Some(true) => true,
-                    Some(false) => self.on_an_edge(at((ta + tb) / 2.0)),
+                    Some(false) => {
+                        let m = at((ta + tb) / 2.0);
+                        // Within CLEAR / 2 of a middle clearly off every edge: off too.
+                        match clear_of {
+                            Some(c)
+                                if (m.x - c.x).abs() <= CLEAR / 2.0
+                                    && (m.y - c.y).abs() <= CLEAR / 2.0 =>
+                            {
+                                false
+                            }
+                            _ => self.on_an_edge(m),
+                        }
+                    }
                     None => self.inside(at((ta + tb) / 2.0)),
                 };
             if straight {
@@ -674,10 +750,10 @@ impl<'a> Router<'a> {
             self.walk(r, place(ends.0, a), place(ends.1, b), &mut out);
             out.push(b);
         }
-        self.cuts.replace(cuts);
+        self.cuts.set(cuts);
         out.dedup();
         let route = out.clone();
-        self.path.replace(out);
+        self.path.set(out);
         route
     }
 
@@ -887,6 +963,28 @@ fn move_box(p: Coord, q: Coord) -> (Coord, Coord) {
     let (x0, x1) = if p.x < q.x { (p.x, q.x) } else { (q.x, p.x) };
     let (y0, y1) = if p.y < q.y { (p.y, q.y) } else { (q.y, p.y) };
     (Coord { x: x0, y: y0 }, Coord { x: x1, y: y1 })
+}
+
+/// How far beyond a nanometre `near_an_edge` looks: a tenth of a nanometre, far above
+/// the roundings of a point (about 10⁻¹⁶ of its coordinates) and above how far the
+/// middle of a stretch of a move that crosses nothing lies from the move's (its ends
+/// are within a billionth of the move's length of the move's: a hundredth of a
+/// nanometre on a 10 mm move). A stretch's middle farther than `CLEAR / 2` is searched.
+const CLEAR: f64 = 1e-7;
+
+/// `on_edge` within `tol` (the same tests).
+#[inline]
+fn within(a: Coord, b: Coord, p: Coord, tol: f64) -> bool {
+    if (p.y >= a.y - tol || p.y >= b.y - tol)
+        && (p.y <= a.y + tol || p.y <= b.y + tol)
+        && (p.x >= a.x - tol || p.x >= b.x - tol)
+        && (p.x <= a.x + tol || p.x <= b.x + tol)
+    {
+        let e = b - a;
+        let c = cross(e, p - a);
+        return c * c <= tol * tol * (e.x * e.x + e.y * e.y);
+    }
+    false
 }
 
 /// Whether `p` is on the edge from `a` to `b` within a nanometre (a millionth of a

@@ -55,6 +55,25 @@ pub fn log10(x: f64) -> f64 {
     libm::log10(x)
 }
 
+/// Widens the box `lo..=hi` to hold `c`, by comparisons: `f64::min`/`max` take several
+/// instructions each for their NaN rule, and the infill's hot loops build a box per ring,
+/// chunk or run (a NaN coordinate is passed over, as `min`/`max` pass it over).
+#[inline(always)]
+pub(crate) fn widen(lo: &mut geo::Coord, hi: &mut geo::Coord, c: geo::Coord) {
+    if c.x < lo.x {
+        lo.x = c.x;
+    }
+    if c.x > hi.x {
+        hi.x = c.x;
+    }
+    if c.y < lo.y {
+        lo.y = c.y;
+    }
+    if c.y > hi.y {
+        hi.y = c.y;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -208,20 +208,7 @@ impl Edges {
                     Some(&p) => frame.to_local(p),
                     None => first,
                 };
-                // By comparisons, not `min`/`max` (which handle NaN, at several
-                // instructions each): the region's coordinates are finite.
-                if a.x < min.x {
-                    min.x = a.x;
-                }
-                if a.x > max.x {
-                    max.x = a.x;
-                }
-                if a.y < min.y {
-                    min.y = a.y;
-                }
-                if a.y > max.y {
-                    max.y = a.y;
-                }
+                crate::math::widen(&mut min, &mut max, a);
                 if a != b {
                     edges.push(Edge { a, b });
                 }

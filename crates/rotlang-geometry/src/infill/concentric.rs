@@ -623,40 +623,28 @@ fn uncovered(
                     None
                 }
             };
-            match all {
-                Some(false) => {
-                    // None of its points is in a stretch: its first stands for all (a
-                    // stretch is cut by one point not far as by many).
-                    far(
-                        &dense[pending..],
-                        &covered,
-                        &last,
-                        gap,
-                        spacing,
-                        &mut hint,
-                        scratch,
-                    );
-                    dense.push(w[0]);
-                    scratch.flags.push(false);
-                    pending = dense.len();
-                    continue;
-                }
-                Some(true) => {
-                    far(
-                        &dense[pending..],
-                        &covered,
-                        &last,
-                        gap,
-                        spacing,
-                        &mut hint,
-                        scratch,
-                    );
+            if let Some(flag) = all {
+                // The points before it, not decided yet, are measured first.
+                far(
+                    &dense[pending..],
+                    &covered,
+                    &last,
+                    gap,
+                    spacing,
+                    &mut hint,
+                    scratch,
+                );
+                if flag {
                     dense.extend((0..steps).map(point));
                     scratch.flags.resize(dense.len(), true);
-                    pending = dense.len();
-                    continue;
+                } else {
+                    // None of its points is in a stretch: its first stands for all (a
+                    // stretch is cut by one point not far as by many).
+                    dense.push(w[0]);
+                    scratch.flags.push(false);
                 }
-                None => {}
+                pending = dense.len();
+                continue;
             }
             if steps < 2 * RUN {
                 dense.extend((0..steps).map(point));

@@ -836,20 +836,9 @@ fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
             prev.y > 0.0 && e.y <= 0.0
         };
         east += usize::from(passes);
-        // The same extremes as `f64::min`/`max` (a NaN passed over; a zero's sign aside,
-        // which no test of the bounds tells apart).
-        if b.x < lo.x {
-            lo.x = b.x;
-        }
-        if b.x > hi.x {
-            hi.x = b.x;
-        }
-        if b.y < lo.y {
-            lo.y = b.y;
-        }
-        if b.y > hi.y {
-            hi.y = b.y;
-        }
+        // The same extremes as `f64::min`/`max` (a zero's sign aside, which no test of
+        // the bounds tells apart).
+        crate::math::widen(&mut lo, &mut hi, b);
         prev = e;
         a = b;
         true

@@ -71,20 +71,7 @@ impl Region {
                             return Err(Error::Coordinate(v));
                         }
                     }
-                    // By comparisons, not `min`/`max` (which handle NaN at several
-                    // instructions each): the coordinate was just found finite.
-                    if c.x < min.x {
-                        min.x = c.x;
-                    }
-                    if c.x > max.x {
-                        max.x = c.x;
-                    }
-                    if c.y < min.y {
-                        min.y = c.y;
-                    }
-                    if c.y > max.y {
-                        max.y = c.y;
-                    }
+                    math::widen(&mut min, &mut max, *c);
                 }
             }
         }

@@ -119,19 +119,8 @@ impl<'a> Router<'a> {
                 let to = from + edges.len();
                 let last = if to < n { r[to] } else { r[0] };
                 let (mut lo, mut hi) = (last, last);
-                for c in edges {
-                    if c.x < lo.x {
-                        lo.x = c.x;
-                    }
-                    if c.x > hi.x {
-                        hi.x = c.x;
-                    }
-                    if c.y < lo.y {
-                        lo.y = c.y;
-                    }
-                    if c.y > hi.y {
-                        hi.y = c.y;
-                    }
+                for &c in edges {
+                    crate::math::widen(&mut lo, &mut hi, c);
                 }
                 chunks.push((lo, hi));
                 if lo.x < ring_box.0.x {

@@ -140,6 +140,12 @@ export interface PartOptions extends Omit<PreviewOptions, 'shape' | 'layer' | 'w
    */
   solidTemplate?: string;
   /**
+   * True: no solid template, even where an OrcaSlicer project sets one
+   * (`--no-solid-template`): the solid areas turn with the template, to compare the two on
+   * the same part. Not with `solidTemplate` (RotlangError, kind 'options').
+   */
+  noSolidTemplate?: boolean;
+  /**
    * A 3MF's object (`--object NAME`): that object alone, with its own settings in a
    * project; all objects merged by default. A name the file does not hold throws
    * RotlangError (kind 'options') listing its objects, with the CLI's message.

@@ -386,7 +386,9 @@ export async function bind(wasmModule) {
    * is as tall as the mesh unless it gives `layers` or `height`; its `bottomShells` and
    * `topShells` are the solid surfaces' depths; `from`/`to` pick the layers returned), plus
    * `pattern`, `density`, `walls` (wall loops, 2 when absent), `solidTemplate` (turns
-   * the solid areas, as `--solid-template`; without it they turn with the template) and
+   * the solid areas, as `--solid-template`; without it they turn with the template, or
+   * with a project's solid template), `noSolidTemplate` (true: they turn with the
+   * template even where a project sets a solid template, as `--no-solid-template`) and
    * `object` (a 3MF's object, as `--object`: that object alone, with its overrides; all
    * objects merged when absent). For an OrcaSlicer project, what the options do not give
    * is the project's (the object's overrides first), and an empty template is its
@@ -407,11 +409,18 @@ export async function bind(wasmModule) {
   }
 
   function partCall(text, options, settingsOnly) {
-    const { walls, solidTemplate, object, ...rest } = options ?? {};
+    const { walls, solidTemplate, noSolidTemplate, object, ...rest } = options ?? {};
     if (walls !== undefined && walls !== null) finite('options', 'walls', walls);
     const solid = solidTemplate !== undefined && solidTemplate !== null;
     if (solid && typeof solidTemplate !== 'string') {
       throw new RotlangError('options', `\`solidTemplate\` must be a string, not ${JSON.stringify(solidTemplate) ?? String(solidTemplate)}`);
+    }
+    if (noSolidTemplate !== undefined && noSolidTemplate !== null && typeof noSolidTemplate !== 'boolean') {
+      throw new RotlangError('options', `\`noSolidTemplate\` must be true or false, not ${JSON.stringify(noSolidTemplate) ?? String(noSolidTemplate)}`);
+    }
+    // As the CLI's --solid-template and --no-solid-template: one or the other.
+    if (solid && noSolidTemplate === true) {
+      throw new RotlangError('options', '`solidTemplate` and `noSolidTemplate` cannot be given together: a solid template, or none');
     }
     const named = object !== undefined && object !== null;
     if (named && typeof object !== 'string') {
@@ -420,7 +429,7 @@ export async function bind(wasmModule) {
     const [slots] = request(exportsOrThrow(), rest);
     const inputs = [encoder.encode(textArg(text)), encoder.encode(solid ? solidTemplate : ''),
       encoder.encode(named ? object : ''), new Uint8Array(slots.buffer)];
-    return withInputs('rotlang_part', inputs, [walls ?? NaN, solid ? 1 : 0, named ? 1 : 0, settingsOnly ? 1 : 0], true);
+    return withInputs('rotlang_part', inputs, [walls ?? NaN, solid ? 1 : noSolidTemplate === true ? 2 : 0, named ? 1 : 0, settingsOnly ? 1 : 0], true);
   }
 
   // Copies the byte inputs in, calls `name` with their (pointer, length) pairs (a request's

@@ -93,6 +93,7 @@ function viewState() {
     shape: $('shape').value,
     // Only while a part is open (empty values are left out of the link).
     solidTemplate: part.info ? $('solid-template').value : '',
+    noSolidTemplate: part.info && $('no-solid-template').checked ? '1' : '',
     object: part.info ? $('object').value : '',
   };
 }
@@ -114,8 +115,8 @@ function applyState(s) {
   if (s.layer !== undefined) pendingLayer = Number(s.layer);
   // A shared part's solid template and object: the part is a local file, not in the
   // link; they are applied to it when it is opened (now, if one is).
-  if (s.solidTemplate !== undefined || s.object !== undefined) {
-    part.want({ solidTemplate: s.solidTemplate, object: s.object });
+  if (s.solidTemplate !== undefined || s.object !== undefined || s.noSolidTemplate !== undefined) {
+    part.want({ solidTemplate: s.solidTemplate, object: s.object, noSolidTemplate: s.noSolidTemplate === '1' });
   }
   if (typeof s.text === 'string' && s.text !== view.state.doc.toString()) replaceAll(view, s.text);
   schedule(0);

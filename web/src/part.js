@@ -79,6 +79,8 @@ export class PartPanel {
     this.solid = { checked: '', inFlight: 0, seq: 0, diagnostics: [], refused: null };
     // A share link's object and solid template, for the next part opened.
     this.wanted = null;
+    // The project's (or its object's) own solid template, for the message under the field.
+    this.projectSolid = null;
     $('mesh').addEventListener('change', async (e) => {
       const file = e.target.files?.[0];
       if (file) await (onFile ?? ((f) => this.open(f)))(file);
@@ -91,6 +93,10 @@ export class PartPanel {
       this.checkSolid();
       this.schedule();
     });
+    $('no-solid-template').addEventListener('change', () => {
+      this.noSolid($('no-solid-template').checked);
+      this.schedule(0);
+    });
   }
 
   /**
@@ -98,9 +104,9 @@ export class PartPanel {
    * part open now, else kept for the next one opened (the link holds no mesh). The
    * link's solid template wins over a project's, as it was when the link was made.
    */
-  async want({ object, solidTemplate }) {
+  async want({ object, solidTemplate, noSolidTemplate = false }) {
     if (!this.info) {
-      this.wanted = { object, solidTemplate };
+      this.wanted = { object, solidTemplate, noSolidTemplate };
       return;
     }
     if (object !== undefined && (object === '' || this.info.objects.includes(object)) && $('object').value !== object) {
@@ -112,7 +118,18 @@ export class PartPanel {
       $('solid-template').value = solidTemplate;
       this.checkSolid();
     }
+    this.noSolid(noSolidTemplate);
     this.schedule(0);
+  }
+
+  /**
+   * No solid template (`on`), not even the project's: the solid areas turn with the
+   * template, as `rotlang preview --no-solid-template`. The field keeps its text, unused.
+   */
+  noSolid(on) {
+    $('no-solid-template').checked = on;
+    $('solid-template').disabled = on;
+    this.describeSolid();
   }
 
   /** What the part is sliced with now: the page's request, this panel's object and solid template. */
@@ -121,7 +138,8 @@ export class PartPanel {
     const object = $('object').value;
     const solid = $('solid-template').value;
     if (object) r.object = object;
-    if (solid) r.solidTemplate = solid;
+    if ($('no-solid-template').checked) r.noSolidTemplate = true;
+    else if (solid) r.solidTemplate = solid;
     return r;
   }
 
@@ -144,6 +162,7 @@ export class PartPanel {
     try {
       const s = await this.engine.request('partSettings', { object: $('object').value });
       $('solid-template').value = s.solid_template ?? '';
+      this.projectSolid = s.solid_template ?? null;
       this.checkSolid();
       this.onSettings?.(s);
     } catch (e) {
@@ -180,6 +199,14 @@ export class PartPanel {
   describeSolid() {
     const text = $('solid-template').value;
     const msg = $('solid-message');
+    // None asked for: the field's text (and its diagnostics) is not used.
+    if ($('no-solid-template').checked) {
+      $('solid-template').setAttribute('aria-invalid', 'false');
+      msg.classList.remove('error');
+      msg.textContent = 'No solid template: the solid areas (top and bottom surfaces) turn with the template'
+        + (this.projectSolid ? ` (the project's \`${this.projectSolid}\` is not used).` : '.');
+      return;
+    }
     const shown = this.solid.checked === text ? this.solid.diagnostics : [];
     const errors = shown.filter((d) => d.severity === 'error');
     $('solid-template').setAttribute('aria-invalid', String(errors.length > 0 || Boolean(this.solid.refused)));
@@ -235,11 +262,14 @@ export class PartPanel {
       const wanted = this.wanted;
       this.wanted = null;
       if (wanted?.object && info.objects.includes(wanted.object)) $('object').value = wanted.object;
+      this.projectSolid = null;
       await this.fromProject();
       if (typeof wanted?.solidTemplate === 'string') {
         $('solid-template').value = wanted.solidTemplate;
         this.checkSolid();
       }
+      // A new part starts with its own solid template, unless a share link said none.
+      this.noSolid(Boolean(wanted?.noSolidTemplate));
       $('shape').disabled = true;
       // The part's height over the layer height gives the count (onAnswer in main.js).
       $('layers').disabled = true;

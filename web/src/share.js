@@ -4,7 +4,7 @@ const FIELDS = {
   flh: 'firstLayerHeight', b: 'bottomShells', top: 'topShells', base: 'base', seed: 'seed',
   layer: 'layer', pattern: 'pattern', density: 'density', shape: 'shape',
   // The part panel's: applied when the part (not in the link) is opened again.
-  solid: 'solidTemplate', object: 'object',
+  solid: 'solidTemplate', nosolid: 'noSolidTemplate', object: 'object',
 };
 
 export function encodeState(state) {

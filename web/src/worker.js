@@ -25,7 +25,10 @@ function partOptions(state) {
     pattern: state.pattern, density: state.density, walls: state.walls,
   };
   if (state.object) o.object = state.object;
-  if (state.solidTemplate) {
+  // None, even a project's (the CLI's --no-solid-template); else the one typed.
+  if (state.noSolidTemplate) {
+    o.noSolidTemplate = true;
+  } else if (state.solidTemplate) {
     if (state.solidTemplate.length > MAX_TEMPLATE) throw refuse('limit', 'the solid template is longer than the playground takes');
     o.solidTemplate = state.solidTemplate;
   }

@@ -339,6 +339,38 @@ test('a share link carries the part\'s object and solid template, chosen when th
   await again.close();
 });
 
+test('"none" leaves out the project\'s solid template: the solid layers turn with the template, as --no-solid-template', async () => {
+  const page = await open();
+  await page.locator('#mesh').setInputFiles(plate());
+  await shown(page, 'plate.3mf');
+  await page.selectOption('#object', 'Tall');
+  await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().object === 'Tall'
+    && window.rotlangPlayground.part().solidTemplate === '90, 0');
+  const solidDirections = (q) => q.scene.layers.slice(0, 3).map((l) => l.solid.direction);
+  const own = solidDirections(await page.evaluate(() => window.rotlangPlayground.part()));
+  assert.equal(await page.isChecked('#no-solid-template'), false);
+  await page.check('#no-solid-template');
+  await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().solidTemplate === null);
+  const p = await page.evaluate(() => window.rotlangPlayground.part());
+  assert.equal(p.error, null);
+  // Tall's template `0, 90` turns them now, a quarter turn from its solid `90, 0`.
+  const none = solidDirections(p);
+  assert.deepEqual(none.map((d, i) => (d - own[i] + 360) % 180), [90, 90, 90], `${own} → ${none}`);
+  assert.equal(await page.isDisabled('#solid-template'), true);
+  assert.equal(await page.inputValue('#solid-template'), '90, 0');
+  assert.match(await page.textContent('#solid-message'), /No solid template: .*the project's `90, 0` is not used/);
+  // The share link carries it.
+  await page.click('#share');
+  assert.match(await page.inputValue('#share-link'), /[#&]nosolid=1(&|$)/);
+  // Unchecked: the project's again.
+  await page.uncheck('#no-solid-template');
+  await page.waitForFunction(() => window.rotlangPlayground.idle() && window.rotlangPlayground.part().solidTemplate === '90, 0');
+  assert.deepEqual(solidDirections(await page.evaluate(() => window.rotlangPlayground.part())), own);
+  assert.equal(await page.isDisabled('#solid-template'), false);
+  assert.deepEqual(page.errors, []);
+  await page.close();
+});
+
 test('a solid template typed turns the solid layers; a bad one is shown with its span and the last good view stays', async () => {
   const page = await open();
   await page.locator('#mesh').setInputFiles({ name: 'cube.stl', mimeType: 'model/stl', buffer: Buffer.from(box([20, 20, 10])) });

@@ -331,8 +331,9 @@ pub unsafe extern "C" fn rotlang_mesh(
 /// The kept mesh (all its objects, or the 3MF object `object`) sliced and filled under
 /// the template (`rotlang_geometry::slice::Part`): every layer's section, areas and infill
 /// paths (or those of `from`..`to`), as `rotlang preview --shape part.stl [--object NAME]
-/// --format json`. `walls`: wall loops (NaN: the project's, else 2); `has_solid` (1 or 0):
-/// whether `solid` is the solid template (`--solid-template`); `has_object` likewise for
+/// --format json`. `walls`: wall loops (NaN: the project's, else 2); `has_solid`: 1 where
+/// `solid` is the solid template (`--solid-template`), 2 for none even where a project
+/// sets one (`--no-solid-template`), 0 for the project's own; `has_object` likewise for
 /// `object`; `settings_only` (1 or 0): the answer without slicing (what the part is filled
 /// with).
 ///
@@ -356,14 +357,17 @@ pub unsafe extern "C" fn rotlang_part(
 ) -> i32 {
     // SAFETY: forwarded from this function's contract.
     let result = unsafe { inputs(text, text_len, req, req_len) }.and_then(|(t, r)| {
+        // 1: the solid template given; 2: none, even a project's; else the file's.
         let solid = if has_solid == 1.0 {
             // SAFETY: as above.
             match unsafe { utf8(solid, solid_len) } {
-                Some(s) => Some(s),
+                Some(s) => crate::part::Solid::Given(s),
                 None => return Err(Failure::options("the solid template is not UTF-8")),
             }
+        } else if has_solid == 2.0 {
+            crate::part::Solid::Off
         } else {
-            None
+            crate::part::Solid::FromFile
         };
         let object = if has_object == 1.0 {
             // SAFETY: as above.

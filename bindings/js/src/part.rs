@@ -102,6 +102,18 @@ pub fn mesh_json(kept: &Kept) -> Value {
     })
 }
 
+/// Which solid template turns a part's solid areas (its top and bottom surfaces).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Solid<'a> {
+    /// An OrcaSlicer project's own (the object's first), else none.
+    FromFile,
+    /// This one, over a project's (`solidTemplate`, the CLI's `--solid-template`).
+    Given(&'a str),
+    /// None, even where a project sets one: the solid areas turn with the template
+    /// (`noSolidTemplate`, the CLI's `--no-solid-template`).
+    Off,
+}
+
 /// What a part is filled with: the request's values, else (for an OrcaSlicer project) the
 /// file's, an object's overrides first, else the defaults; as `rotlang preview` plans it
 /// (`crates/rotlang-cli/src/cli/part/file.rs`), from the same readers
@@ -120,7 +132,7 @@ struct Plan<'a> {
 fn plan<'a>(
     kept: &'a Kept,
     text: &'a str,
-    solid: Option<&'a str>,
+    solid: Solid<'a>,
     req: &Request,
     walls: f64,
     object: Option<&str>,
@@ -156,10 +168,13 @@ fn plan<'a>(
             .map_or("", |t| t.text.as_str()),
         _ => text,
     };
-    let solid = solid.or_else(|| {
-        file.and_then(|f| f.part_template(Target::Solid, object))
-            .map(|t| t.text.as_str())
-    });
+    let solid = match solid {
+        Solid::Given(s) => Some(s),
+        Solid::FromFile => file
+            .and_then(|f| f.part_template(Target::Solid, object))
+            .map(|t| t.text.as_str()),
+        Solid::Off => None,
+    };
     // As tall as the mesh unless the request gives the model's layers or height (as the
     // CLI); the file's layer heights and shells where the request gives none.
     let (lo, hi) = mesh.bounds().unwrap_or(([0.0; 3], [0.0; 3]));
@@ -257,7 +272,7 @@ fn plan<'a>(
 pub fn part(
     kept: &Kept,
     text: &str,
-    solid: Option<&str>,
+    solid: Solid,
     req: &Request,
     (walls, object, settings_only): (f64, Option<&str>, bool),
 ) -> Result<Value, Failure> {
@@ -339,7 +354,7 @@ mod tests {
             part(
                 &mesh,
                 "+45",
-                None,
+                Solid::FromFile,
                 &Request::default(),
                 (f64::NAN, None, false),
             )
@@ -360,7 +375,7 @@ mod tests {
             part(
                 &mesh,
                 "+45",
-                Some("90"),
+                Solid::Given("90"),
                 &Request::default(),
                 (2.0, None, false),
             )
@@ -379,7 +394,7 @@ mod tests {
         let e = part(
             &read_mesh("c.stl", &shapes::cuboid([1.0, 1.0, 1.0]).to_binary_stl()).unwrap(),
             "0",
-            None,
+            Solid::FromFile,
             &Request::default(),
             (2.0, Some("a"), false),
         )
@@ -388,12 +403,19 @@ mod tests {
         let e = read_mesh("x.3mf", b"PK not really").unwrap_err();
         assert!(e.message.contains("x.3mf"), "{}", e.message);
         let mesh = read_mesh("c.stl", &shapes::cuboid([1.0, 1.0, 1.0]).to_binary_stl()).unwrap();
-        let e = part(&mesh, "0", None, &Request::default(), (2.5, None, false)).unwrap_err();
+        let e = part(
+            &mesh,
+            "0",
+            Solid::FromFile,
+            &Request::default(),
+            (2.5, None, false),
+        )
+        .unwrap_err();
         assert_eq!(e.kind, "options");
         let e = part(
             &mesh,
             "0",
-            Some("+"),
+            Solid::Given("+"),
             &Request::default(),
             (2.0, None, false),
         )
@@ -404,7 +426,7 @@ mod tests {
             .with(slot::LAYER_HEIGHT, 0.01)
             .with(slot::HEIGHT, 500.0);
         assert_eq!(
-            part(&mesh, "0", None, &tall, (2.0, None, false))
+            part(&mesh, "0", Solid::FromFile, &tall, (2.0, None, false))
                 .unwrap_err()
                 .kind,
             "limit"

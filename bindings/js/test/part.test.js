@@ -243,6 +243,32 @@ test('a solid template given turns the solid layers as the CLI\'s --solid-templa
   assert.match(bad.stderr, /--solid-template/);
 });
 
+test('noSolidTemplate turns the solid layers with the template, over a project\'s, as the CLI\'s --no-solid-template', { skip }, () => {
+  const project = twoObjectProject();
+  const dir = mkdtempSync(join(tmpdir(), 'rotlang-part-'));
+  writeFileSync(join(dir, 'plate.3mf'), project);
+  readMesh('plate.3mf', project);
+  // Tall's own solid template is `90, 0`: with it, the bottom layers are not at +10 a layer.
+  const own = part('+10', { object: 'Tall' });
+  assert.equal(own.solid_template, '90, 0');
+  const js = part('+10', { object: 'Tall', noSolidTemplate: true });
+  const r = cliIn(dir, ['+10', '--shape', 'plate.3mf', '--object', 'Tall', '--no-solid-template', '--layers', `0..${js.settings.layers}`]);
+  assert.equal(r.status, 0, r.stderr);
+  assert.deepEqual(js, JSON.parse(r.stdout));
+  assert.equal(js.solid_template, null);
+  assert.equal(partSettings('+10', { object: 'Tall', noSolidTemplate: true }).solid_template, null);
+  // Each solid area turns as its layer does, which the project's template did not.
+  const solidAngles = (p) => p.layers.slice(0, 3).map((l) => [l.angle, l.areas.find((a) => a.solid).angle]);
+  assert.ok(solidAngles(js).every(([layer, solid]) => layer === solid), JSON.stringify(solidAngles(js)));
+  assert.ok(!solidAngles(own).every(([layer, solid]) => layer === solid), JSON.stringify(solidAngles(own)));
+  // false is the default (the project's); a solid template with it is a contradiction.
+  assert.deepEqual(part('+10', { object: 'Tall', noSolidTemplate: false }), own);
+  assert.throws(() => part('+10', { object: 'Tall', solidTemplate: '0', noSolidTemplate: true }),
+    (e) => e instanceof RotlangError && e.kind === 'options' && /cannot be given together/.test(e.message));
+  assert.throws(() => part('+10', { noSolidTemplate: 'yes' }),
+    (e) => e instanceof RotlangError && e.kind === 'options' && /`noSolidTemplate` must be true or false/.test(e.message));
+});
+
 // Every pattern, on a cylinder (arcs, a concave-free outline) and with a turning
 // template: wasm's paths are the CLI's to the last bit. The geometry's sines, cosines and
 // hypotenuses go through one implementation (libm) on both targets; std's differ in the

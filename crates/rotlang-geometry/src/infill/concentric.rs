@@ -463,6 +463,37 @@ fn apart(
     }
 }
 
+/// Whether the points of `a` then `b` make a line `spacing` long or more (the sum of
+/// its segments' `hypot`s, in order, until it reaches `spacing`).
+pub(super) fn long_enough(a: &[Coord], b: &[Coord], spacing: f64) -> bool {
+    let mut length = 0.0;
+    let mut points = a.iter().chain(b);
+    let Some(mut previous) = points.next().copied() else {
+        return false;
+    };
+    points.any(|&p| {
+        let e = p - previous;
+        previous = p;
+        length += math::hypot(e.x, e.y);
+        length >= spacing
+    })
+}
+
+/// How many points a middle segment `e` long gets, `step` apart at most:
+/// `⌈|e| / step⌉` (in 1..=1000), `|e|` by `hypot`. A plain square root (a fraction of its
+/// time) differs from it by a few units in the last place: where the quotient is not
+/// that near a whole number, its ceiling is the same.
+pub(super) fn steps(e: Coord, step: f64) -> usize {
+    let q = (e.x * e.x + e.y * e.y).sqrt() / step;
+    let f = q - q.floor();
+    let q = if q < 1e6 && f > 1e-6 && f < 1.0 - 1e-6 {
+        q
+    } else {
+        math::hypot(e.x, e.y) / step
+    };
+    (q.ceil() as usize).clamp(1, 1000)
+}
+
 /// Whether `p` is within `r` of the bounds `(lo, hi)` (as `within` decides it).
 fn in_bounds((lo, hi): (Coord, Coord), p: Coord, r: f64) -> bool {
     !(p.x < lo.x - r || p.x > hi.x + r || p.y < lo.y - r || p.y > hi.y + r)
@@ -483,13 +514,26 @@ fn segment_within(a: Coord, b: Coord, p: Coord, r: f64) -> bool {
 
 /// The runs of a closed ring's vertices whose flag is set (the whole ring when all are),
 /// each of two points or more (copied a run at a time).
-fn runs(pts: &[Coord], flags: &[bool], out: &mut Vec<Vec<Coord>>) {
+pub(super) fn runs(pts: &[Coord], flags: &[bool], out: &mut Vec<Vec<Coord>>) {
+    runs_kept(pts, flags, out, |_, _| true);
+}
+
+/// The runs of [`runs`] that `keep` keeps, asked of each run's points (in one or two
+/// slices, where it passes the ring's end) before it is copied.
+pub(super) fn runs_kept(
+    pts: &[Coord],
+    flags: &[bool],
+    out: &mut Vec<Vec<Coord>>,
+    keep: impl Fn(&[Coord], &[Coord]) -> bool,
+) {
     // None flagged (most middle rings): nothing to read.
     if !flags.contains(&true) {
         return;
     }
     if flags.iter().all(|&f| f) {
-        out.push(pts.to_vec());
+        if keep(pts, &[]) {
+            out.push(pts.to_vec());
+        }
         return;
     }
     // Read from an unflagged vertex so that no run wraps: vertices start + 1 ..= start + n
@@ -512,15 +556,18 @@ fn runs(pts: &[Coord], flags: &[bool], out: &mut Vec<Vec<Coord>>) {
         }
         if to > from {
             // from..=to, in at most two slices where it passes the ring's end.
-            if to < n {
-                piece.extend_from_slice(&pts[from..=to]);
+            let (a, b): (&[Coord], &[Coord]) = if to < n {
+                (&pts[from..=to], &[])
             } else if from >= n {
-                piece.extend_from_slice(&pts[from - n..=to - n]);
+                (&pts[from - n..=to - n], &[])
             } else {
-                piece.extend_from_slice(&pts[from..n]);
-                piece.extend_from_slice(&pts[..=to - n]);
+                (&pts[from..n], &pts[..=to - n])
+            };
+            if keep(a, b) {
+                piece.extend_from_slice(a);
+                piece.extend_from_slice(b);
+                out.push(std::mem::take(&mut piece));
             }
-            out.push(std::mem::take(&mut piece));
         }
         from = to + 1;
     }
@@ -590,8 +637,7 @@ fn uncovered(
         let mut pending = 0;
         for w in ring.windows(2) {
             let e = w[1] - w[0];
-            let steps =
-                ((math::hypot(e.x, e.y) / (MIDDLE_STEP * spacing)).ceil() as usize).clamp(1, 1000);
+            let steps = steps(e, MIDDLE_STEP * spacing);
             let point = |i: usize| w[0] + e * (i as f64 / steps as f64);
             // All near one covered segment: none far. Asked first of the segments the
             // last points were near (no gathering), then, for a segment of a few points
@@ -706,19 +752,13 @@ fn uncovered(
             &mut hint,
             scratch,
         );
-        let mut pieces = Vec::new();
-        runs(&dense, &scratch.flags, &mut pieces);
-        scratch.dense = dense;
         // A stretch shorter than a spacing (a star's tip) leaves no gap worth a line. Its
         // length summed only until it reaches a spacing (sums of lengths only grow, so the
-        // answer is the whole sum's).
-        out.extend(pieces.into_iter().filter(|p| {
-            let mut length = 0.0;
-            p.windows(2).any(|w| {
-                length += math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y);
-                length >= spacing
-            })
-        }));
+        // answer is the whole sum's); measured before it is copied out.
+        runs_kept(&dense, &scratch.flags, out, |a, b| {
+            long_enough(a, b, spacing)
+        });
+        scratch.dense = dense;
     }
 }
 
@@ -756,14 +796,28 @@ fn far(
             // Nothing near the run: all of it far (as flagged).
             continue;
         }
-        scratch
-            .last
-            .gather(lo, hi, usize::MAX, &mut scratch.near_last);
         // With two last loops or more (an outline's and a hole's), a run is mostly near
-        // one of them and far from the others all along: decided once, not per point.
-        if last.len() >= 2
-            && let Some(flag) = together(lo, hi, &scratch.near, &scratch.near_last, gap, spacing)
-        {
+        // one of them and far from the others all along: decided once, not per point;
+        // first against the covered segments, the last loops' gathered only if that does
+        // not decide it (most of them, grown by two spacings, meet every run).
+        let disc = Disc::new(lo, hi);
+        let decided = if last.len() >= 2 {
+            match disc.covered(&scratch.near, gap) {
+                None => Some(false),
+                Some(apart) => {
+                    scratch
+                        .last
+                        .gather(lo, hi, usize::MAX, &mut scratch.near_last);
+                    disc.last(apart, &scratch.near_last, spacing)
+                }
+            }
+        } else {
+            scratch
+                .last
+                .gather(lo, hi, usize::MAX, &mut scratch.near_last);
+            None
+        };
+        if let Some(flag) = decided {
             for f in &mut scratch.flags[start..] {
                 *f &= flag;
             }
@@ -783,26 +837,28 @@ fn far(
     }
 }
 
-/// The answer `far` gives every point of a run in the bounds `lo..hi`, where it is the
-/// same for all: `None` where they must be measured one by one (`near`, `near_last`: the
-/// covered segments and the last loops' gathered near the run). Every point of the run
-/// lies within `rho` of the bounds' centre, so a segment within `r − rho` of the centre is
-/// within `r` of each point, and one farther than `r + rho` is within `r` of none; both
-/// with a margin far above the rounding of the distances (a run's points lie half a
-/// spacing apart along the middle ring at most: most runs are wholly near a last loop,
-/// and most far from the others).
-fn together(
-    lo: Coord,
-    hi: Coord,
-    near: &Near,
-    near_last: &Near,
-    gap: f64,
-    spacing: f64,
-) -> Option<bool> {
-    let centre = (lo + hi) / 2.0;
-    let half = (hi - lo) / 2.0;
-    let rho = (half.x * half.x + half.y * half.y).sqrt();
-    let distance = |c: &Candidate| {
+/// A run of points in the bounds `lo..hi`, for the answer `far` gives all of them where
+/// it is the same for all. Every point of the run lies within `rho` of the bounds'
+/// centre, so a segment within `r − rho` of the centre is within `r` of each point, and
+/// one farther than `r + rho` is within `r` of none; both with a margin far above the
+/// rounding of the distances (a run's points lie half a spacing apart along the middle
+/// ring at most: most runs are wholly near a last loop, and most far from the others).
+struct Disc {
+    centre: Coord,
+    rho: f64,
+}
+
+impl Disc {
+    fn new(lo: Coord, hi: Coord) -> Disc {
+        let half = (hi - lo) / 2.0;
+        Disc {
+            centre: (lo + hi) / 2.0,
+            rho: (half.x * half.x + half.y * half.y).sqrt(),
+        }
+    }
+
+    fn distance(&self, c: &Candidate) -> f64 {
+        let centre = self.centre;
         let e = c.b - c.a;
         let len2 = e.x * e.x + e.y * e.y;
         let t = if len2 > 0.0 {
@@ -812,45 +868,60 @@ fn together(
         };
         let q = centre - (c.a + e * t);
         (q.x * q.x + q.y * q.y).sqrt()
-    };
-    let margin = |r: f64| 1e-9 * (r + rho) + 1e-12;
-    let (inner, outer) = (gap - rho - margin(gap), gap + rho + margin(gap));
-    let mut apart = true;
-    for c in &near.cands {
-        let d = distance(c);
-        // Near one covered segment, every point: none far.
-        if d < inner {
+    }
+
+    /// Within `r − rho` (inner) and `r + rho` (outer), with the margin.
+    fn band(&self, r: f64) -> (f64, f64) {
+        let margin = 1e-9 * (r + self.rho) + 1e-12;
+        (r - self.rho - margin, r + self.rho + margin)
+    }
+
+    /// `None` where every point is within `gap` of one covered segment (of `near`, those
+    /// gathered near the run: none far), else whether every covered segment is farther
+    /// than `gap` from every point.
+    fn covered(&self, near: &Near, gap: f64) -> Option<bool> {
+        let (inner, outer) = self.band(gap);
+        let mut apart = true;
+        for c in &near.cands {
+            let d = self.distance(c);
+            if d < inner {
+                return None;
+            }
+            apart &= d > outer;
+        }
+        Some(apart)
+    }
+
+    /// The answer for every point, given whether the covered segments are apart from
+    /// all of them (`near_last`: the last loops' segments gathered near the run).
+    fn last(&self, apart: bool, near_last: &Near, spacing: f64) -> Option<bool> {
+        let (inner2, outer2) = self.band(2.0 * spacing);
+        let (mut within, mut touched) = (0, 0);
+        for (_, range) in &near_last.groups {
+            let mut all = false;
+            let mut some = false;
+            for c in &near_last.cands[range.clone()] {
+                let d = self.distance(c);
+                if d < inner2 {
+                    all = true;
+                    some = true;
+                    break;
+                }
+                some |= d <= outer2;
+            }
+            within += usize::from(all);
+            touched += usize::from(some);
+        }
+        // Near two last loops, every point: none far.
+        if within >= 2 {
             return Some(false);
         }
-        apart &= d > outer;
-    }
-    let two = 2.0 * spacing;
-    let (inner2, outer2) = (two - rho - margin(two), two + rho + margin(two));
-    let (mut within, mut touched) = (0, 0);
-    for (_, range) in &near_last.groups {
-        let mut all = false;
-        let mut some = false;
-        for c in &near_last.cands[range.clone()] {
-            let d = distance(c);
-            if d < inner2 {
-                all = true;
-                some = true;
-                break;
-            }
-            some |= d <= outer2;
+        // No covered segment near any point, and at most one last loop near: all far.
+        if apart && touched <= 1 {
+            return Some(true);
         }
-        within += usize::from(all);
-        touched += usize::from(some);
+        None
     }
-    // Near two last loops, every point: none far.
-    if within >= 2 {
-        return Some(false);
-    }
-    // No covered segment near any point, and at most one last loop near: all far.
-    if apart && touched <= 1 {
-        return Some(true);
-    }
-    None
 }
 
 /// Whether the region's outline is one polygon without holes that the exact convex

@@ -378,3 +378,80 @@ proptest! {
         prop_assert!((l - m).abs() <= 0.02 * m + 0.03, "boundary {} here, {} by the buffer", l, m);
     }
 }
+
+/// The middle points' count a segment gets, by `hypot` as before.
+fn steps_by_hypot(e: Coord, step: f64) -> usize {
+    ((math::hypot(e.x, e.y) / step).ceil() as usize).clamp(1, 1000)
+}
+
+/// Segments whose length is a whole number of steps, or a rounding off one: where the
+/// plain square root and `hypot` may round to either side of it.
+#[test]
+fn steps_by_the_square_root_are_steps_by_hypot_at_whole_numbers() {
+    let mut checked = 0;
+    for k in 0..1200u32 {
+        for step in [0.2, 0.35, 1.0, 2.0, 0.4 / 0.3 / 2.0, 0.4 / 0.07 / 2.0] {
+            for angle in [0.0, 0.3, std::f64::consts::FRAC_PI_4, 1.2, 2.5, 4.0] {
+                let length = f64::from(k) * step;
+                for l in [length, length.next_up(), length.next_down()] {
+                    let e = Coord {
+                        x: l * math::cos(angle),
+                        y: l * math::sin(angle),
+                    };
+                    assert_eq!(
+                        super::concentric::steps(e, step),
+                        steps_by_hypot(e, step),
+                        "{e:?} by {step}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 100_000);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(4096))]
+
+    /// Any segment: the same count as by `hypot`.
+    #[test]
+    fn steps_by_the_square_root_are_steps_by_hypot(
+        x in -80.0f64..80.0,
+        y in -80.0f64..80.0,
+        step in 0.01f64..5.0,
+        tiny in any::<bool>(),
+    ) {
+        let e = if tiny { Coord { x: x * 1e-160, y: y * 1e-160 } } else { Coord { x, y } };
+        prop_assert_eq!(super::concentric::steps(e, step), steps_by_hypot(e, step));
+    }
+
+    /// A middle ring's stretches measured before they are copied (`runs_kept`) are the
+    /// runs of `runs` filtered by their length afterwards, as before.
+    #[test]
+    fn runs_kept_are_runs_filtered(
+        points in prop::collection::vec((-10.0f64..10.0, -10.0f64..10.0), 3..40),
+        flags in prop::collection::vec(any::<bool>(), 40),
+        all in any::<bool>(),
+        spacing in 0.1f64..6.0,
+    ) {
+        let mut ring: Vec<Coord> = points.iter().map(|&(x, y)| Coord { x, y }).collect();
+        ring.push(ring[0]);
+        let flags: Vec<bool> = if all { vec![true; ring.len()] } else { flags[..ring.len()].to_vec() };
+        let long = |p: &[Coord]| {
+            let mut length = 0.0;
+            p.windows(2).any(|w| {
+                length += math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y);
+                length >= spacing
+            })
+        };
+        let mut before = Vec::new();
+        super::concentric::runs(&ring, &flags, &mut before);
+        before.retain(|p| long(p));
+        let mut kept = Vec::new();
+        super::concentric::runs_kept(&ring, &flags, &mut kept, |a, b| {
+            super::concentric::long_enough(a, b, spacing)
+        });
+        prop_assert_eq!(kept, before);
+    }
+}

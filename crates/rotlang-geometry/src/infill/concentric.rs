@@ -186,10 +186,15 @@ struct Scratch {
     last: Segments,
     near: Near,
     near_last: Near,
+    /// Each last loop's segment a run was last found near all along (`Disc`).
+    last_hints: Vec<Option<u32>>,
+    /// How much the last loops' hints are trusted to find a run near two (`far`): up
+    /// by one for each run near two, down by one for each the hints missed.
+    trust: i32,
 }
 
 /// Rings with their bounds.
-type Bounded<'a> = Vec<(&'a [Coord], (Coord, Coord))>;
+pub(super) type Bounded<'a> = Vec<(&'a [Coord], (Coord, Coord))>;
 
 /// A segment near a run of points: its ends, and where it is (its ring, and its index
 /// there), to be asked first for the next points ([`Hint`]).
@@ -495,12 +500,12 @@ pub(super) fn steps(e: Coord, step: f64) -> usize {
 }
 
 /// Whether `p` is within `r` of the bounds `(lo, hi)` (as `within` decides it).
-fn in_bounds((lo, hi): (Coord, Coord), p: Coord, r: f64) -> bool {
+pub(super) fn in_bounds((lo, hi): (Coord, Coord), p: Coord, r: f64) -> bool {
     !(p.x < lo.x - r || p.x > hi.x + r || p.y < lo.y - r || p.y > hi.y + r)
 }
 
 /// Whether `p` is within `r` of the segment `a`–`b`.
-fn segment_within(a: Coord, b: Coord, p: Coord, r: f64) -> bool {
+pub(super) fn segment_within(a: Coord, b: Coord, p: Coord, r: f64) -> bool {
     let e = b - a;
     let len2 = e.x * e.x + e.y * e.y;
     let t = if len2 > 0.0 {
@@ -620,6 +625,9 @@ fn uncovered(
     } else {
         scratch.last.build(&Vec::new(), 2.0 * spacing);
     }
+    scratch.last_hints.clear();
+    scratch.last_hints.resize(last.len(), None);
+    scratch.trust = TRUST;
     // Inside `gap` by more than rounding: a segment of the middle ring whose both ends
     // are this near one covered segment lies that near it all along (the distance to a
     // segment is convex along a line), so none of its points is far.
@@ -804,11 +812,33 @@ fn far(
         let decided = if last.len() >= 2 {
             match disc.covered(&scratch.near, gap) {
                 None => Some(false),
+                // Near the segments of two last loops the run before was near (or the
+                // ones nearest them): none far, nothing gathered.
+                // (Asked while it answers more often than not: where the runs are not
+                // near two loops, as in a part's corner, it is not worth asking.)
+                Some(_)
+                    if scratch.trust > 0
+                        && if disc.near_two_hinted(last, &mut scratch.last_hints, spacing) {
+                            scratch.trust = (scratch.trust + 1).min(TRUST);
+                            true
+                        } else {
+                            scratch.trust -= 1;
+                            false
+                        } =>
+                {
+                    Some(false)
+                }
                 Some(apart) => {
                     scratch
                         .last
                         .gather(lo, hi, usize::MAX, &mut scratch.near_last);
-                    disc.last(apart, &scratch.near_last, spacing)
+                    let (flag, two) =
+                        disc.last(apart, &scratch.near_last, spacing, &mut scratch.last_hints);
+                    // A run the hints could have answered: ask them again.
+                    if two {
+                        scratch.trust = (scratch.trust + 1).min(TRUST);
+                    }
+                    flag
                 }
             }
         } else {
@@ -843,13 +873,21 @@ fn far(
 /// one farther than `r + rho` is within `r` of none; both with a margin far above the
 /// rounding of the distances (a run's points lie half a spacing apart along the middle
 /// ring at most: most runs are wholly near a last loop, and most far from the others).
-struct Disc {
+pub(super) struct Disc {
     centre: Coord,
     rho: f64,
 }
 
+/// How far a last loop's hint walks along it (`Disc::near_two_hinted`): a run of four
+/// middle points half a spacing apart moves along a loop by a few of its segments.
+const WALK: usize = 4;
+
+/// The most trust the last loops' hints earn (`Scratch::trust`): as many misses in a row
+/// stop them being asked.
+const TRUST: i32 = 1;
+
 impl Disc {
-    fn new(lo: Coord, hi: Coord) -> Disc {
+    pub(super) fn new(lo: Coord, hi: Coord) -> Disc {
         let half = (hi - lo) / 2.0;
         Disc {
             centre: (lo + hi) / 2.0,
@@ -858,15 +896,20 @@ impl Disc {
     }
 
     fn distance(&self, c: &Candidate) -> f64 {
+        self.distance_to(c.a, c.b)
+    }
+
+    /// The distance from the centre to the segment `a`–`b`.
+    fn distance_to(&self, a: Coord, b: Coord) -> f64 {
         let centre = self.centre;
-        let e = c.b - c.a;
+        let e = b - a;
         let len2 = e.x * e.x + e.y * e.y;
         let t = if len2 > 0.0 {
-            (((centre - c.a).x * e.x + (centre - c.a).y * e.y) / len2).clamp(0.0, 1.0)
+            (((centre - a).x * e.x + (centre - a).y * e.y) / len2).clamp(0.0, 1.0)
         } else {
             0.0
         };
-        let q = centre - (c.a + e * t);
+        let q = centre - (a + e * t);
         (q.x * q.x + q.y * q.y).sqrt()
     }
 
@@ -874,6 +917,75 @@ impl Disc {
     fn band(&self, r: f64) -> (f64, f64) {
         let margin = 1e-9 * (r + self.rho) + 1e-12;
         (r - self.rho - margin, r + self.rho + margin)
+    }
+
+    /// Whether every point is within two spacings of one segment of each of two last
+    /// loops, each found from its hint (`hints`, a segment per loop) by walking along
+    /// the loop while the segments come nearer the centre: consecutive runs lie near the
+    /// same stretch of each loop, so most runs near two are decided without gathering
+    /// (a yes is `last`'s; a no decides nothing). The hints move to the nearest found.
+    pub(super) fn near_two_hinted(
+        &self,
+        last: &Bounded,
+        hints: &mut [Option<u32>],
+        spacing: f64,
+    ) -> bool {
+        let (inner2, _) = self.band(2.0 * spacing);
+        if inner2 <= 0.0 || hints.iter().flatten().nth(1).is_none() {
+            return false;
+        }
+        // Squared distances: the margin in `inner2` is far above their rounding.
+        let within = inner2 * inner2;
+        let c = self.centre;
+        let mut found = 0;
+        for (&(ring, bounds), hint) in last.iter().zip(hints.iter_mut()) {
+            let Some(seg) = *hint else {
+                continue;
+            };
+            // A loop whose bounds are that far from the centre has no segment near.
+            if !in_bounds(bounds, c, inner2) {
+                continue;
+            }
+            let n = ring.len() - 1;
+            let at = |k: usize| {
+                let (a, b) = (ring[k], ring[k + 1]);
+                let e = b - a;
+                let len2 = e.x * e.x + e.y * e.y;
+                let t = if len2 > 0.0 {
+                    (((c - a).x * e.x + (c - a).y * e.y) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let q = c - (a + e * t);
+                q.x * q.x + q.y * q.y
+            };
+            let (mut k, mut d) = (seg as usize, at(seg as usize));
+            if d >= within {
+                // Forward while nearer, else backward while nearer (a few segments).
+                let next = |k: usize| if k + 1 == n { 0 } else { k + 1 };
+                let back = |k: usize| if k == 0 { n - 1 } else { k - 1 };
+                let (mut j, mut e) = (next(k), at(next(k)));
+                let forward = e < d;
+                if !forward {
+                    (j, e) = (back(k), at(back(k)));
+                }
+                let mut steps = 0;
+                while e < d && steps < WALK {
+                    (k, d) = (j, e);
+                    j = if forward { next(k) } else { back(k) };
+                    e = at(j);
+                    steps += 1;
+                }
+                *hint = Some(k as u32);
+            }
+            if d < within {
+                found += 1;
+                if found == 2 {
+                    return true;
+                }
+            }
+        }
+        false
     }
 
     /// `None` where every point is within `gap` of one covered segment (of `near`, those
@@ -894,7 +1006,15 @@ impl Disc {
 
     /// The answer for every point, given whether the covered segments are apart from
     /// all of them (`near_last`: the last loops' segments gathered near the run).
-    fn last(&self, apart: bool, near_last: &Near, spacing: f64) -> Option<bool> {
+    /// And whether every point is near two last loops (their segments found are the
+    /// hints).
+    fn last(
+        &self,
+        apart: bool,
+        near_last: &Near,
+        spacing: f64,
+        hints: &mut [Option<u32>],
+    ) -> (Option<bool>, bool) {
         let (inner2, outer2) = self.band(2.0 * spacing);
         let (mut within, mut touched) = (0, 0);
         for (_, range) in &near_last.groups {
@@ -905,6 +1025,8 @@ impl Disc {
                 if d < inner2 {
                     all = true;
                     some = true;
+                    // The next run asks it first (`near_two_hinted`).
+                    hints[c.at.ring as usize] = Some(c.at.seg);
                     break;
                 }
                 some |= d <= outer2;
@@ -914,13 +1036,13 @@ impl Disc {
         }
         // Near two last loops, every point: none far.
         if within >= 2 {
-            return Some(false);
+            return (Some(false), true);
         }
         // No covered segment near any point, and at most one last loop near: all far.
         if apart && touched <= 1 {
-            return Some(true);
+            return (Some(true), false);
         }
-        None
+        (None, false)
     }
 }
 

@@ -455,3 +455,89 @@ proptest! {
         prop_assert_eq!(kept, before);
     }
 }
+
+/// Whether `p` is within `r` of segments of two of `rings`, as `far` measures a point
+/// (each ring's bounds grown by `r` first, then its segments).
+fn near_two_rings(rings: &[Vec<Coord>], p: Coord, r: f64) -> bool {
+    use super::concentric::{in_bounds, segment_within};
+    rings
+        .iter()
+        .filter(|ring| {
+            in_bounds(travel_bounds(ring), p, r)
+                && ring.windows(2).any(|w| segment_within(w[0], w[1], p, r))
+        })
+        .count()
+        >= 2
+}
+
+fn travel_bounds(ring: &[Coord]) -> (Coord, Coord) {
+    crate::infill::travel::bounds(ring)
+}
+
+/// A run of middle points found near two last loops from the loops' hints
+/// (`Disc::near_two_hinted`, which spares the gathering) is near two loops at each of
+/// its points, as each point measured alone: random pairs and triples of loops (round
+/// and star-like, apart, nested or crossing), runs of four points up to a spacing apart
+/// about them, any hints. Enough of them are found so to test it.
+#[test]
+fn runs_found_near_two_loops_by_hints_are_near_two_at_each_point() {
+    use super::concentric::{Bounded, Disc};
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut found = 0;
+    for _ in 0..20_000 {
+        let spacing = 0.5 + 3.0 * next();
+        let count = 2 + (next() * 2.0) as usize;
+        let rings: Vec<Vec<Coord>> = (0..count)
+            .map(|_| {
+                let n = 3 + (next() * 30.0) as usize;
+                let radii: Vec<f64> = (0..n).map(|_| 0.3 + 0.7 * next()).collect();
+                let at = Coord {
+                    x: 12.0 * next() - 6.0,
+                    y: 12.0 * next() - 6.0,
+                };
+                ring(&radii, 2.0 + 10.0 * next(), at).0
+            })
+            .collect();
+        let start = Coord {
+            x: 24.0 * next() - 12.0,
+            y: 24.0 * next() - 12.0,
+        };
+        let angle = 6.3 * next();
+        let step = spacing * next();
+        let run: Vec<Coord> = (0..4)
+            .map(|i| Coord {
+                x: start.x + f64::from(i) * step * math::cos(angle),
+                y: start.y + f64::from(i) * step * math::sin(angle),
+            })
+            .collect();
+        let last: Bounded = rings
+            .iter()
+            .map(|r| (r.as_slice(), travel_bounds(r)))
+            .collect();
+        let mut hints: Vec<Option<u32>> = rings
+            .iter()
+            .map(|r| (next() < 0.9).then(|| (next() * (r.len() - 1) as f64) as u32))
+            .collect();
+        let (lo, hi) = travel_bounds(&run);
+        if Disc::new(lo, hi).near_two_hinted(&last, &mut hints, spacing) {
+            found += 1;
+            for &p in &run {
+                assert!(
+                    near_two_rings(&rings, p, 2.0 * spacing),
+                    "{p:?} not near two of {rings:?} at {spacing}"
+                );
+            }
+        }
+        // The hints stay segments of their loops.
+        for (h, r) in hints.iter().zip(&rings) {
+            assert!(h.is_none_or(|k| (k as usize) < r.len() - 1));
+        }
+    }
+    assert!(found > 1000, "{found} runs found near two");
+}

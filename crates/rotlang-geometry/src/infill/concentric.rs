@@ -21,6 +21,19 @@
 //! times), the convex inset not asked of a region known concave, the last lone loop moved
 //! out, the loops' ring list reused, and the eroder's preparation without a division or a
 //! `ceil` call per corner.
+//!
+//! Then (the holed square's middle rings at 10%: 234.8k → 226.0k instructions a layer,
+//! the same output): a run of middle points near two last loops is found so from each
+//! loop's hint, walking a few segments nearer, before all their segments grown by two
+//! spacings are gathered; the last loops' segments are gathered only when the covered
+//! ones do not decide a run; a middle stretch is measured before it is copied; a middle
+//! segment's point count by a square root, `hypot` only where the quotient is near a
+//! whole number. Tried and dropped (more instructions on the holed square at 20–40% or
+//! the star): hints for the last loops per point and per middle segment; deciding runs
+//! by chunks of a ring's segments with their bounds; every middle point from bounds on
+//! its distance to each ring carried from the point before (a 1-Lipschitz walk); the
+//! whole middle ring shown near two loops before it is measured (it holds on the holed
+//! square at 10% only: 226k → 214k there, 419k → 432k and 549k → 585k at 20 / 40%).
 
 use std::cell::Cell;
 use std::f64::consts::{PI, TAU};

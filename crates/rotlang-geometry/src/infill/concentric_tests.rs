@@ -378,3 +378,166 @@ proptest! {
         prop_assert!((l - m).abs() <= 0.02 * m + 0.03, "boundary {} here, {} by the buffer", l, m);
     }
 }
+
+/// The middle points' count a segment gets, by `hypot` as before.
+fn steps_by_hypot(e: Coord, step: f64) -> usize {
+    ((math::hypot(e.x, e.y) / step).ceil() as usize).clamp(1, 1000)
+}
+
+/// Segments whose length is a whole number of steps, or a rounding off one: where the
+/// plain square root and `hypot` may round to either side of it.
+#[test]
+fn steps_by_the_square_root_are_steps_by_hypot_at_whole_numbers() {
+    let mut checked = 0;
+    for k in 0..1200u32 {
+        for step in [0.2, 0.35, 1.0, 2.0, 0.4 / 0.3 / 2.0, 0.4 / 0.07 / 2.0] {
+            for angle in [0.0, 0.3, std::f64::consts::FRAC_PI_4, 1.2, 2.5, 4.0] {
+                let length = f64::from(k) * step;
+                for l in [length, length.next_up(), length.next_down()] {
+                    let e = Coord {
+                        x: l * math::cos(angle),
+                        y: l * math::sin(angle),
+                    };
+                    assert_eq!(
+                        super::concentric::steps(e, step),
+                        steps_by_hypot(e, step),
+                        "{e:?} by {step}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 100_000);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(4096))]
+
+    /// Any segment: the same count as by `hypot`.
+    #[test]
+    fn steps_by_the_square_root_are_steps_by_hypot(
+        x in -80.0f64..80.0,
+        y in -80.0f64..80.0,
+        step in 0.01f64..5.0,
+        tiny in any::<bool>(),
+    ) {
+        let e = if tiny { Coord { x: x * 1e-160, y: y * 1e-160 } } else { Coord { x, y } };
+        prop_assert_eq!(super::concentric::steps(e, step), steps_by_hypot(e, step));
+    }
+
+    /// A middle ring's stretches measured before they are copied (`runs_kept`) are the
+    /// runs of `runs` filtered by their length afterwards, as before.
+    #[test]
+    fn runs_kept_are_runs_filtered(
+        points in prop::collection::vec((-10.0f64..10.0, -10.0f64..10.0), 3..40),
+        flags in prop::collection::vec(any::<bool>(), 40),
+        all in any::<bool>(),
+        spacing in 0.1f64..6.0,
+    ) {
+        let mut ring: Vec<Coord> = points.iter().map(|&(x, y)| Coord { x, y }).collect();
+        ring.push(ring[0]);
+        let flags: Vec<bool> = if all { vec![true; ring.len()] } else { flags[..ring.len()].to_vec() };
+        let long = |p: &[Coord]| {
+            let mut length = 0.0;
+            p.windows(2).any(|w| {
+                length += math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y);
+                length >= spacing
+            })
+        };
+        let mut before = Vec::new();
+        super::concentric::runs(&ring, &flags, &mut before);
+        before.retain(|p| long(p));
+        let mut kept = Vec::new();
+        super::concentric::runs_kept(&ring, &flags, &mut kept, |a, b| {
+            super::concentric::long_enough(a, b, spacing)
+        });
+        prop_assert_eq!(kept, before);
+    }
+}
+
+/// Whether `p` is within `r` of segments of two of `rings`, as `far` measures a point
+/// (each ring's bounds grown by `r` first, then its segments).
+fn near_two_rings(rings: &[Vec<Coord>], p: Coord, r: f64) -> bool {
+    use super::concentric::{in_bounds, segment_within};
+    rings
+        .iter()
+        .filter(|ring| {
+            in_bounds(travel_bounds(ring), p, r)
+                && ring.windows(2).any(|w| segment_within(w[0], w[1], p, r))
+        })
+        .count()
+        >= 2
+}
+
+fn travel_bounds(ring: &[Coord]) -> (Coord, Coord) {
+    crate::infill::travel::bounds(ring)
+}
+
+/// A run of middle points found near two last loops from the loops' hints
+/// (`Disc::near_two_hinted`, which spares the gathering) is near two loops at each of
+/// its points, as each point measured alone: random pairs and triples of loops (round
+/// and star-like, apart, nested or crossing), runs of four points up to a spacing apart
+/// about them, any hints. Enough of them are found so to test it.
+#[test]
+fn runs_found_near_two_loops_by_hints_are_near_two_at_each_point() {
+    use super::concentric::{Bounded, Disc};
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut found = 0;
+    for _ in 0..20_000 {
+        let spacing = 0.5 + 3.0 * next();
+        let count = 2 + (next() * 2.0) as usize;
+        let rings: Vec<Vec<Coord>> = (0..count)
+            .map(|_| {
+                let n = 3 + (next() * 30.0) as usize;
+                let radii: Vec<f64> = (0..n).map(|_| 0.3 + 0.7 * next()).collect();
+                let at = Coord {
+                    x: 12.0 * next() - 6.0,
+                    y: 12.0 * next() - 6.0,
+                };
+                ring(&radii, 2.0 + 10.0 * next(), at).0
+            })
+            .collect();
+        let start = Coord {
+            x: 24.0 * next() - 12.0,
+            y: 24.0 * next() - 12.0,
+        };
+        let angle = 6.3 * next();
+        let step = spacing * next();
+        let run: Vec<Coord> = (0..4)
+            .map(|i| Coord {
+                x: start.x + f64::from(i) * step * math::cos(angle),
+                y: start.y + f64::from(i) * step * math::sin(angle),
+            })
+            .collect();
+        let last: Bounded = rings
+            .iter()
+            .map(|r| (r.as_slice(), travel_bounds(r)))
+            .collect();
+        let mut hints: Vec<Option<u32>> = rings
+            .iter()
+            .map(|r| (next() < 0.9).then(|| (next() * (r.len() - 1) as f64) as u32))
+            .collect();
+        let (lo, hi) = travel_bounds(&run);
+        if Disc::new(lo, hi).near_two_hinted(&last, &mut hints, spacing) {
+            found += 1;
+            for &p in &run {
+                assert!(
+                    near_two_rings(&rings, p, 2.0 * spacing),
+                    "{p:?} not near two of {rings:?} at {spacing}"
+                );
+            }
+        }
+        // The hints stay segments of their loops.
+        for (h, r) in hints.iter().zip(&rings) {
+            assert!(h.is_none_or(|k| (k as usize) < r.len() - 1));
+        }
+    }
+    assert!(found > 1000, "{found} runs found near two");
+}

@@ -55,6 +55,9 @@ pub(crate) struct Eroder {
     here: Vec<(usize, usize, f64, usize)>,
     cuts: Vec<Cut>,
     turns: Vec<(f64, (Coord, Coord))>,
+    /// Reused by `convex_crossings`: the cuts found and their places in the sweep's order,
+    /// and the larger ring's chunks' boxes.
+    ranked: (Vec<(Rank, u32)>, Vec<Cut>, Vec<(Coord, Coord)>),
     /// Reused by the chaining: the piece leaving each cut, and the pieces used.
     chained: (Vec<usize>, Vec<bool>),
     /// Reused: the kept pieces, their points one after another.
@@ -97,6 +100,7 @@ impl Eroder {
             here: Vec::new(),
             cuts: Vec::new(),
             turns: Vec::new(),
+            ranked: (Vec::new(), Vec::new(), Vec::new()),
             chained: (Vec::new(), Vec::new()),
             spare: Vec::new(),
             pieces: Vec::new(),
@@ -229,9 +233,18 @@ impl Eroder {
         // star's or an L's loops until they pinch): no sweep.
         let cuts = &mut self.cuts;
         cuts.clear();
-        let uncut = apart(raws, &mut self.turns) || (raws.len() == 1 && star_shaped(&raws[0].pts));
-        if !uncut && !crossings(raws, &mut self.sweep, cuts) {
-            return None;
+        let layout = apart(raws, &mut self.turns);
+        let uncut = layout == Layout::Apart || (raws.len() == 1 && star_shaped(&raws[0].pts));
+        if !uncut {
+            // Rings each convex (a hole's grown offset meeting the outline's) cross only
+            // one another: their pairs alone are looked at, not the sweep's every edge.
+            let found = match layout {
+                Layout::Convex => convex_crossings(raws, &self.turns, &mut self.ranked, cuts),
+                _ => None,
+            };
+            if !found.unwrap_or_else(|| crossings(raws, &mut self.sweep, cuts)) {
+                return None;
+            }
         }
         let cuts = &*cuts;
         // Every cut twice (once on each ring it is on), grouped by ring, in order along it.
@@ -517,6 +530,7 @@ struct Piece {
 }
 
 /// Where two raw segments cross: ring, segment and parameter on each, and the point.
+#[derive(Clone, Copy)]
 struct Cut {
     ring: [usize; 2],
     seg: [usize; 2],
@@ -710,34 +724,51 @@ impl Boundary {
     }
 }
 
+/// How the raw rings lie (`apart`'s answer).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Layout {
+    /// Each strictly convex and simple, each pair apart or nested: nothing to cut.
+    Apart,
+    /// Each strictly convex and simple (none crosses or touches itself), some two meet.
+    Convex,
+    /// Some ring not strictly convex.
+    Other,
+}
+
 /// Whether the raw rings are each strictly convex and simple, and each pair apart (bounds
 /// that do not meet) or one strictly inside the other: then nothing crosses or touches,
-/// and the sweep would find no cut. `turns` is reused: each ring's turn and bounds.
-fn apart(raws: &[Raw], turns: &mut Vec<(f64, (Coord, Coord))>) -> bool {
+/// and the sweep would find no cut. `turns` is reused: each ring's turn and bounds (all
+/// of them unless `Other`).
+fn apart(raws: &[Raw], turns: &mut Vec<(f64, (Coord, Coord))>) -> Layout {
     turns.clear();
     for r in raws {
         // Most rings that fail fail here, at their first reflex turn.
         let (turn, bounds) = convex_bounded(&r.pts);
         if turn == 0.0 {
-            return false;
+            return Layout::Other;
         }
         turns.push((turn, bounds));
     }
     for i in 0..raws.len() {
         for j in i + 1..raws.len() {
             let ((ti, bi), (tj, bj)) = (turns[i], turns[j]);
-            let ((a, b), (c, e)) = (bi, bj);
-            if b.x < c.x || e.x < a.x || b.y < c.y || e.y < a.y {
+            if !meets(bi, bj) {
                 continue;
             }
             if !inside(&raws[j].pts, bj, &raws[i].pts, ti)
                 && !inside(&raws[i].pts, bi, &raws[j].pts, tj)
             {
-                return false;
+                return Layout::Convex;
             }
         }
     }
-    true
+    Layout::Apart
+}
+
+/// Whether two closed boxes meet.
+#[inline]
+fn meets((a, b): (Coord, Coord), (c, e): (Coord, Coord)) -> bool {
+    !(b.x < c.x || e.x < a.x || b.y < c.y || e.y < a.y)
 }
 
 /// Whether a ring turns counter-clockwise about the mean of its points strictly all
@@ -1025,40 +1056,192 @@ fn crossings(raws: &[Raw], sweep: &mut Sweep, cuts: &mut Vec<Cut>) -> bool {
                 continue;
             }
             let (e, f) = (&edges[eb.at as usize], &edges[fb.at as usize]);
-            let (p, r) = (e.b - e.a, f.b - f.a);
-            let d1 = cross(p, f.a - e.a);
-            let d2 = cross(p, f.b - e.a);
-            let d3 = cross(r, e.a - f.a);
-            let d4 = cross(r, e.b - f.a);
-            let proper = |x: f64, y: f64| (x > 0.0 && y < 0.0) || (x < 0.0 && y > 0.0);
-            if proper(d1, d2) && proper(d3, d4) {
-                let t = d3 / (d3 - d4);
-                let u = d1 / (d1 - d2);
-                cuts.push(Cut {
+            match meet((e.a, e.b), (f.a, f.b)) {
+                Meet::Cut(t, u, at) => cuts.push(Cut {
                     ring: [e.ring as usize, f.ring as usize],
                     seg: [e.seg as usize, f.seg as usize],
                     t: [t, u],
-                    at: e.a + p * t,
-                });
-            } else if d1 == 0.0 || d2 == 0.0 || d3 == 0.0 || d4 == 0.0 {
-                // Touching or collinear (their boxes overlap): a tangency.
-                let on = |a: Coord, b: Coord, c: Coord| {
-                    c.x >= a.x.min(b.x)
-                        && c.x <= a.x.max(b.x)
-                        && c.y >= a.y.min(b.y)
-                        && c.y <= a.y.max(b.y)
-                };
-                if (d1 == 0.0 && on(e.a, e.b, f.a))
-                    || (d2 == 0.0 && on(e.a, e.b, f.b))
-                    || (d3 == 0.0 && on(f.a, f.b, e.a))
-                    || (d4 == 0.0 && on(f.a, f.b, e.b))
-                {
-                    return false;
-                }
+                    at,
+                }),
+                Meet::Touch => return false,
+                Meet::Not => {}
             }
         }
     }
     true
+}
+
+/// What two raw segments whose boxes meet do.
+enum Meet {
+    /// Neither crosses nor touches the other.
+    Not,
+    /// They cross properly: at `t` along `e`, `u` along `f`, at this point.
+    Cut(f64, f64, Coord),
+    /// They touch or overlap without crossing: a tangency.
+    Touch,
+}
+
+/// The sweep's test of two segments `e` (the first in its order) and `f`: both finders
+/// compute every cut from the same numbers.
+#[inline(always)]
+fn meet(e: (Coord, Coord), f: (Coord, Coord)) -> Meet {
+    let (ea, eb, fa, fb) = (e.0, e.1, f.0, f.1);
+    let (p, r) = (eb - ea, fb - fa);
+    let d1 = cross(p, fa - ea);
+    let d2 = cross(p, fb - ea);
+    let d3 = cross(r, ea - fa);
+    let d4 = cross(r, eb - fa);
+    let proper = |x: f64, y: f64| (x > 0.0 && y < 0.0) || (x < 0.0 && y > 0.0);
+    if proper(d1, d2) && proper(d3, d4) {
+        let t = d3 / (d3 - d4);
+        let u = d1 / (d1 - d2);
+        Meet::Cut(t, u, ea + p * t)
+    } else if d1 == 0.0 || d2 == 0.0 || d3 == 0.0 || d4 == 0.0 {
+        // Touching or collinear (their boxes overlap): a tangency.
+        let on = |a: Coord, b: Coord, c: Coord| {
+            c.x >= a.x.min(b.x) && c.x <= a.x.max(b.x) && c.y >= a.y.min(b.y) && c.y <= a.y.max(b.y)
+        };
+        if (d1 == 0.0 && on(ea, eb, fa))
+            || (d2 == 0.0 && on(ea, eb, fb))
+            || (d3 == 0.0 && on(fa, fb, ea))
+            || (d4 == 0.0 && on(fa, fb, eb))
+        {
+            Meet::Touch
+        } else {
+            Meet::Not
+        }
+    } else {
+        Meet::Not
+    }
+}
+
+/// A segment's place in the sweep's order: its key (`xlo`) and its index among all the
+/// rings' segments (ties in the order built); a cut's, its two segments' in that order.
+type Rank = ((i64, u32), (i64, u32));
+
+/// Segments per chunk of the larger ring in [`convex_crossings`]: a segment whose box
+/// misses a chunk's passes its segments on one test.
+const CHUNK: usize = 8;
+
+/// [`crossings`] where every ring is strictly convex and simple (`apart` found them so,
+/// `turns` their bounds): no ring crosses or touches itself, so only two rings' segments
+/// can meet, and only where the rings' bounds do. The segments of the smaller ring of
+/// each such pair are tested against chunks of the larger's, then segment by segment
+/// where a chunk's box meets; each pair whose boxes meet is tested as the sweep tests it
+/// (the segment first in the sweep's order as `e`), and the cuts are put in the order the
+/// sweep finds them. `None` (the sweep decides) where a coordinate is not finite.
+#[inline(never)]
+fn convex_crossings(
+    raws: &[Raw],
+    turns: &[(f64, (Coord, Coord))],
+    (ranked, found, chunks): &mut (Vec<(Rank, u32)>, Vec<Cut>, Vec<(Coord, Coord)>),
+    cuts: &mut Vec<Cut>,
+) -> Option<bool> {
+    ranked.clear();
+    found.clear();
+    let mut base = 0u32;
+    let mut bases = [0u32; 8];
+    if raws.len() > bases.len() {
+        return None;
+    }
+    // (0 for a finite coordinate, NaN for any other, as in the sweep.)
+    let mut finite = true;
+    for (r, raw) in raws.iter().enumerate() {
+        bases[r] = base;
+        base += raw.pts.len() as u32;
+        for &c in &raw.pts {
+            finite &= (c.x - c.y) * 0.0 == 0.0;
+        }
+    }
+    if !finite {
+        return None;
+    }
+    let key = |pts: &[Coord], i: usize| {
+        let (a, b) = (pts[i], pts[if i + 1 == pts.len() { 0 } else { i + 1 }]);
+        sort_key(a.x.min(b.x))
+    };
+    for i in 0..raws.len() {
+        for j in i + 1..raws.len() {
+            if !meets(turns[i].1, turns[j].1) {
+                continue;
+            }
+            // The smaller ring's segments against the larger's chunks.
+            let (s, g) = if raws[i].pts.len() <= raws[j].pts.len() {
+                (i, j)
+            } else {
+                (j, i)
+            };
+            let (small, big) = (&raws[s].pts, &raws[g].pts);
+            let (ns, nb) = (small.len(), big.len());
+            // Each chunk's box: its segments' ends, points from ..= to.
+            chunks.clear();
+            let mut from = 0;
+            while from < nb {
+                let to = (from + CHUNK).min(nb);
+                let mut lo = big[from];
+                let mut hi = lo;
+                for &c in &big[from + 1..to] {
+                    math::widen(&mut lo, &mut hi, c);
+                }
+                math::widen(&mut lo, &mut hi, big[if to == nb { 0 } else { to }]);
+                chunks.push((lo, hi));
+                from = to;
+            }
+            for k in 0..ns {
+                let (a, b) = (small[k], small[if k + 1 == ns { 0 } else { k + 1 }]);
+                let (xlo, xhi) = extent(a.x, b.x, true);
+                let (ylo, yhi) = extent(a.y, b.y, true);
+                for (ch, &(lo, hi)) in chunks.iter().enumerate() {
+                    if hi.x < xlo || lo.x > xhi || hi.y < ylo || lo.y > yhi {
+                        continue;
+                    }
+                    let from = ch * CHUNK;
+                    for m in from..(from + CHUNK).min(nb) {
+                        let (c, e) = (big[m], big[if m + 1 == nb { 0 } else { m + 1 }]);
+                        let (cxlo, cxhi) = extent(c.x, e.x, true);
+                        let (cylo, cyhi) = extent(c.y, e.y, true);
+                        if cxhi < xlo || cxlo > xhi || cyhi < ylo || cylo > yhi {
+                            continue;
+                        }
+                        // Which of the two the sweep takes first.
+                        let here = (key(small, k), bases[s] + k as u32);
+                        let there = (key(big, m), bases[g] + m as u32);
+                        let (first, second, (e0, e1, r0, r1)) = if here < there {
+                            (here, there, ((a, b), (c, e), (s, k), (g, m)))
+                        } else {
+                            (there, here, ((c, e), (a, b), (g, m), (s, k)))
+                        };
+                        match meet(e0, e1) {
+                            Meet::Cut(t, u, at) => {
+                                ranked.push(((first, second), found.len() as u32));
+                                found.push(Cut {
+                                    ring: [r0.0, r1.0],
+                                    seg: [r0.1, r1.1],
+                                    t: [t, u],
+                                    at,
+                                });
+                            }
+                            Meet::Touch => return Some(false),
+                            Meet::Not => {}
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // The sweep's order: by the first segment's place, then the second's (the ranks are
+    // distinct: by insertion, a few small pairs).
+    for i in 1..ranked.len() {
+        let x = ranked[i];
+        let mut j = i;
+        while j > 0 && ranked[j - 1].0 > x.0 {
+            ranked[j] = ranked[j - 1];
+            j -= 1;
+        }
+        ranked[j] = x;
+    }
+    cuts.extend(ranked.iter().map(|r| found[r.1 as usize]));
+    Some(true)
 }
 
 /// Sorts `order` by insertion, moving elements at most `budget` places in all; `false`
@@ -1283,7 +1466,7 @@ mod tests {
     use super::*;
 
     fn apart_(raws: &[Raw]) -> bool {
-        apart(raws, &mut Vec::new())
+        apart(raws, &mut Vec::new()) == Layout::Apart
     }
 
     fn raw(pts: Vec<Coord>) -> Raw {

@@ -206,3 +206,113 @@ fn runs_cover_each_ring_end_to_start() {
     let star = Eroder::new(&crate::infill::shapes::star(10.0, 4.5), 0.5);
     assert_eq!(star.boundary.runs.len(), 1);
 }
+
+/// A raw ring of these points, as `fill` leaves one (no arcs, every segment checked).
+fn raw_ring(pts: Vec<Coord>) -> Raw {
+    Raw {
+        along: vec![None; pts.len()],
+        centres: vec![None; pts.len()],
+        check: true,
+        pts,
+        tips: Vec::new(),
+        closed: (Vec::new(), Vec::new(), Vec::new()),
+    }
+}
+
+/// A convex ring: `radii` (near 1, so that it stays convex) times `size` about `at`,
+/// starting at `phase` of a turn.
+fn convex_ring(
+    radii: &[f64],
+    size: f64,
+    at: (f64, f64),
+    phase: f64,
+    clockwise: bool,
+) -> Vec<Coord> {
+    let n = radii.len();
+    (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * (i as f64 + phase) / n as f64;
+            let a = if clockwise { -a } else { a };
+            Coord {
+                x: at.0 + size * radii[i] * math::cos(a),
+                y: at.1 + size * radii[i] * math::sin(a),
+            }
+        })
+        .collect()
+}
+
+/// The cuts as bits, to compare two finders' to the bit.
+fn cut_bits(cuts: &[Cut]) -> Vec<([usize; 2], [usize; 2], [u64; 2], [u64; 2])> {
+    cuts.iter()
+        .map(|c| {
+            (
+                c.ring,
+                c.seg,
+                [c.t[0].to_bits(), c.t[1].to_bits()],
+                [c.at.x.to_bits(), c.at.y.to_bits()],
+            )
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Convex rings that meet (an outline's offset and its holes' grown ones, holes
+    /// crossing it and one another, some sharing a corner's height or width): the pairs'
+    /// finder gives the sweep's cuts to the bit, in its order, and its tangencies.
+    #[test]
+    fn convex_pairs_cut_as_the_sweep(
+        outline in proptest::collection::vec(0.97f64..1.0, 3..24),
+        holes in proptest::collection::vec(
+            (
+                proptest::collection::vec(0.97f64..1.0, 3..70),
+                0.05f64..1.2,
+                (-1.2f64..1.2, -1.2f64..1.2),
+                0.0f64..1.0,
+            ),
+            1..4,
+        ),
+        size in 1.0f64..100.0,
+        phase in 0.0f64..1.0,
+        snap in proptest::bool::ANY,
+    ) {
+        let mut raws = vec![raw_ring(convex_ring(&outline, size, (0.0, 0.0), phase, false))];
+        for (radii, r, (x, y), phase) in &holes {
+            let mut pts = convex_ring(radii, size * r, (x * size, y * size), *phase, true);
+            if snap {
+                // A hole's point on the outline's first point's height: touching boxes.
+                pts[0].y = raws[0].pts[0].y;
+            }
+            raws.push(raw_ring(pts));
+        }
+        let mut turns = Vec::new();
+        if apart(&raws, &mut turns) == Layout::Convex {
+            let mut scratch = (Vec::new(), Vec::new(), Vec::new());
+            let (mut fast, mut swept) = (Vec::new(), Vec::new());
+            let found = convex_crossings(&raws, &turns, &mut scratch, &mut fast);
+            let sweep = crossings(&raws, &mut Sweep::default(), &mut swept);
+            prop_assert_eq!(found, Some(sweep));
+            if sweep {
+                prop_assert_eq!(cut_bits(&fast), cut_bits(&swept));
+            }
+        }
+    }
+}
+
+/// The pairs' finder is asked where a hole's offset crosses the outline's: the holed
+/// square's loops past the hole meeting the outline get their cuts from it.
+#[test]
+fn a_hole_crossing_the_outline_is_cut_by_pairs() {
+    let region = crate::infill::shapes::holed_square(40.0, 10.0);
+    let mut eroder = Eroder::new(&region, 0.5);
+    let rings = eroder.rings(5.2).expect("cut, not declined");
+    assert_eq!(apart(&eroder.raws, &mut eroder.turns), Layout::Convex);
+    assert_eq!(eroder.cuts.len(), 8);
+    // Four corner pieces, each made of two pieces of the outline's offset and one of the
+    // hole's.
+    assert_eq!(rings.len(), 4);
+    let mut swept = Vec::new();
+    assert!(crossings(&eroder.raws, &mut Sweep::default(), &mut swept));
+    assert_eq!(cut_bits(&eroder.cuts), cut_bits(&swept));
+}

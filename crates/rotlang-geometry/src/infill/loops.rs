@@ -236,8 +236,14 @@ impl Eroder {
         // star's or an L's loops until they pinch): no sweep.
         let cuts = &mut self.cuts;
         cuts.clear();
-        let layout = apart(raws, &mut self.turns);
-        let uncut = layout == Layout::Apart || (raws.len() == 1 && star_shaped(&raws[0].pts));
+        // One ring is uncut where it is star-shaped or convex: the first asked first (a
+        // star's loops until they pinch are, and are not convex: one pass, not two).
+        let layout = if raws.len() == 1 && star_shaped(&raws[0].pts) {
+            Layout::Apart
+        } else {
+            apart(raws, &mut self.turns)
+        };
+        let uncut = layout == Layout::Apart;
         if !uncut {
             // Rings each convex (a hole's grown offset meeting the outline's) cross only
             // one another: their pairs alone are looked at, not the sweep's every edge.

@@ -268,19 +268,15 @@ impl Eroder {
             for (raw, &(_, n)) in self.raws.iter_mut().zip(&self.safes) {
                 total += n;
                 // (`reserve` counts from the length: the vectors are emptied first.)
-                for v in [&mut raw.pts, &mut raw.closed.0] {
+                raw.pts.clear();
+                raw.pts.reserve(n);
+                for v in [&mut raw.centres, &mut raw.along] {
                     v.clear();
                     v.reserve(n);
                 }
-                for v in [
-                    &mut raw.centres,
-                    &mut raw.along,
-                    &mut raw.closed.1,
-                    &mut raw.closed.2,
-                ] {
-                    v.clear();
-                    v.reserve(n);
-                }
+            }
+            for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
+                raw.shape(corners, &self.directions);
             }
             self.sized = true;
             self.sweep.edges.clear();
@@ -426,29 +422,57 @@ struct Raw {
     /// Whether a segment may run backwards at this distance (`along` is worth asking).
     check: bool,
     /// Reused by `fill`: where each sharp tip's three points start, and each tip's mitre
-    /// (where its two moved edges cross), and the ring with the tips closed.
+    /// (where its two moved edges cross).
     tips: Vec<(usize, Option<Coord>)>,
-    closed: (Vec<Coord>, Vec<Option<Coord>>, Vec<Option<Coord>>),
+    /// `centres` and `along` as the corners give them whatever the distance (made once
+    /// for the corners, `shape`; copied by `fill`, not worked out point by point).
+    shape: (Vec<Option<Coord>>, Vec<Option<Coord>>),
 }
 
 impl Raw {
-    /// The raw offset by `d` of a ring's corners.
+    /// `centres` and `along` for these corners (`shape`): each arc's chords' centre, and
+    /// the direction of the edge each corner's last point runs along to the next corner.
+    fn shape(&mut self, corners: &[Corner], directions: &[Coord]) {
+        let (centres, along) = &mut self.shape;
+        centres.clear();
+        along.clear();
+        let vertex = |c: &Corner| match *c {
+            Corner::Mitre { b, .. } | Corner::Tip { b, .. } | Corner::Arc { b, .. } => b,
+        };
+        for (i, corner) in corners.iter().enumerate() {
+            let points = match *corner {
+                Corner::Mitre { .. } => {
+                    centres.push(None);
+                    1
+                }
+                Corner::Tip { .. } => {
+                    centres.extend([None, None, None]);
+                    3
+                }
+                Corner::Arc { b, ref inner, .. } => {
+                    centres.push(Some(b));
+                    centres.extend(directions[inner.clone()].iter().map(|_| Some(b)));
+                    centres.push(None);
+                    2 + inner.len()
+                }
+            };
+            let next = vertex(&corners[if i + 1 == corners.len() { 0 } else { i + 1 }]);
+            along.extend(std::iter::repeat_n(None, points - 1));
+            along.push(Some(next - vertex(corner)));
+        }
+    }
+
+    /// The raw offset by `d` of a ring's corners (`shape` made for them).
     fn fill(&mut self, corners: &[Corner], directions: &[Coord], d: f64, close: bool, check: bool) {
         self.pts.clear();
-        self.centres.clear();
-        self.along.clear();
         self.tips.clear();
         self.check = check;
         for corner in corners {
             match *corner {
-                Corner::Mitre { b, m, k } => {
-                    self.pts.push(b + m * (d / k));
-                    self.centres.push(None);
-                }
+                Corner::Mitre { b, m, k } => self.pts.push(b + m * (d / k)),
                 Corner::Tip { b, nu, nv } => {
                     self.tips.push((self.pts.len(), None));
                     self.pts.extend([b + nu * d, b, b + nv * d]);
-                    self.centres.extend([None, None, None]);
                 }
                 Corner::Arc {
                     b,
@@ -457,32 +481,20 @@ impl Raw {
                     ref inner,
                 } => {
                     self.pts.push(b + nu * d);
-                    self.centres.push(Some(b));
                     for &w in &directions[inner.clone()] {
                         self.pts.push(b + w * d);
-                        self.centres.push(Some(b));
                     }
                     self.pts.push(b + nv * d);
-                    self.centres.push(None);
                 }
             }
         }
+        self.centres.clear();
+        self.centres.extend_from_slice(&self.shape.0);
         // Only where an edge may have run backwards (past the ring's safe distance): the
         // segment from each corner's last point runs along the edge to the next corner.
+        self.along.clear();
         if check {
-            let vertex = |c: &Corner| match *c {
-                Corner::Mitre { b, .. } | Corner::Tip { b, .. } | Corner::Arc { b, .. } => b,
-            };
-            for (i, corner) in corners.iter().enumerate() {
-                let points = match corner {
-                    Corner::Mitre { .. } => 1,
-                    Corner::Tip { .. } => 3,
-                    Corner::Arc { inner, .. } => 2 + inner.len(),
-                };
-                let next = vertex(&corners[if i + 1 == corners.len() { 0 } else { i + 1 }]);
-                self.along.extend(std::iter::repeat_n(None, points - 1));
-                self.along.push(Some(next - vertex(corner)));
-            }
+            self.along.extend_from_slice(&self.shape.1);
         }
         if close && !self.tips.is_empty() {
             self.close_tips();
@@ -535,41 +547,52 @@ impl Raw {
                 }
             }
         }
-        let (out, centres, along) = &mut self.closed;
-        out.clear();
-        centres.clear();
-        along.clear();
-        let mut from = 0;
+        // In place: each closed tip's three points become its mitre, the rest move up.
+        let check = self.check;
+        let (pts, centres, along) = (&mut self.pts, &mut self.centres, &mut self.along);
+        let (mut to, mut from) = (0, 0);
         for &(at, x) in &self.tips {
-            out.extend_from_slice(&pts[from..at]);
-            centres.extend_from_slice(&self.centres[from..at]);
-            if self.check {
-                along.extend_from_slice(&self.along[from..at]);
+            for i in from..at {
+                pts[to] = pts[i];
+                centres[to] = centres[i];
+                if check {
+                    along[to] = along[i];
+                }
+                to += 1;
             }
             if let Some(x) = x {
                 // On along the edge out of the tip, as the tip's last point was.
-                out.push(x);
-                centres.push(None);
-                if self.check {
-                    along.push(self.along[at + 2]);
+                pts[to] = x;
+                centres[to] = None;
+                if check {
+                    along[to] = along[at + 2];
                 }
+                to += 1;
             } else {
-                out.extend_from_slice(&pts[at..at + 3]);
-                centres.extend_from_slice(&self.centres[at..at + 3]);
-                if self.check {
-                    along.extend_from_slice(&self.along[at..at + 3]);
+                for i in at..at + 3 {
+                    pts[to] = pts[i];
+                    centres[to] = centres[i];
+                    if check {
+                        along[to] = along[i];
+                    }
+                    to += 1;
                 }
             }
             from = at + 3;
         }
-        out.extend_from_slice(&pts[from..]);
-        centres.extend_from_slice(&self.centres[from..]);
-        if self.check {
-            along.extend_from_slice(&self.along[from..]);
+        for i in from..n {
+            pts[to] = pts[i];
+            centres[to] = centres[i];
+            if check {
+                along[to] = along[i];
+            }
+            to += 1;
         }
-        std::mem::swap(&mut self.pts, out);
-        std::mem::swap(&mut self.centres, centres);
-        std::mem::swap(&mut self.along, along);
+        pts.truncate(to);
+        centres.truncate(to);
+        if check {
+            along.truncate(to);
+        }
     }
 }
 
@@ -1639,7 +1662,7 @@ mod tests {
             pts,
             centres,
             tips: Vec::new(),
-            closed: (Vec::new(), Vec::new(), Vec::new()),
+            shape: (Vec::new(), Vec::new()),
         }
     }
 

@@ -215,7 +215,7 @@ fn raw_ring(pts: Vec<Coord>) -> Raw {
         check: true,
         pts,
         tips: Vec::new(),
-        closed: (Vec::new(), Vec::new(), Vec::new()),
+        shape: (Vec::new(), Vec::new()),
     }
 }
 

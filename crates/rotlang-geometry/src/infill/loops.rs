@@ -425,14 +425,30 @@ struct Raw {
     /// (where its two moved edges cross).
     tips: Vec<(usize, Option<Coord>)>,
     /// `centres` and `along` as the corners give them whatever the distance (made once
-    /// for the corners, `shape`; copied by `fill`, not worked out point by point).
+    /// for the corners, `shape`; copied by `fill`, not worked out point by point), and
+    /// whether `centres` is still the first (no tip closed since: not copied again).
     shape: (Vec<Option<Coord>>, Vec<Option<Coord>>),
+    shaped: bool,
+    /// Where every corner is a mitre (a holed square's rings): each one's vertex, mitre
+    /// direction and its length's divisor, read in one tight pass.
+    mitres: Vec<(Coord, Coord, f64)>,
 }
 
 impl Raw {
     /// `centres` and `along` for these corners (`shape`): each arc's chords' centre, and
     /// the direction of the edge each corner's last point runs along to the next corner.
     fn shape(&mut self, corners: &[Corner], directions: &[Coord]) {
+        self.shaped = false;
+        self.mitres.clear();
+        for corner in corners {
+            match *corner {
+                Corner::Mitre { b, m, k } => self.mitres.push((b, m, k)),
+                _ => {
+                    self.mitres.clear();
+                    break;
+                }
+            }
+        }
         let (centres, along) = &mut self.shape;
         centres.clear();
         along.clear();
@@ -467,6 +483,22 @@ impl Raw {
         self.pts.clear();
         self.tips.clear();
         self.check = check;
+        if !self.shaped {
+            self.centres.clear();
+            self.centres.extend_from_slice(&self.shape.0);
+            self.shaped = true;
+        }
+        // Only where an edge may have run backwards (past the ring's safe distance): the
+        // segment from each corner's last point runs along the edge to the next corner.
+        self.along.clear();
+        if check {
+            self.along.extend_from_slice(&self.shape.1);
+        }
+        if !self.mitres.is_empty() && self.mitres.len() == corners.len() {
+            self.pts
+                .extend(self.mitres.iter().map(|&(b, m, k)| b + m * (d / k)));
+            return;
+        }
         for corner in corners {
             match *corner {
                 Corner::Mitre { b, m, k } => self.pts.push(b + m * (d / k)),
@@ -487,14 +519,6 @@ impl Raw {
                     self.pts.push(b + nv * d);
                 }
             }
-        }
-        self.centres.clear();
-        self.centres.extend_from_slice(&self.shape.0);
-        // Only where an edge may have run backwards (past the ring's safe distance): the
-        // segment from each corner's last point runs along the edge to the next corner.
-        self.along.clear();
-        if check {
-            self.along.extend_from_slice(&self.shape.1);
         }
         if close && !self.tips.is_empty() {
             self.close_tips();
@@ -548,6 +572,7 @@ impl Raw {
             }
         }
         // In place: each closed tip's three points become its mitre, the rest move up.
+        self.shaped = false;
         let check = self.check;
         let (pts, centres, along) = (&mut self.pts, &mut self.centres, &mut self.along);
         let (mut to, mut from) = (0, 0);
@@ -1053,8 +1078,12 @@ fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
         };
         east += usize::from(passes);
         // The same extremes as `f64::min`/`max` (a zero's sign aside, which no test of
-        // the bounds tells apart).
-        crate::math::widen(&mut lo, &mut hi, b);
+        // the bounds tells apart), as `math::widen` finds them, but by selects: a
+        // comparison and a move each (a NaN never taken), no branch.
+        lo.x = if b.x < lo.x { b.x } else { lo.x };
+        hi.x = if b.x > hi.x { b.x } else { hi.x };
+        lo.y = if b.y < lo.y { b.y } else { lo.y };
+        hi.y = if b.y > hi.y { b.y } else { hi.y };
         prev = e;
         a = b;
         true
@@ -1663,6 +1692,8 @@ mod tests {
             centres,
             tips: Vec::new(),
             shape: (Vec::new(), Vec::new()),
+            shaped: true,
+            mitres: Vec::new(),
         }
     }
 

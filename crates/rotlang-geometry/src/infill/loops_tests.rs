@@ -216,6 +216,8 @@ fn raw_ring(pts: Vec<Coord>) -> Raw {
         pts,
         tips: Vec::new(),
         shape: (Vec::new(), Vec::new()),
+        shaped: true,
+        mitres: Vec::new(),
     }
 }
 
@@ -357,5 +359,42 @@ fn a_reset_to_a_changed_region_is_prepared_again() {
             let fresh = Eroder::new(region, arc).rings(d);
             assert_eq!(eroder.rings(d), fresh, "{d}");
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// A ring whose corners are all mitres is filled from its mitres in one pass: the
+    /// same points to the bit as the corners read one by one, and the same rings, on
+    /// convex outlines with and without a hole (their corners mitres) and star-like ones
+    /// (tips and arcs: the general pass).
+    #[test]
+    fn mitres_fill_as_the_corners(
+        radii in proptest::collection::vec(0.95f64..1.0, 3..40),
+        hole in proptest::collection::vec(0.8f64..1.0, 0..70),
+        size in 1.0f64..200.0,
+        depths in proptest::collection::vec(0.001f64..0.8, 1..6),
+    ) {
+        let region = region(&radii, size, &hole);
+        let mut eroder = Eroder::new(&region, 0.5);
+        let mut general = Eroder::new(&region, 0.5);
+        for depth in depths {
+            let d = depth * size;
+            let rings = eroder.rings(d);
+            // The general pass: no ring's mitres listed.
+            let _ = general.rings(d);
+            for raw in &mut general.raws {
+                raw.mitres.clear();
+            }
+            prop_assert_eq!(general.rings(d), rings, "by {}", d);
+            for (fast, slow) in eroder.raws.iter().zip(&general.raws) {
+                let bits = |pts: &[Coord]| -> Vec<(u64, u64)> {
+                    pts.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect()
+                };
+                prop_assert_eq!(bits(&fast.pts), bits(&slow.pts));
+            }
+        }
+        prop_assert!(eroder.raws.iter().all(|r| r.mitres.len() == r.pts.len() || r.mitres.is_empty()));
     }
 }

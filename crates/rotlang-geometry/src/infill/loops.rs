@@ -59,7 +59,7 @@ pub(crate) struct Eroder {
     turns: Vec<(f64, (Coord, Coord))>,
     /// Reused by `convex_crossings`: the cuts found and their places in the sweep's order,
     /// and the larger ring's chunks' boxes.
-    ranked: (Vec<(Rank, u32)>, Vec<Cut>, Vec<(Coord, Coord)>),
+    ranked: Pairs,
     /// Reused by the chaining: the piece leaving each cut, and the pieces used.
     chained: (Vec<usize>, Vec<bool>),
     /// Reused: the kept pieces, their points one after another.
@@ -641,9 +641,10 @@ fn place_cuts(
         return;
     }
     // Each ring's first segment among all the rings' (few rings: a small array, else the
-    // library's sort).
+    // library's sort; the library's sort too for a handful of cuts, which it places by
+    // insertion more cheaply).
     let mut bases = [0usize; 9];
-    if raws.len() >= bases.len() {
+    if raws.len() >= bases.len() || cuts.len() <= 5 {
         return library_order(cuts, here);
     }
     for (r, raw) in raws.iter().enumerate() {
@@ -1333,6 +1334,10 @@ fn meet(e: (Coord, Coord), f: (Coord, Coord)) -> Meet {
 /// rings' segments (ties in the order built); a cut's, its two segments' in that order.
 type Rank = ((i64, u32), (i64, u32));
 
+/// [`convex_crossings`]'s buffers: the cuts found and their places in the sweep's order,
+/// and the larger ring's chunks' boxes.
+type Pairs = (Vec<(Rank, u32)>, Vec<Cut>, Vec<(Coord, Coord)>);
+
 /// Segments per chunk of the larger ring in [`convex_crossings`]: a segment whose box
 /// misses a chunk's passes its segments on one test.
 const CHUNK: usize = 8;
@@ -1348,7 +1353,7 @@ const CHUNK: usize = 8;
 fn convex_crossings(
     raws: &[Raw],
     turns: &[(f64, (Coord, Coord))],
-    (ranked, found, chunks): &mut (Vec<(Rank, u32)>, Vec<Cut>, Vec<(Coord, Coord)>),
+    (ranked, found, chunks): &mut Pairs,
     cuts: &mut Vec<Cut>,
 ) -> Option<bool> {
     ranked.clear();

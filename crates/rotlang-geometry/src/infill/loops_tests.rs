@@ -243,8 +243,11 @@ fn convex_ring(
         .collect()
 }
 
+/// A cut as bits: rings, segments, parameters and point.
+type CutBits = ([usize; 2], [usize; 2], [u64; 2], [u64; 2]);
+
 /// The cuts as bits, to compare two finders' to the bit.
-fn cut_bits(cuts: &[Cut]) -> Vec<([usize; 2], [usize; 2], [u64; 2], [u64; 2])> {
+fn cut_bits(cuts: &[Cut]) -> Vec<CutBits> {
     cuts.iter()
         .map(|c| {
             (
@@ -396,5 +399,51 @@ proptest! {
             }
         }
         prop_assert!(eroder.raws.iter().all(|r| r.mitres.len() == r.pts.len() || r.mitres.is_empty()));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Cuts placed by segment come in the order the library's sort leaves them: random
+    /// cuts on rings of random sizes, several on one segment, some at the same parameter
+    /// (left to the library's sort), parameters of either sign and zero's.
+    #[test]
+    fn cuts_placed_by_segment_are_sorted_cuts(
+        sizes in proptest::collection::vec(3usize..150, 1..10),
+        picks in proptest::collection::vec(
+            ((0usize..10, 0usize..150, -2i32..40), (0usize..10, 0usize..150, -2i32..40)),
+            0..40,
+        ),
+    ) {
+        let raws: Vec<Raw> = sizes
+            .iter()
+            .map(|&n| raw_ring(vec![Coord { x: 0.0, y: 0.0 }; n]))
+            .collect();
+        let side = |(r, s, t): (usize, usize, i32)| {
+            let r = r % sizes.len();
+            // Few parameters: ties happen; -0.0 and 0.0 told apart as `total_cmp` does.
+            let t = if t == -2 { -0.0 } else { f64::from(t) / 39.0 };
+            (r, s % sizes[r], t)
+        };
+        let cuts: Vec<Cut> = picks
+            .iter()
+            .map(|&(e, f)| {
+                let (e, f) = (side(e), side(f));
+                Cut { ring: [e.0, f.0], seg: [e.1, f.1], t: [e.2, f.2], at: Coord { x: 0.0, y: 0.0 } }
+            })
+            .collect();
+        let mut placed = Vec::new();
+        let mut scratch = (Vec::new(), Vec::new(), Vec::new());
+        // Twice on the same buffers: the heads left from the first must not matter.
+        for _ in 0..2 {
+            place_cuts(&raws, &cuts, &mut placed, &mut scratch);
+            let mut sorted = Vec::new();
+            library_order(&cuts, &mut sorted);
+            let bits = |h: &[(usize, usize, f64, usize)]| -> Vec<(usize, usize, u64, usize)> {
+                h.iter().map(|&(r, s, t, id)| (r, s, t.to_bits(), id)).collect()
+            };
+            prop_assert_eq!(bits(&placed), bits(&sorted));
+        }
     }
 }

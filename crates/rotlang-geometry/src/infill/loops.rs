@@ -276,7 +276,7 @@ impl Eroder {
                 }
             }
             for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
-                raw.shape(corners, &self.directions);
+                raw.shape(corners);
             }
             self.sized = true;
             self.sweep.edges.clear();
@@ -424,57 +424,38 @@ struct Raw {
     /// Reused by `fill`: where each sharp tip's three points start, and each tip's mitre
     /// (where its two moved edges cross).
     tips: Vec<(usize, Option<Coord>)>,
-    /// `centres` and `along` as the corners give them whatever the distance (made once
-    /// for the corners, `shape`; copied by `fill`, not worked out point by point), and
-    /// whether `centres` is still the first (no tip closed since: not copied again).
+    /// Where every corner is a mitre (a holed square's rings): each one's vertex, mitre
+    /// direction and its length's divisor, read in one tight pass, and its `centres` and
+    /// `along`, which do not depend on the distance (made once for the corners by
+    /// `shape`, copied by `fill`), and whether `centres` is still the first.
+    mitres: Vec<(Coord, Coord, f64)>,
     shape: (Vec<Option<Coord>>, Vec<Option<Coord>>),
     shaped: bool,
-    /// Where every corner is a mitre (a holed square's rings): each one's vertex, mitre
-    /// direction and its length's divisor, read in one tight pass.
-    mitres: Vec<(Coord, Coord, f64)>,
 }
 
 impl Raw {
-    /// `centres` and `along` for these corners (`shape`): each arc's chords' centre, and
-    /// the direction of the edge each corner's last point runs along to the next corner.
-    fn shape(&mut self, corners: &[Corner], directions: &[Coord]) {
+    /// For a ring whose corners are all mitres, the mitres and its `centres` and `along`
+    /// (`shape`: none, and the direction of each edge from its corner to the next), which
+    /// do not depend on the distance; nothing for another ring.
+    fn shape(&mut self, corners: &[Corner]) {
         self.shaped = false;
         self.mitres.clear();
+        let (centres, along) = &mut self.shape;
+        centres.clear();
+        along.clear();
         for corner in corners {
             match *corner {
                 Corner::Mitre { b, m, k } => self.mitres.push((b, m, k)),
                 _ => {
                     self.mitres.clear();
-                    break;
+                    return;
                 }
             }
         }
-        let (centres, along) = &mut self.shape;
-        centres.clear();
-        along.clear();
-        let vertex = |c: &Corner| match *c {
-            Corner::Mitre { b, .. } | Corner::Tip { b, .. } | Corner::Arc { b, .. } => b,
-        };
-        for (i, corner) in corners.iter().enumerate() {
-            let points = match *corner {
-                Corner::Mitre { .. } => {
-                    centres.push(None);
-                    1
-                }
-                Corner::Tip { .. } => {
-                    centres.extend([None, None, None]);
-                    3
-                }
-                Corner::Arc { b, ref inner, .. } => {
-                    centres.push(Some(b));
-                    centres.extend(directions[inner.clone()].iter().map(|_| Some(b)));
-                    centres.push(None);
-                    2 + inner.len()
-                }
-            };
-            let next = vertex(&corners[if i + 1 == corners.len() { 0 } else { i + 1 }]);
-            along.extend(std::iter::repeat_n(None, points - 1));
-            along.push(Some(next - vertex(corner)));
+        for (i, &(b, ..)) in self.mitres.iter().enumerate() {
+            let next = self.mitres[if i + 1 == self.mitres.len() { 0 } else { i + 1 }].0;
+            centres.push(None);
+            along.push(Some(next - b));
         }
     }
 
@@ -483,28 +464,34 @@ impl Raw {
         self.pts.clear();
         self.tips.clear();
         self.check = check;
-        if !self.shaped {
-            self.centres.clear();
-            self.centres.extend_from_slice(&self.shape.0);
-            self.shaped = true;
-        }
-        // Only where an edge may have run backwards (past the ring's safe distance): the
-        // segment from each corner's last point runs along the edge to the next corner.
         self.along.clear();
-        if check {
-            self.along.extend_from_slice(&self.shape.1);
-        }
         if !self.mitres.is_empty() && self.mitres.len() == corners.len() {
+            // Its points in one tight pass, its `centres` kept from the last distance
+            // (copied again only after a tip was closed in them).
+            if !self.shaped {
+                self.centres.clear();
+                self.centres.extend_from_slice(&self.shape.0);
+                self.shaped = true;
+            }
+            if check {
+                self.along.extend_from_slice(&self.shape.1);
+            }
             self.pts
                 .extend(self.mitres.iter().map(|&(b, m, k)| b + m * (d / k)));
             return;
         }
+        self.shaped = false;
+        self.centres.clear();
         for corner in corners {
             match *corner {
-                Corner::Mitre { b, m, k } => self.pts.push(b + m * (d / k)),
+                Corner::Mitre { b, m, k } => {
+                    self.pts.push(b + m * (d / k));
+                    self.centres.push(None);
+                }
                 Corner::Tip { b, nu, nv } => {
                     self.tips.push((self.pts.len(), None));
                     self.pts.extend([b + nu * d, b, b + nv * d]);
+                    self.centres.extend([None, None, None]);
                 }
                 Corner::Arc {
                     b,
@@ -513,11 +500,31 @@ impl Raw {
                     ref inner,
                 } => {
                     self.pts.push(b + nu * d);
+                    self.centres.push(Some(b));
                     for &w in &directions[inner.clone()] {
                         self.pts.push(b + w * d);
+                        self.centres.push(Some(b));
                     }
                     self.pts.push(b + nv * d);
+                    self.centres.push(None);
                 }
+            }
+        }
+        // Only where an edge may have run backwards (past the ring's safe distance): the
+        // segment from each corner's last point runs along the edge to the next corner.
+        if check {
+            let vertex = |c: &Corner| match *c {
+                Corner::Mitre { b, .. } | Corner::Tip { b, .. } | Corner::Arc { b, .. } => b,
+            };
+            for (i, corner) in corners.iter().enumerate() {
+                let points = match corner {
+                    Corner::Mitre { .. } => 1,
+                    Corner::Tip { .. } => 3,
+                    Corner::Arc { inner, .. } => 2 + inner.len(),
+                };
+                let next = vertex(&corners[if i + 1 == corners.len() { 0 } else { i + 1 }]);
+                self.along.extend(std::iter::repeat_n(None, points - 1));
+                self.along.push(Some(next - vertex(corner)));
             }
         }
         if close && !self.tips.is_empty() {

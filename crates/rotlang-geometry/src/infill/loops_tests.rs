@@ -206,3 +206,244 @@ fn runs_cover_each_ring_end_to_start() {
     let star = Eroder::new(&crate::infill::shapes::star(10.0, 4.5), 0.5);
     assert_eq!(star.boundary.runs.len(), 1);
 }
+
+/// A raw ring of these points, as `fill` leaves one (no arcs, every segment checked).
+fn raw_ring(pts: Vec<Coord>) -> Raw {
+    Raw {
+        along: vec![None; pts.len()],
+        centres: vec![None; pts.len()],
+        check: true,
+        pts,
+        tips: Vec::new(),
+        shape: (Vec::new(), Vec::new()),
+        shaped: true,
+        mitres: Vec::new(),
+    }
+}
+
+/// A convex ring: `radii` (near 1, so that it stays convex) times `size` about `at`,
+/// starting at `phase` of a turn.
+fn convex_ring(
+    radii: &[f64],
+    size: f64,
+    at: (f64, f64),
+    phase: f64,
+    clockwise: bool,
+) -> Vec<Coord> {
+    let n = radii.len();
+    (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * (i as f64 + phase) / n as f64;
+            let a = if clockwise { -a } else { a };
+            Coord {
+                x: at.0 + size * radii[i] * math::cos(a),
+                y: at.1 + size * radii[i] * math::sin(a),
+            }
+        })
+        .collect()
+}
+
+/// A cut as bits: rings, segments, parameters and point.
+type CutBits = ([usize; 2], [usize; 2], [u64; 2], [u64; 2]);
+
+/// The cuts as bits, to compare two finders' to the bit.
+fn cut_bits(cuts: &[Cut]) -> Vec<CutBits> {
+    cuts.iter()
+        .map(|c| {
+            (
+                c.ring,
+                c.seg,
+                [c.t[0].to_bits(), c.t[1].to_bits()],
+                [c.at.x.to_bits(), c.at.y.to_bits()],
+            )
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Convex rings that meet (an outline's offset and its holes' grown ones, holes
+    /// crossing it and one another, some sharing a corner's height or width): the pairs'
+    /// finder gives the sweep's cuts to the bit, in its order, and its tangencies.
+    #[test]
+    fn convex_pairs_cut_as_the_sweep(
+        outline in proptest::collection::vec(0.97f64..1.0, 3..24),
+        holes in proptest::collection::vec(
+            (
+                proptest::collection::vec(0.97f64..1.0, 3..70),
+                0.05f64..1.2,
+                (-1.2f64..1.2, -1.2f64..1.2),
+                0.0f64..1.0,
+            ),
+            1..4,
+        ),
+        size in 1.0f64..100.0,
+        phase in 0.0f64..1.0,
+        snap in proptest::bool::ANY,
+    ) {
+        let mut raws = vec![raw_ring(convex_ring(&outline, size, (0.0, 0.0), phase, false))];
+        for (radii, r, (x, y), phase) in &holes {
+            let mut pts = convex_ring(radii, size * r, (x * size, y * size), *phase, true);
+            if snap {
+                // A hole's point on the outline's first point's height: touching boxes.
+                pts[0].y = raws[0].pts[0].y;
+            }
+            raws.push(raw_ring(pts));
+        }
+        let mut turns = Vec::new();
+        if apart(&raws, &mut turns) == Layout::Convex {
+            let mut scratch = (Vec::new(), Vec::new(), Vec::new());
+            let (mut fast, mut swept) = (Vec::new(), Vec::new());
+            let found = convex_crossings(&raws, &turns, &mut scratch, &mut fast);
+            let sweep = crossings(&raws, &mut Sweep::default(), &mut swept);
+            prop_assert_eq!(found, Some(sweep));
+            if sweep {
+                prop_assert_eq!(cut_bits(&fast), cut_bits(&swept));
+            }
+        }
+    }
+}
+
+/// The pairs' finder is asked where a hole's offset crosses the outline's: the holed
+/// square's loops past the hole meeting the outline get their cuts from it.
+#[test]
+fn a_hole_crossing_the_outline_is_cut_by_pairs() {
+    let region = crate::infill::shapes::holed_square(40.0, 10.0);
+    let mut eroder = Eroder::new(&region, 0.5);
+    let rings = eroder.rings(5.2).expect("cut, not declined");
+    assert_eq!(apart(&eroder.raws, &mut eroder.turns), Layout::Convex);
+    assert_eq!(eroder.cuts.len(), 8);
+    // Four corner pieces, each made of two pieces of the outline's offset and one of the
+    // hole's.
+    assert_eq!(rings.len(), 4);
+    let mut swept = Vec::new();
+    assert!(crossings(&eroder.raws, &mut Sweep::default(), &mut swept));
+    assert_eq!(cut_bits(&eroder.cuts), cut_bits(&swept));
+}
+
+/// A region reset to is prepared again unless it is the last one to the bit: one
+/// coordinate a bit off, the same points with a ring more or less, an outline read as a
+/// hole, another arc step: each time the rings a fresh eroder gives.
+#[test]
+fn a_reset_to_a_changed_region_is_prepared_again() {
+    let holed = crate::infill::shapes::holed_square(40.0, 10.0);
+    let outline = holed.0[0].exterior().clone();
+    let hole = holed.0[0].interiors()[0].clone();
+    let mut nudged = holed.clone();
+    nudged.0[0].exterior_mut(|ring| ring.0[1].x = ring.0[1].x.next_up());
+    let no_hole = MultiPolygon::new(vec![Polygon::new(outline.clone(), vec![])]);
+    // The hole's points as a second polygon's outline (turned to go round the right way
+    // by the preparation): the same points in another structure.
+    let two = MultiPolygon::new(vec![
+        Polygon::new(outline.clone(), vec![]),
+        Polygon::new(hole.clone(), vec![]),
+    ]);
+    // A star's reflex corners are arcs: their steps follow the arc step.
+    let star = crate::infill::shapes::star(10.0, 4.5);
+    let cases: Vec<(&MultiPolygon<f64>, f64)> = vec![
+        (&star, 0.5),
+        (&star, 0.2),
+        (&star, 0.5),
+        (&holed, 0.5),
+        (&holed, 0.5),
+        (&nudged, 0.5),
+        (&holed, 0.5),
+        (&no_hole, 0.5),
+        (&holed, 0.5),
+        (&two, 0.5),
+        (&holed, 0.3),
+        (&holed, 0.5),
+    ];
+    let mut eroder = Eroder::new(&no_hole, 0.5);
+    for (region, arc) in cases {
+        eroder.reset(region, arc);
+        for d in [1.0, 2.0, 5.2, 9.0] {
+            let fresh = Eroder::new(region, arc).rings(d);
+            assert_eq!(eroder.rings(d), fresh, "{d}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// A ring whose corners are all mitres is filled from its mitres in one pass: the
+    /// same points to the bit as the corners read one by one, and the same rings, on
+    /// convex outlines with and without a hole (their corners mitres) and star-like ones
+    /// (tips and arcs: the general pass).
+    #[test]
+    fn mitres_fill_as_the_corners(
+        radii in proptest::collection::vec(0.95f64..1.0, 3..40),
+        hole in proptest::collection::vec(0.8f64..1.0, 0..70),
+        size in 1.0f64..200.0,
+        depths in proptest::collection::vec(0.001f64..0.8, 1..6),
+    ) {
+        let region = region(&radii, size, &hole);
+        let mut eroder = Eroder::new(&region, 0.5);
+        let mut general = Eroder::new(&region, 0.5);
+        for depth in depths {
+            let d = depth * size;
+            let rings = eroder.rings(d);
+            // The general pass: no ring's mitres listed.
+            let _ = general.rings(d);
+            for raw in &mut general.raws {
+                raw.mitres.clear();
+            }
+            prop_assert_eq!(general.rings(d), rings, "by {}", d);
+            for (fast, slow) in eroder.raws.iter().zip(&general.raws) {
+                let bits = |pts: &[Coord]| -> Vec<(u64, u64)> {
+                    pts.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect()
+                };
+                prop_assert_eq!(bits(&fast.pts), bits(&slow.pts));
+            }
+        }
+        prop_assert!(eroder.raws.iter().all(|r| r.mitres.len() == r.pts.len() || r.mitres.is_empty()));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Cuts placed by segment come in the order the library's sort leaves them: random
+    /// cuts on rings of random sizes, several on one segment, some at the same parameter
+    /// (left to the library's sort), parameters of either sign and zero's.
+    #[test]
+    fn cuts_placed_by_segment_are_sorted_cuts(
+        sizes in proptest::collection::vec(3usize..150, 1..10),
+        picks in proptest::collection::vec(
+            ((0usize..10, 0usize..150, -2i32..40), (0usize..10, 0usize..150, -2i32..40)),
+            0..40,
+        ),
+    ) {
+        let raws: Vec<Raw> = sizes
+            .iter()
+            .map(|&n| raw_ring(vec![Coord { x: 0.0, y: 0.0 }; n]))
+            .collect();
+        let side = |(r, s, t): (usize, usize, i32)| {
+            let r = r % sizes.len();
+            // Few parameters: ties happen; -0.0 and 0.0 told apart as `total_cmp` does.
+            let t = if t == -2 { -0.0 } else { f64::from(t) / 39.0 };
+            (r, s % sizes[r], t)
+        };
+        let cuts: Vec<Cut> = picks
+            .iter()
+            .map(|&(e, f)| {
+                let (e, f) = (side(e), side(f));
+                Cut { ring: [e.0, f.0], seg: [e.1, f.1], t: [e.2, f.2], at: Coord { x: 0.0, y: 0.0 } }
+            })
+            .collect();
+        let mut placed = Vec::new();
+        let mut scratch = (Vec::new(), Vec::new(), Vec::new());
+        // Twice on the same buffers: the heads left from the first must not matter.
+        for _ in 0..2 {
+            place_cuts(&raws, &cuts, &mut placed, &mut scratch);
+            let mut sorted = Vec::new();
+            library_order(&cuts, &mut sorted);
+            let bits = |h: &[(usize, usize, f64, usize)]| -> Vec<(usize, usize, u64, usize)> {
+                h.iter().map(|&(r, s, t, id)| (r, s, t.to_bits(), id)).collect()
+            };
+            prop_assert_eq!(bits(&placed), bits(&sorted));
+        }
+    }
+}

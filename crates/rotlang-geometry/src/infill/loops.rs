@@ -70,67 +70,6 @@ pub(crate) struct Eroder {
     /// Whether sharp tips are closed at their mitre (`Raw::close_tips`); the tests turn
     /// it off to compare with the tips cut.
     close: bool,
-    /// The region and arc step the eroder was last prepared for.
-    prepared: Prepared,
-}
-
-/// A region's points and rings (their lengths, each outline's marked) and an arc step, as
-/// bits: a region compared with it to the bit is prepared already.
-#[derive(Default)]
-struct Prepared {
-    points: Vec<(u64, u64)>,
-    rings: Vec<(usize, bool)>,
-    arc: u64,
-    /// Whether it holds a region (not before the first is prepared).
-    valid: bool,
-}
-
-impl Prepared {
-    /// The rings of a region, each with whether it is an outline.
-    fn rings(region: &MultiPolygon<f64>) -> impl Iterator<Item = (&[Coord], bool)> {
-        region.0.iter().flat_map(|polygon| {
-            std::iter::once((&polygon.exterior().0[..], true))
-                .chain(polygon.interiors().iter().map(|r| (&r.0[..], false)))
-        })
-    }
-
-    fn same(&self, region: &MultiPolygon<f64>, arc: f64) -> bool {
-        if !self.valid || self.arc != arc.to_bits() {
-            return false;
-        }
-        let mut at = 0;
-        let mut count = 0;
-        for (ring, outline) in Prepared::rings(region) {
-            if self.rings.get(count) != Some(&(ring.len(), outline)) {
-                return false;
-            }
-            count += 1;
-            let Some(stored) = self.points.get(at..at + ring.len()) else {
-                return false;
-            };
-            if !ring
-                .iter()
-                .zip(stored)
-                .all(|(c, &(x, y))| c.x.to_bits() == x && c.y.to_bits() == y)
-            {
-                return false;
-            }
-            at += ring.len();
-        }
-        count == self.rings.len()
-    }
-
-    fn keep(&mut self, region: &MultiPolygon<f64>, arc: f64) {
-        self.points.clear();
-        self.rings.clear();
-        self.arc = arc.to_bits();
-        for (ring, outline) in Prepared::rings(region) {
-            self.rings.push((ring.len(), outline));
-            self.points
-                .extend(ring.iter().map(|c| (c.x.to_bits(), c.y.to_bits())));
-        }
-        self.valid = true;
-    }
 }
 
 /// A corner of a ring, as its raw offset needs it.
@@ -170,7 +109,6 @@ impl Eroder {
             pieces: Vec::new(),
             points: Vec::new(),
             close: true,
-            prepared: Prepared::default(),
         };
         eroder.reset(region, arc);
         eroder
@@ -179,12 +117,6 @@ impl Eroder {
     /// Prepared for another region (the next layer's), its buffers kept: an eroder made
     /// afresh for each layer allocated some twenty vectors and grew them by doubling.
     pub(crate) fn reset(&mut self, region: &MultiPolygon<f64>, arc: f64) {
-        // The same region as the last one's (consecutive layers of a part most often are),
-        // bit for bit: everything below would come out the same.
-        if self.prepared.same(region, arc) {
-            return;
-        }
-        self.prepared.keep(region, arc);
         let boundary = &mut self.boundary;
         boundary.sides.clear();
         boundary.runs.clear();

@@ -322,23 +322,6 @@ fn a_hole_crossing_the_outline_is_cut_by_pairs() {
     assert_eq!(cut_bits(&eroder.cuts), cut_bits(&swept));
 }
 
-#[test]
-fn dump_star() {
-    let region = crate::infill::shapes::star(10.0, 4.5);
-    let mut eroder = Eroder::new(&region, 0.5);
-    for d in [0.7, 1.2, 1.7, 2.2, 2.7, 3.2, 3.7, 4.7] {
-        let rings = eroder.rings(d);
-        let raw = &eroder.raws[0];
-        eprintln!("d {d} n {} cuts {} rings {:?}", raw.pts.len(), eroder.cuts.len(), rings.as_ref().map(|r| r.iter().map(|x| x.len()).collect::<Vec<_>>()));
-        for (i, p) in raw.pts.iter().enumerate() {
-            eprintln!("  {i} {:.3} {:.3} centre {} rev {}", p.x, p.y, raw.centres[i].is_some(), raw.reversed(i));
-        }
-        for c in &eroder.cuts {
-            eprintln!("  cut segs {:?} t {:.3} {:.3} at {:.3} {:.3}", c.seg, c.t[0], c.t[1], c.at.x, c.at.y);
-        }
-    }
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 

@@ -1979,3 +1979,46 @@ proptest! {
         prop_assert_eq!(region::convex_ring(&ring), region::convex_ring_copied(&ring));
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Simplifying with the last kept vertex carried (nothing written before the first
+    /// vertex dropped, a line decided at once) is simplifying vertex by vertex: paths of
+    /// 0 to 40 vertices, steps from nothing to past the limit (some exactly at it), repeated
+    /// points, a NaN.
+    #[test]
+    fn simplify_carried_is_simplify_each(
+        steps in prop::collection::vec(
+            (
+                prop::sample::select(vec![0.0, 0.01, 0.125, 0.25, 0.26, 0.5, 3.0]),
+                prop_oneof![
+                    prop::sample::select(vec![(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)]),
+                    (0.0f64..TAU).prop_map(|a| (a.cos(), a.sin())),
+                ],
+            ),
+            0..40,
+        ),
+        nan_at in prop::option::of(0usize..40),
+        min in prop::sample::select(vec![0.0, 0.25, 0.5]),
+    ) {
+        // Axis steps of a dyadic length from the origin land exactly `min` away at times.
+        let mut at = Coord { x: 0.0, y: 0.0 };
+        let mut path: Vec<Coord> = steps
+            .iter()
+            .map(|&(r, (c, s))| {
+                at = at + Coord { x: r * c, y: r * s };
+                at
+            })
+            .collect();
+        if let Some(i) = nan_at.filter(|&i| i < path.len()) {
+            path[i].x = f64::NAN;
+        }
+        let (mut carried, mut each) = (path.clone(), path);
+        let kept = order::simplify(&mut carried, min);
+        prop_assert_eq!(kept, order::simplify_each(&mut each, min));
+        // By bits: NaN coordinates compare unequal.
+        let bits = |p: &[Coord]| p.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect::<Vec<_>>();
+        prop_assert_eq!(bits(&carried), bits(&each));
+    }
+}

@@ -117,7 +117,8 @@ pub(crate) fn order(
     let mut ordered = ordered;
     for path in ordered.drain(..) {
         if let (Some(l), Some(&first)) = (last, path.first()) {
-            let route = router.route(l, first);
+            // A closed path (a loop) ends where it starts: the next move starts there.
+            let route = router.route_on(l, first, path.last() == Some(&first));
             toolpaths.travel += super::travel::length(&route);
             toolpaths.travels.push(LineString::new(route));
         }

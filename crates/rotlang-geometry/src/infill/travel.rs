@@ -886,8 +886,10 @@ impl<'a> Router<'a> {
     /// `inside`, telling a point on an edge (`OnEdge`) from one inside by the even-odd
     /// test (`In`: the parity is then exact, the point being farther than a nanometre
     /// from every edge that could sway it).
+    #[inline(always)]
     fn locate(&self, p: Coord) -> Place {
         let mut inside = false;
+        let band = (p.y - 2e-6, p.y + 2e-6);
         for (r, ring) in self.rings.iter().enumerate() {
             let (lo, hi) = self.ring_box(r);
             if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
@@ -916,6 +918,10 @@ impl<'a> Router<'a> {
                         for i in edges {
                             let a = b;
                             b = ring[next(i, n)];
+                            // As below: `on_edge` cannot hold.
+                            if (a.y > band.1 && b.y > band.1) || (a.y < band.0 && b.y < band.0) {
+                                continue;
+                            }
                             if on_edge(a, b, p) {
                                 return Place::OnEdge;
                             }
@@ -925,6 +931,13 @@ impl<'a> Router<'a> {
                         for i in edges {
                             let a = b;
                             b = ring[next(i, n)];
+                            // Both ends more than two nanometres above `p`, or below:
+                            // neither test can hold (the ray's edges reach its height;
+                            // `on_edge`'s are within a nanometre of it, roundings far
+                            // below the one left over).
+                            if (a.y > band.1 && b.y > band.1) || (a.y < band.0 && b.y < band.0) {
+                                continue;
+                            }
                             if super::clip::ray_crosses(a, b, p) {
                                 inside = !inside;
                             }
@@ -1050,6 +1063,7 @@ impl<'a> Router<'a> {
 
     /// The vertices of ring `r` from edge `i0` to edge `i1`, forward (the vertices after
     /// `i0`'s start up to `i1`'s) or back (from `i0`'s start down to `i1`'s end).
+    #[inline(never)]
     fn emit(&self, r: usize, i0: usize, i1: usize, forward: bool, walk: &mut Vec<Coord>) {
         let ring = &self.rings[r];
         let n = ring.len();

@@ -593,19 +593,13 @@ impl<'a> Router<'a> {
             d.x * vp.y - d.y * vp.x
         };
         let mut clear = TRACK;
-        // Whether the lines of the move and of edge `e` (from `a`, `denom` their cross
-        // product) meet clearly beyond an end of either.
-        let apart = |e: Coord, ap: Coord, denom: f64| {
-            let e2 = e.x * e.x + e.y * e.y;
-            // Clearly not parallel (a NaN is not).
-            let crossing = denom * denom > 1e-10 * d2 * e2;
-            if !crossing {
-                return false;
-            }
-            let u = (ap.x * d.y - ap.y * d.x) / denom;
-            let t = (ap.x * e.y - ap.y * e.x) / denom;
+        // Whether the lines of the move and of edge `e` (`denom` their cross product)
+        // meet clearly beyond an end of either (`u` along the edge, `t` along the move):
+        // clearly not parallel (a NaN is not), then a millionth past an end.
+        let apart = |e: Coord, denom: f64, u: f64, t: f64| {
             let beyond = |f: f64| f < -1e-6 * (1.0 + f.abs()) || f > 1.0 + 1e-6 * (1.0 + f.abs());
-            beyond(u) || beyond(t)
+            let crossing = denom * denom > 1e-10 * d2 * (e.x * e.x + e.y * e.y);
+            crossing && (beyond(u) || beyond(t))
         };
         for (edges, a, b) in self.chunks(r) {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
@@ -624,10 +618,8 @@ impl<'a> Router<'a> {
                 }
                 let e = b - a;
                 let denom = d.x * e.y - d.y * e.x;
-                if TRACK && clear && !apart(e, a - p, denom) {
-                    clear = false;
-                }
                 if denom == 0.0 {
+                    clear = false;
                     // Parallel: no crossing, but kept (t NaN, `near`) as an edge the
                     // move may run along (`along_edge`); a move of no length (every
                     // edge "parallel") keeps none.
@@ -663,9 +655,16 @@ impl<'a> Router<'a> {
                 // meets the edge's, before the second division.
                 let u = (ap.x * d.y - ap.y * d.x) / denom;
                 if !self.divide_first && !(0.0..1.0).contains(&u) {
+                    if TRACK && clear {
+                        clear = apart(e, denom, u, (ap.x * e.y - ap.y * e.x) / denom);
+                    }
                     continue;
                 }
                 let t = (ap.x * e.y - ap.y * e.x) / denom;
+                if TRACK && clear {
+                    // A crossing kept below is not apart (its `t` within a billionth).
+                    clear = apart(e, denom, u, t);
+                }
                 if (0.0..1.0).contains(&u) && (-1e-9..=1.0 + 1e-9).contains(&t) {
                     out.push((
                         t,

@@ -1089,30 +1089,32 @@ impl<'a> Router<'a> {
 
     /// Which way round ring `r` is the shorter from crossing `c0` to crossing `c1` (on
     /// two different edges), when that is certain without the ring's cumulative lengths:
-    /// the arc of fewer edges is measured, and is the shorter where it is
-    /// less than half the ring's box's longer side (the perimeter is at least twice that:
-    /// the ring runs to both ends of the box and back) by more than any rounding of
-    /// `walk`'s sums, and longer than that rounding (no wrap). `Some(true)`: forward.
-    /// `None` where in doubt: `walk` measures.
+    /// the arc of fewer edges is measured, and is the shorter where it is less than the
+    /// ring's box's diagonal (the perimeter is at least twice that) by more than any
+    /// rounding of `walk`'s sums, and longer than that rounding (no wrap). `Some(true)`:
+    /// forward. `None` where in doubt: `walk` measures.
     fn shorter_way(&self, r: usize, c0: Cut, c1: Cut) -> Option<bool> {
         let ring = &self.rings[r];
         let n = ring.len();
         let (i0, i1) = (c0.edge, c1.edge);
         let (lo, hi) = self.ring_box(r);
         let size = hi - lo;
-        // At most half the perimeter (less a rounding of the sides).
-        let half = size.x.max(size.y) * (1.0 - 1e-12);
+        // The box's diagonal, at most half the perimeter (less a rounding): a closed ring
+        // runs across its box and back both ways, at least twice its width in x and its
+        // height in y, so its length is at least twice the diagonal.
+        let diagonal = (size.x * size.x + size.y * size.y).sqrt();
+        let half = diagonal * (1.0 - 1e-12);
         // `walk`'s sums err by about n ulps of the perimeter, at most n edges each no
         // longer than the box's diagonal; this arc's by n ulps of itself: both far below.
         let k = n as f64 + 2.0;
-        let margin = 1e-14 * k * k * (size.x * size.x + size.y * size.y).sqrt();
+        let margin = 1e-14 * k * k * diagonal;
         let bound = |arc: f64| arc * (1.0 + 1e-14 * k) + margin;
         let length = |i: usize| {
             let e = ring[next(i, n)] - ring[i];
             (e.x * e.x + e.y * e.y).sqrt()
         };
-        // The arc one way, summed edge by edge, given up (`None`) once it reaches half the
-        // box's longer side.
+        // The arc one way, summed edge by edge, given up (`None`) once it reaches the
+        // box's diagonal.
         let arc = |forward: bool| {
             let mut arc;
             if forward {

@@ -20,6 +20,60 @@ fn dist(a: Coord, b: Coord) -> f64 {
 /// the whole path is shorter than `min` (a sliver at a corner: nothing to print).
 /// A dropped vertex moves the path by less than `min`.
 pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
+    let n = path.len();
+    let Some(&end) = path.last() else {
+        return false;
+    };
+    let min2 = min * min;
+    if n == 2 {
+        // A line: kept whole, or cut down to its start when too short.
+        let long = dist2(path[0], end) >= min2;
+        if !long {
+            path.truncate(1);
+        }
+        return long;
+    }
+    // The last vertex kept is carried in a register, not read back. Until a first vertex
+    // is dropped (most paths drop none) every vertex stays where it is: nothing written.
+    let mut last = path[0];
+    let mut i = 1;
+    while i + 1 < n {
+        let c = path[i];
+        // Kept as `simplify_each` keeps it: at least `min` away (a NaN is dropped).
+        if dist2(last, c) >= min2 {
+            last = c;
+            i += 1;
+        } else {
+            break;
+        }
+    }
+    // From the first vertex dropped, the ones kept move down.
+    let mut kept = i;
+    for j in i + 1..n.saturating_sub(1) {
+        let c = path[j];
+        if dist2(last, c) >= min2 {
+            path[kept] = c;
+            kept += 1;
+            last = c;
+        }
+    }
+    // The kept vertices too near the end give way to it (`last` is the last kept).
+    let mut d = dist2(last, end);
+    while kept > 1 && d < min2 {
+        kept -= 1;
+        d = dist2(path[kept - 1], end);
+    }
+    path.truncate(kept);
+    if d >= min2 {
+        path.push(end);
+    }
+    path.len() >= 2
+}
+
+/// `simplify` as it was: each vertex measured against the last kept one read back
+/// (tests compare the two).
+#[cfg(test)]
+pub(crate) fn simplify_each(path: &mut Vec<Coord>, min: f64) -> bool {
     let Some(&end) = path.last() else {
         return false;
     };
@@ -63,7 +117,8 @@ pub(crate) fn order(
     let mut ordered = ordered;
     for path in ordered.drain(..) {
         if let (Some(l), Some(&first)) = (last, path.first()) {
-            let route = router.route(l, first);
+            // A closed path (a loop) ends where it starts: the next move starts there.
+            let route = router.route_on(l, first, path.last() == Some(&first));
             toolpaths.travel += super::travel::length(&route);
             toolpaths.travels.push(LineString::new(route));
         }

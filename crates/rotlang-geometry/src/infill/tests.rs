@@ -1979,3 +1979,172 @@ proptest! {
         prop_assert_eq!(region::convex_ring(&ring), region::convex_ring_copied(&ring));
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Simplifying with the last kept vertex carried (nothing written before the first
+    /// vertex dropped, a line decided at once) is simplifying vertex by vertex: paths of
+    /// 0 to 40 vertices, steps from nothing to past the limit (some exactly at it), repeated
+    /// points, a NaN.
+    #[test]
+    fn simplify_carried_is_simplify_each(
+        steps in prop::collection::vec(
+            (
+                prop::sample::select(vec![0.0, 0.01, 0.125, 0.25, 0.26, 0.5, 3.0]),
+                prop_oneof![
+                    prop::sample::select(vec![(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)]),
+                    (0.0f64..TAU).prop_map(|a| (a.cos(), a.sin())),
+                ],
+            ),
+            0..40,
+        ),
+        nan_at in prop::option::of(0usize..40),
+        min in prop::sample::select(vec![0.0, 0.25, 0.5]),
+    ) {
+        // Axis steps of a dyadic length from the origin land exactly `min` away at times.
+        let mut at = Coord { x: 0.0, y: 0.0 };
+        let mut path: Vec<Coord> = steps
+            .iter()
+            .map(|&(r, (c, s))| {
+                at = at + Coord { x: r * c, y: r * s };
+                at
+            })
+            .collect();
+        if let Some(i) = nan_at.filter(|&i| i < path.len()) {
+            path[i].x = f64::NAN;
+        }
+        let (mut carried, mut each) = (path.clone(), path);
+        let kept = order::simplify(&mut carried, min);
+        prop_assert_eq!(kept, order::simplify_each(&mut each, min));
+        // By bits: NaN coordinates compare unequal.
+        let bits = |p: &[Coord]| p.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect::<Vec<_>>();
+        prop_assert_eq!(bits(&carried), bits(&each));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// A walk whose way round is taken from the arc of fewer edges (where that is
+    /// certain) goes the way the ring's cumulative lengths give: moves between line ends
+    /// on edges, vertices and points of the box, each on a fresh router (the first walk
+    /// of a layer is the one measured by its arc), on holed star-like regions and on
+    /// the star, the L (a notch's short arc edges) and a long thin L (arcs near half its
+    /// perimeter).
+    #[test]
+    fn ways_round_by_the_arc_are_the_measured_ways(
+        outer in prop::collection::vec(4.0f64..15.0, 3..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        named in 0usize..5,
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3, 0u8..3), 1..24),
+    ) {
+        use geo::MapCoords;
+        let shape = match named {
+            0 => shapes::star(10.0, 4.5),
+            1 => shapes::l_shape(20.0),
+            // A long thin L: arcs near half its perimeter, about its longer side.
+            2 => shapes::l_shape(20.0).map_coords(|c| Coord { x: 3.0 * c.x, y: 0.25 * c.y }),
+            _ => holed_radial(&outer, &holes, turn, 2.2),
+        };
+        let Ok(region) = Region::new(&shape, W) else {
+            return Ok(());
+        };
+        let rings = region.rings();
+        let ends = MoveEnds::new(rings);
+        for (a, b, ka, kb) in moves {
+            let (p, q) = (ends.point(a, ka), ends.point(b, kb));
+            for (from, to) in [(p, q), (q, p)] {
+                let bounded = travel::Router::new(rings).route(from, to);
+                let measured = travel::Router::new(rings).measuring_ways().route(from, to);
+                prop_assert_eq!(bounded, measured);
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Moves each starting where the last ended (closed loops' travel), routed by a
+    /// router that knows the last end found inside and on no edge, so that a move from
+    /// there touching no edge is inside without the even-odd test, are the routes of a
+    /// router testing every middle: chains through points of the box (most inside, some
+    /// in holes or outside), line ends on edges, vertices and points a tenth of a
+    /// nanometre off an edge, on holed star-like regions and on the holed square, square
+    /// loops' corners on its diagonals included.
+    #[test]
+    fn moves_from_a_known_inside_end_are_the_tested_routes(
+        outer in prop::collection::vec(4.0f64..15.0, 3..40),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 0..3),
+        turn in 0.0f64..TAU,
+        named in 0usize..3,
+        points in prop::collection::vec(((0usize..1000, 0.0f64..1.0), 0u8..6), 2..32),
+    ) {
+        let shape = match named {
+            0 => shapes::holed_square(40.0, 10.0),
+            _ => holed_radial(&outer, &holes, turn, 2.2),
+        };
+        let Ok(region) = Region::new(&shape, W) else {
+            return Ok(());
+        };
+        let rings = region.rings();
+        let ends = MoveEnds::new(rings);
+        let point = |(at, kind): ((usize, f64), u8)| match kind {
+            // A point of the box's diagonal (where a square's loops turn).
+            3 => {
+                let (lo, hi) = (ends.point((0, 0.0), 2), ends.point((1000, 1.0), 2));
+                lo + (hi - lo) * at.1
+            }
+            // A point of one of two edges moved 0.8 nm off it, either
+            // side: moves along an edge just inside or outside, their middles on it.
+            4 | 5 => {
+                let (a, b) = ends.edges[at.0 % 2];
+                let e = b - a;
+                let normal = Coord { x: -e.y, y: e.x } / (e.x * e.x + e.y * e.y).sqrt();
+                let off = if kind == 4 { 8e-7 } else { -8e-7 };
+                a + e * at.1 + normal * off
+            }
+            _ => ends.point(at, kind),
+        };
+        let chained = travel::Router::new(rings);
+        let tested = travel::Router::new(rings).unchained();
+        for pair in points.windows(2) {
+            let (p, q) = (point(pair[0]), point(pair[1]));
+            prop_assert_eq!(chained.route_on(p, q, true), tested.route(p, q));
+        }
+    }
+}
+
+/// A move along the holed square's hole 0.8 nm inside the hole (its middle on the
+/// edge, within a nanometre: inside, for the even-odd test) does not make its end a
+/// point known inside: the move from there across the hole (touching no edge) is walked
+/// round it, as the even-odd test of its middle finds it outside the region.
+#[test]
+fn a_middle_on_an_edge_does_not_make_its_end_inside() {
+    let region = Region::new(&shapes::holed_square(40.0, 10.0), W).unwrap();
+    let rings = region.rings();
+    let hole = &rings[1];
+    let (a, b) = (hole[0], hole[1]);
+    let e = b - a;
+    let along = e / (e.x * e.x + e.y * e.y).sqrt();
+    // Into the hole: towards its centre, the origin.
+    let mut into = Coord {
+        x: -along.y,
+        y: along.x,
+    };
+    if into.x * (a + b).x + into.y * (a + b).y > 0.0 {
+        into = -into;
+    }
+    let (p1, p2) = (a + e * 0.2 + into * 8e-7, a + e * 0.5 + into * 8e-7);
+    // 2 mm on, a little into the hole: past the next edges, clear of them all.
+    let p3 = p2 + (along + into * 0.3) * 2.0;
+    let chained = travel::Router::new(rings);
+    let tested = travel::Router::new(rings).unchained();
+    assert_eq!(chained.route_on(p1, p2, true), vec![p1, p2]);
+    let walked = tested.route(p2, p3);
+    assert!(walked.len() > 2, "{walked:?}");
+    assert_eq!(chained.route_on(p2, p3, true), walked);
+}

@@ -26,6 +26,10 @@ const CHUNK: usize = 8;
 /// Up to this many edges in all, a region's chunks hold half as many.
 const SMALL: usize = 32;
 
+/// From this many edges a ring's walk takes its way round from an arc where it can
+/// (`shorter_way`): below, measuring the whole ring costs about as much.
+const MEASURED: usize = 16;
+
 /// Where a move crosses a ring.
 #[derive(Clone, Copy, Debug)]
 struct Cut {
@@ -80,6 +84,27 @@ pub(crate) struct Router<'a> {
     /// A billionth of a millimetre per millimetre of the rings' largest coordinate (the
     /// chunks' slack): the scale of `hits`' side test.
     unit: f64,
+    /// Whether a walk's way round is taken from the arc the fewer edges span where that
+    /// is certain (`shorter_way`; off in tests, for the cumulative lengths' answer).
+    bound_ways: bool,
+    /// Whether moves are told apart from every edge (`hits`), so that one touching none
+    /// from `interior` is inside without the even-odd test (off in tests).
+    chain: bool,
+    /// The end of the last move found inside by the even-odd test of its middle (not on
+    /// an edge) and touching no edge: a point inside the region, on no edge. The next
+    /// move from there (a closed loop's, which ends where it starts) touching no edge is
+    /// inside too.
+    interior: std::cell::Cell<Option<Coord>>,
+}
+
+/// Where `locate` finds a point.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Place {
+    /// Within a nanometre of an edge (inside, for `inside`).
+    OnEdge,
+    /// Inside by the even-odd test, on no edge.
+    In,
+    Out,
 }
 
 impl<'a> Router<'a> {
@@ -174,6 +199,9 @@ impl<'a> Router<'a> {
             sides: true,
             reuse: true,
             unit: slack,
+            bound_ways: true,
+            chain: true,
+            interior: std::cell::Cell::new(None),
         }
     }
 
@@ -197,6 +225,20 @@ impl<'a> Router<'a> {
     #[cfg(test)]
     pub(crate) fn testing_every_middle(mut self) -> Router<'a> {
         self.reuse = false;
+        self
+    }
+
+    /// The same router testing every move's middle, wherever it starts.
+    #[cfg(test)]
+    pub(crate) fn unchained(mut self) -> Router<'a> {
+        self.chain = false;
+        self
+    }
+
+    /// The same router deciding every walk's way round by the ring's cumulative lengths.
+    #[cfg(test)]
+    pub(crate) fn measuring_ways(mut self) -> Router<'a> {
+        self.bound_ways = false;
         self
     }
 
@@ -235,7 +277,7 @@ impl<'a> Router<'a> {
     ) -> Vec<(u64, usize, usize, u64, bool)> {
         let mut out = Vec::new();
         for r in 0..self.rings.len() {
-            self.hits(r, p, q, &mut out);
+            let _ = self.hits::<false>(r, p, q, &mut out);
         }
         out.iter()
             .map(|(t, c)| (t.to_bits(), c.ring, c.edge, c.u.to_bits(), c.near))
@@ -504,7 +546,21 @@ impl<'a> Router<'a> {
     /// Where a move from `p` to `q` crosses ring `r`: the fraction along the move, and
     /// where on the ring (the edge and the fraction along it). Chunks whose box the
     /// move's box misses are skipped.
-    fn hits(&self, r: usize, p: Coord, q: Coord, out: &mut Vec<(f64, Cut)>) {
+    ///
+    /// Returns whether the move certainly touches no edge of the ring (`Clear`): every
+    /// edge passed by its chunk's box or by its ends' sides, or found meeting the move's
+    /// line clearly (a hundred-thousandth of a radian or more) beyond an end of the move
+    /// or of the edge (a millionth of either's length, far above the roundings). Only
+    /// worked out when `TRACK` asks for it (else `false`; a separate copy of the loop, so
+    /// that moves not tracked pay nothing for it).
+    #[inline(never)]
+    fn hits<const TRACK: bool>(
+        &self,
+        r: usize,
+        p: Coord,
+        q: Coord,
+        out: &mut Vec<(f64, Cut)>,
+    ) -> bool {
         let ring = &self.rings[r];
         let n = ring.len();
         let d = q - p;
@@ -536,6 +592,15 @@ impl<'a> Router<'a> {
             let vp = v - p;
             d.x * vp.y - d.y * vp.x
         };
+        let mut clear = TRACK;
+        // Whether the lines of the move and of edge `e` (`denom` their cross product)
+        // meet clearly beyond an end of either (`u` along the edge, `t` along the move):
+        // clearly not parallel (a NaN is not), then a millionth past an end.
+        let apart = |e: Coord, denom: f64, u: f64, t: f64| {
+            let beyond = |f: f64| f < -1e-6 * (1.0 + f.abs()) || f > 1.0 + 1e-6 * (1.0 + f.abs());
+            let crossing = denom * denom > 1e-10 * d2 * (e.x * e.x + e.y * e.y);
+            crossing && (beyond(u) || beyond(t))
+        };
         for (edges, a, b) in self.chunks(r) {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
@@ -554,6 +619,7 @@ impl<'a> Router<'a> {
                 let e = b - a;
                 let denom = d.x * e.y - d.y * e.x;
                 if denom == 0.0 {
+                    clear = false;
                     // Parallel: no crossing, but kept (t NaN, `near`) as an edge the
                     // move may run along (`along_edge`); a move of no length (every
                     // edge "parallel") keeps none.
@@ -589,9 +655,16 @@ impl<'a> Router<'a> {
                 // meets the edge's, before the second division.
                 let u = (ap.x * d.y - ap.y * d.x) / denom;
                 if !self.divide_first && !(0.0..1.0).contains(&u) {
+                    if TRACK && clear {
+                        clear = apart(e, denom, u, (ap.x * e.y - ap.y * e.x) / denom);
+                    }
                     continue;
                 }
                 let t = (ap.x * e.y - ap.y * e.x) / denom;
+                if TRACK && clear {
+                    // A crossing kept below is not apart (its `t` within a billionth).
+                    clear = apart(e, denom, u, t);
+                }
                 if (0.0..1.0).contains(&u) && (-1e-9..=1.0 + 1e-9).contains(&t) {
                     out.push((
                         t,
@@ -605,12 +678,20 @@ impl<'a> Router<'a> {
                 }
             }
         }
+        clear
     }
 
     /// The move from `p` to `q`: `[p, q]` when it stays inside, else each stretch that
     /// leaves the region (into a hole, or out of a concave outline) replaced by a walk
     /// along the ring it crossed, the shorter way round.
     pub(crate) fn route(&self, p: Coord, q: Coord) -> Vec<Coord> {
+        self.route_on(p, q, false)
+    }
+
+    /// `route`, told whether the next move starts where this one ends (`q` starts a
+    /// closed path): then whether this move touches an edge is worked out, for the next
+    /// to be known inside without the even-odd test (`interior`).
+    pub(crate) fn route_on(&self, p: Coord, q: Coord, looped: bool) -> Vec<Coord> {
         // No rings: a convex region, where every straight move stays inside.
         if self.rings.iter().any(|r| r.len() < 3) || self.rings.is_empty() {
             return vec![p, q];
@@ -620,12 +701,27 @@ impl<'a> Router<'a> {
         // Room for a few crossings at once (not grown from nothing, one at a time).
         cuts.reserve(16);
         let (lo, hi) = move_box(p, q);
+        // Whether the move certainly touches no edge (a ring whose box it misses has none
+        // it could touch).
+        let track = self.chain && (looped || self.interior.get() == Some(p));
+        let mut clear = track;
         for r in 0..self.rings.len() {
             let (a, b) = self.ring_box(r);
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
-            self.hits(r, p, q, &mut cuts);
+            clear &= if track {
+                self.hits::<true>(r, p, q, &mut cuts)
+            } else {
+                self.hits::<false>(r, p, q, &mut cuts)
+            };
+        }
+        // A move touching no edge from a point known to be inside the region (and on no
+        // edge) stays inside all along: what the even-odd test of its middle would find.
+        if clear && self.interior.get() == Some(p) {
+            self.interior.set(Some(q));
+            self.cuts.set(cuts);
+            return vec![p, q];
         }
         // The usual move, between two ends on a ring and across nothing: straight.
         let interior = |t: f64| t > 1e-9 && t < 1.0 - 1e-9;
@@ -648,7 +744,15 @@ impl<'a> Router<'a> {
                     }
                 }
                 None => {
-                    self.fast && self.along_edge((p + q) / 2.0, &cuts) || self.inside((p + q) / 2.0)
+                    self.fast && self.along_edge((p + q) / 2.0, &cuts) || {
+                        let place = self.locate((p + q) / 2.0);
+                        // Its middle inside by the even-odd test (on no edge), touching
+                        // no edge: the whole move is inside, its end too.
+                        if clear && place == Place::In {
+                            self.interior.set(Some(q));
+                        }
+                        place != Place::Out
+                    }
                 }
             };
             if straight {
@@ -736,7 +840,28 @@ impl<'a> Router<'a> {
                 ra.or(if k == 0 { start } else { None }),
                 rb.or(if k == cuts.len() { end } else { None }),
             );
-            self.walk(r, place(ends.0, a), place(ends.1, b), &mut out);
+            // Both ends crossings of ring r on two edges: the shorter way round is often
+            // certain from the arc the fewer edges span, without the ring's lengths.
+            let way = match ends {
+                (Some(c0), Some(c1))
+                    if self.bound_ways
+                        && c0.ring == r
+                        && c1.ring == r
+                        && c0.edge != c1.edge
+                        // Once measured (an earlier walk), the lengths answer at once; a
+                        // ring of few edges (an L's) is measured about as fast.
+                        && self.lengths.get().is_none()
+                        && self.rings[r].len() >= MEASURED =>
+                {
+                    self.shorter_way(r, c0, c1)
+                        .map(|forward| (c0.edge, c1.edge, forward))
+                }
+                _ => None,
+            };
+            match way {
+                Some((i0, i1, forward)) => self.emit(r, i0, i1, forward, &mut out),
+                None => self.walk(r, place(ends.0, a), place(ends.1, b), &mut out),
+            }
             out.push(b);
         }
         self.cuts.set(cuts);
@@ -754,7 +879,16 @@ impl<'a> Router<'a> {
     /// from `p` none for `on_edge` (which cannot hold there): the parity and the first
     /// edge `p` is on are those of every edge tested for both.
     pub(crate) fn inside(&self, p: Coord) -> bool {
+        self.locate(p) != Place::Out
+    }
+
+    /// `inside`, telling a point on an edge (`OnEdge`) from one inside by the even-odd
+    /// test (`In`: the parity is then exact, the point being farther than a nanometre
+    /// from every edge that could sway it).
+    #[inline(always)]
+    fn locate(&self, p: Coord) -> Place {
         let mut inside = false;
+        let band = (p.y - 2e-6, p.y + 2e-6);
         for (r, ring) in self.rings.iter().enumerate() {
             let (lo, hi) = self.ring_box(r);
             if p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y {
@@ -783,8 +917,12 @@ impl<'a> Router<'a> {
                         for i in edges {
                             let a = b;
                             b = ring[next(i, n)];
+                            // As below: `on_edge` cannot hold.
+                            if (a.y > band.1 && b.y > band.1) || (a.y < band.0 && b.y < band.0) {
+                                continue;
+                            }
                             if on_edge(a, b, p) {
-                                return true;
+                                return Place::OnEdge;
                             }
                         }
                     }
@@ -792,18 +930,25 @@ impl<'a> Router<'a> {
                         for i in edges {
                             let a = b;
                             b = ring[next(i, n)];
+                            // Both ends more than two nanometres above `p`, or below:
+                            // neither test can hold (the ray's edges reach its height;
+                            // `on_edge`'s are within a nanometre of it, roundings far
+                            // below the one left over).
+                            if (a.y > band.1 && b.y > band.1) || (a.y < band.0 && b.y < band.0) {
+                                continue;
+                            }
                             if super::clip::ray_crosses(a, b, p) {
                                 inside = !inside;
                             }
                             if on_edge(a, b, p) {
-                                return true;
+                                return Place::OnEdge;
                             }
                         }
                     }
                 }
             }
         }
-        inside
+        if inside { Place::In } else { Place::Out }
     }
 
     /// `inside` as it was: every edge of a chunk near `p` or that may cross its ray
@@ -903,22 +1048,34 @@ impl<'a> Router<'a> {
         (i1, s1): (usize, f64),
         walk: &mut Vec<Coord>,
     ) {
-        let ring = &self.rings[r];
-        let n = ring.len();
+        let n = self.rings[r].len();
         let perimeter = self.cumulative(r)[n];
         let forward = (s1 - s0).rem_euclid(perimeter);
         if forward <= perimeter - forward {
-            let mut i = next(i0, n);
             if !(i0 == i1 && s1 >= s0) {
-                for _ in 0..n {
-                    walk.push(ring[i]);
-                    if i == i1 {
-                        break;
-                    }
-                    i = next(i, n);
-                }
+                self.emit(r, i0, i1, true, walk);
             }
         } else if !(i0 == i1 && s1 <= s0) {
+            self.emit(r, i0, i1, false, walk);
+        }
+    }
+
+    /// The vertices of ring `r` from edge `i0` to edge `i1`, forward (the vertices after
+    /// `i0`'s start up to `i1`'s) or back (from `i0`'s start down to `i1`'s end).
+    #[inline(never)]
+    fn emit(&self, r: usize, i0: usize, i1: usize, forward: bool, walk: &mut Vec<Coord>) {
+        let ring = &self.rings[r];
+        let n = ring.len();
+        if forward {
+            let mut i = next(i0, n);
+            for _ in 0..n {
+                walk.push(ring[i]);
+                if i == i1 {
+                    break;
+                }
+                i = next(i, n);
+            }
+        } else {
             let mut i = i0;
             for _ in 0..n {
                 walk.push(ring[i]);
@@ -928,6 +1085,59 @@ impl<'a> Router<'a> {
                 }
             }
         }
+    }
+
+    /// Which way round ring `r` is the shorter from crossing `c0` to crossing `c1` (on
+    /// two different edges), when that is certain without the ring's cumulative lengths:
+    /// the arc of fewer edges is measured, and is the shorter where it is less than the
+    /// ring's box's diagonal (the perimeter is at least twice that) by more than any
+    /// rounding of `walk`'s sums, and longer than that rounding (no wrap). `Some(true)`:
+    /// forward. `None` where in doubt: `walk` measures.
+    fn shorter_way(&self, r: usize, c0: Cut, c1: Cut) -> Option<bool> {
+        let ring = &self.rings[r];
+        let n = ring.len();
+        let (i0, i1) = (c0.edge, c1.edge);
+        let (lo, hi) = self.ring_box(r);
+        let size = hi - lo;
+        // The box's diagonal, at most half the perimeter (less a rounding): a closed ring
+        // runs across its box and back both ways, at least twice its width in x and its
+        // height in y, so its length is at least twice the diagonal.
+        let diagonal = (size.x * size.x + size.y * size.y).sqrt();
+        let half = diagonal * (1.0 - 1e-12);
+        // `walk`'s sums err by about n ulps of the perimeter, at most n edges each no
+        // longer than the box's diagonal; this arc's by n ulps of itself: both far below.
+        let k = n as f64 + 2.0;
+        let margin = 1e-14 * k * k * diagonal;
+        let bound = |arc: f64| arc * (1.0 + 1e-14 * k) + margin;
+        let length = |i: usize| {
+            let e = ring[next(i, n)] - ring[i];
+            (e.x * e.x + e.y * e.y).sqrt()
+        };
+        // The arc one way, summed edge by edge, given up (`None`) once it reaches the
+        // box's diagonal.
+        let arc = |forward: bool| {
+            let mut arc;
+            if forward {
+                arc = (1.0 - c0.u) * length(i0) + c1.u * length(i1);
+                let mut i = next(i0, n);
+                while i != i1 && bound(arc) < half {
+                    arc += length(i);
+                    i = next(i, n);
+                }
+            } else {
+                arc = c0.u * length(i0) + (1.0 - c1.u) * length(i1);
+                let mut i = if i0 == 0 { n - 1 } else { i0 - 1 };
+                while i != i1 && bound(arc) < half {
+                    arc += length(i);
+                    i = if i == 0 { n - 1 } else { i - 1 };
+                }
+            }
+            (arc > margin && bound(arc) < half).then_some(forward)
+        };
+        // The way of fewer edges (it may be the longer, round a notch's many short arc
+        // edges: then in doubt).
+        let steps = if i1 > i0 { i1 - i0 } else { i1 + n - i0 };
+        arc(steps <= n - steps)
     }
 }
 

@@ -612,8 +612,10 @@ proptest! {
         }
     }
 
-    /// One pass over the points finds the bounds, the repeated points `is_clean` looks
-    /// for and the first coordinate out of range, as the former checks did.
+    /// One pass over the points finds the bounds, whether the region is clean
+    /// (`is_clean`), its first outline's area (to the bit) and the first coordinate out
+    /// of range, as the former checks did: rings with a repeated point or not, a value
+    /// out of range or not.
     #[test]
     fn survey_is_the_former_checks(
         outer in prop::collection::vec(4.0f64..12.0, 3..24),
@@ -654,12 +656,12 @@ proptest! {
         }
         match (super::region::survey(&region), first_bad) {
             (Err(super::Error::Coordinate(v)), Some(b)) => prop_assert_eq!(v.to_bits(), b.to_bits()),
-            (Ok((lo, hi, repeated)), None) => {
-                prop_assert_eq!((lo, hi), (min, max));
-                let distinct = region.0.iter().all(|p| {
-                    std::iter::once(p.exterior()).chain(p.interiors()).all(|r| r.0.windows(2).all(|w| w[0] != w[1]))
-                });
-                prop_assert_eq!(repeated, !distinct);
+            (Ok(found), None) => {
+                prop_assert_eq!((found.min, found.max), (min, max));
+                let clean = super::region::is_clean(&region);
+                prop_assert_eq!(found.clean, clean);
+                let first = offset::signed_area(&region.0[0].exterior().0);
+                prop_assert_eq!(found.first_area.map(f64::to_bits), clean.then_some(first.to_bits()));
             }
             (got, want) => prop_assert!(false, "{:?} against {:?}", got.map(|_| ()), want),
         }
@@ -688,5 +690,57 @@ fn rings_wound_twice_have_no_convex_inset() {
     ] {
         assert!(former_convex_inset(&region, 0.2, 0.45).is_none());
         assert!(super::region::convex_inset(&region, 0.2, 0.45).is_none());
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// An outline's offset read in one pass (its area's sign, geo's area of it, the
+    /// one-pass proof about a point) is `offset_points`, `polygon_area` and `star_clear`
+    /// taken apart, to the bit: star-like rings (some scrambled, some wound twice) about
+    /// points near and far. A clean ring whose area is known is read in place as
+    /// `inside_left_cow` reads it.
+    #[test]
+    fn outline_read_in_one_pass_is_read_apart(
+        radii in prop::collection::vec(0.5f64..12.0, 3..24),
+        turn in 0.0f64..TAU,
+        scramble in 0usize..3,
+        d in 0.05f64..3.0,
+        c in (-3.0f64..3.0, -3.0f64..3.0),
+        exterior in any::<bool>(),
+    ) {
+        let mut ring = radial(&radii, turn, Coord::zero());
+        if scramble == 1 {
+            for pair in ring.chunks_exact_mut(2).step_by(3) {
+                pair.swap(0, 1);
+            }
+        } else if scramble == 2 && ring.len() % 2 == 1 {
+            let n = ring.len();
+            ring = (0..n).map(|i| ring[(2 * i) % n]).collect();
+        }
+        let c = Coord { x: c.0, y: c.1 };
+        let step = offset::ArcStep::new(0.45);
+        if let Some(pts) = offset::inside_left(&ring, true) {
+            let apart = offset::offset_ring(&pts, d, 0.45, true);
+            for centre in [Some(c), None] {
+                let read = offset::offset_read(&pts, d, step, centre);
+                prop_assert_eq!(read.as_ref().map(|r| &r.0), apart.as_ref());
+                if let (Some((moved, read)), Some(_)) = (read, &apart) {
+                    let area = offset::polygon_area(&moved, &[]);
+                    prop_assert_eq!(read.area.to_bits(), area.to_bits());
+                    prop_assert_eq!(read.star, centre.is_some() && offset::star_clear(&moved, c));
+                }
+            }
+        }
+        let mut closed = ring.clone();
+        closed.push(ring[0]);
+        let area = offset::signed_area(&closed);
+        if closed.windows(2).all(|w| w[0] != w[1]) {
+            prop_assert_eq!(
+                offset::inside_left_known(&closed, exterior, area),
+                offset::inside_left_cow(&closed, exterior)
+            );
+        }
     }
 }

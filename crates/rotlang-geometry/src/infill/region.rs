@@ -53,10 +53,15 @@ impl Region {
         if !(0.01..=10.0).contains(&nozzle) {
             return Err(Error::Nozzle(nozzle));
         }
-        let (mut min, mut max, repeated) = survey(region)?;
+        let Survey {
+            mut min,
+            mut max,
+            clean: as_is,
+            first_area,
+        } = survey(region)?;
         // A region with nothing to clean (no repeated point, no degenerate ring: most)
-        // is read where it is, not copied (or copied whole, where the outline is kept).
-        let as_is = !repeated && rings_have_area(region);
+        // is read where it is, not copied (or copied whole, where the outline is kept),
+        // its first outline's area known.
         let cleaned = match (keep_outline, as_is) {
             (false, true) => std::borrow::Cow::Borrowed(region),
             (true, true) => std::borrow::Cow::Owned(region.clone()),
@@ -73,7 +78,7 @@ impl Region {
             holes,
             area,
             made_by,
-        } = if let Some(convex) = convex_rings(&cleaned, nozzle / 2.0, arc) {
+        } = if let Some(convex) = convex_rings_known(&cleaned, nozzle / 2.0, arc, first_area) {
             match convex {
                 // Kept open as made: the polygons only if asked, as the raw offset's.
                 ConvexInset::Rings(raw) => Inset {
@@ -86,7 +91,9 @@ impl Region {
                 },
                 ConvexInset::Polygons(inset) => Inset::of_polygons(inset, Offset::Convex),
             }
-        } else if let Some(raw) = super::offset::raw_rings_stepped(&cleaned, nozzle / 2.0, step) {
+        } else if let Some(raw) =
+            super::offset::raw_rings_known(&cleaned, nozzle / 2.0, step, first_area)
+        {
             Inset {
                 inset: std::sync::OnceLock::new(),
                 area: raw.area(),
@@ -279,11 +286,20 @@ pub fn inset(region: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
         .unwrap_or_else(|| cleaned.buffer(-d))
 }
 
-/// The region's bounding box (infinite where it has no point) and whether some ring
-/// repeats a point in a row, every coordinate checked finite and within
-/// ±[`MAX_COORDINATE`]: one pass over the points, the first value out of range looked
-/// for again only when some is.
-pub(crate) fn survey(region: &MultiPolygon<f64>) -> Result<(Coord, Coord, bool), Error> {
+/// What one pass over a region's points finds: its bounding box (infinite where it has
+/// no point), whether it is clean (`is_clean`: no ring repeats a point in a row, every
+/// ring has three points or more and some area) and, where it is, its first outline's
+/// signed area (`signed_area`'s, the same sum: its closing edge adds nothing).
+pub(crate) struct Survey {
+    pub(crate) min: Coord,
+    pub(crate) max: Coord,
+    pub(crate) clean: bool,
+    pub(crate) first_area: Option<f64>,
+}
+
+/// [`Survey`] of a region, every coordinate checked finite and within
+/// ±[`MAX_COORDINATE`] (the first value out of range looked for again only when some is).
+pub(crate) fn survey(region: &MultiPolygon<f64>) -> Result<Survey, Error> {
     let rings = || {
         region
             .0
@@ -298,19 +314,30 @@ pub(crate) fn survey(region: &MultiPolygon<f64>) -> Result<(Coord, Coord, bool),
         x: f64::NEG_INFINITY,
         y: f64::NEG_INFINITY,
     };
-    let (mut within, mut repeated) = (true, false);
+    let (mut within, mut clean) = (true, true);
+    let mut first_area = None;
     for ring in rings() {
-        // No point equals NaN: the first is not taken for a repeat.
-        let mut last = Coord {
-            x: f64::NAN,
-            y: f64::NAN,
+        let c = &ring.0;
+        let Some((&head, rest)) = c.split_first() else {
+            clean = false;
+            continue;
         };
-        for &c in ring.coords() {
+        within &= (head.x.abs() <= MAX_COORDINATE) & (head.y.abs() <= MAX_COORDINATE);
+        math::widen(&mut min, &mut max, head);
+        // `signed_area`'s terms in its order: each point and the next, the closing edge.
+        let (mut sum, mut last, mut repeated) = (-0.0, head, false);
+        for &p in rest {
             // NaN is not within; neither is an infinity.
-            within &= (c.x.abs() <= MAX_COORDINATE) & (c.y.abs() <= MAX_COORDINATE);
-            math::widen(&mut min, &mut max, c);
-            repeated |= c == last;
-            last = c;
+            within &= (p.x.abs() <= MAX_COORDINATE) & (p.y.abs() <= MAX_COORDINATE);
+            math::widen(&mut min, &mut max, p);
+            repeated |= p == last;
+            sum += cross(last, p);
+            last = p;
+        }
+        let area = (sum + cross(last, head)) / 2.0;
+        clean &= !repeated && c.len() >= 3 && area != 0.0;
+        if first_area.is_none() {
+            first_area = Some(area);
         }
     }
     if !within {
@@ -324,22 +351,25 @@ pub(crate) fn survey(region: &MultiPolygon<f64>) -> Result<(Coord, Coord, bool),
             }
         }
     }
-    Ok((min, max, repeated))
-}
-
-/// Whether every ring has three points or more and some area: with no point repeated in
-/// a row, what `is_clean` asks.
-fn rings_have_area(region: &MultiPolygon<f64>) -> bool {
-    region.0.iter().all(|p| {
-        std::iter::once(p.exterior())
-            .chain(p.interiors())
-            .all(|ring| ring.0.len() >= 3 && signed_area(&ring.0) != 0.0)
+    Ok(Survey {
+        min,
+        max,
+        clean,
+        // Only a clean region's, read where it is: its first ring closed (as a
+        // polygon's are), so its open ring's area is this one.
+        first_area: first_area.filter(|_| {
+            clean
+                && region.0.first().is_some_and(|p| {
+                    let c = &p.exterior().0;
+                    c.first() == c.last()
+                })
+        }),
     })
 }
 
 /// Whether `clean` would return the region as it is: every ring without a repeated
 /// point in a row, of three points or more and some area (a polygon's rings are closed).
-/// (`Region::build` asks it as `survey` and `rings_have_area`.)
+/// (`Region::build` asks it of `survey`.)
 #[cfg(test)]
 pub(crate) fn is_clean(region: &MultiPolygon<f64>) -> bool {
     region.0.iter().all(|p| {
@@ -411,17 +441,27 @@ pub(crate) enum ConvexInset {
 
 /// [`convex_inset`]'s rings as a layer keeps them where no grown hole meets anything.
 pub(crate) fn convex_rings(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<ConvexInset> {
+    convex_rings_known(region, d, arc, None)
+}
+
+/// [`convex_rings`] with the first outline's signed area known (`Survey::first_area`).
+pub(crate) fn convex_rings_known(
+    region: &MultiPolygon<f64>,
+    d: f64,
+    arc: f64,
+    first_area: Option<f64>,
+) -> Option<ConvexInset> {
     // Allocated once a first outline is found convex: most concave layers are turned
     // down at their first ring, with nothing to free. Each polygon's outline then its
     // holes, and per polygon kept its holes and whether they lie apart.
     let mut rings: Vec<Vec<Coord>> = Vec::new();
     let mut kept: Vec<(usize, bool)> = Vec::new();
-    // A reversed ring's copy, kept between layers (a hole turns clockwise).
-    let mut buffer = super::scratch::take(&KEPT);
+    // A reversed ring's copy, kept between layers (taken once one is needed).
+    let mut buffer = Vec::new();
     let result = (|| {
-        let corners = Corners::of(arc);
+        let mut known = first_area;
         for polygon in &region.0 {
-            let exterior = convex_ring_inset(&polygon.exterior().0, d, &mut buffer)?;
+            let exterior = convex_ring_inset(&polygon.exterior().0, d, &mut buffer, known.take())?;
             if rings.capacity() == 0 {
                 let count = region.0.iter().map(|p| 1 + p.interiors().len()).sum();
                 rings.reserve_exact(count);
@@ -431,6 +471,7 @@ pub(crate) fn convex_rings(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Opti
             rings.push(exterior);
             // Each grown hole inside the shrunk outline (told from its box where that
             // can be).
+            let corners = Corners::of(arc);
             let mut inside = true;
             for hole in polygon.interiors() {
                 let (grown, lo, hi) = grow_hole(&hole.0, d, arc, corners)?;
@@ -482,6 +523,7 @@ pub(crate) fn convex_rings(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Opti
             } else {
                 Vec::new()
             },
+            measured: None,
         }));
     }
     let closed = |mut ring: Vec<Coord>| {
@@ -630,10 +672,11 @@ fn has_reflex_corner(ring: &[Coord]) -> bool {
 /// What `convex_ring` keeps of a ring, read where it is where that is the ring itself
 /// (every corner turning left clearly, no repeated point: most convex rings), or its
 /// copy in `buffer` (turned round, or with points dropped); `None` when it has a reflex
-/// vertex, as `convex_ring`.
+/// vertex, as `convex_ring`. `area`: its signed area, where known.
 pub(crate) fn convex_view<'a>(
     ring: &'a [Coord],
     buffer: &'a mut Vec<Coord>,
+    area: Option<f64>,
 ) -> Option<&'a [Coord]> {
     let open = match ring {
         [first, .., last] if first == last => &ring[..ring.len() - 1],
@@ -642,9 +685,13 @@ pub(crate) fn convex_view<'a>(
     let mut reversed = false;
     // A repeated point only adds a zero term to the area: it is `convex_ring`'s, and so
     // is the turn it gives the ring.
+    // (`area`: the ring's signed area where it is known already.)
     let verdict = if open.len() >= 3 {
-        reversed = signed_area(open) < 0.0;
+        reversed = area.unwrap_or_else(|| signed_area(open)) < 0.0;
         if reversed {
+            if buffer.capacity() == 0 {
+                *buffer = super::scratch::take(&KEPT);
+            }
             buffer.clear();
             buffer.extend(open.iter().rev());
             every_corner_kept(buffer)
@@ -719,8 +766,13 @@ fn every_corner_kept(pts: &[Coord]) -> Kept {
 }
 
 /// The exact inward offset of one convex ring: empty when it is thinner than `2d`.
-fn convex_ring_inset(ring: &[Coord], d: f64, buffer: &mut Vec<Coord>) -> Option<Vec<Coord>> {
-    let kept = convex_view(ring, buffer)?;
+fn convex_ring_inset(
+    ring: &[Coord],
+    d: f64,
+    buffer: &mut Vec<Coord>,
+    area: Option<f64>,
+) -> Option<Vec<Coord>> {
+    let kept = convex_view(ring, buffer, area)?;
     Some(inset_kept(kept, d))
 }
 

@@ -573,13 +573,12 @@ pub(crate) fn offset_read(
 /// make it, summed in their order.
 #[inline(always)]
 fn read_ring<const STAR: bool>(ring: &[Coord], c: Coord) -> (f64, f64, bool) {
-    let n = ring.len();
-    let first = ring[0];
+    let (first, second) = (ring[0], ring[1]);
     // `signed_area`: each point and the next, then the closing edge. `geo_ring_area`:
     // the determinants of the points shifted by the first, from the second on.
-    let mut sum = -0.0;
+    let mut sum = -0.0 + cross(first, second);
     let mut geo = 0.0;
-    let mut prev = ring[1] - first;
+    let mut prev = second - first;
     // `star_clear`: every edge with `c` clearly on its left, and one going up across it.
     let (mut clear, mut up) = (true, 0u32);
     let mut edge = |a: Coord, b: Coord| {
@@ -588,14 +587,15 @@ fn read_ring<const STAR: bool>(ring: &[Coord], c: Coord) -> (f64, f64, bool) {
         clear &= s - t > 1e-12 * (s.abs() + t.abs());
         up += u32::from(a.y <= c.y && b.y > c.y);
     };
-    let mut a = first;
-    for (k, &b) in ring.iter().enumerate().skip(1) {
+    if STAR {
+        edge(first, second);
+    }
+    let mut a = second;
+    for &b in &ring[2..] {
         sum += cross(a, b);
-        if k >= 2 {
-            let shifted = b - first;
-            geo += prev.x * shifted.y - prev.y * shifted.x;
-            prev = shifted;
-        }
+        let shifted = b - first;
+        geo += prev.x * shifted.y - prev.y * shifted.x;
+        prev = shifted;
         if STAR {
             edge(a, b);
         }
@@ -608,7 +608,7 @@ fn read_ring<const STAR: bool>(ring: &[Coord], c: Coord) -> (f64, f64, bool) {
     if STAR {
         edge(a, first);
     }
-    (sum, geo, STAR && n >= 3 && clear && up == 1)
+    (sum, geo, STAR && clear && up == 1)
 }
 
 /// Each vertex moved `d` to the left of its edges (convex corners mitred, reflex ones

@@ -135,12 +135,57 @@ impl Region {
             }
         }
         let min_segment = w / 10.0;
-        paths.retain_mut(|p| order::simplify(p, min_segment));
+        paths.retain_mut(|p| simplify(p, min_segment));
         let monotonic = params.order == Order::Monotonic;
         Ok(order::order(
             paths,
             monotonic.then(|| Frame::new(centre, theta)),
             if self.convex { &[] } else { &self.rings },
         ))
+    }
+}
+
+/// `order::simplify`, told without a write where it would change nothing (every
+/// segment at least `min` long: most of a loop's or a line's), so it is not run.
+pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
+    let min2 = min * min;
+    // `simplify`'s distances: each point from the one before (all kept).
+    let long = |path: &[Coord]| {
+        let Some((&first, rest)) = path.split_first() else {
+            return false;
+        };
+        let mut a = first;
+        for &b in rest {
+            let d = b - a;
+            if d.x * d.x + d.y * d.y < min2 {
+                return false;
+            }
+            a = b;
+        }
+        true
+    };
+    (path.len() >= 2 && long(path)) || order::simplify(path, min)
+}
+
+#[cfg(test)]
+mod tests {
+    use geo::Coord;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Paths whose every segment is long enough are kept as they are without a
+        /// write: the same paths and answers as `order::simplify` on random paths
+        /// (short segments, none or one point included) at random lengths.
+        #[test]
+        fn simplify_told_without_a_write_is_simplify(
+            points in prop::collection::vec((-5.0f64..5.0, -5.0f64..5.0), 0..12),
+            min in 0.0f64..3.0,
+        ) {
+            let path: Vec<Coord> = points.into_iter().map(|(x, y)| Coord { x, y }).collect();
+            let (mut fast, mut general) = (path.clone(), path);
+            let kept = super::simplify(&mut fast, min);
+            prop_assert_eq!(kept, super::order::simplify(&mut general, min));
+            prop_assert_eq!(fast, general);
+        }
     }
 }

@@ -744,3 +744,35 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// A ring found turning clearly both ways has no convex ring, either way round (so
+    /// the convex inset is not tried): star-like rings, convex ones, with a repeated
+    /// point or a straight corner; and a convex one is never found so.
+    #[test]
+    fn rings_turning_both_ways_are_not_convex(
+        radii in prop::collection::vec(1.0f64..12.0, 3..24),
+        turn in 0.0f64..TAU,
+        round in any::<bool>(),
+        extra in prop::option::of((0usize..30, any::<bool>())),
+    ) {
+        let mut ring = if round {
+            let jitter: Vec<f64> = radii.iter().map(|r| r / 12.0 - 0.5).collect();
+            convex_ring_of(radii.len(), (radii[0], radii[0] * 0.7), turn, &jitter, Coord::zero(), false, extra).0
+        } else {
+            let mut r = radial(&radii, turn, Coord::zero());
+            r.push(r[0]);
+            r
+        };
+        for _ in 0..2 {
+            let open = &ring[..ring.len() - 1];
+            if super::region::turns_both_ways(open) {
+                prop_assert!(super::region::convex_ring(&ring).is_none());
+                prop_assert!(!round);
+            }
+            ring.reverse();
+        }
+    }
+}

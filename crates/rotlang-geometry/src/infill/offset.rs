@@ -626,9 +626,9 @@ fn moved_points(pts: &[Coord], d: f64, step: ArcStep) -> Option<Vec<Coord>> {
     // Each vertex's moved point(s) run from `end` (where the edge before it ends) to
     // `start` (where the edge after it starts); edge i runs from vertex i's start to
     // vertex i+1's end and must keep its direction (`e`, from pts[i] to pts[i+1]):
-    // checked as each vertex is moved (vertex 0's end kept for the last edge).
+    // checked as each vertex is moved.
     let last = pts[0] - pts[n - 1];
-    let (mut first_end, mut previous_start) = (Coord::zero(), Coord::zero());
+    let mut previous_start = Coord::zero();
     let turns_around = |e: Coord, from: Coord, to: Coord| {
         let f = to - from;
         e.x * f.x + e.y * f.y <= 0.0
@@ -662,9 +662,7 @@ fn moved_points(pts: &[Coord], d: f64, step: ArcStep) -> Option<Vec<Coord>> {
             out.push(start);
             (start, end)
         };
-        if i == 0 {
-            first_end = end;
-        } else if turns_around(before, previous_start, end) {
+        if i > 0 && turns_around(before, previous_start, end) {
             return None;
         }
         previous_start = start;
@@ -672,7 +670,8 @@ fn moved_points(pts: &[Coord], d: f64, step: ArcStep) -> Option<Vec<Coord>> {
         u = v;
         b = c;
     }
-    if turns_around(last, previous_start, first_end) {
+    // Vertex 0's end is the ring's first point.
+    if turns_around(last, previous_start, out[0]) {
         return None;
     }
     Some(out)

@@ -58,6 +58,7 @@ impl Region {
             mut max,
             clean: as_is,
             first_area,
+            first_turns_both_ways,
         } = survey(region)?;
         // A region with nothing to clean (no repeated point, no degenerate ring: most)
         // is read where it is, not copied (or copied whole, where the outline is kept),
@@ -78,7 +79,10 @@ impl Region {
             holes,
             area,
             made_by,
-        } = if let Some(convex) = convex_rings_known(&cleaned, nozzle / 2.0, arc, first_area) {
+        } = if let Some(convex) = (!first_turns_both_ways)
+            .then(|| convex_rings_known(&cleaned, nozzle / 2.0, arc, first_area))
+            .flatten()
+        {
             match convex {
                 // Kept open as made: the polygons only if asked, as the raw offset's.
                 ConvexInset::Rings(raw) => Inset {
@@ -295,6 +299,10 @@ pub(crate) struct Survey {
     pub(crate) max: Coord,
     pub(crate) clean: bool,
     pub(crate) first_area: Option<f64>,
+    /// Where it is clean and its first outline has no holes, whether that outline turns
+    /// clearly left at some corner and clearly right at another (`convex_ring`'s test):
+    /// it is no convex ring, either way round.
+    pub(crate) first_turns_both_ways: bool,
 }
 
 /// [`Survey`] of a region, every coordinate checked finite and within
@@ -351,20 +359,53 @@ pub(crate) fn survey(region: &MultiPolygon<f64>) -> Result<Survey, Error> {
             }
         }
     }
+    // Only a clean region's, read where it is: its first ring closed (as a polygon's
+    // are), so its open ring's area is this one.
+    let first = region
+        .0
+        .first()
+        .filter(|_| clean)
+        .filter(|p| p.exterior().0.first() == p.exterior().0.last());
     Ok(Survey {
         min,
         max,
         clean,
-        // Only a clean region's, read where it is: its first ring closed (as a
-        // polygon's are), so its open ring's area is this one.
-        first_area: first_area.filter(|_| {
-            clean
-                && region.0.first().is_some_and(|p| {
-                    let c = &p.exterior().0;
-                    c.first() == c.last()
-                })
+        first_area: first_area.filter(|_| first.is_some()),
+        // Asked of an outline without holes (a star's, an L's), where the raw offset
+        // follows at once.
+        first_turns_both_ways: first.is_some_and(|p| {
+            let c = &p.exterior().0;
+            p.interiors().is_empty() && turns_both_ways(&c[..c.len() - 1])
         }),
     })
+}
+
+/// Whether an open ring turns clearly left at some corner and clearly right at another,
+/// as `convex_ring_copied` tells a corner (a corner at a repeated point turns neither
+/// way): then it has a reflex vertex whichever way it is turned. Told at the first
+/// corner that turns the other way (a star's second).
+pub(crate) fn turns_both_ways(ring: &[Coord]) -> bool {
+    let n = ring.len();
+    if n < 3 {
+        return false;
+    }
+    let (mut left, mut right) = (false, false);
+    let mut u = ring[0] - ring[n - 1];
+    for i in 0..n {
+        let c = if i + 1 < n { ring[i + 1] } else { ring[0] };
+        let v = c - ring[i];
+        let cross = cross(u, v);
+        let scale2 = (u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y);
+        if cross * cross > 1e-24 * scale2 {
+            left |= cross > 0.0;
+            right |= cross < 0.0;
+            if left && right {
+                return true;
+            }
+        }
+        u = v;
+    }
+    false
 }
 
 /// Whether `clean` would return the region as it is: every ring without a repeated

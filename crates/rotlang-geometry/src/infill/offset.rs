@@ -334,7 +334,7 @@ pub(crate) fn arc_points(
         if cross(w, nv) >= 0.0 || w.x * nv.x + w.y * nv.y >= step.last_cos {
             break;
         }
-        out.push(b + w * d);
+        put(out, b + w * d);
     }
 }
 
@@ -651,15 +651,15 @@ fn moved_points(pts: &[Coord], d: f64, step: ArcStep) -> Option<Vec<Coord>> {
                 return None;
             }
             let p = b + (nu + nv) * (d / k);
-            out.push(p);
+            put(&mut out, p);
             (p, p)
         } else {
             // Reflex: an arc about the vertex from one moved edge's end to the next's start.
             let end = b + nu * d;
-            out.push(end);
+            put(&mut out, end);
             arc_points(b, nu, nv, d, step, &mut out);
             let start = b + nv * d;
-            out.push(start);
+            put(&mut out, start);
             (start, end)
         };
         if i > 0 && turns_around(before, previous_start, end) {
@@ -675,6 +675,23 @@ fn moved_points(pts: &[Coord], d: f64, step: ArcStep) -> Option<Vec<Coord>> {
         return None;
     }
     Some(out)
+}
+
+/// `out.push(p)` with its growing out of the way (`cold_push`): the loop that moves a
+/// ring's vertices keeps its values in registers rather than about a call.
+#[inline(always)]
+fn put(out: &mut Vec<Coord>, p: Coord) {
+    if out.len() < out.capacity() {
+        out.push(p);
+    } else {
+        cold_push(out, p);
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn cold_push(out: &mut Vec<Coord>, p: Coord) {
+    out.push(p);
 }
 
 /// Whether `p` is inside the ring (even-odd).

@@ -330,24 +330,28 @@ pub(crate) fn survey(region: &MultiPolygon<f64>) -> Result<Survey, Error> {
             clean = false;
             continue;
         };
-        within &= (head.x.abs() <= MAX_COORDINATE) & (head.y.abs() <= MAX_COORDINATE);
         math::widen(&mut min, &mut max, head);
         // `signed_area`'s terms in its order: each point and the next, the closing edge.
         let (mut sum, mut last, mut repeated) = (-0.0, head, false);
         for &p in rest {
-            // NaN is not within; neither is an infinity.
-            within &= (p.x.abs() <= MAX_COORDINATE) & (p.y.abs() <= MAX_COORDINATE);
             math::widen(&mut min, &mut max, p);
             repeated |= p == last;
             sum += cross(last, p);
             last = p;
         }
         let area = (sum + cross(last, head)) / 2.0;
+        // Every coordinate is in some term of the sum (each point's with the next's): a
+        // NaN or an infinity leaves it NaN or infinite (a finite value beyond the range
+        // is told by the bounds).
+        within &= area.is_finite();
         clean &= !repeated && c.len() >= 3 && area != 0.0;
         if first_area.is_none() {
             first_area = Some(area);
         }
     }
+    let bound = MAX_COORDINATE;
+    within &= -bound <= min.x && max.x <= bound && -bound <= min.y && max.y <= bound;
+    // (An empty region is looked at again, and nothing found.)
     if !within {
         for ring in rings() {
             for c in ring.coords() {
@@ -969,7 +973,10 @@ fn grow_hole(
     };
     let n = open.len();
     if n >= 3 {
-        let mut out = Vec::with_capacity(2 * n + 1);
+        // Room for a round hole's points (one mitre a corner), a small allocation's
+        // size for a 64-gon; a sharper hole's arcs grow it. (The ring is kept open: the
+        // polygons, if asked, are made afresh.)
+        let mut out = Vec::with_capacity(n);
         // Counter-clockwise, as `convex_ring` turns it (a repeated point adds nothing).
         let verdict = if signed_area(open) < 0.0 {
             grow::<true>(n, |i| open[n - 1 - i], d, arc, corners, &mut out)

@@ -669,7 +669,8 @@ proptest! {
 }
 
 /// A ring whose corners all turn left but which winds twice (a pentagram's points taken
-/// every second one) is no convex ring, as outline or as hole, as before.
+/// every second one) is no convex ring, as outline or as hole, as before; a square with
+/// a square hole (edges with no x component) is one.
 #[test]
 fn rings_wound_twice_have_no_convex_inset() {
     let five = radial(&[6.0; 5], 0.3, Coord::zero());
@@ -691,6 +692,16 @@ fn rings_wound_twice_have_no_convex_inset() {
         assert!(former_convex_inset(&region, 0.2, 0.45).is_none());
         assert!(super::region::convex_inset(&region, 0.2, 0.45).is_none());
     }
+    // Edges with no x component (a square's sides, a hole's) turn the count as before.
+    let mut hole = shapes::square(10.0).0[0].exterior().clone();
+    hole.0.reverse();
+    let boxed = geo::MultiPolygon::new(vec![geo::Polygon::new(
+        shapes::square(40.0).0[0].exterior().clone(),
+        vec![hole],
+    )]);
+    let former = former_convex_inset(&boxed, 0.2, 0.45);
+    assert!(former.is_some());
+    assert_eq!(super::region::convex_inset(&boxed, 0.2, 0.45), former);
 }
 
 proptest! {

@@ -774,9 +774,13 @@ enum Kept {
 /// nothing copied: what it keeps when no corner is dropped.
 fn every_corner_kept(pts: &[Coord]) -> Kept {
     let n = pts.len();
-    // The edges' x components' signs (−1, 0, 1), the first and last non-zero, and how
-    // often they change.
-    let (mut first, mut last, mut changes) = (0i32, 0i32, 0u32);
+    // `convex_ring_copied` counts how often the edges' x components change sign (zeros
+    // skipped, round the ring): twice a turn. Where every corner turns left clearly
+    // (each by less than half a turn, the edges' direction growing all along), an edge
+    // with no x component lies between a positive and a negative one, so the turns are
+    // the edges whose x is positive after one whose x is not (the last edge before the
+    // first).
+    let mut ups = 0u32;
     let mut u = pts[0] - pts[n - 1];
     let mut u2 = u.x * u.x + u.y * u.y;
     for i in 0..n {
@@ -791,23 +795,11 @@ fn every_corner_kept(pts: &[Coord]) -> Kept {
         if cross < 0.0 {
             return Kept::Reflex;
         }
-        // The edge from this (kept) corner to the next: where its x component turns.
-        let sign = i32::from(v.x > 0.0) - i32::from(v.x < 0.0);
-        changes += u32::from(sign * last < 0);
-        if sign != 0 {
-            last = sign;
-        }
-        if first == 0 {
-            first = sign;
-        }
+        ups += u32::from(u.x <= 0.0 && v.x > 0.0);
         u = v;
         u2 = v2;
     }
-    if changes + u32::from(first != last) <= 2 {
-        Kept::All
-    } else {
-        Kept::Reflex
-    }
+    if ups <= 1 { Kept::All } else { Kept::Reflex }
 }
 
 /// The exact inward offset of one convex ring: empty when it is thinner than `2d`.
@@ -1031,9 +1023,9 @@ fn grow<const CHECK: bool>(
     let mut u = b - a;
     let mut u2 = u.x * u.x + u.y * u.y;
     let mut n0 = normal(u);
-    // The edges' x components' signs (−1, 0, 1), the first and last non-zero, and how
-    // often they change (`every_corner_kept`'s count).
-    let (mut first, mut last, mut changes) = (0i32, 0i32, 0u32);
+    // How often the edges' x components turn from negative (or zero) to positive:
+    // `every_corner_kept`'s count of turns.
+    let mut ups = 0u32;
     for i in 0..n {
         let c = if i + 1 < n { at(i + 1) } else { at(0) };
         let v = c - b;
@@ -1046,14 +1038,7 @@ fn grow<const CHECK: bool>(
             if cross < 0.0 {
                 return Kept::Reflex;
             }
-            let sign = i32::from(v.x > 0.0) - i32::from(v.x < 0.0);
-            changes += u32::from(sign * last < 0);
-            if sign != 0 {
-                last = sign;
-            }
-            if first == 0 {
-                first = sign;
-            }
+            ups += u32::from(u.x <= 0.0 && v.x > 0.0);
             u = v;
             u2 = v2;
         }
@@ -1090,7 +1075,7 @@ fn grow<const CHECK: bool>(
         n0 = n1;
         b = c;
     }
-    if CHECK && (changes + u32::from(first != last)) > 2 {
+    if CHECK && ups > 1 {
         return Kept::Reflex;
     }
     Kept::All

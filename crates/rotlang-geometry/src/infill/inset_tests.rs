@@ -261,6 +261,7 @@ proptest! {
             prop_assert_eq!(raw.outlines, inset.0.len());
             prop_assert_eq!(raw.area().to_bits(), area.to_bits());
             prop_assert_eq!(&raw.polygons(), &inset);
+            prop_assert_eq!(&raw.into_polygons(), &inset);
         }
         for polygon in &region.0 {
             let ring = &polygon.exterior().0;

@@ -40,6 +40,29 @@ impl RawRings {
         polygons(&self.rings, self.outlines, &self.holes)
     }
 
+    /// [`RawRings::polygons`] made of the rings themselves (each closed in place), not
+    /// copies.
+    pub(crate) fn into_polygons(self) -> MultiPolygon<f64> {
+        let closed = |mut ring: Vec<Coord>| {
+            ring.push(ring[0]);
+            LineString::new(ring)
+        };
+        let mut rings = self.rings;
+        let mut hole = self.outlines;
+        let out = (0..self.outlines)
+            .map(|i| {
+                let count = self.holes.get(i).copied().unwrap_or(0);
+                let interiors = rings[hole..hole + count]
+                    .iter_mut()
+                    .map(|r| closed(std::mem::take(r)))
+                    .collect();
+                hole += count;
+                Polygon::new(closed(std::mem::take(&mut rings[i])), interiors)
+            })
+            .collect();
+        MultiPolygon::new(out)
+    }
+
     /// The area of the polygons, to the bit as geo's `unsigned_area` of [`polygons`]
     /// (`Region::area`, which densities are measured against), without making them.
     pub(crate) fn area(&self) -> f64 {

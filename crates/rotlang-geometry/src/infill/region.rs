@@ -469,7 +469,7 @@ pub(crate) fn convex_inset(
     arc: f64,
 ) -> Option<MultiPolygon<f64>> {
     Some(match convex_rings(region, d, arc)? {
-        ConvexInset::Rings(rings) => rings.polygons(),
+        ConvexInset::Rings(rings) => rings.into_polygons(),
         ConvexInset::Polygons(polygons) => polygons,
     })
 }
@@ -496,11 +496,25 @@ pub(crate) fn convex_rings_known(
     arc: f64,
     first_area: Option<f64>,
 ) -> Option<ConvexInset> {
+    // Per polygon kept its holes and whether they lie apart: a list kept between layers.
+    let mut kept = super::scratch::take(&KEPT_POLYGONS);
+    let inset = convex_rings_in(region, d, arc, first_area, &mut kept);
+    super::scratch::give(&KEPT_POLYGONS, kept);
+    inset
+}
+
+/// [`convex_rings_known`] with its list of the polygons kept.
+fn convex_rings_in(
+    region: &MultiPolygon<f64>,
+    d: f64,
+    arc: f64,
+    first_area: Option<f64>,
+    kept: &mut Vec<(usize, bool)>,
+) -> Option<ConvexInset> {
     // Allocated once a first outline is found convex: most concave layers are turned
     // down at their first ring, with nothing to free. Each polygon's outline then its
-    // holes, and per polygon kept its holes and whether they lie apart.
+    // holes.
     let mut rings: Vec<Vec<Coord>> = Vec::new();
-    let mut kept: Vec<(usize, bool)> = Vec::new();
     // A reversed ring's copy, kept between layers (taken once one is needed).
     let mut buffer = Vec::new();
     let result = (|| {
@@ -510,7 +524,7 @@ pub(crate) fn convex_rings_known(
             if rings.capacity() == 0 {
                 let count = region.0.iter().map(|p| 1 + p.interiors().len()).sum();
                 rings.reserve_exact(count);
-                kept.reserve_exact(region.0.len());
+                kept.reserve(region.0.len());
             }
             let first = rings.len();
             rings.push(exterior);
@@ -549,12 +563,12 @@ pub(crate) fn convex_rings_known(
         } else {
             let mut ordered = Vec::with_capacity(rings.len());
             let mut at = 0;
-            for &(holes, _) in &kept {
+            for &(holes, _) in kept.iter() {
                 ordered.push(std::mem::take(&mut rings[at]));
                 at += 1 + holes;
             }
             let mut at = 0;
-            for &(holes, _) in &kept {
+            for &(holes, _) in kept.iter() {
                 ordered.extend(rings[at + 1..at + 1 + holes].iter_mut().map(std::mem::take));
                 at += 1 + holes;
             }
@@ -578,7 +592,7 @@ pub(crate) fn convex_rings_known(
     };
     let mut out = Vec::with_capacity(outlines);
     let mut rings = rings.into_iter();
-    for (holes, apart) in kept {
+    for &(holes, apart) in kept.iter() {
         let exterior = rings.next()?;
         let holes: Vec<Vec<Coord>> = rings.by_ref().take(holes).collect();
         if apart {
@@ -606,6 +620,9 @@ pub(crate) fn convex_rings_known(
 }
 
 thread_local! {
+    /// `convex_rings_known`'s list of the polygons kept, kept between layers.
+    static KEPT_POLYGONS: std::cell::Cell<Vec<(usize, bool)>> =
+        const { std::cell::Cell::new(Vec::new()) };
     /// `convex_view`'s reversed copy of a ring, kept between layers.
     static KEPT: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
 }

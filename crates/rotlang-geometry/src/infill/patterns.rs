@@ -176,15 +176,20 @@ pub(crate) fn turned(angle: f64) -> f64 {
 /// segment at least `min` long: most of a loop's or a line's), so it is not run.
 pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
     let min2 = min * min;
-    // `simplify`'s distances: each point from the one before (all kept).
+    // `simplify`'s distances: each point from the one before (all kept); the last
+    // segment first (a clipped curve's short one is there most often).
     let long = |path: &[Coord]| {
-        let Some((&first, rest)) = path.split_first() else {
-            return false;
-        };
-        let mut a = first;
-        for &b in rest {
+        let short = |a: Coord, b: Coord| {
             let d = b - a;
-            if d.x * d.x + d.y * d.y < min2 {
+            d.x * d.x + d.y * d.y < min2
+        };
+        let n = path.len();
+        if short(path[n - 2], path[n - 1]) {
+            return false;
+        }
+        let mut a = path[0];
+        for &b in &path[1..n - 1] {
+            if short(a, b) {
                 return false;
             }
             a = b;

@@ -261,6 +261,7 @@ proptest! {
             prop_assert_eq!(raw.outlines, inset.0.len());
             prop_assert_eq!(raw.area().to_bits(), area.to_bits());
             prop_assert_eq!(&raw.polygons(), &inset);
+            prop_assert_eq!(&raw.into_polygons(), &inset);
         }
         for polygon in &region.0 {
             let ring = &polygon.exterior().0;
@@ -395,6 +396,395 @@ proptest! {
             && offset::star_clear(&moved, c)
         {
             prop_assert!(!offset::crossings(&[moved]));
+        }
+    }
+}
+
+/// The former convex inset (before its rings were kept open and its corners tested as
+/// they grew): each ring copied by `convex_ring`, each hole grown with the mitre's reach
+/// computed at every corner, each grown point tested inside the outline.
+fn former_convex_inset(
+    region: &geo::MultiPolygon<f64>,
+    d: f64,
+    arc: f64,
+) -> Option<geo::MultiPolygon<f64>> {
+    use super::region::{convex_ring, inset_kept, inside_convex, separated};
+    use geo::{BooleanOps, LineString, MultiPolygon, Polygon};
+    let grow = |ring: &[Coord]| -> Option<Vec<Coord>> {
+        let kept = convex_ring(ring)?;
+        let n = kept.len();
+        let normal = |a: Coord, b: Coord| {
+            let e = b - a;
+            let len = crate::math::hypot(e.x, e.y);
+            Coord {
+                x: e.y / len,
+                y: -e.x / len,
+            }
+        };
+        let mut out = Vec::new();
+        let (arc_cos, half_arc_cos) = (crate::math::cos(arc), crate::math::cos(arc / 2.0));
+        let mut n0 = normal(kept[n - 1], kept[0]);
+        for i in 0..n {
+            let (b, c) = (kept[i], kept[(i + 1) % n]);
+            let n1 = normal(b, c);
+            let (sin, cos) = (offset::cross(n0, n1), n0.x * n1.x + n0.y * n1.y);
+            let steps = if sin >= 0.0 && cos >= arc_cos {
+                1
+            } else {
+                (crate::math::atan2(sin, cos).max(0.0) / arc)
+                    .ceil()
+                    .max(1.0) as usize
+            };
+            if steps == 1 && cos > 0.0 {
+                let half_cos = ((1.0 + cos) / 2.0).sqrt();
+                if 1.0 / half_cos - 1.0 <= 1.0 - half_arc_cos {
+                    out.push(b + (n0 + n1) * (d / (1.0 + cos)));
+                    n0 = n1;
+                    continue;
+                }
+            }
+            out.push(b + n0 * d);
+            if steps > 1 {
+                let turn = crate::math::atan2(sin, cos).max(0.0) / steps as f64;
+                let (s, c) = crate::math::sin_cos(turn);
+                let mut v = n0;
+                for _ in 1..steps {
+                    v = Coord {
+                        x: v.x * c - v.y * s,
+                        y: v.x * s + v.y * c,
+                    };
+                    out.push(b + v * d);
+                }
+            }
+            out.push(b + n1 * d);
+            n0 = n1;
+        }
+        Some(out)
+    };
+    let closed = |mut ring: Vec<Coord>| {
+        ring.push(ring[0]);
+        LineString::new(ring)
+    };
+    let mut out = Vec::new();
+    for polygon in &region.0 {
+        let exterior = inset_kept(&convex_ring(&polygon.exterior().0)?, d);
+        let mut holes = Vec::new();
+        for hole in polygon.interiors() {
+            holes.push(grow(&hole.0)?);
+        }
+        if exterior.is_empty() {
+            continue;
+        }
+        let apart = holes
+            .iter()
+            .all(|h| h.iter().all(|&p| inside_convex(&exterior, p)))
+            && holes
+                .iter()
+                .enumerate()
+                .all(|(i, a)| holes[i + 1..].iter().all(|b| separated(a, b)));
+        if apart {
+            out.push(Polygon::new(
+                closed(exterior),
+                holes.into_iter().map(closed).collect(),
+            ));
+        } else {
+            let outer = Polygon::new(closed(exterior), vec![]);
+            let grown: Vec<Polygon<f64>> = holes
+                .into_iter()
+                .map(|h| Polygon::new(closed(h), vec![]))
+                .collect();
+            let grown = if grown.len() > 1 {
+                geo::unary_union(&grown)
+            } else {
+                MultiPolygon::new(grown)
+            };
+            out.extend(outer.difference(&grown).0);
+        }
+    }
+    Some(MultiPolygon::new(out))
+}
+
+/// A convex ring: `n` points on an ellipse at angles spread by `jitter`, about `centre`,
+/// clockwise for a hole; one point repeated or a straight corner inserted at `extra`.
+fn convex_ring_of(
+    n: usize,
+    radii: (f64, f64),
+    turn: f64,
+    jitter: &[f64],
+    centre: Coord,
+    clockwise: bool,
+    extra: Option<(usize, bool)>,
+) -> geo::LineString<f64> {
+    let mut pts: Vec<Coord> = (0..n)
+        .map(|i| {
+            let a = turn + (i as f64 + 0.45 * jitter[i % jitter.len()]) * TAU / n as f64;
+            centre
+                + Coord {
+                    x: radii.0 * a.cos(),
+                    y: radii.1 * a.sin(),
+                }
+        })
+        .collect();
+    if let Some((at, repeat)) = extra {
+        let i = at % n;
+        let p = if repeat {
+            pts[i]
+        } else {
+            (pts[i] + pts[(i + 1) % n]) / 2.0
+        };
+        pts.insert(i + 1, p);
+    }
+    if clockwise {
+        pts.reverse();
+    }
+    pts.push(pts[0]);
+    geo::LineString::new(pts)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    /// The convex inset with its rings kept open, its holes' corners tested as they grow
+    /// (read either way round), the mitre told by the least cosine that takes one and
+    /// the holes told inside the outline by their boxes is the former one to the bit:
+    /// convex outlines (squares, ellipses, a triangle) turning either way with up to
+    /// three convex holes (some meeting the outline or each other), an island, a
+    /// repeated point or a straight corner; insets from a twentieth of a millimetre to
+    /// 4 mm. A region of these made for a layer has the former inset's rings (outlines
+    /// first), area and polygons.
+    #[test]
+    fn convex_rings_are_the_former_convex_inset(
+        outer in (3usize..40, 5.0f64..20.0, 5.0f64..20.0),
+        jitter in prop::collection::vec(-1.0f64..1.0, 1..8),
+        holes in prop::collection::vec(
+            (3usize..70, 0.3f64..6.0, -12.0f64..12.0, -12.0f64..12.0, any::<bool>()), 0..4),
+        island in any::<bool>(),
+        turn in 0.0f64..TAU,
+        clockwise in any::<bool>(),
+        extra in prop::option::of((0usize..80, any::<bool>(), 0usize..4)),
+        d in 0.05f64..4.0,
+        arc in prop::sample::select(vec![0.2, 0.45, 0.5, 0.8]),
+    ) {
+        let (n, rx, ry) = outer;
+        let extra_at = |ring: usize| extra.and_then(|(at, repeat, r)| (r == ring).then_some((at, repeat)));
+        let exterior = convex_ring_of(n, (rx, ry), turn, &jitter, Coord::zero(), clockwise, extra_at(0));
+        let interiors = holes
+            .iter()
+            .enumerate()
+            .map(|(i, &(m, r, x, y, round))| {
+                let radii = if round { (r, r) } else { (r, 0.6 * r) };
+                convex_ring_of(m, radii, turn, &jitter, Coord { x, y }, !clockwise, extra_at(i + 1))
+            })
+            .collect();
+        let mut region = geo::MultiPolygon::new(vec![geo::Polygon::new(exterior, interiors)]);
+        if island {
+            let far = convex_ring_of(5, (3.0, 2.0), turn, &jitter, Coord { x: 60.0, y: 5.0 }, false, None);
+            region.0.push(geo::Polygon::new(far, vec![]));
+        }
+        let former = former_convex_inset(&region, d, arc);
+        prop_assert_eq!(super::region::convex_inset(&region, d, arc), former.clone());
+        // A layer's region (inset by half its nozzle, at that nozzle's arc step).
+        let step = super::region::arc_step(d);
+        if let (Ok(layer), Some(inset)) = (super::Region::new(&region, 2.0 * d), former_convex_inset(&super::region::clean(&region), d, step)) {
+            let (rings, area) = rings_and_area_of(&inset);
+            let rings: Rings = rings.into_iter().filter(|r| r.len() >= 3).collect();
+            prop_assert_eq!(layer.rings(), &rings[..]);
+            prop_assert_eq!(layer.area().to_bits(), area.to_bits());
+            prop_assert_eq!(layer.inset(), &inset);
+        }
+    }
+
+    /// The least cosine that takes a mitre tells every corner as the reach computed at
+    /// the corner does: random cosines, and those next to the least, for rooms of the
+    /// arc steps a nozzle gives.
+    #[test]
+    fn least_mitre_cosine_tells_each_corner(
+        arc in 0.2f64..0.8,
+        cos in -1.0f64..1.0,
+    ) {
+        let room = 1.0 - crate::math::cos(arc / 2.0);
+        let from = super::region::mitre_from(room);
+        prop_assert!(super::region::mitre_fits(from, room));
+        let below = f64::from_bits(from.to_bits() - 1);
+        prop_assert!(!super::region::mitre_fits(below, room));
+        let near = f64::from_bits(from.to_bits().wrapping_add((cos.to_bits() % 64).wrapping_sub(32)));
+        for c in [cos, near, 1.0, 1.0 + f64::EPSILON, f64::MIN_POSITIVE] {
+            prop_assert_eq!(c >= from, c > 0.0 && super::region::mitre_fits(c, room), "{}", c);
+        }
+    }
+
+    /// One pass over the points finds the bounds, whether the region is clean
+    /// (`is_clean`), its first outline's area (to the bit) and the first coordinate out
+    /// of range, as the former checks did: rings with a repeated point or not, a value
+    /// out of range or not.
+    #[test]
+    fn survey_is_the_former_checks(
+        outer in prop::collection::vec(4.0f64..12.0, 3..24),
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..10), 0..3),
+        turn in 0.0f64..TAU,
+        repeat in prop::option::of(0usize..30),
+        bad in prop::option::of((0usize..60, any::<bool>(), prop::sample::select(vec![f64::NAN, f64::INFINITY, -f64::INFINITY, 2e6, -1.5e6]))),
+    ) {
+        let mut region = super::tests::holed_radial(&outer, &holes, turn, 3.0);
+        if let Some(i) = repeat {
+            region.0[0].exterior_mut(|ring| {
+                let i = i % (ring.0.len() - 1);
+                ring.0.insert(i, ring.0[i]);
+            });
+        }
+        if let Some((i, y, v)) = bad {
+            region.0[0].exterior_mut(|ring| {
+                let i = i % ring.0.len();
+                if y { ring.0[i].y = v } else { ring.0[i].x = v }
+            });
+        }
+        let (mut min, mut max) = (
+            Coord { x: f64::INFINITY, y: f64::INFINITY },
+            Coord { x: f64::NEG_INFINITY, y: f64::NEG_INFINITY },
+        );
+        let mut first_bad = None;
+        for p in &region.0 {
+            for ring in std::iter::once(p.exterior()).chain(p.interiors()) {
+                for c in &ring.0 {
+                    for v in [c.x, c.y] {
+                        if first_bad.is_none() && !(v.is_finite() && v.abs() <= super::MAX_COORDINATE) {
+                            first_bad = Some(v);
+                        }
+                    }
+                    crate::math::widen(&mut min, &mut max, *c);
+                }
+            }
+        }
+        match (super::region::survey(&region), first_bad) {
+            (Err(super::Error::Coordinate(v)), Some(b)) => prop_assert_eq!(v.to_bits(), b.to_bits()),
+            (Ok(found), None) => {
+                prop_assert_eq!((found.min, found.max), (min, max));
+                let clean = super::region::is_clean(&region);
+                prop_assert_eq!(found.clean, clean);
+                let first = offset::signed_area(&region.0[0].exterior().0);
+                prop_assert_eq!(found.first_area.map(f64::to_bits), clean.then_some(first.to_bits()));
+            }
+            (got, want) => prop_assert!(false, "{:?} against {:?}", got.map(|_| ()), want),
+        }
+    }
+}
+
+/// A ring whose corners all turn left but which winds twice (a pentagram's points taken
+/// every second one) is no convex ring, as outline or as hole, as before; a square with
+/// a square hole (edges with no x component) is one.
+#[test]
+fn rings_wound_twice_have_no_convex_inset() {
+    let five = radial(&[6.0; 5], 0.3, Coord::zero());
+    let mut pentagram: Vec<Coord> = (0..5).map(|i| five[(2 * i) % 5]).collect();
+    pentagram.push(pentagram[0]);
+    let square = shapes::square(40.0).0[0].exterior().clone();
+    let mut hole = pentagram.clone();
+    hole.reverse();
+    for region in [
+        geo::MultiPolygon::new(vec![geo::Polygon::new(
+            geo::LineString::new(pentagram),
+            vec![],
+        )]),
+        geo::MultiPolygon::new(vec![geo::Polygon::new(
+            square,
+            vec![geo::LineString::new(hole)],
+        )]),
+    ] {
+        assert!(former_convex_inset(&region, 0.2, 0.45).is_none());
+        assert!(super::region::convex_inset(&region, 0.2, 0.45).is_none());
+    }
+    // Edges with no x component (a square's sides, a hole's) turn the count as before.
+    let mut hole = shapes::square(10.0).0[0].exterior().clone();
+    hole.0.reverse();
+    let boxed = geo::MultiPolygon::new(vec![geo::Polygon::new(
+        shapes::square(40.0).0[0].exterior().clone(),
+        vec![hole],
+    )]);
+    let former = former_convex_inset(&boxed, 0.2, 0.45);
+    assert!(former.is_some());
+    assert_eq!(super::region::convex_inset(&boxed, 0.2, 0.45), former);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// An outline's offset read in one pass (its area's sign, geo's area of it, the
+    /// one-pass proof about a point) is `offset_points`, `polygon_area` and `star_clear`
+    /// taken apart, to the bit: star-like rings (some scrambled, some wound twice) about
+    /// points near and far. A clean ring whose area is known is read in place as
+    /// `inside_left_cow` reads it.
+    #[test]
+    fn outline_read_in_one_pass_is_read_apart(
+        radii in prop::collection::vec(0.5f64..12.0, 3..24),
+        turn in 0.0f64..TAU,
+        scramble in 0usize..3,
+        d in 0.05f64..3.0,
+        c in (-3.0f64..3.0, -3.0f64..3.0),
+        exterior in any::<bool>(),
+    ) {
+        let mut ring = radial(&radii, turn, Coord::zero());
+        if scramble == 1 {
+            for pair in ring.chunks_exact_mut(2).step_by(3) {
+                pair.swap(0, 1);
+            }
+        } else if scramble == 2 && ring.len() % 2 == 1 {
+            let n = ring.len();
+            ring = (0..n).map(|i| ring[(2 * i) % n]).collect();
+        }
+        let c = Coord { x: c.0, y: c.1 };
+        let step = offset::ArcStep::new(0.45);
+        if let Some(pts) = offset::inside_left(&ring, true) {
+            let apart = offset::offset_ring(&pts, d, 0.45, true);
+            for centre in [Some(c), None] {
+                let read = offset::offset_read(&pts, d, step, centre);
+                prop_assert_eq!(read.as_ref().map(|r| &r.0), apart.as_ref());
+                if let (Some((moved, read)), Some(_)) = (read, &apart) {
+                    let area = offset::polygon_area(&moved, &[]);
+                    prop_assert_eq!(read.area.to_bits(), area.to_bits());
+                    prop_assert_eq!(read.star, centre.is_some() && offset::star_clear(&moved, c));
+                }
+            }
+        }
+        let mut closed = ring.clone();
+        closed.push(ring[0]);
+        let area = offset::signed_area(&closed);
+        if closed.windows(2).all(|w| w[0] != w[1]) {
+            prop_assert_eq!(
+                offset::inside_left_known(&closed, exterior, area),
+                offset::inside_left_cow(&closed, exterior)
+            );
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// A ring found turning clearly both ways has no convex ring, either way round (so
+    /// the convex inset is not tried): star-like rings, convex ones, with a repeated
+    /// point or a straight corner; and a convex one is never found so.
+    #[test]
+    fn rings_turning_both_ways_are_not_convex(
+        radii in prop::collection::vec(1.0f64..12.0, 3..24),
+        turn in 0.0f64..TAU,
+        round in any::<bool>(),
+        extra in prop::option::of((0usize..30, any::<bool>())),
+    ) {
+        let mut ring = if round {
+            let jitter: Vec<f64> = radii.iter().map(|r| r / 12.0 - 0.5).collect();
+            convex_ring_of(radii.len(), (radii[0], radii[0] * 0.7), turn, &jitter, Coord::zero(), false, extra).0
+        } else {
+            let mut r = radial(&radii, turn, Coord::zero());
+            r.push(r[0]);
+            r
+        };
+        for _ in 0..2 {
+            let open = &ring[..ring.len() - 1];
+            if super::region::turns_both_ways(open) {
+                prop_assert!(super::region::convex_ring(&ring).is_none());
+                prop_assert!(!round);
+            }
+            ring.reverse();
         }
     }
 }

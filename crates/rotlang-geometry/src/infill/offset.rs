@@ -30,6 +30,8 @@ pub(crate) struct RawRings {
     pub outlines: usize,
     /// How many holes each polygon has; empty when none has any (no allocation).
     pub holes: Vec<usize>,
+    /// `area()`, where the offset measured it as it went (one outline without holes).
+    pub measured: Option<f64>,
 }
 
 impl RawRings {
@@ -38,9 +40,35 @@ impl RawRings {
         polygons(&self.rings, self.outlines, &self.holes)
     }
 
+    /// [`RawRings::polygons`] made of the rings themselves (each closed in place), not
+    /// copies.
+    pub(crate) fn into_polygons(self) -> MultiPolygon<f64> {
+        let closed = |mut ring: Vec<Coord>| {
+            ring.push(ring[0]);
+            LineString::new(ring)
+        };
+        let mut rings = self.rings;
+        let mut hole = self.outlines;
+        let out = (0..self.outlines)
+            .map(|i| {
+                let count = self.holes.get(i).copied().unwrap_or(0);
+                let interiors = rings[hole..hole + count]
+                    .iter_mut()
+                    .map(|r| closed(std::mem::take(r)))
+                    .collect();
+                hole += count;
+                Polygon::new(closed(std::mem::take(&mut rings[i])), interiors)
+            })
+            .collect();
+        MultiPolygon::new(out)
+    }
+
     /// The area of the polygons, to the bit as geo's `unsigned_area` of [`polygons`]
     /// (`Region::area`, which densities are measured against), without making them.
     pub(crate) fn area(&self) -> f64 {
+        if let Some(area) = self.measured {
+            return area;
+        }
         let mut hole = self.outlines;
         let mut total = 0.0;
         for i in 0..self.outlines {
@@ -120,33 +148,52 @@ pub(crate) fn raw_rings_stepped(
     d: f64,
     step: ArcStep,
 ) -> Option<RawRings> {
+    raw_rings_known(region, d, step, None)
+}
+
+/// [`raw_rings_stepped`] with the first outline's signed area known where the region
+/// is clean (`Survey::first_area`): that ring is read in place without a second look.
+pub(crate) fn raw_rings_known(
+    region: &MultiPolygon<f64>,
+    d: f64,
+    step: ArcStep,
+    first_area: Option<f64>,
+) -> Option<RawRings> {
     // The commonest region, one outline and no hole (a star, an L): read in place when
     // it needs no cleaning and turns the right way, offset into the ring kept.
     if let [polygon] = &region.0[..]
         && polygon.interiors().is_empty()
     {
-        let pts = inside_left_cow(&polygon.exterior().0, true)?;
-        let exterior = offset_points(&pts, d, step, true)?;
+        let pts = match first_area {
+            Some(area) => inside_left_known(&polygon.exterior().0, true, area)?,
+            None => inside_left_cow(&polygon.exterior().0, true)?,
+        };
+        // Both proofs are sound; the cheaper first: the pairwise one for a few edges (an
+        // L's six have nine pairs, and its mean is its reflex corner, where the one-pass
+        // proof declines), the one pass over the inset for more (a star's ten have 35),
+        // made as the inset is read for its area.
+        let few = pts.len() <= 6;
+        let (exterior, read) = offset_read(&pts, d, step, (!few).then(|| mean(&pts)))?;
         if exterior.len() > MAX_POINTS {
+            return None;
+        }
+        let pairwise = || clear_of_crossings(std::slice::from_ref(&pts), d);
+        let clear = if few {
+            pairwise() || star_clear(&exterior, mean(&pts))
+        } else {
+            read.star || pairwise()
+        };
+        if !clear && crossings(std::slice::from_ref(&exterior)) {
             return None;
         }
         // The list from the pool a dropped `Region` gave it back to (`scratch`).
         let mut rings = super::scratch::take(&RINGS);
         rings.push(exterior);
-        // Both proofs are sound; the cheaper first: the pairwise one for a few edges (an
-        // L's six have nine pairs, and its mean is its reflex corner, where the one-pass
-        // proof declines), the one pass over the inset for more (a star's ten have 35).
-        let few = pts.len() <= 6;
-        let pairwise = || clear_of_crossings(std::slice::from_ref(&pts), d);
-        let clear =
-            (few && pairwise()) || star_clear(&rings[0], mean(&pts)) || (!few && pairwise());
-        if !clear && crossings(&rings) {
-            return None;
-        }
         return Some(RawRings {
             rings,
             outlines: 1,
             holes: Vec::new(),
+            measured: Some(read.area),
         });
     }
     // Every ring, outlines and holes (each outline followed by its holes): the crossing
@@ -207,6 +254,7 @@ pub(crate) fn raw_rings_stepped(
         rings: ordered,
         outlines,
         holes,
+        measured: None,
     })
 }
 
@@ -225,6 +273,25 @@ pub(crate) fn inside_left_cow(
         open.len() >= 3 && open.first() != open.last() && open.windows(2).all(|w| w[0] != w[1]);
     if as_is {
         let area = signed_area(open);
+        if area == 0.0 {
+            return None;
+        }
+        if (area > 0.0) == exterior {
+            return Some(std::borrow::Cow::Borrowed(open));
+        }
+    }
+    inside_left(ring, exterior).map(std::borrow::Cow::Owned)
+}
+
+/// [`inside_left_cow`] of a ring known clean (no point repeated in a row, its closing
+/// point its first) whose signed area is `area`.
+pub(crate) fn inside_left_known(
+    ring: &[Coord],
+    exterior: bool,
+    area: f64,
+) -> Option<std::borrow::Cow<'_, [Coord]>> {
+    let open = &ring[..ring.len().saturating_sub(1)];
+    if open.len() >= 3 {
         if area == 0.0 {
             return None;
         }
@@ -290,7 +357,7 @@ pub(crate) fn arc_points(
         if cross(w, nv) >= 0.0 || w.x * nv.x + w.y * nv.y >= step.last_cos {
             break;
         }
-        out.push(b + w * d);
+        put(out, b + w * d);
     }
 }
 
@@ -485,6 +552,91 @@ pub(crate) fn offset_ring(ring: &[Coord], d: f64, arc: f64, exterior: bool) -> O
 /// `offset_ring` of a ring already turned by `inside_left` (so its area is positive for
 /// an outline, negative for a hole: not measured again).
 fn offset_points(pts: &[Coord], d: f64, step: ArcStep, exterior: bool) -> Option<Vec<Coord>> {
+    let out = moved_points(pts, d, step)?;
+    let moved = signed_area(&out);
+    if moved == 0.0 || (moved > 0.0) != exterior {
+        return None;
+    }
+    Some(out)
+}
+
+/// What one pass over an outline's offset reads of it: geo's area of it alone (as
+/// [`polygon_area`]) and whether it is proved clear of crossings by [`star_clear`].
+pub(crate) struct Read {
+    pub area: f64,
+    pub star: bool,
+}
+
+/// `offset_points` of an outline, its signed area, geo's area and (about `centre`, if
+/// given; else `false`) `star_clear` taken in one pass over it, each sum in its own
+/// order.
+pub(crate) fn offset_read(
+    pts: &[Coord],
+    d: f64,
+    step: ArcStep,
+    centre: Option<Coord>,
+) -> Option<(Vec<Coord>, Read)> {
+    let out = moved_points(pts, d, step)?;
+    let (twice_moved, twice_geo, star) = match centre {
+        Some(c) => read_ring::<true>(&out, c),
+        None => read_ring::<false>(&out, Coord::zero()),
+    };
+    // `offset_points`' test, on the same sum.
+    let moved = twice_moved / 2.0;
+    if moved == 0.0 || moved.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    // `polygon_area` of the ring alone: the magnitude of geo's signed area.
+    let area = (twice_geo / 2.0).abs();
+    Some((out, Read { area, star }))
+}
+
+/// A ring's `signed_area` (doubled: its sign is what is asked), `geo_ring_area`'s sum
+/// (doubled) and, with `STAR`, `star_clear(ring, c)`, in one pass: each term as those
+/// make it, summed in their order.
+#[inline(always)]
+fn read_ring<const STAR: bool>(ring: &[Coord], c: Coord) -> (f64, f64, bool) {
+    let (first, second) = (ring[0], ring[1]);
+    // `signed_area`: each point and the next, then the closing edge. `geo_ring_area`:
+    // the determinants of the points shifted by the first, from the second on.
+    let mut sum = -0.0 + cross(first, second);
+    let mut geo = 0.0;
+    let mut prev = second - first;
+    // `star_clear`: every edge with `c` clearly on its left, and one going up across it.
+    let (mut clear, mut up) = (true, 0u32);
+    let mut edge = |a: Coord, b: Coord| {
+        let (e, f) = (b - a, c - a);
+        let (s, t) = (e.x * f.y, e.y * f.x);
+        clear &= s - t > 1e-12 * (s.abs() + t.abs());
+        up += u32::from(a.y <= c.y && b.y > c.y);
+    };
+    if STAR {
+        edge(first, second);
+    }
+    let mut a = second;
+    for &b in &ring[2..] {
+        sum += cross(a, b);
+        let shifted = b - first;
+        geo += prev.x * shifted.y - prev.y * shifted.x;
+        prev = shifted;
+        if STAR {
+            edge(a, b);
+        }
+        a = b;
+    }
+    sum += cross(a, first);
+    // The closing point shifted by itself: (0, 0), its term as geo makes it.
+    let zero = Coord::<f64>::zero();
+    geo += prev.x * zero.y - prev.y * zero.x;
+    if STAR {
+        edge(a, first);
+    }
+    (sum, geo, STAR && clear && up == 1)
+}
+
+/// Each vertex moved `d` to the left of its edges (convex corners mitred, reflex ones
+/// round), without the closing point; `None` when an edge turns around.
+fn moved_points(pts: &[Coord], d: f64, step: ArcStep) -> Option<Vec<Coord>> {
     let n = pts.len();
     // Coordinates are bounded (MAX_COORDINATE): a plain square root, not `hypot`.
     let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
@@ -496,21 +648,22 @@ fn offset_points(pts: &[Coord], d: f64, step: ArcStep, exterior: bool) -> Option
     out.reserve(3 * n + 1);
     // Each vertex's moved point(s) run from `end` (where the edge before it ends) to
     // `start` (where the edge after it starts); edge i runs from vertex i's start to
-    // vertex i+1's end and must keep its direction: checked as each vertex is moved
-    // (vertex 0's (start, end) kept for the last edge), no list of them.
-    let mut first = (0, 0);
-    let mut previous_start = 0;
-    let turns_around = |out: &[Coord], from: usize, to: usize, i: usize, j: usize| {
-        let e = pts[j] - pts[i];
-        let f = out[to] - out[from];
+    // vertex i+1's end and must keep its direction (`e`, from pts[i] to pts[i+1]):
+    // checked as each vertex is moved.
+    let last = pts[0] - pts[n - 1];
+    let mut previous_start = Coord::zero();
+    let turns_around = |e: Coord, from: Coord, to: Coord| {
+        let f = to - from;
         e.x * f.x + e.y * f.y <= 0.0
     };
     // Each edge's direction once: the corner after it takes it as the one before.
-    let mut u = unit(pts[0] - pts[n - 1]);
+    let mut u = unit(last);
+    let mut before = last;
+    let mut b = pts[0];
     for i in 0..n {
-        let b = pts[i];
         let c = if i + 1 < n { pts[i + 1] } else { pts[0] };
-        let v = unit(c - b);
+        let e = c - b;
+        let v = unit(e);
         let (nu, nv) = (left(u), left(v));
         let turn = cross(u, v);
         let dot = u.x * v.x + u.y * v.y;
@@ -520,34 +673,48 @@ fn offset_points(pts: &[Coord], d: f64, step: ArcStep, exterior: bool) -> Option
             if k <= 1e-9 {
                 return None;
             }
-            let at = (out.len(), out.len());
-            out.push(b + (nu + nv) * (d / k));
-            at
+            let p = b + (nu + nv) * (d / k);
+            put(&mut out, p);
+            (p, p)
         } else {
             // Reflex: an arc about the vertex from one moved edge's end to the next's start.
-            let end = out.len();
-            out.push(b + nu * d);
+            let end = b + nu * d;
+            put(&mut out, end);
             arc_points(b, nu, nv, d, step, &mut out);
-            let at = (out.len(), end);
-            out.push(b + nv * d);
-            at
+            let start = b + nv * d;
+            put(&mut out, start);
+            (start, end)
         };
-        if i == 0 {
-            first = (start, end);
-        } else if turns_around(&out, previous_start, end, i - 1, i) {
+        if i > 0 && turns_around(before, previous_start, end) {
             return None;
         }
         previous_start = start;
+        before = e;
         u = v;
+        b = c;
     }
-    if turns_around(&out, previous_start, first.1, n - 1, 0) {
-        return None;
-    }
-    let moved = signed_area(&out);
-    if moved == 0.0 || (moved > 0.0) != exterior {
+    // Vertex 0's end is the ring's first point.
+    if turns_around(last, previous_start, out[0]) {
         return None;
     }
     Some(out)
+}
+
+/// `out.push(p)` with its growing out of the way (`cold_push`): the loop that moves a
+/// ring's vertices keeps its values in registers rather than about a call.
+#[inline(always)]
+fn put(out: &mut Vec<Coord>, p: Coord) {
+    if out.len() < out.capacity() {
+        out.push(p);
+    } else {
+        cold_push(out, p);
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn cold_push(out: &mut Vec<Coord>, p: Coord) {
+    out.push(p);
 }
 
 /// Whether `p` is inside the ring (even-odd).

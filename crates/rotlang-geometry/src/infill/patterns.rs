@@ -30,19 +30,15 @@ impl Region {
         // Every pattern puts about `area·ρ/w` mm of line in the region, curves with a
         // vertex at least every quarter nozzle; and each of the (at most three families
         // of) lines is tested against every edge of the outline.
-        let extent = math::hypot((self.max - self.min).x, (self.max - self.min).y);
         let edges: usize = self.rings.iter().map(Vec::len).sum();
-        let length = self.area * rho / w;
-        let lines = 3.0 * extent * rho / w;
-        let estimate = length / (w / 4.0) + lines * edges as f64 / 8.0;
-        if estimate > MAX_VERTICES {
+        if let Some(estimate) = too_large(self.max - self.min, self.area, rho, w, edges) {
             return Err(Error::TooLarge { estimate });
         }
         let centre = match params.centring {
             super::Centring::Object => self.centre(),
             super::Centring::Global => Coord::zero(),
         };
-        let theta = params.angle.rem_euclid(360.0).to_radians();
+        let theta = turned(params.angle).to_radians();
         // A list kept from one layer to the next (`order` gives it back emptied).
         let mut paths: Vec<Vec<Coord>> = super::scratch::take(&order::PATHS);
         match params.pattern {
@@ -135,12 +131,146 @@ impl Region {
             }
         }
         let min_segment = w / 10.0;
-        paths.retain_mut(|p| order::simplify(p, min_segment));
+        paths.retain_mut(|p| simplify(p, min_segment));
         let monotonic = params.order == Order::Monotonic;
         Ok(order::order(
             paths,
             monotonic.then(|| Frame::new(centre, theta)),
             if self.convex { &[] } else { &self.rings },
         ))
+    }
+}
+
+/// The estimate of the vertices a layer makes, where it is past `MAX_VERTICES`: every
+/// pattern puts about `area·ρ/w` mm of line in the region, curves with a vertex at least
+/// every quarter nozzle; and each of the (at most three families of) lines is tested
+/// against every edge of the outline (`span`: the region's box). The box's diagonal by
+/// a plain square root (within a few units in the last place of `hypot`'s), `hypot`'s
+/// only where that estimate comes near the limit (so the answer is `hypot`'s) and for
+/// the one reported.
+pub(crate) fn too_large(span: Coord, area: f64, rho: f64, w: f64, edges: usize) -> Option<f64> {
+    let length = area * rho / w;
+    let estimate_of = |extent: f64| {
+        let lines = 3.0 * extent * rho / w;
+        length / (w / 4.0) + lines * edges as f64 / 8.0
+    };
+    let estimate = estimate_of((span.x * span.x + span.y * span.y).sqrt());
+    if estimate > MAX_VERTICES * (1.0 - 1e-9) {
+        let estimate = estimate_of(math::hypot(span.x, span.y));
+        return (estimate > MAX_VERTICES).then_some(estimate);
+    }
+    None
+}
+
+/// An angle (degrees) turned into [0, 360): `rem_euclid(360)`, not called for an angle
+/// already there (its `fmod` returns it exactly).
+pub(crate) fn turned(angle: f64) -> f64 {
+    if (0.0..360.0).contains(&angle) {
+        angle
+    } else {
+        angle.rem_euclid(360.0)
+    }
+}
+
+/// `order::simplify`, told without a write where it would change nothing (every
+/// segment at least `min` long: most of a loop's or a line's), so it is not run.
+pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
+    let min2 = min * min;
+    // `simplify`'s distances: each point from the one before (all kept); the last
+    // segment first (a clipped curve's short one is there most often).
+    let long = |path: &[Coord]| {
+        let short = |a: Coord, b: Coord| {
+            let d = b - a;
+            d.x * d.x + d.y * d.y < min2
+        };
+        let n = path.len();
+        if short(path[n - 2], path[n - 1]) {
+            return false;
+        }
+        let mut a = path[0];
+        for &b in &path[1..n - 1] {
+            if short(a, b) {
+                return false;
+            }
+            a = b;
+        }
+        true
+    };
+    (path.len() >= 2 && long(path)) || order::simplify(path, min)
+}
+
+#[cfg(test)]
+mod tests {
+    use geo::Coord;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The layer's estimate told with a plain square root is the one told with
+        /// `hypot` (the former), error or not, to the bit where reported: boxes, areas,
+        /// densities and edge counts about the limit; and angles turned without
+        /// `rem_euclid` in [0, 360) are its (negative zero, 360 and beyond included).
+        #[test]
+        fn estimate_and_angle_told_cheaply_are_the_former(
+            span in (0.0f64..2e6, 0.0f64..2e6),
+            area in 0.0f64..4e12,
+            rho in 0.01f64..1.0,
+            w in 0.1f64..1.0,
+            edges in 3usize..100_000,
+            near in any::<bool>(),
+            angle in prop::sample::select(vec![-720.5, -0.0, 0.0, 45.0, 359.999, 360.0, 1e6, f64::NAN]),
+            random_angle in -1e4f64..1e4,
+        ) {
+            let span = Coord { x: span.0, y: span.1 };
+            let estimate = |span: Coord, area: f64, edges: usize| {
+                let extent = crate::math::hypot(span.x, span.y);
+                let length = area * rho / w;
+                let lines = 3.0 * extent * rho / w;
+                length / (w / 4.0) + lines * edges as f64 / 8.0
+            };
+            let former = |span: Coord, area: f64, edges: usize| {
+                let estimate = estimate(span, area, edges);
+                (estimate > super::MAX_VERTICES).then_some(estimate)
+            };
+            // Scaled to within a few units in the last place of the limit, either side (the
+            // box first made small enough for its lines to leave room).
+            let span = if near {
+                let lines = estimate(span, 0.0, edges);
+                span * (0.5 * super::MAX_VERTICES / lines.max(1.0)).min(1.0)
+            } else {
+                span
+            };
+            let area = if near {
+                let rest = (super::MAX_VERTICES - estimate(span, 0.0, edges)).max(0.0);
+                rest * (w / 4.0) * w / rho
+            } else {
+                area
+            };
+            for nudge in [-4.0, -1.0, 0.0, 1.0, 4.0] {
+                let area = area * (1.0 + nudge * f64::EPSILON);
+                let (got, want) = (super::too_large(span, area, rho, w, edges), former(span, area, edges));
+                prop_assert_eq!(got.map(f64::to_bits), want.map(f64::to_bits));
+            }
+            // What the square root's estimate relies on: a few units in the last place.
+            let (fast, exact) = ((span.x * span.x + span.y * span.y).sqrt(), crate::math::hypot(span.x, span.y));
+            prop_assert!((fast - exact).abs() <= 1e-15 * exact);
+            for a in [angle, random_angle] {
+                prop_assert_eq!(super::turned(a).to_bits(), a.rem_euclid(360.0).to_bits());
+            }
+        }
+
+        /// Paths whose every segment is long enough are kept as they are without a
+        /// write: the same paths and answers as `order::simplify` on random paths
+        /// (short segments, none or one point included) at random lengths.
+        #[test]
+        fn simplify_told_without_a_write_is_simplify(
+            points in prop::collection::vec((-5.0f64..5.0, -5.0f64..5.0), 0..12),
+            min in 0.0f64..3.0,
+        ) {
+            let path: Vec<Coord> = points.into_iter().map(|(x, y)| Coord { x, y }).collect();
+            let (mut fast, mut general) = (path.clone(), path);
+            let kept = super::simplify(&mut fast, min);
+            prop_assert_eq!(kept, super::order::simplify(&mut general, min));
+            prop_assert_eq!(fast, general);
+        }
     }
 }

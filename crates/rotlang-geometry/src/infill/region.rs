@@ -5,7 +5,7 @@ use geo::{Area, BooleanOps, Buffer, Coord, LineString, MultiPolygon, Polygon};
 
 use super::{Error, MAX_COORDINATE};
 // Where they were (`super::region::cross`): ring helpers the offset shares.
-use super::offset::{ArcStep, next};
+use super::offset::{ArcStep, RawRings, next};
 pub(crate) use super::offset::{cross, signed_area};
 
 /// The infill area of a layer: the region inset by half a nozzle.
@@ -53,34 +53,20 @@ impl Region {
         if !(0.01..=10.0).contains(&nozzle) {
             return Err(Error::Nozzle(nozzle));
         }
-        let (mut min, mut max) = (
-            Coord {
-                x: f64::INFINITY,
-                y: f64::INFINITY,
-            },
-            Coord {
-                x: f64::NEG_INFINITY,
-                y: f64::NEG_INFINITY,
-            },
-        );
-        for polygon in &region.0 {
-            for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
-                for c in ring.coords() {
-                    for v in [c.x, c.y] {
-                        if !(v.is_finite() && v.abs() <= MAX_COORDINATE) {
-                            return Err(Error::Coordinate(v));
-                        }
-                    }
-                    math::widen(&mut min, &mut max, *c);
-                }
-            }
-        }
+        let Survey {
+            mut min,
+            mut max,
+            clean: as_is,
+            first_area,
+            first_turns_both_ways,
+        } = survey(region)?;
         // A region with nothing to clean (no repeated point, no degenerate ring: most)
-        // is read where it is, not copied.
-        let cleaned = if keep_outline || !is_clean(region) {
-            std::borrow::Cow::Owned(clean(region))
-        } else {
-            std::borrow::Cow::Borrowed(region)
+        // is read where it is, not copied (or copied whole, where the outline is kept),
+        // its first outline's area known.
+        let cleaned = match (keep_outline, as_is) {
+            (false, true) => std::borrow::Cow::Borrowed(region),
+            (true, true) => std::borrow::Cow::Owned(region.clone()),
+            _ => std::borrow::Cow::Owned(clean(region)),
         };
         let (arc, step) = arc_and_step(nozzle / 2.0);
         // Which offset made the inset says, most of the time, whether it is convex (see
@@ -93,9 +79,25 @@ impl Region {
             holes,
             area,
             made_by,
-        } = if let Some(inset) = convex_inset(&cleaned, nozzle / 2.0, arc) {
-            Inset::of_polygons(inset, Offset::Convex)
-        } else if let Some(raw) = super::offset::raw_rings_stepped(&cleaned, nozzle / 2.0, step) {
+        } = if let Some(convex) = (!first_turns_both_ways)
+            .then(|| convex_rings_known(&cleaned, nozzle / 2.0, arc, first_area))
+            .flatten()
+        {
+            match convex {
+                // Kept open as made: the polygons only if asked, as the raw offset's.
+                ConvexInset::Rings(raw) => Inset {
+                    inset: std::sync::OnceLock::new(),
+                    area: raw.area(),
+                    rings: raw.rings,
+                    outlines: raw.outlines,
+                    holes: raw.holes,
+                    made_by: Offset::Convex,
+                },
+                ConvexInset::Polygons(inset) => Inset::of_polygons(inset, Offset::Convex),
+            }
+        } else if let Some(raw) =
+            super::offset::raw_rings_known(&cleaned, nozzle / 2.0, step, first_area)
+        {
             Inset {
                 inset: std::sync::OnceLock::new(),
                 area: raw.area(),
@@ -288,8 +290,132 @@ pub fn inset(region: &MultiPolygon<f64>, d: f64) -> MultiPolygon<f64> {
         .unwrap_or_else(|| cleaned.buffer(-d))
 }
 
+/// What one pass over a region's points finds: its bounding box (infinite where it has
+/// no point), whether it is clean (`is_clean`: no ring repeats a point in a row, every
+/// ring has three points or more and some area) and, where it is, its first outline's
+/// signed area (`signed_area`'s, the same sum: its closing edge adds nothing).
+pub(crate) struct Survey {
+    pub(crate) min: Coord,
+    pub(crate) max: Coord,
+    pub(crate) clean: bool,
+    pub(crate) first_area: Option<f64>,
+    /// Where it is clean and its first outline has no holes, whether that outline turns
+    /// clearly left at some corner and clearly right at another (`convex_ring`'s test):
+    /// it is no convex ring, either way round.
+    pub(crate) first_turns_both_ways: bool,
+}
+
+/// [`Survey`] of a region, every coordinate checked finite and within
+/// ±[`MAX_COORDINATE`] (the first value out of range looked for again only when some is).
+pub(crate) fn survey(region: &MultiPolygon<f64>) -> Result<Survey, Error> {
+    let rings = || {
+        region
+            .0
+            .iter()
+            .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
+    };
+    let mut min = Coord {
+        x: f64::INFINITY,
+        y: f64::INFINITY,
+    };
+    let mut max = Coord {
+        x: f64::NEG_INFINITY,
+        y: f64::NEG_INFINITY,
+    };
+    let (mut within, mut clean) = (true, true);
+    let mut first_area = None;
+    for ring in rings() {
+        let c = &ring.0;
+        let Some((&head, rest)) = c.split_first() else {
+            clean = false;
+            continue;
+        };
+        math::widen(&mut min, &mut max, head);
+        // `signed_area`'s terms in its order: each point and the next, the closing edge.
+        let (mut sum, mut last, mut repeated) = (-0.0, head, false);
+        for &p in rest {
+            math::widen(&mut min, &mut max, p);
+            repeated |= p == last;
+            sum += cross(last, p);
+            last = p;
+        }
+        let area = (sum + cross(last, head)) / 2.0;
+        // Every coordinate is in some term of the sum (each point's with the next's): a
+        // NaN or an infinity leaves it NaN or infinite (a finite value beyond the range
+        // is told by the bounds).
+        within &= area.is_finite();
+        clean &= !repeated && c.len() >= 3 && area != 0.0;
+        if first_area.is_none() {
+            first_area = Some(area);
+        }
+    }
+    let bound = MAX_COORDINATE;
+    within &= -bound <= min.x && max.x <= bound && -bound <= min.y && max.y <= bound;
+    // (An empty region is looked at again, and nothing found.)
+    if !within {
+        for ring in rings() {
+            for c in ring.coords() {
+                for v in [c.x, c.y] {
+                    if !(v.is_finite() && v.abs() <= MAX_COORDINATE) {
+                        return Err(Error::Coordinate(v));
+                    }
+                }
+            }
+        }
+    }
+    // Only a clean region's, read where it is: its first ring closed (as a polygon's
+    // are), so its open ring's area is this one.
+    let first = region
+        .0
+        .first()
+        .filter(|_| clean)
+        .filter(|p| p.exterior().0.first() == p.exterior().0.last());
+    Ok(Survey {
+        min,
+        max,
+        clean,
+        first_area: first_area.filter(|_| first.is_some()),
+        // Asked of an outline without holes (a star's, an L's), where the raw offset
+        // follows at once.
+        first_turns_both_ways: first.is_some_and(|p| {
+            let c = &p.exterior().0;
+            p.interiors().is_empty() && turns_both_ways(&c[..c.len() - 1])
+        }),
+    })
+}
+
+/// Whether an open ring turns clearly left at some corner and clearly right at another,
+/// as `convex_ring_copied` tells a corner (a corner at a repeated point turns neither
+/// way): then it has a reflex vertex whichever way it is turned. Told at the first
+/// corner that turns the other way (a star's second).
+pub(crate) fn turns_both_ways(ring: &[Coord]) -> bool {
+    let n = ring.len();
+    if n < 3 {
+        return false;
+    }
+    let (mut left, mut right) = (false, false);
+    let mut u = ring[0] - ring[n - 1];
+    for i in 0..n {
+        let c = if i + 1 < n { ring[i + 1] } else { ring[0] };
+        let v = c - ring[i];
+        let cross = cross(u, v);
+        let scale2 = (u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y);
+        if cross * cross > 1e-24 * scale2 {
+            left |= cross > 0.0;
+            right |= cross < 0.0;
+            if left && right {
+                return true;
+            }
+        }
+        u = v;
+    }
+    false
+}
+
 /// Whether `clean` would return the region as it is: every ring without a repeated
 /// point in a row, of three points or more and some area (a polygon's rings are closed).
+/// (`Region::build` asks it of `survey`.)
+#[cfg(test)]
 pub(crate) fn is_clean(region: &MultiPolygon<f64>) -> bool {
     region.0.iter().all(|p| {
         std::iter::once(p.exterior())
@@ -342,33 +468,133 @@ pub(crate) fn convex_inset(
     d: f64,
     arc: f64,
 ) -> Option<MultiPolygon<f64>> {
+    Some(match convex_rings(region, d, arc)? {
+        ConvexInset::Rings(rings) => rings.into_polygons(),
+        ConvexInset::Polygons(polygons) => polygons,
+    })
+}
+
+/// [`convex_inset`] as a layer keeps it.
+pub(crate) enum ConvexInset {
+    /// Every polygon's grown holes inside its shrunk outline and apart (most): the rings
+    /// open as made, outlines first, no polygon made.
+    Rings(RawRings),
+    /// Some grown hole met the outline or another hole: the polygons, some by geo's
+    /// boolean difference.
+    Polygons(MultiPolygon<f64>),
+}
+
+/// [`convex_inset`]'s rings as a layer keeps them where no grown hole meets anything.
+pub(crate) fn convex_rings(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Option<ConvexInset> {
+    convex_rings_known(region, d, arc, None)
+}
+
+/// [`convex_rings`] with the first outline's signed area known (`Survey::first_area`).
+pub(crate) fn convex_rings_known(
+    region: &MultiPolygon<f64>,
+    d: f64,
+    arc: f64,
+    first_area: Option<f64>,
+) -> Option<ConvexInset> {
+    // Per polygon kept its holes and whether they lie apart: a list kept between layers.
+    let mut kept = super::scratch::take(&KEPT_POLYGONS);
+    let inset = convex_rings_in(region, d, arc, first_area, &mut kept);
+    super::scratch::give(&KEPT_POLYGONS, kept);
+    inset
+}
+
+/// [`convex_rings_known`] with its list of the polygons kept.
+fn convex_rings_in(
+    region: &MultiPolygon<f64>,
+    d: f64,
+    arc: f64,
+    first_area: Option<f64>,
+    kept: &mut Vec<(usize, bool)>,
+) -> Option<ConvexInset> {
     // Allocated once a first outline is found convex: most concave layers are turned
-    // down at their first ring, with nothing to free.
-    let mut out = Vec::new();
-    for polygon in &region.0 {
-        let exterior = convex_ring_inset(&polygon.exterior().0, d)?;
-        if out.capacity() == 0 {
-            out.reserve_exact(region.0.len());
+    // down at their first ring, with nothing to free. Each polygon's outline then its
+    // holes.
+    let mut rings: Vec<Vec<Coord>> = Vec::new();
+    // A reversed ring's copy, kept between layers (taken once one is needed).
+    let mut buffer = Vec::new();
+    let result = (|| {
+        let mut known = first_area;
+        for polygon in &region.0 {
+            let exterior = convex_ring_inset(&polygon.exterior().0, d, &mut buffer, known.take())?;
+            if rings.capacity() == 0 {
+                let count = region.0.iter().map(|p| 1 + p.interiors().len()).sum();
+                rings.reserve_exact(count);
+                kept.reserve(region.0.len());
+            }
+            let first = rings.len();
+            rings.push(exterior);
+            // Each grown hole inside the shrunk outline (told from its box where that
+            // can be).
+            let corners = Corners::of(arc);
+            let mut inside = true;
+            for hole in polygon.interiors() {
+                let (grown, lo, hi) = grow_hole(&hole.0, d, arc, corners)?;
+                inside = inside && inside_convex_all(&rings[first], &grown, lo, hi);
+                rings.push(grown);
+            }
+            let exterior = &rings[first];
+            if exterior.is_empty() {
+                rings.truncate(first);
+                continue;
+            }
+            let holes = &rings[first + 1..];
+            let apart = inside
+                && holes
+                    .iter()
+                    .enumerate()
+                    .all(|(i, a)| holes[i + 1..].iter().all(|b| separated(a, b)));
+            kept.push((holes.len(), apart));
         }
-        let mut holes = Vec::with_capacity(polygon.interiors().len());
-        for hole in polygon.interiors() {
-            holes.push(convex_ring_grow(&hole.0, d, arc)?);
-        }
-        if exterior.is_empty() {
-            continue;
-        }
-        let apart = holes
-            .iter()
-            .all(|h| h.iter().all(|&p| inside_convex(&exterior, p)))
-            && holes
-                .iter()
-                .enumerate()
-                .all(|(i, a)| holes[i + 1..].iter().all(|b| separated(a, b)));
-        let closed = |mut ring: Vec<Coord>| {
-            ring.reserve_exact(1);
-            ring.push(ring[0]);
-            LineString::new(ring)
+        Some(())
+    })();
+    super::scratch::give(&KEPT, buffer);
+    result?;
+    let outlines = kept.len();
+    let any_holes = kept.iter().any(|&(holes, _)| holes > 0);
+    if kept.iter().all(|&(_, apart)| apart) {
+        // Outlines first (one polygon's already are), then the holes, moved (not copied).
+        let rings = if outlines <= 1 {
+            rings
+        } else {
+            let mut ordered = Vec::with_capacity(rings.len());
+            let mut at = 0;
+            for &(holes, _) in kept.iter() {
+                ordered.push(std::mem::take(&mut rings[at]));
+                at += 1 + holes;
+            }
+            let mut at = 0;
+            for &(holes, _) in kept.iter() {
+                ordered.extend(rings[at + 1..at + 1 + holes].iter_mut().map(std::mem::take));
+                at += 1 + holes;
+            }
+            ordered
         };
+        return Some(ConvexInset::Rings(RawRings {
+            rings,
+            outlines,
+            holes: if any_holes {
+                kept.iter().map(|&(holes, _)| holes).collect()
+            } else {
+                Vec::new()
+            },
+            measured: None,
+        }));
+    }
+    let closed = |mut ring: Vec<Coord>| {
+        ring.reserve_exact(1);
+        ring.push(ring[0]);
+        LineString::new(ring)
+    };
+    let mut out = Vec::with_capacity(outlines);
+    let mut rings = rings.into_iter();
+    for &(holes, apart) in kept.iter() {
+        let exterior = rings.next()?;
+        let holes: Vec<Vec<Coord>> = rings.by_ref().take(holes).collect();
         if apart {
             out.push(Polygon::new(
                 closed(exterior),
@@ -390,7 +616,15 @@ pub(crate) fn convex_inset(
             out.extend(outer.difference(&grown).0);
         }
     }
-    Some(MultiPolygon::new(out))
+    Some(ConvexInset::Polygons(MultiPolygon::new(out)))
+}
+
+thread_local! {
+    /// `convex_rings_known`'s list of the polygons kept, kept between layers.
+    static KEPT_POLYGONS: std::cell::Cell<Vec<(usize, bool)>> =
+        const { std::cell::Cell::new(Vec::new()) };
+    /// `convex_view`'s reversed copy of a ring, kept between layers.
+    static KEPT: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// A ring's points without the closing repeat, counter-clockwise, collinear and repeated
@@ -497,16 +731,114 @@ fn has_reflex_corner(ring: &[Coord]) -> bool {
     false
 }
 
+/// What `convex_ring` keeps of a ring, read where it is where that is the ring itself
+/// (every corner turning left clearly, no repeated point: most convex rings), or its
+/// copy in `buffer` (turned round, or with points dropped); `None` when it has a reflex
+/// vertex, as `convex_ring`. `area`: its signed area, where known.
+pub(crate) fn convex_view<'a>(
+    ring: &'a [Coord],
+    buffer: &'a mut Vec<Coord>,
+    area: Option<f64>,
+) -> Option<&'a [Coord]> {
+    let open = match ring {
+        [first, .., last] if first == last => &ring[..ring.len() - 1],
+        _ => ring,
+    };
+    let mut reversed = false;
+    // A repeated point only adds a zero term to the area: it is `convex_ring`'s, and so
+    // is the turn it gives the ring.
+    // (`area`: the ring's signed area where it is known already.)
+    let verdict = if open.len() >= 3 {
+        reversed = area.unwrap_or_else(|| signed_area(open)) < 0.0;
+        if reversed {
+            if buffer.capacity() == 0 {
+                *buffer = super::scratch::take(&KEPT);
+            }
+            buffer.clear();
+            buffer.extend(open.iter().rev());
+            every_corner_kept(buffer)
+        } else {
+            every_corner_kept(open)
+        }
+    } else {
+        Kept::Unsure
+    };
+    match verdict {
+        Kept::All if reversed => Some(&buffer[..]),
+        Kept::All => Some(open),
+        Kept::Reflex => None,
+        Kept::Unsure => {
+            let kept = convex_ring_copied(ring)?;
+            buffer.clear();
+            buffer.extend_from_slice(&kept);
+            Some(&buffer[..])
+        }
+    }
+}
+
+/// `convex_ring_copied`'s verdict on a ring already turned counter-clockwise.
+enum Kept {
+    /// Every corner turns left clearly, the ring winds once: all kept, none dropped.
+    All,
+    /// A corner turns right clearly (wherever repeated points are), or the ring winds
+    /// more than once with every corner kept: not convex.
+    Reflex,
+    /// Some corner is straight or at a repeated point: `convex_ring_copied` decides.
+    Unsure,
+}
+
+/// `convex_ring_copied`'s corner tests on an open ring turned counter-clockwise, with
+/// nothing copied: what it keeps when no corner is dropped.
+fn every_corner_kept(pts: &[Coord]) -> Kept {
+    let n = pts.len();
+    // `convex_ring_copied` counts how often the edges' x components change sign (zeros
+    // skipped, round the ring): twice a turn. Where every corner turns left clearly
+    // (each by less than half a turn, the edges' direction growing all along), an edge
+    // with no x component lies between a positive and a negative one, so the turns are
+    // the edges whose x is positive after one whose x is not (the last edge before the
+    // first).
+    let mut ups = 0u32;
+    let mut u = pts[0] - pts[n - 1];
+    let mut u2 = u.x * u.x + u.y * u.y;
+    for i in 0..n {
+        let b = pts[i];
+        let c = if i + 1 < n { pts[i + 1] } else { pts[0] };
+        let v = c - b;
+        let v2 = v.x * v.x + v.y * v.y;
+        let cross = cross(u, v);
+        if cross * cross <= 1e-24 * (u2 * v2) {
+            return Kept::Unsure;
+        }
+        if cross < 0.0 {
+            return Kept::Reflex;
+        }
+        ups += u32::from(u.x <= 0.0 && v.x > 0.0);
+        u = v;
+        u2 = v2;
+    }
+    if ups <= 1 { Kept::All } else { Kept::Reflex }
+}
+
 /// The exact inward offset of one convex ring: empty when it is thinner than `2d`.
-fn convex_ring_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
-    let kept = convex_ring(ring)?;
+fn convex_ring_inset(
+    ring: &[Coord],
+    d: f64,
+    buffer: &mut Vec<Coord>,
+    area: Option<f64>,
+) -> Option<Vec<Coord>> {
+    let kept = convex_view(ring, buffer, area)?;
+    Some(inset_kept(kept, d))
+}
+
+/// The exact inward offset of a ring as `convex_ring` keeps it.
+pub(crate) fn inset_kept(kept: &[Coord], d: f64) -> Vec<Coord> {
     let n = kept.len();
-    if let Some(mitred) = mitred_inset(&kept, d) {
-        return Some(mitred);
+    if let Some(mitred) = mitred_inset(kept, d) {
+        return mitred;
     }
     // Some edge vanishes: the intersection of the edges' half-planes, each moved inward by
     // d, clipping the ring by each in turn.
-    let mut out = kept.clone();
+    let mut out = kept.to_vec();
     let mut next = Vec::with_capacity(n + 1);
     for i in 0..n {
         let (a, b) = (kept[i], kept[super::offset::next(i, n)]);
@@ -527,13 +859,13 @@ fn convex_ring_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
         }
         std::mem::swap(&mut out, &mut next);
         if out.len() < 3 {
-            return Some(Vec::new());
+            return Vec::new();
         }
     }
     if signed_area(&out) <= 0.0 {
-        return Some(Vec::new());
+        return Vec::new();
     }
-    Some(out)
+    out
 }
 
 /// The inset of a counter-clockwise convex ring by `d` where no edge vanishes: each vertex
@@ -566,77 +898,246 @@ fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
     Some(out)
 }
 
-/// One convex ring grown outward by `d`: each edge moved out, each corner an arc of radius
-/// `d` about its vertex, with its points on the arc (so the chords cut in by at most
-/// `d·(1 − cos(arc/2))`), or where the corner turns by little, the mitre (out by no more).
-fn convex_ring_grow(ring: &[Coord], d: f64, arc: f64) -> Option<Vec<Coord>> {
-    let kept = convex_ring(ring)?;
-    let n = kept.len();
-    let normal = |a: Coord, b: Coord| {
-        let e = b - a;
+/// How `grow` turns a hole's corners for an arc step: the cosine of the step (a corner
+/// turning by less takes no arc), and the least cosine of a corner's turn whose mitre
+/// lies no farther out than a chord cuts in (`1/cos(α/2) − 1 ≤ 1 − cos(arc/2)`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Corners {
+    arc_cos: f64,
+    mitre_from: f64,
+}
+
+impl Corners {
+    /// Kept for the last step (a slicer's layers share one): two cosines and the search
+    /// below not made again for every ring grown.
+    pub(crate) fn of(arc: f64) -> Corners {
+        thread_local! {
+            static LAST: std::cell::Cell<(f64, Corners)> = const {
+                std::cell::Cell::new((f64::NAN, Corners { arc_cos: 0.0, mitre_from: 0.0 }))
+            };
+        }
+        let (last, corners) = LAST.with(std::cell::Cell::get);
+        if last == arc {
+            return corners;
+        }
+        let corners = Corners {
+            arc_cos: math::cos(arc),
+            mitre_from: mitre_from(1.0 - math::cos(arc / 2.0)),
+        };
+        LAST.with(|cell| cell.set((arc, corners)));
+        corners
+    }
+}
+
+/// Whether a corner turning by `cos` (positive) takes one mitre point: its mitre strays
+/// `1/cos(α/2) − 1` beyond the moved edges, no more than `room`. Each step of it is a
+/// correctly rounded operation, each monotonic, so the answer flips once as `cos` grows:
+/// at `mitre_from(room)`.
+pub(crate) fn mitre_fits(cos: f64, room: f64) -> bool {
+    let half_cos = ((1.0 + cos) / 2.0).sqrt();
+    1.0 / half_cos - 1.0 <= room
+}
+
+/// The least positive `cos` for which `mitre_fits(cos, room)` (infinite where none):
+/// a binary search over the doubles' bit patterns, which the positive ones keep in order.
+pub(crate) fn mitre_from(room: f64) -> f64 {
+    let (mut lo, mut hi) = (1u64, f64::MAX.to_bits());
+    if !mitre_fits(f64::MAX, room) {
+        return f64::INFINITY;
+    }
+    // `hi` fits, `lo - 1` (zero) is outside the search: the least that fits is in lo..=hi.
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if mitre_fits(f64::from_bits(mid), room) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    f64::from_bits(lo)
+}
+
+/// A ring as `convex_ring` keeps it grown outward by `d`: each edge moved out, each
+/// corner an arc of radius `d` about its vertex, with its points on the arc (so the
+/// chords cut in by at most `d·(1 − cos(arc/2))`), or where the corner turns by little,
+/// the mitre (out by no more).
+fn grow_kept(kept: &[Coord], d: f64, arc: f64, corners: Corners) -> Vec<Coord> {
+    let mut out = Vec::with_capacity(2 * kept.len() + 1);
+    grow::<false>(kept.len(), |i| kept[i], d, arc, corners, &mut out);
+    out
+}
+
+/// A hole grown outward by `d` (as `grow_kept` of `convex_ring`), read where it is,
+/// either way round, its corners tested as it grows; with its box. `None` when it has a
+/// reflex vertex.
+fn grow_hole(
+    ring: &[Coord],
+    d: f64,
+    arc: f64,
+    corners: Corners,
+) -> Option<(Vec<Coord>, Coord, Coord)> {
+    let open = match ring {
+        [first, .., last] if first == last => &ring[..ring.len() - 1],
+        _ => ring,
+    };
+    let n = open.len();
+    if n >= 3 {
+        // Room for a round hole's points (one mitre a corner), a small allocation's
+        // size for a 64-gon; a sharper hole's arcs grow it. (The ring is kept open: the
+        // polygons, if asked, are made afresh.)
+        let mut out = Vec::with_capacity(n);
+        // Counter-clockwise, as `convex_ring` turns it (a repeated point adds nothing).
+        let verdict = if signed_area(open) < 0.0 {
+            grow::<true>(n, |i| open[n - 1 - i], d, arc, corners, &mut out)
+        } else {
+            grow::<true>(n, |i| open[i], d, arc, corners, &mut out)
+        };
+        match verdict {
+            Kept::All => {
+                let (lo, hi) = bounds(&out);
+                return Some((out, lo, hi));
+            }
+            Kept::Reflex => return None,
+            Kept::Unsure => {}
+        }
+    }
+    let out = grow_kept(&convex_ring_copied(ring)?, d, arc, corners);
+    let (lo, hi) = bounds(&out);
+    Some((out, lo, hi))
+}
+
+/// A ring's bounding box.
+fn bounds(ring: &[Coord]) -> (Coord, Coord) {
+    let (mut lo, mut hi) = (ring[0], ring[0]);
+    for &p in &ring[1..] {
+        math::widen(&mut lo, &mut hi, p);
+    }
+    (lo, hi)
+}
+
+/// The growth of `grow_kept` of the `n` points `at(0..n)` (counter-clockwise) into
+/// `out`. With `CHECK`, each corner is tested as `every_corner_kept` tests it, and its
+/// verdict returned (the points grown are then `grow_kept`'s only for `Kept::All`).
+#[inline(always)]
+fn grow<const CHECK: bool>(
+    n: usize,
+    at: impl Fn(usize) -> Coord,
+    d: f64,
+    arc: f64,
+    corners: Corners,
+    out: &mut Vec<Coord>,
+) -> Kept {
+    // Each edge's normal once (the corner before and the corner after it share it).
+    let normal = |e: Coord| {
         let len = math::hypot(e.x, e.y);
         Coord {
             x: e.y / len,
             y: -e.x / len,
         }
     };
-    // Room for the closing point the polygon adds.
-    let mut out = Vec::with_capacity(2 * n + 1);
-    // Each edge's normal once (the corner before and the corner after it share it), and
-    // the arc's cosines once.
-    let (arc_cos, half_arc_cos) = (math::cos(arc), math::cos(arc / 2.0));
-    let mut n0 = normal(kept[n - 1], kept[0]);
+    let a = at(n - 1);
+    let mut b = at(0);
+    let mut u = b - a;
+    let mut u2 = u.x * u.x + u.y * u.y;
+    let mut n0 = normal(u);
+    // How often the edges' x components turn from negative (or zero) to positive:
+    // `every_corner_kept`'s count of turns.
+    let mut ups = 0u32;
     for i in 0..n {
-        let b = kept[i];
-        let c = if i + 1 < n { kept[i + 1] } else { kept[0] };
-        let n1 = normal(b, c);
+        let c = if i + 1 < n { at(i + 1) } else { at(0) };
+        let v = c - b;
+        if CHECK {
+            let v2 = v.x * v.x + v.y * v.y;
+            let cross = cross(u, v);
+            if cross * cross <= 1e-24 * (u2 * v2) {
+                return Kept::Unsure;
+            }
+            if cross < 0.0 {
+                return Kept::Reflex;
+            }
+            ups += u32::from(u.x <= 0.0 && v.x > 0.0);
+            u = v;
+            u2 = v2;
+        }
+        let n1 = normal(v);
         let (sin, cos) = (cross(n0, n1), n0.x * n1.x + n0.y * n1.y);
         // Most corners of a round hole turn by less than `arc`: their two ends only, no
         // trigonometry; sharper ones in equal steps, each the last rotated.
-        let steps = if sin >= 0.0 && cos >= arc_cos {
+        let steps = if sin >= 0.0 && cos >= corners.arc_cos {
             1
         } else {
             (math::atan2(sin, cos).max(0.0) / arc).ceil().max(1.0) as usize
         };
         // A corner turning by little (a round hole's) gets one mitre point, no farther out
-        // than a chord cuts in (`1/cos(α/2) − 1 ≤ 1 − cos(arc/2)`): half the vertices of
-        // a 64-gon hole, for every pattern's clipping and routing after.
-        if steps == 1 && cos > 0.0 {
-            let half_cos = ((1.0 + cos) / 2.0).sqrt();
-            if 1.0 / half_cos - 1.0 <= 1.0 - half_arc_cos {
-                let k = 1.0 + cos;
-                out.push(b + (n0 + n1) * (d / k));
-                n0 = n1;
-                continue;
+        // than a chord cuts in (`mitre_fits`, told by the least cosine that does): half
+        // the vertices of a 64-gon hole, for every pattern's clipping and routing after.
+        if steps == 1 && cos >= corners.mitre_from {
+            let k = 1.0 + cos;
+            out.push(b + (n0 + n1) * (d / k));
+        } else {
+            out.push(b + n0 * d);
+            if steps > 1 {
+                let (s, c) = math::sin_cos(math::atan2(sin, cos).max(0.0) / steps as f64);
+                let mut w = n0;
+                for _ in 1..steps {
+                    w = Coord {
+                        x: w.x * c - w.y * s,
+                        y: w.x * s + w.y * c,
+                    };
+                    out.push(b + w * d);
+                }
             }
+            out.push(b + n1 * d);
         }
-        out.push(b + n0 * d);
-        if steps > 1 {
-            let (s, c) = math::sin_cos(math::atan2(sin, cos).max(0.0) / steps as f64);
-            let mut v = n0;
-            for _ in 1..steps {
-                v = Coord {
-                    x: v.x * c - v.y * s,
-                    y: v.x * s + v.y * c,
-                };
-                out.push(b + v * d);
-            }
-        }
-        out.push(b + n1 * d);
         n0 = n1;
+        b = c;
     }
-    Some(out)
+    if CHECK && ups > 1 {
+        return Kept::Reflex;
+    }
+    Kept::All
+}
+
+/// Whether every point of `ring` is strictly inside the counter-clockwise convex ring
+/// `outer` (`inside_convex` of each), told where it can be from the corners of the
+/// ring's box: each clearly inside every edge (by a margin far above the rounding of
+/// the cross products over the whole box, whose smallest value over the box is at a
+/// corner), then so is every point of the box, by the test's own arithmetic too.
+fn inside_convex_all(outer: &[Coord], ring: &[Coord], lo: Coord, hi: Coord) -> bool {
+    let corners = [
+        lo,
+        Coord { x: hi.x, y: lo.y },
+        hi,
+        Coord { x: lo.x, y: hi.y },
+    ];
+    let n = outer.len();
+    let boxed = (0..n).all(|i| {
+        let (a, b) = (outer[i], outer[next(i, n)]);
+        let e = b - a;
+        // The smallest cross product at a corner, and the largest sum of its terms'
+        // magnitudes (at a corner too: each term's magnitude is convex over the box).
+        let (mut least, mut scale) = (f64::INFINITY, 0.0f64);
+        for &c in &corners {
+            let f = c - a;
+            let (s, t) = (e.x * f.y, e.y * f.x);
+            least = least.min(s - t);
+            scale = scale.max(s.abs() + t.abs());
+        }
+        // (and clear of the products' underflow).
+        least > 1e-12 * scale + 1e-280
+    });
+    boxed || ring.iter().all(|&p| inside_convex(outer, p))
 }
 
 /// Whether `p` is strictly inside the counter-clockwise convex ring.
-fn inside_convex(ring: &[Coord], p: Coord) -> bool {
+pub(crate) fn inside_convex(ring: &[Coord], p: Coord) -> bool {
     let n = ring.len();
     (0..n).all(|i| cross(ring[next(i, n)] - ring[i], p - ring[i]) > 0.0)
 }
 
 /// Whether two counter-clockwise convex rings are apart: some edge of one has the whole
 /// other strictly on its outer side.
-fn separated(a: &[Coord], b: &[Coord]) -> bool {
+pub(crate) fn separated(a: &[Coord], b: &[Coord]) -> bool {
     let outside = |r: &[Coord], s: &[Coord]| {
         let n = r.len();
         (0..n).any(|i| {

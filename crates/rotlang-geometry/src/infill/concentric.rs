@@ -100,7 +100,15 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         // when it is narrower than the step to the next loop, that loop is empty, and its
         // erosion (the dearest, every offset crossing itself) is not worth computing.
         let step = (k as f64 + 1.5) * spacing - d;
-        let room = room(&current, shape.0, region.nozzle() / 2.0 + d);
+        let deep = region.nozzle() / 2.0 + d;
+        let mut room = room(&current, shape.0, deep);
+        // A piece not round (a holed square's corner, between the outline and the grown
+        // hole) holds a disc smaller than its area says (a triangle's by a third at most
+        // for any but slivers): asked of its hull too where the area leaves it in doubt
+        // by less than half a step (a round one's bounds agree: not asked).
+        if (step..1.5 * step).contains(&room) {
+            room = room.min(hull_room(&current, deep, step, &mut scratch.dense));
+        }
         last_loops.clear();
         let mut rings = current.rings;
         for ring in rings.drain(..) {
@@ -169,7 +177,11 @@ thread_local! {
 /// The radius of the largest disc inside rings that bound (approximately) the erosion
 /// by `d`, or more: a disc inside an outline ring covers no more than its area. Arcs are
 /// drawn in steps of 0.5 rad (a chord or a mitre strays 3.2% of `d` from the exact
-/// boundary): the rings are widened by 4% of `d` all round for it.
+/// boundary): the rings are widened by 4% of `d` all round for it, or, where the eroder
+/// made them, by a quarter more than its reflex mitres stray outside their exact arcs
+/// (`Eroder::stray`; its chords stray inside, taking in more, not less). A star's
+/// reflex corners are arcs: its rings need no widening, and its last erosion at 40%,
+/// empty, is not made (8 erosions a layer → 7).
 fn room(loops: &Loops, length: f64, d: f64) -> f64 {
     let area = loops.largest.unwrap_or_else(|| {
         loops
@@ -178,8 +190,100 @@ fn room(loops: &Loops, length: f64, d: f64) -> f64 {
             .map(|r| twice_area(r).abs() / 2.0)
             .fold(0.0, f64::max)
     });
-    let widen = 0.04 * d + 1e-6;
+    let widen = loops.stray.map_or(0.04, |s| (1.25 * s).min(0.04)) * d + 1e-6;
     ((area + length * widen + PI * widen * widen) / PI).sqrt()
+}
+
+/// Another bound on the room of `room`: a disc inside a convex ring has a radius of at
+/// most twice its area over its perimeter (the disc's centre sees every edge at least
+/// its radius away: the ring's area, summed as triangles from the centre, is at least
+/// the radius times half the perimeter), and a disc inside a ring lies inside its hull.
+/// The rings, short of the exact erosion by `stray·d` at most at reflex mitres (no more
+/// than `room`'s widening), hold the exact erosion's discs less that much: it is added.
+/// `hull` is working room.
+/// Past `step` it stops: a ring whose own twice area over perimeter (no more than its
+/// hull's) reaches `step` answers at once.
+fn hull_room(loops: &Loops, d: f64, step: f64, hull: &mut Vec<Coord>) -> f64 {
+    let widen = loops.stray.map_or(0.04, |s| (1.25 * s).min(0.04)) * d + 1e-6;
+    let mut most = 0.0f64;
+    for ring in &loops.rings {
+        // The hull's area is the ring's or more, its perimeter the ring's or less.
+        let (mut area, mut length) = (0.0, 0.0);
+        for w in ring.windows(2) {
+            let e = w[1] - w[0];
+            area += w[0].x * w[1].y - w[1].x * w[0].y;
+            length += (e.x * e.x + e.y * e.y).sqrt();
+        }
+        if !(area.abs() / length + widen < step) {
+            return f64::INFINITY;
+        }
+        // The hull by the monotone chain: points sorted by x then y, the lower chain then
+        // the upper, each turning left only.
+        let pts = match ring.split_last() {
+            Some((last, rest)) if Some(last) == rest.first() => rest,
+            _ => &ring[..],
+        };
+        hull.clear();
+        hull.extend_from_slice(pts);
+        hull.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        let n = hull.len();
+        if n < 3 {
+            continue;
+        }
+        let mut k = 0;
+        let turn = |o: Coord, a: Coord, b: Coord| (a - o).x * (b - o).y - (a - o).y * (b - o).x;
+        // In place: the chain written over the sorted points (k ≤ i always), the upper
+        // half read from a copy of the points past the lower chain's end.
+        let sorted = hull.clone();
+        for &p in &sorted {
+            while k >= 2 && turn(hull[k - 2], hull[k - 1], p) <= 0.0 {
+                k -= 1;
+            }
+            hull[k] = p;
+            k += 1;
+        }
+        let lower = k + 1;
+        for &p in sorted.iter().rev().skip(1) {
+            while k >= lower && turn(hull[k - 2], hull[k - 1], p) <= 0.0 {
+                k -= 1;
+            }
+            if k < hull.len() {
+                hull[k] = p;
+            } else {
+                hull.push(p);
+            }
+            k += 1;
+        }
+        // hull[..k] closes on its first point.
+        let (mut area, mut length) = (0.0, 0.0);
+        for w in hull[..k].windows(2) {
+            area += w[0].x * w[1].y - w[1].x * w[0].y;
+            length += math::hypot((w[1] - w[0]).x, (w[1] - w[0]).y);
+        }
+        if !(length > 0.0 && area.is_finite()) {
+            return f64::INFINITY;
+        }
+        most = most.max(area.abs() / length);
+    }
+    most + widen
+}
+
+/// The region's erosion by `d` (from the region itself, as the loops make it) and the
+/// room `room` gives it, with `hull_room`'s, `None` where it is empty (for the tests).
+#[cfg(test)]
+pub(super) fn room_at(region: &Region, d: f64) -> Option<(f64, f64)> {
+    let mut spare = None;
+    let mut shrink = Shrink::new(region.outline(), &mut spare, known_concave(region));
+    let loops = shrink.shrink(d);
+    if loops.rings.is_empty() {
+        return None;
+    }
+    let length = perimeter(&loops).0;
+    let mut hull = Vec::new();
+    Some((
+        room(&loops, length, d),
+        hull_room(&loops, d, f64::INFINITY, &mut hull),
+    ))
 }
 
 /// The middle ring's points lie this many spacings apart at most: a middle stretch ends
@@ -1079,6 +1183,9 @@ struct Loops {
     turns: f64,
     /// The largest ring's area where it was measured already (for `room`).
     largest: Option<f64>,
+    /// How far the rings' reflex mitres stray outside the exact erosion, per unit of
+    /// distance, where the eroder made them (for `room`).
+    stray: Option<f64>,
 }
 
 /// Twice a closed ring's signed area (counter-clockwise positive).
@@ -1167,6 +1274,7 @@ impl<'a> Shrink<'a> {
                 rings,
                 turns,
                 largest: Some(largest),
+                stray: self.eroder.as_ref().map(|e| e.stray()),
             };
         }
         let polygons = convex.unwrap_or_else(|| {
@@ -1177,6 +1285,7 @@ impl<'a> Shrink<'a> {
         });
         Loops {
             largest: None,
+            stray: None,
             turns: polygons
                 .0
                 .iter()

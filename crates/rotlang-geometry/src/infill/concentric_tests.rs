@@ -7,7 +7,7 @@
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use proptest::prelude::*;
 
-use super::concentric::{concentric, known_concave};
+use super::concentric::{concentric, known_concave, room_at};
 use super::concentric_reference;
 use crate::infill::loops::Eroder;
 use crate::infill::region::convex_inset;
@@ -540,4 +540,100 @@ fn runs_found_near_two_loops_by_hints_are_near_two_at_each_point() {
         }
     }
     assert!(found > 1000, "{found} runs found near two");
+}
+
+/// The distance from `p` to the nearest segment of `rings` (closed).
+fn distance_to_rings(p: Coord, rings: &MultiPolygon<f64>) -> f64 {
+    let mut best = f64::INFINITY;
+    for polygon in &rings.0 {
+        for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
+            for w in ring.0.windows(2) {
+                let (a, e) = (w[0], w[1] - w[0]);
+                let len2 = e.x * e.x + e.y * e.y;
+                let t = if len2 > 0.0 {
+                    (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let q = a + e * t;
+                best = best.min(math::hypot((p - q).x, (p - q).y));
+            }
+        }
+    }
+    best
+}
+
+/// A reflex corner drawn as its mitre lies `stray · d` beyond its exact arc at most: on a
+/// square with a 24-sided hole (each hole corner turning 15°, within one arc step) the
+/// farthest mitre point from its vertex is `d · (1 + stray)`; a star's reflex corners are
+/// arcs, none a mitre, so nothing strays.
+#[test]
+fn a_mitres_stray_is_its_distance_past_the_arc() {
+    let d = 2.0;
+    let holed = star_like(&[1.0; 4], 10.0, Some((0.3, 0.0, 0.0)));
+    let mut eroder = Eroder::new(&holed, 0.5);
+    let stray = eroder.stray();
+    // 1 / cos(7.5°) − 1: the mitre of a 15° turn.
+    let expected = 1.0 / math::cos(7.5f64.to_radians()) - 1.0;
+    assert!((stray - expected).abs() < 1e-12, "{stray} {expected}");
+    // The grown hole's points: each a mitre, as far from the hole's nearest vertex.
+    let hole = &holed.0[0].interiors()[0].0;
+    let rings = eroder.rings(d).expect("rings");
+    let farthest = rings
+        .iter()
+        .flatten()
+        .map(|p| {
+            hole.iter()
+                .map(|v| math::hypot(p.x - v.x, p.y - v.y))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .filter(|&r| r < 2.0 * d)
+        .fold(0.0, f64::max);
+    assert!((farthest - d * (1.0 + stray)).abs() < 1e-9, "{farthest}");
+    let star = Eroder::new(&shapes::star(10.0, 4.5), 0.5);
+    assert_eq!(star.stray(), 0.0);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// The room an erosion is given (by its area, and by its rings' hulls) bounds every
+    /// point's depth: no point of the region (sampled on a grid) lies farther from its
+    /// outline than `d` and the room, so a loop a step past the room is rightly never made. Random star-like outlines, some with a
+    /// 24-sided hole (reflex corners drawn as mitres), some regular.
+    #[test]
+    fn no_point_is_deeper_than_the_room_says(
+        radii in prop::collection::vec(0.3f64..1.0, 3..16),
+        regular in any::<bool>(),
+        size in 4.0f64..20.0,
+        hole in prop::option::of((0.05f64..0.25, -0.1f64..0.1, -0.1f64..0.1)),
+        fraction in 0.05f64..0.95,
+    ) {
+        let radii = if regular { vec![1.0; radii.len()] } else { radii };
+        let shape = star_like(&radii, size, hole);
+        let Ok(region) = Region::new(&shape, W) else {
+            return Ok(());
+        };
+        let outline = region.outline();
+        // The deepest grid point (a lower bound of the region's depth).
+        let (lo, hi) = crate::infill::travel::bounds(&outline.0[0].exterior().0);
+        let n = 80;
+        let mut deepest = 0.0f64;
+        for i in 0..=n {
+            for j in 0..=n {
+                let p = Coord {
+                    x: lo.x + (hi.x - lo.x) * i as f64 / n as f64,
+                    y: lo.y + (hi.y - lo.y) * j as f64 / n as f64,
+                };
+                if geo::Contains::contains(outline, &geo::Point::from(p)) {
+                    deepest = deepest.max(distance_to_rings(p, outline));
+                }
+            }
+        }
+        let d = fraction * deepest;
+        if let Some((room, hull)) = room_at(&region, d) {
+            prop_assert!(deepest <= d + room + 1e-9, "deepest {} at d {} room {}", deepest, d, room);
+            prop_assert!(deepest <= d + hull + 1e-9, "deepest {} at d {} hull room {}", deepest, d, hull);
+        }
+    }
 }

@@ -214,7 +214,9 @@ fn hull_room(loops: &Loops, d: f64, step: f64, hull: &mut Vec<Coord>) -> f64 {
             area += w[0].x * w[1].y - w[1].x * w[0].y;
             length += (e.x * e.x + e.y * e.y).sqrt();
         }
-        if !(area.abs() / length + widen < step) {
+        // (A NaN answers too: nothing proved.)
+        let bound = area.abs() / length + widen;
+        if bound >= step || bound.is_nan() {
             return f64::INFINITY;
         }
         // The hull by the monotone chain: points sorted by x then y, the lower chain then

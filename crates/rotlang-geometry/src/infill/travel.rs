@@ -697,10 +697,21 @@ impl<'a> Router<'a> {
             let crossing = denom * denom > 1e-10 * d2 * (e.x * e.x + e.y * e.y);
             crossing && (beyond(u) || beyond(t))
         };
-        for (edges, a, b) in self.chunks(r) {
+        // The chunks' boxes read in a plain loop, each chunk's edges worked out only where
+        // its box meets the move's (most are passed: a move meets one or two of a star's).
+        let chunk = self.chunk;
+        let from = self.at(r).0 + 1;
+        for (c, &(a, b)) in self.boxes[from..from + n.div_ceil(chunk)]
+            .iter()
+            .enumerate()
+        {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
+            // Chunk c starts at edge c·chunk (below n: a later chunk exists only where
+            // `chunk` is less than n), and ends `chunk` edges on or at the ring's end.
+            let start = c * chunk;
+            let edges = start..if n - start > chunk { start + chunk } else { n };
             // Each edge's end is the next one's start: carried, not read again.
             let mut b = ring[edges.start];
             let mut side_b = side(b);
@@ -1175,7 +1186,7 @@ impl<'a> Router<'a> {
             let mut i = i0;
             for _ in 0..n {
                 walk.push(ring[i]);
-                i = (i + n - 1) % n;
+                i = if i == 0 { n - 1 } else { i - 1 };
                 if i == i1 {
                     break;
                 }

@@ -447,12 +447,13 @@ impl<'a> Router<'a> {
                 continue;
             }
             let n = ring.len();
-            for (edges, lo, hi) in self.chunks(r) {
+            for (c, lo, hi) in self.boxes_of(r) {
                 let near = p.x >= lo.x - 1e-6
                     && p.x <= hi.x + 1e-6
                     && p.y >= lo.y - 1e-6
                     && p.y <= hi.y + 1e-6;
                 if near {
+                    let edges = self.edges(n, c);
                     let mut b = ring[edges.start];
                     for i in edges {
                         let a = b;
@@ -480,12 +481,13 @@ impl<'a> Router<'a> {
                 continue;
             }
             let n = ring.len();
-            for (edges, lo, hi) in self.chunks(r) {
+            for (c, lo, hi) in self.boxes_of(r) {
                 let near = p.x >= lo.x - TOL
                     && p.x <= hi.x + TOL
                     && p.y >= lo.y - TOL
                     && p.y <= hi.y + TOL;
                 if near {
+                    let edges = self.edges(n, c);
                     let mut b = ring[edges.start];
                     for i in edges {
                         let a = b;
@@ -581,6 +583,30 @@ impl<'a> Router<'a> {
             start = end;
             (edges, lo, hi)
         })
+    }
+
+    /// Ring `r`'s chunk boxes with each one's index, its edges left to `edges` (for the
+    /// chunks a caller reads: nothing worked out for those its boxes pass).
+    #[inline]
+    fn boxes_of(&self, r: usize) -> impl Iterator<Item = (usize, Coord, Coord)> + '_ {
+        let count = self.rings[r].len().div_ceil(self.chunk);
+        let from = self.at(r).0 + 1;
+        self.boxes[from..from + count]
+            .iter()
+            .enumerate()
+            .map(|(c, &(lo, hi))| (c, lo, hi))
+    }
+
+    /// The edges of chunk `c` of a ring of `n`: from c·chunk (below n, a later chunk
+    /// existing only where `chunk` is less than n), `chunk` of them or to the ring's end.
+    #[inline]
+    fn edges(&self, n: usize, c: usize) -> std::ops::Range<usize> {
+        let start = c * self.chunk;
+        start..if n - start > self.chunk {
+            start + self.chunk
+        } else {
+            n
+        }
     }
 
     fn cumulative(&self, r: usize) -> &[f64] {

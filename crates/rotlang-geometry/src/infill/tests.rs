@@ -2148,3 +2148,64 @@ fn a_middle_on_an_edge_does_not_make_its_end_inside() {
     assert!(walked.len() > 2, "{walked:?}");
     assert_eq!(chained.route_on(p2, p3, true), walked);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The router made for a single ring of at most 32 edges (`Router::small`: one pass
+    /// for its chunks' boxes and its orientation) has the boxes, scale and side of the
+    /// general one in chunks of 4 (`with_chunk`), and routes every move as it does:
+    /// random radial rings of 3 to 32 vertices, either way round, between points on
+    /// edges, vertices and points of the box.
+    #[test]
+    fn a_small_rings_router_is_the_chunked_router(
+        radii in prop::collection::vec(1.0f64..10.0, 3..=32),
+        turn in 0.0f64..TAU,
+        centre in (-50.0f64..50.0, -50.0f64..50.0),
+        clockwise in any::<bool>(),
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3), 1..16),
+    ) {
+        let n = radii.len();
+        let mut ring: Vec<Coord> = radii
+            .iter()
+            .enumerate()
+            .map(|(i, &r)| {
+                let a = turn + TAU * i as f64 / n as f64;
+                Coord { x: centre.0 + r * a.cos(), y: centre.1 + r * a.sin() }
+            })
+            .collect();
+        if clockwise {
+            ring.reverse();
+        }
+        let rings = vec![ring];
+        let small = travel::Router::small(&rings);
+        let general = travel::Router::with_chunk(&rings, 4);
+        prop_assert_eq!(small.layout(), general.layout());
+        let ends = MoveEnds::new(&rings);
+        for (a, b, kind) in moves {
+            let (p, q) = (ends.point(a, kind), ends.point(b, kind));
+            prop_assert_eq!(small.route(p, q), general.route(p, q));
+            let from_edge = ends.point(a, 0);
+            prop_assert_eq!(small.route(from_edge, q), general.route(from_edge, q));
+        }
+    }
+}
+
+/// A region whose inset is one ring of at most 32 edges (the star's) gets the small
+/// ring's router, which routes its layer's travels as the general router does.
+#[test]
+fn the_stars_travels_take_the_small_router() {
+    let region = Region::new(&shapes::star(10.0, 4.5), W).unwrap();
+    let rings = region.rings();
+    assert_eq!(rings.len(), 1);
+    assert!(rings[0].len() <= 32, "{}", rings[0].len());
+    let small = travel::Router::new(rings);
+    let general = travel::Router::with_chunk(rings, 4);
+    assert_eq!(small.layout(), general.layout());
+    let ends = MoveEnds::new(rings);
+    for i in 0..rings[0].len() {
+        let (p, q) = (ends.point((i, 0.3), 0), ends.point((i * 7 + 5, 0.6), 0));
+        assert_eq!(small.route(p, q), general.route(p, q));
+    }
+}

@@ -112,7 +112,89 @@ impl<'a> Router<'a> {
         // A small region (a star's or an L's inset, a few dozen edges, whose runs of 8
         // span most of it) in runs of 4: more of them missed by a move's box.
         let vertices: usize = rings.iter().map(Vec::len).sum();
+        if rings.len() == 1 && (3..=SMALL).contains(&vertices) {
+            return Router::small(rings);
+        }
         Router::with_chunk(rings, if vertices <= SMALL { CHUNK / 2 } else { CHUNK })
+    }
+
+    /// `with_chunk(rings, CHUNK / 2)` for a single ring of 3 to `SMALL` edges (a star's
+    /// inset, an L's): the same boxes, made in one pass over the
+    /// ring that also sums its signed area in `signed_area`'s order (edge by edge, the
+    /// closing edge last: the same sum to the bit), so that which side the region lies
+    /// on (`region_left`) is known without a second pass.
+    pub(crate) fn small(rings: &'a [Vec<Coord>]) -> Router<'a> {
+        const STEP: usize = CHUNK / 2;
+        let r = &rings[0];
+        // The ring's box first (set once its chunks are measured), as in `with_chunk`.
+        let mut boxes = scratch::take(&BOXES);
+        boxes.resize(1 + r.len().div_ceil(STEP), (Coord::zero(), Coord::zero()));
+        let mut ring_box = bounds(&[]);
+        // `signed_area`'s sum starts as `sum` does (from −0), each edge's term in turn.
+        let mut twice = -0.0;
+        // Chunk c holds edges c·STEP.. and vertices c·STEP..=(c + 1)·STEP, the last
+        // wrapping to the first: each full chunk is its first vertex and the next STEP
+        // (the same box as `with_chunk`'s, whose minimum and maximum do not depend on
+        // the order but for the sign of a zero, which no use of a box tells apart).
+        let mut a = r[0];
+        let (full, rest) = r[1..].as_chunks::<STEP>();
+        let mut count = 0;
+        for next in full {
+            let (mut lo, mut hi) = (a, a);
+            for &b in next {
+                crate::math::widen(&mut lo, &mut hi, b);
+                twice += super::offset::cross(a, b);
+                a = b;
+            }
+            count += 1;
+            boxes[count] = (lo, hi);
+            crate::math::widen(&mut ring_box.0, &mut ring_box.1, lo);
+            crate::math::widen(&mut ring_box.0, &mut ring_box.1, hi);
+        }
+        // The last chunk: the vertices left, then the closing edge to the first.
+        let (mut lo, mut hi) = (a, a);
+        for &b in rest.iter().chain(std::iter::once(&r[0])) {
+            crate::math::widen(&mut lo, &mut hi, b);
+            twice += super::offset::cross(a, b);
+            a = b;
+        }
+        count += 1;
+        boxes[count] = (lo, hi);
+        crate::math::widen(&mut ring_box.0, &mut ring_box.1, lo);
+        crate::math::widen(&mut ring_box.0, &mut ring_box.1, hi);
+        let mut largest: f64 = 0.0;
+        for v in [ring_box.0.x, ring_box.0.y, ring_box.1.x, ring_box.1.y] {
+            if v.abs() > largest {
+                largest = v.abs();
+            }
+        }
+        let slack = 1e-9 * (1.0 + largest);
+        for (lo, hi) in &mut boxes[1..=count] {
+            *lo = *lo - Coord { x: slack, y: slack };
+            *hi = *hi + Coord { x: slack, y: slack };
+        }
+        boxes[0] = ring_box;
+        Router {
+            rings,
+            lengths: std::cell::OnceCell::new(),
+            cuts: std::cell::Cell::new(scratch::take(&CUTS)),
+            path: std::cell::Cell::new(scratch::take(&PATH)),
+            boxes,
+            at: Vec::new(),
+            chunk: STEP,
+            left: std::cell::OnceCell::new(),
+            // Counter-clockwise (a positive area) is an outline, as `region_left` finds.
+            left_one: std::cell::OnceCell::from(twice / 2.0 > 0.0),
+            fast: true,
+            divide_first: false,
+            project_ends: false,
+            sides: true,
+            reuse: true,
+            unit: slack,
+            bound_ways: true,
+            chain: true,
+            interior: std::cell::Cell::new(None),
+        }
     }
 
     /// A router with chunks of `chunk` edges (`usize::MAX`: one per ring).
@@ -365,12 +447,13 @@ impl<'a> Router<'a> {
                 continue;
             }
             let n = ring.len();
-            for (edges, lo, hi) in self.chunks(r) {
+            for (c, lo, hi) in self.boxes_of(r) {
                 let near = p.x >= lo.x - 1e-6
                     && p.x <= hi.x + 1e-6
                     && p.y >= lo.y - 1e-6
                     && p.y <= hi.y + 1e-6;
                 if near {
+                    let edges = self.edges(n, c);
                     let mut b = ring[edges.start];
                     for i in edges {
                         let a = b;
@@ -398,12 +481,13 @@ impl<'a> Router<'a> {
                 continue;
             }
             let n = ring.len();
-            for (edges, lo, hi) in self.chunks(r) {
+            for (c, lo, hi) in self.boxes_of(r) {
                 let near = p.x >= lo.x - TOL
                     && p.x <= hi.x + TOL
                     && p.y >= lo.y - TOL
                     && p.y <= hi.y + TOL;
                 if near {
+                    let edges = self.edges(n, c);
                     let mut b = ring[edges.start];
                     for i in edges {
                         let a = b;
@@ -501,6 +585,30 @@ impl<'a> Router<'a> {
         })
     }
 
+    /// Ring `r`'s chunk boxes with each one's index, its edges left to `edges` (for the
+    /// chunks a caller reads: nothing worked out for those its boxes pass).
+    #[inline]
+    fn boxes_of(&self, r: usize) -> impl Iterator<Item = (usize, Coord, Coord)> + '_ {
+        let count = self.rings[r].len().div_ceil(self.chunk);
+        let from = self.at(r).0 + 1;
+        self.boxes[from..from + count]
+            .iter()
+            .enumerate()
+            .map(|(c, &(lo, hi))| (c, lo, hi))
+    }
+
+    /// The edges of chunk `c` of a ring of `n`: from c·chunk (below n, a later chunk
+    /// existing only where `chunk` is less than n), `chunk` of them or to the ring's end.
+    #[inline]
+    fn edges(&self, n: usize, c: usize) -> std::ops::Range<usize> {
+        let start = c * self.chunk;
+        start..if n - start > self.chunk {
+            start + self.chunk
+        } else {
+            n
+        }
+    }
+
     fn cumulative(&self, r: usize) -> &[f64] {
         let cumulative = self.lengths.get_or_init(|| {
             let vertices: usize = self.rings.iter().map(Vec::len).sum();
@@ -535,6 +643,20 @@ impl<'a> Router<'a> {
         });
         let from = self.at(r).1;
         &cumulative[from..from + self.rings[r].len() + 1]
+    }
+
+    /// The router's boxes (the ring's then its chunks', each as the bits of its corners,
+    /// a zero's sign made one), its chunk, its side test's scale and which side of ring
+    /// 0 the region lies on (tests compare `small` with `with_chunk`).
+    #[cfg(test)]
+    pub(crate) fn layout(&self) -> (Vec<[u64; 4]>, usize, u64, bool) {
+        let bits = |v: f64| (v + 0.0).to_bits();
+        let boxes = self
+            .boxes
+            .iter()
+            .map(|(lo, hi)| [bits(lo.x), bits(lo.y), bits(hi.x), bits(hi.y)])
+            .collect();
+        (boxes, self.chunk, self.unit.to_bits(), self.region_left(0))
     }
 
     /// Ring `r`'s cumulative lengths (tests).
@@ -601,10 +723,21 @@ impl<'a> Router<'a> {
             let crossing = denom * denom > 1e-10 * d2 * (e.x * e.x + e.y * e.y);
             crossing && (beyond(u) || beyond(t))
         };
-        for (edges, a, b) in self.chunks(r) {
+        // The chunks' boxes read in a plain loop, each chunk's edges worked out only where
+        // its box meets the move's (most are passed: a move meets one or two of a star's).
+        let chunk = self.chunk;
+        let from = self.at(r).0 + 1;
+        for (c, &(a, b)) in self.boxes[from..from + n.div_ceil(chunk)]
+            .iter()
+            .enumerate()
+        {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
+            // Chunk c starts at edge c·chunk (below n: a later chunk exists only where
+            // `chunk` is less than n), and ends `chunk` edges on or at the ring's end.
+            let start = c * chunk;
+            let edges = start..if n - start > chunk { start + chunk } else { n };
             // Each edge's end is the next one's start: carried, not read again.
             let mut b = ring[edges.start];
             let mut side_b = side(b);
@@ -1079,7 +1212,7 @@ impl<'a> Router<'a> {
             let mut i = i0;
             for _ in 0..n {
                 walk.push(ring[i]);
-                i = (i + n - 1) % n;
+                i = if i == 0 { n - 1 } else { i - 1 };
                 if i == i1 {
                     break;
                 }

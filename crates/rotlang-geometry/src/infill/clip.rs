@@ -49,6 +49,23 @@ struct Edge {
 
 /// An edge's box (the lesser and greater of its ends' coordinates, by comparisons), for
 /// the test that passes an edge wholly beside a segment's box on one comparison a side.
+/// The first `edges.len()` (at most `N`, `N` ≤ 256) of `(key(edge), index)` sorted by
+/// key, by insertion: a few dozen at most, each key a pair of words moved, not an edge
+/// and its box (equal keys keep their order).
+fn sorted_keys<const N: usize>(edges: &[Edge], key: impl Fn(&Edge) -> f64) -> [(f64, u8); N] {
+    let mut keys = [(0.0f64, 0u8); N];
+    for (i, e) in edges.iter().enumerate() {
+        let k = (key(e), i as u8);
+        let mut j = i;
+        while j > 0 && keys[j - 1].0 > k.0 {
+            keys[j] = keys[j - 1];
+            j -= 1;
+        }
+        keys[j] = k;
+    }
+    keys
+}
+
 fn edge_box(Edge { a, b }: Edge) -> (Coord, Coord) {
     let (x0, x1) = if a.x < b.x { (a.x, b.x) } else { (b.x, a.x) };
     let (y0, y1) = if a.y < b.y { (a.y, b.y) } else { (b.y, a.y) };
@@ -261,17 +278,8 @@ impl Edges {
         }
         let mut by_y = scratch::take(&BY_Y);
         if edges.len() <= FEW {
-            // The edges' lower y with their index sorted by insertion (as `boxes` below).
-            let mut keys = [(0.0f64, 0u8); FEW];
-            for (i, e) in edges.iter().enumerate() {
-                let key = (if e.a.y < e.b.y { e.a.y } else { e.b.y }, i as u8);
-                let mut j = i;
-                while j > 0 && keys[j - 1].0 > key.0 {
-                    keys[j] = keys[j - 1];
-                    j -= 1;
-                }
-                keys[j] = key;
-            }
+            // The edges' lower y with their index (as `boxes` below).
+            let keys = sorted_keys::<FEW>(&edges, |e| if e.a.y < e.b.y { e.a.y } else { e.b.y });
             by_y.extend(keys[..edges.len()].iter().map(|&(lo, i)| {
                 let e = edges[usize::from(i)];
                 (lo, if e.a.y < e.b.y { e.b.y } else { e.a.y }, e)
@@ -279,19 +287,8 @@ impl Edges {
         }
         let mut boxes = scratch::take(&BOXES);
         if edges.len() <= PLAIN {
-            // The edges' least x with their index sorted by insertion (a few dozen at
-            // most, each key a pair of words moved, not a box and an edge), then the
-            // boxes listed in that order.
-            let mut keys = [(0.0f64, 0u8); PLAIN];
-            for (i, e) in edges.iter().enumerate() {
-                let key = (if e.a.x < e.b.x { e.a.x } else { e.b.x }, i as u8);
-                let mut j = i;
-                while j > 0 && keys[j - 1].0 > key.0 {
-                    keys[j] = keys[j - 1];
-                    j -= 1;
-                }
-                keys[j] = key;
-            }
+            // The edges' least x with their index, then the boxes listed in that order.
+            let keys = sorted_keys::<PLAIN>(&edges, |e| if e.a.x < e.b.x { e.a.x } else { e.b.x });
             boxes.extend(keys[..edges.len()].iter().map(|&(_, i)| {
                 let e = edges[usize::from(i)];
                 let (lo, hi) = edge_box(e);

@@ -190,8 +190,15 @@ fn room(loops: &Loops, length: f64, d: f64) -> f64 {
             .map(|r| twice_area(r).abs() / 2.0)
             .fold(0.0, f64::max)
     });
-    let widen = loops.stray.map_or(0.04, |s| (1.25 * s).min(0.04)) * d + 1e-6;
+    let widen = widening(loops, d);
     ((area + length * widen + PI * widen * widen) / PI).sqrt()
+}
+
+/// How far `room` and `hull_room` widen the rings for what they may miss of the exact
+/// erosion by `d`: a quarter more than the eroder's reflex mitres stray (`Eroder::stray`),
+/// else 4% of `d` (any chord or mitre of a 0.5 rad step).
+fn widening(loops: &Loops, d: f64) -> f64 {
+    loops.stray.map_or(0.04, |s| (1.25 * s).min(0.04)) * d + 1e-6
 }
 
 /// Another bound on the room of `room`: a disc inside a convex ring has a radius of at
@@ -204,7 +211,7 @@ fn room(loops: &Loops, length: f64, d: f64) -> f64 {
 /// Past `step` it stops: a ring whose own twice area over perimeter (no more than its
 /// hull's) reaches `step` answers at once.
 fn hull_room(loops: &Loops, d: f64, step: f64, hull: &mut Vec<Coord>) -> f64 {
-    let widen = loops.stray.map_or(0.04, |s| (1.25 * s).min(0.04)) * d + 1e-6;
+    let widen = widening(loops, d);
     let mut most = 0.0f64;
     for ring in &loops.rings {
         // The hull's area is the ring's or more, its perimeter the ring's or less.
@@ -449,19 +456,7 @@ fn hinted(rings: &Bounded, hint: &mut Option<Hint>, before: usize, p: Coord, r: 
     if h.ring as usize >= before || !in_bounds(bounds, p, r) {
         return false;
     }
-    let n = ring.len() - 1;
-    let seg = h.seg as usize;
-    for k in [seg, seg + 1, seg + n - 1, seg + 2] {
-        let k = k % n;
-        if segment_within(ring[k], ring[k + 1], p, r) {
-            *hint = Some(Hint {
-                ring: h.ring,
-                seg: k as u32,
-            });
-            return true;
-        }
-    }
-    false
+    next_to(ring, h, hint, |s, e| segment_within(s, e, p, r))
 }
 
 /// Whether both `a` and `b` are within `r` of one segment: `hint` or one of its next
@@ -476,12 +471,25 @@ fn hinted_both(rings: &Bounded, hint: &mut Option<Hint>, a: Coord, b: Coord, r: 
     if !in_bounds(bounds, a, r) || !in_bounds(bounds, b, r) {
         return false;
     }
+    next_to(ring, h, hint, |s, e| {
+        segment_within(s, e, a, r) && segment_within(s, e, b, r)
+    })
+}
+
+/// Whether the segment `h` of the closed `ring`, or one of its next neighbours (after,
+/// before, two after, in that order), passes `test`; `hint` becomes the first that does.
+#[inline(always)]
+fn next_to(
+    ring: &[Coord],
+    h: Hint,
+    hint: &mut Option<Hint>,
+    test: impl Fn(Coord, Coord) -> bool,
+) -> bool {
     let n = ring.len() - 1;
     let seg = h.seg as usize;
     for k in [seg, seg + 1, seg + n - 1, seg + 2] {
         let k = k % n;
-        if segment_within(ring[k], ring[k + 1], a, r) && segment_within(ring[k], ring[k + 1], b, r)
-        {
+        if test(ring[k], ring[k + 1]) {
             *hint = Some(Hint {
                 ring: h.ring,
                 seg: k as u32,
@@ -751,6 +759,10 @@ fn uncovered(
     // are this near one covered segment lies that near it all along (the distance to a
     // segment is convex along a line), so none of its points is far.
     let inner = gap * (1.0 - 1e-9);
+    // The points not decided whole, each measured (`far`), their flags appended.
+    let measure = |points: &[Coord], hint: &mut Option<Hint>, scratch: &mut Scratch| {
+        far(points, &covered, &last, gap, spacing, hint, scratch);
+    };
     // The covered segment the last point (or segment) was found near.
     let mut hint = None;
     for ring in &middle.rings {
@@ -798,15 +810,7 @@ fn uncovered(
             };
             if let Some(flag) = all {
                 // The points before it, not decided yet, are measured first.
-                far(
-                    &dense[pending..],
-                    &covered,
-                    &last,
-                    gap,
-                    spacing,
-                    &mut hint,
-                    scratch,
-                );
+                measure(&dense[pending..], &mut hint, scratch);
                 if flag {
                     dense.extend((0..steps).map(point));
                     scratch.flags.resize(dense.len(), true);
@@ -824,15 +828,7 @@ fn uncovered(
                 // Measured as whole runs gather (the hint then follows the ring).
                 let whole = pending + (dense.len() - pending) / RUN * RUN;
                 if whole > pending {
-                    far(
-                        &dense[pending..whole],
-                        &covered,
-                        &last,
-                        gap,
-                        spacing,
-                        &mut hint,
-                        scratch,
-                    );
+                    measure(&dense[pending..whole], &mut hint, scratch);
                     pending = whole;
                 }
                 continue;
@@ -843,42 +839,18 @@ fn uncovered(
             for from in (0..steps).step_by(RUN) {
                 let to = (from + RUN).min(steps);
                 if hinted_both(&covered, &mut hint, point(from), point(to - 1), inner) {
-                    far(
-                        &dense[pending..],
-                        &covered,
-                        &last,
-                        gap,
-                        spacing,
-                        &mut hint,
-                        scratch,
-                    );
+                    measure(&dense[pending..], &mut hint, scratch);
                     dense.push(point(from));
                     scratch.flags.push(false);
                 } else {
                     dense.extend((from..to).map(point));
-                    far(
-                        &dense[pending..],
-                        &covered,
-                        &last,
-                        gap,
-                        spacing,
-                        &mut hint,
-                        scratch,
-                    );
+                    measure(&dense[pending..], &mut hint, scratch);
                 }
                 pending = dense.len();
             }
         }
         dense.extend(ring.last().copied());
-        far(
-            &dense[pending..],
-            &covered,
-            &last,
-            gap,
-            spacing,
-            &mut hint,
-            scratch,
-        );
+        measure(&dense[pending..], &mut hint, scratch);
         // A stretch shorter than a spacing (a star's tip) leaves no gap worth a line. Its
         // length summed only until it reaches a spacing (sums of lengths only grow, so the
         // answer is the whole sum's); measured before it is copied out.

@@ -1009,16 +1009,7 @@ fn convex_bounded(pts: &[Coord]) -> (f64, (Coord, Coord)) {
 fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
     let n = pts.len();
     // Every point is some step's `b` (the first at the last step).
-    let (mut lo, mut hi) = (
-        Coord {
-            x: f64::INFINITY,
-            y: f64::INFINITY,
-        },
-        Coord {
-            x: f64::NEG_INFINITY,
-            y: f64::NEG_INFINITY,
-        },
-    );
+    let (mut lo, mut hi) = super::travel::bounds(&[]);
     let mut prev = pts[0] - pts[n - 1];
     let mut a = pts[0];
     let mut east = 0;

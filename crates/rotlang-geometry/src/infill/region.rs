@@ -805,18 +805,30 @@ fn every_corner_kept(pts: &[Coord]) -> Kept {
         let c = if i + 1 < n { pts[i + 1] } else { pts[0] };
         let v = c - b;
         let v2 = v.x * v.x + v.y * v.y;
-        let cross = cross(u, v);
-        if cross * cross <= 1e-24 * (u2 * v2) {
-            return Kept::Unsure;
+        match left_corner(u, u2, v, v2) {
+            Ok(up) => ups += u32::from(up),
+            Err(kept) => return kept,
         }
-        if cross < 0.0 {
-            return Kept::Reflex;
-        }
-        ups += u32::from(u.x <= 0.0 && v.x > 0.0);
         u = v;
         u2 = v2;
     }
     if ups <= 1 { Kept::All } else { Kept::Reflex }
+}
+
+/// The corner from edge `u` to edge `v` (their squared lengths `u2`, `v2`) of a ring
+/// that should turn left clearly at every corner: `Err` where it does not (straight or
+/// at a repeated point: `Unsure`; turning right: `Reflex`), else whether the edges' x
+/// component turns positive there (one of `every_corner_kept`'s counted turns).
+#[inline(always)]
+fn left_corner(u: Coord, u2: f64, v: Coord, v2: f64) -> Result<bool, Kept> {
+    let cross = cross(u, v);
+    if cross * cross <= 1e-24 * (u2 * v2) {
+        return Err(Kept::Unsure);
+    }
+    if cross < 0.0 {
+        return Err(Kept::Reflex);
+    }
+    Ok(u.x <= 0.0 && v.x > 0.0)
 }
 
 /// The exact inward offset of one convex ring: empty when it is thinner than `2d`.
@@ -1048,14 +1060,10 @@ fn grow<const CHECK: bool>(
         let v = c - b;
         if CHECK {
             let v2 = v.x * v.x + v.y * v.y;
-            let cross = cross(u, v);
-            if cross * cross <= 1e-24 * (u2 * v2) {
-                return Kept::Unsure;
+            match left_corner(u, u2, v, v2) {
+                Ok(up) => ups += u32::from(up),
+                Err(kept) => return kept,
             }
-            if cross < 0.0 {
-                return Kept::Reflex;
-            }
-            ups += u32::from(u.x <= 0.0 && v.x > 0.0);
             u = v;
             u2 = v2;
         }

@@ -107,6 +107,24 @@ enum Place {
     Out,
 }
 
+/// The largest coordinate's size in the box `(lo, hi)`, or `largest` if larger (by
+/// comparisons, as the boxes: the coordinates are finite).
+fn largest_in((lo, hi): (Coord, Coord), mut largest: f64) -> f64 {
+    for v in [lo.x, lo.y, hi.x, hi.y] {
+        if v.abs() > largest {
+            largest = v.abs();
+        }
+    }
+    largest
+}
+
+/// How much a chunk's box is grown: a millionth of a nanometre per millimetre of the
+/// largest coordinate, more than any rounding in the tests a chunk's box stands for, so
+/// that skipping a chunk never skips an edge the test would have taken.
+fn slack(largest: f64) -> f64 {
+    1e-9 * (1.0 + largest)
+}
+
 impl<'a> Router<'a> {
     pub(crate) fn new(rings: &'a [Vec<Coord>]) -> Router<'a> {
         // A small region (a star's or an L's inset, a few dozen edges, whose runs of 8
@@ -162,39 +180,15 @@ impl<'a> Router<'a> {
         boxes[count] = (lo, hi);
         crate::math::widen(&mut ring_box.0, &mut ring_box.1, lo);
         crate::math::widen(&mut ring_box.0, &mut ring_box.1, hi);
-        let mut largest: f64 = 0.0;
-        for v in [ring_box.0.x, ring_box.0.y, ring_box.1.x, ring_box.1.y] {
-            if v.abs() > largest {
-                largest = v.abs();
-            }
-        }
-        let slack = 1e-9 * (1.0 + largest);
+        let slack = slack(largest_in(ring_box, 0.0));
         for (lo, hi) in &mut boxes[1..=count] {
             *lo = *lo - Coord { x: slack, y: slack };
             *hi = *hi + Coord { x: slack, y: slack };
         }
         boxes[0] = ring_box;
-        Router {
-            rings,
-            lengths: std::cell::OnceCell::new(),
-            cuts: std::cell::Cell::new(scratch::take(&CUTS)),
-            path: std::cell::Cell::new(scratch::take(&PATH)),
-            boxes,
-            at: Vec::new(),
-            chunk: STEP,
-            left: std::cell::OnceCell::new(),
-            // Counter-clockwise (a positive area) is an outline, as `region_left` finds.
-            left_one: std::cell::OnceCell::from(twice / 2.0 > 0.0),
-            fast: true,
-            divide_first: false,
-            project_ends: false,
-            sides: true,
-            reuse: true,
-            unit: slack,
-            bound_ways: true,
-            chain: true,
-            interior: std::cell::Cell::new(None),
-        }
+        // Counter-clockwise (a positive area) is an outline, as `region_left` finds.
+        let left_one = std::cell::OnceCell::from(twice / 2.0 > 0.0);
+        Router::assembled(rings, boxes, Vec::new(), STEP, left_one, slack)
     }
 
     /// A router with chunks of `chunk` edges (`usize::MAX`: one per ring).
@@ -244,18 +238,10 @@ impl<'a> Router<'a> {
                 }
                 from = to;
             }
-            // By comparisons, as the boxes (the coordinates are finite).
-            for v in [ring_box.0.x, ring_box.0.y, ring_box.1.x, ring_box.1.y] {
-                if v.abs() > largest {
-                    largest = v.abs();
-                }
-            }
+            largest = largest_in(ring_box, largest);
             chunks[ring_at] = ring_box;
         }
-        // A millionth of a nanometre per millimetre of coordinate: more than any rounding
-        // in the tests a chunk's box stands for, so that skipping a chunk never skips an
-        // edge the test would have taken.
-        let slack = 1e-9 * (1.0 + largest);
+        let slack = slack(largest);
         let mut ring_at = 0;
         for r in rings {
             let count = r.len().div_ceil(chunk);
@@ -265,16 +251,31 @@ impl<'a> Router<'a> {
             }
             ring_at += 1 + count;
         }
+        Router::assembled(rings, chunks, at, chunk, std::cell::OnceCell::new(), slack)
+    }
+
+    /// The router over `rings` with its `boxes` (each ring's, then its chunks' of `chunk`
+    /// edges, these grown by `slack`), each ring's place in them (`at`, several rings
+    /// only) and, where known, whether one ring has the region on its left; every
+    /// shortcut on.
+    fn assembled(
+        rings: &'a [Vec<Coord>],
+        boxes: Vec<(Coord, Coord)>,
+        at: Vec<(usize, usize)>,
+        chunk: usize,
+        left_one: std::cell::OnceCell<bool>,
+        slack: f64,
+    ) -> Router<'a> {
         Router {
             rings,
             lengths: std::cell::OnceCell::new(),
             cuts: std::cell::Cell::new(scratch::take(&CUTS)),
             path: std::cell::Cell::new(scratch::take(&PATH)),
-            boxes: chunks,
+            boxes,
             at,
             chunk,
             left: std::cell::OnceCell::new(),
-            left_one: std::cell::OnceCell::new(),
+            left_one,
             fast: true,
             divide_first: false,
             project_ends: false,

@@ -73,6 +73,26 @@ pub(crate) struct Eroder {
     /// How far a reflex corner's mitre lies beyond its exact arc, per unit of the
     /// distance eroded, at most (0 with none): `stray`.
     mitre_stray: f64,
+    /// The least `k` of the region's convex corners' mitres (`1 − cos α` for an inside
+    /// angle α), 0 with a sharp tip, and whether any reflex corner is drawn as an arc:
+    /// `corners`.
+    bluntest: f64,
+    arcs: bool,
+    /// How the last erosion's rings were cut from the raw offsets: `cutting`.
+    cutting: Cutting,
+}
+
+/// How an erosion's rings came from the raw offsets of the region's rings.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(crate) enum Cutting {
+    /// Uncut: each ring a raw offset whole, each kept, no edge run backwards.
+    None,
+    /// Cut only where two different rings' raw offsets cross (a hole's meeting the
+    /// outline's), no ring crossing itself, no uncut ring left out and no edge run
+    /// backwards.
+    Between,
+    /// Anything else (a ring crossing itself, an edge event, or not known).
+    Other,
 }
 
 /// A corner of a ring, as its raw offset needs it.
@@ -113,6 +133,9 @@ impl Eroder {
             points: Vec::new(),
             close: true,
             mitre_stray: 0.0,
+            bluntest: f64::INFINITY,
+            arcs: false,
+            cutting: Cutting::Other,
         };
         eroder.reset(region, arc);
         eroder
@@ -127,6 +150,9 @@ impl Eroder {
         self.safes.clear();
         self.directions.clear();
         self.mitre_stray = 0.0;
+        self.bluntest = f64::INFINITY;
+        self.arcs = false;
+        self.cutting = Cutting::Other;
         // The sweep's order is kept: the next layer's region is most often the same or
         // close (any permutation of as many edges would do; another size starts afresh).
         self.sized = false;
@@ -164,10 +190,13 @@ impl Eroder {
                     &mut self.directions,
                     corners,
                     &mut self.units,
-                    &mut self.mitre_stray,
+                    (&mut self.mitre_stray, &mut self.bluntest, &mut self.arcs),
                 ) {
                     used += 1;
                     self.safes.push(safe);
+                } else {
+                    // A ring left out: the cutting says nothing of the region's.
+                    self.bluntest = 0.0;
                 }
             }
         }
@@ -194,6 +223,19 @@ impl Eroder {
         self.mitre_stray
     }
 
+    /// The region's corners as the middle ring's test needs them: the least `k` of its
+    /// convex corners' mitres (`1 − cos α`, α the inside angle; 0 where one is a sharp
+    /// tip), and whether a reflex corner is drawn as an arc of chords.
+    pub(crate) fn corners(&self) -> (f64, bool) {
+        (self.bluntest, self.arcs)
+    }
+
+    /// How the last erosion's rings were cut from the raw offsets (`Cutting::Other`
+    /// where it gave none).
+    pub(crate) fn cutting(&self) -> Cutting {
+        self.cutting
+    }
+
     /// How many points its largest buffers hold room for (a pool lets a huge one go).
     pub(crate) fn capacity(&self) -> usize {
         self.points.capacity() + self.boundary.sides.capacity() + self.sweep.edges.capacity()
@@ -209,6 +251,7 @@ impl Eroder {
 
     /// The rings bounding the erosion by `d` (as [`eroded_rings`]).
     pub(crate) fn rings(&mut self, d: f64) -> Option<Vec<Vec<Coord>>> {
+        self.cutting = Cutting::Other;
         // Each raw ring's size is known from its corners: the buffers are made once at
         // their size (growing them by doubling was a tenth of a star's layer).
         if !self.sized {
@@ -269,6 +312,15 @@ impl Eroder {
             }
         }
         let cuts = &*cuts;
+        let mut cutting = if raws.iter().any(|r| r.check) {
+            Cutting::Other
+        } else if cuts.is_empty() {
+            Cutting::None
+        } else if cuts.iter().all(|c| c.ring[0] != c.ring[1]) {
+            Cutting::Between
+        } else {
+            Cutting::Other
+        };
         // Every cut twice (once on each ring it is on), grouped by ring, in order along it.
         place_cuts(raws, cuts, &mut self.here, &mut self.counts);
         // Cut every raw ring at its crossings into pieces; keep those `d` from the boundary.
@@ -300,6 +352,12 @@ impl Eroder {
                         < 0.0;
                 if !inverted && undecided(raw, 0, n - 1, |i| raw.pts[i % n], kept, boundary, d) {
                     return None;
+                }
+                // A whole ring left out (its middle nearer another ring than `d`, though
+                // their raw offsets do not cross: an arc's chords cut in): not a cutting
+                // `Cutting` vouches for.
+                if !kept {
+                    cutting = Cutting::Other;
                 }
                 if kept && !inverted {
                     let first = points.len();
@@ -354,7 +412,11 @@ impl Eroder {
             }
         }
         let rings = std::mem::take(&mut self.spare);
-        chain(pieces, points, cuts.len(), &mut self.chained, rings)
+        let rings = chain(pieces, points, cuts.len(), &mut self.chained, rings);
+        if rings.is_some() {
+            self.cutting = cutting;
+        }
+        rings
     }
 }
 
@@ -716,7 +778,7 @@ fn prepare(
     directions: &mut Vec<Coord>,
     out: &mut Vec<Corner>,
     units: &mut Vec<Coord>,
-    mitre_stray: &mut f64,
+    (mitre_stray, bluntest, arcs): (&mut f64, &mut f64, &mut bool),
 ) -> Option<(f64, usize)> {
     // The ring itself where it is clean and turns the right way (a copy otherwise).
     let pts = inside_left_cow(ring, exterior)?;
@@ -746,10 +808,12 @@ fn prepare(
             let k = 1.0 + nu.x * nv.x + nu.y * nv.y;
             if k >= 0.5 {
                 // The mitre, where both moved edges meet.
+                *bluntest = bluntest.min(k);
                 out.push(Corner::Mitre { b, m: nu + nv, k });
             } else {
                 // A sharp tip: its mitre would be far away; through the vertex instead
                 // (that stretch is nearer the boundary than `d`, and is cut away).
+                *bluntest = 0.0;
                 out.push(Corner::Tip { b, nu, nv });
                 extra += 2;
             }
@@ -762,6 +826,7 @@ fn prepare(
             out.push(Corner::Mitre { b, m: nu + nv, k });
         } else {
             let angle = math::atan2(turn, dot);
+            *arcs = true;
             let steps = steps(-angle / arc);
             let start = directions.len();
             // One step has no inner direction (and needs no sine).

@@ -34,6 +34,13 @@
 //! its distance to each ring carried from the point before (a 1-Lipschitz walk); the
 //! whole middle ring shown near two loops before it is measured (it holds on the holed
 //! square at 10% only: 226k → 214k there, 419k → 432k and 549k → 585k at 20 / 40%).
+//!
+//! Then (the holed square's meeting steps, where the hole's loops meet the outline's:
+//! their middle ring printed nothing and cost a third of the layer at 10%): the middle
+//! ring is not made where no point of it can be far (`nothing_far`: the last loops uncut,
+//! these cut only where two rings meet, every convex corner blunter than 84°, no arc of
+//! chords), the same output: instructions a layer 201k → 109k, 368k → 265k and 478k →
+//! 362k at 10 / 20 / 40%.
 
 use std::cell::Cell;
 use std::f64::consts::{PI, TAU};

@@ -50,6 +50,7 @@ use geo::{Buffer, Coord, MultiPolygon};
 
 use crate::infill::Region;
 use crate::infill::loops::{Cutting, Eroder};
+use crate::infill::region::ConvexInset;
 use crate::infill::travel::bounds;
 use crate::math;
 
@@ -1312,7 +1313,30 @@ impl<'a> Shrink<'a> {
         let convex = if holes || self.concave {
             None
         } else {
-            crate::infill::region::convex_inset(area, d, 0.5)
+            match crate::infill::region::convex_rings(area, d, 0.5) {
+                // Its rings as made, each closed in place: no polygon made, taken apart
+                // and copied again (a square's layer at 10 / 20 / 40%: 16.2k / 24.5k /
+                // 44.5k → 13.8k / 19.2k / 33.7k instructions). Without holes, one outline
+                // a polygon: in the polygons' order.
+                Some(ConvexInset::Rings(raw)) if raw.holes.is_empty() => {
+                    let mut rings = raw.rings;
+                    for ring in &mut rings {
+                        if let Some(&first) = ring.first() {
+                            ring.push(first);
+                        }
+                    }
+                    return Loops {
+                        turns: rings.len() as f64,
+                        rings,
+                        largest: None,
+                        stray: None,
+                        cutting: Cutting::Other,
+                    };
+                }
+                Some(ConvexInset::Rings(raw)) => Some(raw.into_polygons()),
+                Some(ConvexInset::Polygons(polygons)) => Some(polygons),
+                None => None,
+            }
         };
         self.concave |= !holes && convex.is_none();
         if convex.is_none()

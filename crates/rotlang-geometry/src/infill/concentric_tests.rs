@@ -313,6 +313,32 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Convex islands (regular polygons of 3 to 40 corners, one to three, apart): the
+    /// convex inset's rings taken as made (closed in place, no polygon made) give the
+    /// loops of the former code, which took them from the polygons.
+    #[test]
+    fn convex_islands_give_the_former_loops(
+        islands in prop::collection::vec((3usize..40, 2.0f64..9.0), 1..4),
+        density in 0.05f64..0.6,
+        theta in 0.0f64..6.3,
+    ) {
+        let polygons = islands
+            .iter()
+            .enumerate()
+            .map(|(i, &(n, r))| {
+                Polygon::new(ring(&vec![1.0; n], r, Coord { x: 20.0 * i as f64, y: 0.0 }), vec![])
+            })
+            .collect();
+        let shape = MultiPolygon::new(polygons);
+        let (fast, slow) = loops(&shape, density, theta);
+        prop_assert!(!fast.is_empty());
+        prop_assert_eq!(fast, slow);
+    }
+}
+
 /// Where `known_concave` says so, the exact convex inset of the outline declines at every
 /// distance concentric asks (so the loops skip it rightly), and it says so for the star
 /// and the L (the fast path is taken), never for a convex region.

@@ -38,7 +38,7 @@
 //! Then (the holed square's meeting steps, where the hole's loops meet the outline's:
 //! their middle ring printed nothing and cost a third of the layer at 10%): the middle
 //! ring is not made where no point of it can be far (`nothing_far`: the last loops uncut,
-//! these cut only where two rings meet, every convex corner blunter than 84°, no arc of
+//! these cut only where two rings meet, every convex corner of 85° or more, no arc of
 //! chords), the same output: instructions a layer 201k → 109k, 368k → 265k and 478k →
 //! 362k at 10 / 20 / 40%.
 
@@ -1178,12 +1178,13 @@ pub(super) fn known_concave(region: &Region) -> bool {
 /// q of that ring's raw offset half a spacing further in (along the normal, or at a
 /// convex corner's mitre) is within `apex` spacings of it: half a spacing along an edge
 /// or at a reflex mitre, `½·sqrt(2/k)` from mitre to mitre at a convex corner
-/// (`k = 1 − cos α`), less than ¾ (the test's) for any corner blunter than 84°. Where q
-/// is kept, p is near these loops. Where q was cut away, it lies within a spacing of
-/// another ring's last loop (nearer that ring than a loop's distance: its last loop lies
-/// a spacing less out from it), so p lies within `apex + 1` spacings of that loop and
-/// `apex` of its own ring's: near two last loops, which no stretch is. Either way none is
-/// far. Uncut both (no part ended, no ring met another), the same without the second case.
+/// (`k = 1 − cos α`), under 0.74 (the test's ¾ less a margin) for a corner of 85° or
+/// more. Where q is kept, p is near these loops. Where q was cut away, it lies within a
+/// spacing of another ring's last loop (nearer that ring than a loop's distance: its last
+/// loop lies a spacing less out from it), so p lies within `apex + 1` spacings of that
+/// loop and `apex` of its own ring's: near two last loops, which no stretch is. Either
+/// way none is far. Uncut both (no part ended, no ring met another), the same without the
+/// second case.
 ///
 /// Not where a reflex corner is an arc of chords: the chords cut inside the exact arc, so
 /// two rings' raw offsets may miss each other where a piece's middle lies nearer the

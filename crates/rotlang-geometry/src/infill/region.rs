@@ -787,6 +787,12 @@ enum Kept {
     Unsure,
 }
 
+/// Whether an open ring turns left clearly at every corner and winds once (a convex
+/// ring, counter-clockwise): `every_corner_kept`'s verdict that it keeps every corner.
+pub(crate) fn turns_left_once(ring: &[Coord]) -> bool {
+    ring.len() >= 3 && matches!(every_corner_kept(ring), Kept::All)
+}
+
 /// `convex_ring_copied`'s corner tests on an open ring turned counter-clockwise, with
 /// nothing copied: what it keeps when no corner is dropped.
 fn every_corner_kept(pts: &[Coord]) -> Kept {

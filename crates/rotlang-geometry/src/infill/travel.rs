@@ -30,7 +30,12 @@ const SMALL: usize = 32;
 /// (`shorter_way`): below, measuring the whole ring costs about as much.
 const MEASURED: usize = 16;
 
-/// Where a move crosses a ring.
+/// The most edges a first ring (a convex outline) may have for its moves to be told
+/// clear of it by its edges' half-planes (`Router::deep`): about a box's test per edge,
+/// where its chunks' boxes would all meet a move inside (the ring's box holds every move).
+const DEEP_EDGES: usize = 8;
+
+/// Where a move crosses a ring./// Where a move crosses a ring.
 #[derive(Clone, Copy, Debug)]
 struct Cut {
     ring: usize,
@@ -95,6 +100,11 @@ pub(crate) struct Router<'a> {
     /// move from there (a closed loop's, which ends where it starts) touching no edge is
     /// inside too.
     interior: std::cell::Cell<Option<Coord>>,
+    /// Where a small convex first ring with other rings (a convex outline with holes)
+    /// has its edges in `boxes` and how many (none otherwise): each as its start and its
+    /// direction scaled to the margin (`deep_edges`). A move clear inside all of them
+    /// crosses and touches none of them, and that ring's `hits` are not searched.
+    deep: (usize, usize),
 }
 
 /// Where `locate` finds a point.
@@ -251,7 +261,53 @@ impl<'a> Router<'a> {
             }
             ring_at += 1 + count;
         }
-        Router::assembled(rings, chunks, at, chunk, std::cell::OnceCell::new(), slack)
+        let mut router =
+            Router::assembled(rings, chunks, at, chunk, std::cell::OnceCell::new(), slack);
+        // (A single ring convex is a convex region, where nothing is routed.)
+        if rings.len() > 1 {
+            router.deep_edges(1e3 * slack);
+        }
+        router
+    }
+
+    /// Ring 0's edges appended to `boxes` where it is convex and counter-clockwise
+    /// (`region::turns_left_once`) with at most `DEEP_EDGES` edges: each edge's start
+    /// and its direction divided by `margin` times its length, so that a point's cross
+    /// product with it is its distance from the edge's line in margins (within a few
+    /// units in the last place). A move both of whose ends are more than a margin inside
+    /// every edge's half-plane stays that far from every edge's line (the half-planes'
+    /// distances are affine along it). `margin`: a millionth of a millimetre per
+    /// millimetre of the largest coordinate (a thousand times the chunks' slack), above
+    /// a nanometre (`on_edge`'s tolerance), above a billionth of any move's length (how
+    /// far `hits` keeps a crossing beyond the move's ends) and far above the roundings
+    /// of its fractions (about 10⁻¹⁵ of the coordinates): there `hits` would find no
+    /// crossing of the ring, no edge it keeps as one the move may run along whose middle
+    /// is on it, and no edge the move touches. The holed square's outline: every move of
+    /// its loops is well inside it.
+    fn deep_edges(&mut self, margin: f64) {
+        let ring = &self.rings[0];
+        let n = ring.len();
+        if !(3..=DEEP_EDGES).contains(&n) || !super::region::turns_left_once(ring) {
+            return;
+        }
+        let from = self.boxes.len();
+        for (i, &a) in ring.iter().enumerate() {
+            let e = ring[next(i, n)] - a;
+            self.boxes
+                .push((a, e / (margin * (e.x * e.x + e.y * e.y).sqrt())));
+        }
+        self.deep = (from, n);
+    }
+
+    /// Whether `p` and `q` are both more than a margin inside each of ring 0's edges
+    /// kept by `deep_edges` (false where none is).
+    #[inline]
+    fn deep_inside(&self, p: Coord, q: Coord) -> bool {
+        let (from, count) = self.deep;
+        count > 0
+            && self.boxes[from..from + count]
+                .iter()
+                .all(|&(a, e)| cross(e, p - a) > 1.0 && cross(e, q - a) > 1.0)
     }
 
     /// The router over `rings` with its `boxes` (each ring's, then its chunks' of `chunk`
@@ -285,6 +341,7 @@ impl<'a> Router<'a> {
             bound_ways: true,
             chain: true,
             interior: std::cell::Cell::new(None),
+            deep: (0, 0),
         }
     }
 
@@ -309,6 +366,19 @@ impl<'a> Router<'a> {
     pub(crate) fn testing_every_middle(mut self) -> Router<'a> {
         self.reuse = false;
         self
+    }
+
+    /// The same router searching a convex first ring's edges for every move.
+    #[cfg(test)]
+    pub(crate) fn searching_every_ring(mut self) -> Router<'a> {
+        self.deep = (0, 0);
+        self
+    }
+
+    /// Whether the first ring's moves may be told clear of it by its half-planes (tests).
+    #[cfg(test)]
+    pub(crate) fn tells_deep_moves(&self) -> bool {
+        self.deep.1 > 0
     }
 
     /// The same router testing every move's middle, wherever it starts.
@@ -842,6 +912,10 @@ impl<'a> Router<'a> {
         for r in 0..self.rings.len() {
             let (a, b) = self.ring_box(r);
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
+                continue;
+            }
+            // Clear inside a convex first ring: no crossing of it, no edge touched.
+            if r == 0 && self.deep_inside(p, q) {
                 continue;
             }
             clear &= if track {

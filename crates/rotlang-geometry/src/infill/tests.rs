@@ -2271,9 +2271,10 @@ proptest! {
 }
 
 /// The holed square's concentric loops' travel is told clear of the outline (each
-/// move's ends well inside it) and routed as before: every move straight, the same with
-/// the outline searched; and a move from outside the outline to inside is not told
-/// clear (it is walked or cut as the searching router does it).
+/// move's ends well inside it; those missing the hole's box straight at once) and routed
+/// as before: every move straight, the same with the outline searched; a move across the
+/// hole is walked round it; and a move from outside the outline to inside, or out
+/// beyond it, is not told clear (it is routed as the searching router routes it).
 #[test]
 fn the_holed_squares_travel_is_told_clear_of_its_outline() {
     let region = Region::new(&shapes::holed_square(40.0, 10.0), W).unwrap();

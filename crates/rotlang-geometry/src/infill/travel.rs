@@ -299,6 +299,17 @@ impl<'a> Router<'a> {
         self.deep = (from, n);
     }
 
+    /// Whether the box of the move from `p` to `q` misses the box of every ring but the
+    /// first.
+    #[inline]
+    fn misses_holes(&self, p: Coord, q: Coord) -> bool {
+        let (lo, hi) = move_box(p, q);
+        (1..self.rings.len()).all(|r| {
+            let (a, b) = self.ring_box(r);
+            hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y
+        })
+    }
+
     /// Whether `p` and `q` are both more than a margin inside each of ring 0's edges
     /// kept by `deep_edges` (false where none is).
     #[inline]
@@ -898,6 +909,17 @@ impl<'a> Router<'a> {
     pub(crate) fn route_on(&self, p: Coord, q: Coord, looped: bool) -> Vec<Coord> {
         // No rings: a convex region, where every straight move stays inside.
         if self.rings.iter().any(|r| r.len() < 3) || self.rings.is_empty() {
+            return vec![p, q];
+        }
+        // Clear inside a convex outline (`deep_inside`: no crossing of it, no edge of it
+        // touched or within a nanometre) and missing every other ring's box (no
+        // crossing, nothing touched, no point in a hole): inside all along, what the
+        // even-odd test of its middle finds once the crossings are searched. Its end is
+        // then a point inside and on no edge, for the next move (`interior`).
+        if self.deep.1 > 0 && self.misses_holes(p, q) && self.deep_inside(p, q) {
+            if self.chain {
+                self.interior.set(Some(q));
+            }
             return vec![p, q];
         }
         let mut cuts = self.cuts.take();

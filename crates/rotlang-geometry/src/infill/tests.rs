@@ -2259,13 +2259,20 @@ proptest! {
         };
         let deep = travel::Router::new(rings);
         let searched = travel::Router::new(rings).searching_every_ring();
-        // The fast path is on for these outlines (convex, counter-clockwise, small).
+        // The fast path is on for these outlines (convex, counter-clockwise, small), its
+        // box for the square's (a rectangle).
         prop_assert!(deep.tells_deep_moves());
         prop_assert!(!searched.tells_deep_moves());
+        if named == 0 {
+            prop_assert!(deep.has_deep_box());
+        }
+        let edges_only = travel::Router::new(rings).without_deep_box();
         for pair in points.windows(2) {
             let (p, q) = (point((pair[0].0, pair[0].1, pair[0].2)), point((pair[1].0, pair[1].1, pair[1].2)));
             let looped = pair[1].3;
-            prop_assert_eq!(deep.route_on(p, q, looped), searched.route_on(p, q, looped));
+            let route = searched.route_on(p, q, looped);
+            prop_assert_eq!(&deep.route_on(p, q, looped), &route);
+            prop_assert_eq!(&edges_only.route_on(p, q, looped), &route);
         }
     }
 }

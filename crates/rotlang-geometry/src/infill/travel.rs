@@ -105,6 +105,10 @@ pub(crate) struct Router<'a> {
     /// direction scaled to the margin (`deep_edges`). A move clear inside all of them
     /// crosses and touches none of them, and that ring's `hits` are not searched.
     deep: (usize, usize),
+    /// A box inside which every point is clear inside all of those edges (its corners
+    /// are): ring 0's box shrunk by two margins, where its corners are (a rectangle's,
+    /// the holed square's outline); a point in it is told without the edges.
+    deep_box: Option<(Coord, Coord)>,
 }
 
 /// Where `locate` finds a point.
@@ -297,6 +301,33 @@ impl<'a> Router<'a> {
                 .push((a, e / (margin * (e.x * e.x + e.y * e.y).sqrt())));
         }
         self.deep = (from, n);
+        // Each point of a box is inside each edge's half-plane by at least the least of
+        // its corners' distances (an affine function over the box): the corners tested.
+        let (lo, hi) = self.ring_box(0);
+        let shrink = Coord {
+            x: 2.0 * margin,
+            y: 2.0 * margin,
+        };
+        let (lo, hi) = (lo + shrink, hi - shrink);
+        let corners = [
+            lo,
+            Coord { x: hi.x, y: lo.y },
+            hi,
+            Coord { x: lo.x, y: hi.y },
+        ];
+        if lo.x < hi.x && lo.y < hi.y && corners.iter().all(|&c| self.deep_edges_clear(c)) {
+            self.deep_box = Some((lo, hi));
+        }
+    }
+
+    /// Whether `p` is more than a margin inside each of ring 0's edges kept by
+    /// `deep_edges` (by each edge: none kept, true).
+    #[inline]
+    fn deep_edges_clear(&self, p: Coord) -> bool {
+        let (from, count) = self.deep;
+        self.boxes[from..from + count]
+            .iter()
+            .all(|&(a, e)| cross(e, p - a) > 1.0)
     }
 
     /// Whether the box of the move from `p` to `q` misses the box of every ring but the
@@ -314,6 +345,12 @@ impl<'a> Router<'a> {
     /// kept by `deep_edges` (false where none is).
     #[inline]
     fn deep_inside(&self, p: Coord, q: Coord) -> bool {
+        if let Some((lo, hi)) = self.deep_box {
+            let within = |c: Coord| lo.x < c.x && c.x < hi.x && lo.y < c.y && c.y < hi.y;
+            if within(p) && within(q) {
+                return true;
+            }
+        }
         let (from, count) = self.deep;
         count > 0
             && self.boxes[from..from + count]
@@ -353,6 +390,7 @@ impl<'a> Router<'a> {
             chain: true,
             interior: std::cell::Cell::new(None),
             deep: (0, 0),
+            deep_box: None,
         }
     }
 
@@ -383,6 +421,7 @@ impl<'a> Router<'a> {
     #[cfg(test)]
     pub(crate) fn searching_every_ring(mut self) -> Router<'a> {
         self.deep = (0, 0);
+        self.deep_box = None;
         self
     }
 
@@ -390,6 +429,19 @@ impl<'a> Router<'a> {
     #[cfg(test)]
     pub(crate) fn tells_deep_moves(&self) -> bool {
         self.deep.1 > 0
+    }
+
+    /// Whether some of those are told by a box inside the first ring (tests).
+    #[cfg(test)]
+    pub(crate) fn has_deep_box(&self) -> bool {
+        self.deep_box.is_some()
+    }
+
+    /// The same router telling moves clear of the first ring by its edges only.
+    #[cfg(test)]
+    pub(crate) fn without_deep_box(mut self) -> Router<'a> {
+        self.deep_box = None;
+        self
     }
 
     /// The same router testing every move's middle, wherever it starts.

@@ -33,6 +33,9 @@ pub struct Region {
     pub(super) convex: bool,
     /// Whether `rings` (one ring) goes back to the raw offset's pools when dropped.
     pooled: bool,
+    /// Whether `rings` (made by the convex offset, with holes) goes back to its pools
+    /// when dropped: the list, the outline and the first hole.
+    pooled_convex: bool,
 }
 
 impl Region {
@@ -133,9 +136,14 @@ impl Region {
         // pool, where no offset takes it, it would only keep the allocator from reusing
         // its memory for the next layer's).
         let pooled = made_by == Offset::Raw && rings.len() == 1;
+        // The convex offset's rings with holes (a holed plate's) came from its pools
+        // (`KEPT_EXTERIOR`, `KEPT_HOLE`, `offset::RINGS`): given back too. (One convex
+        // ring alone is freed as made, as above.)
+        let pooled_convex = made_by == Offset::Convex && rings.len() > 1;
         Ok(Region {
             convex,
             pooled,
+            pooled_convex,
             inset,
             holes,
             outline: if keep_outline {
@@ -202,6 +210,15 @@ impl Drop for Region {
             let ring = self.rings.pop().unwrap_or_default();
             super::scratch::give(&super::offset::RING, ring);
             super::scratch::give(&super::offset::RINGS, std::mem::take(&mut self.rings));
+        }
+        if self.pooled_convex {
+            let mut rings = std::mem::take(&mut self.rings);
+            let mut each = rings.drain(..rings.len().min(2));
+            let (outline, hole) = (each.next(), each.next());
+            drop(each);
+            super::scratch::give(&KEPT_EXTERIOR, outline.unwrap_or_default());
+            super::scratch::give(&KEPT_HOLE, hole.unwrap_or_default());
+            super::scratch::give(&super::offset::RINGS, rings);
         }
     }
 }
@@ -523,6 +540,11 @@ fn convex_rings_in(
             let exterior = convex_ring_inset(&polygon.exterior().0, d, &mut buffer, known.take())?;
             if rings.capacity() == 0 {
                 let count = region.0.iter().map(|p| 1 + p.interiors().len()).sum();
+                // The list kept between layers where one of a region with holes was
+                // given back (`Region`'s drop).
+                if count > 1 {
+                    rings = super::scratch::take(&super::offset::RINGS);
+                }
                 rings.reserve_exact(count);
                 kept.reserve(region.0.len());
             }
@@ -625,6 +647,10 @@ thread_local! {
         const { std::cell::Cell::new(Vec::new()) };
     /// `convex_view`'s reversed copy of a ring, kept between layers.
     static KEPT: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    /// A convex outline's inset and a first grown hole of a region with holes, given
+    /// back by the region when dropped, for the next layer's.
+    static KEPT_EXTERIOR: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    static KEPT_HOLE: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// A ring's points without the closing repeat, counter-clockwise, collinear and repeated
@@ -892,8 +918,10 @@ pub(crate) fn inset_kept(kept: &[Coord], d: f64) -> Vec<Coord> {
 fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
     let n = ring.len();
     let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
-    // Room for the closing point the polygon adds.
-    let mut out = Vec::with_capacity(n + 1);
+    // Room for the closing point the polygon adds (a list kept between layers where a
+    // region with holes gave one back).
+    let mut out = super::scratch::take(&KEPT_EXTERIOR);
+    out.reserve_exact(n + 1);
     for i in 0..n {
         let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[next(i, n)]);
         let (u, v) = (unit(b - a), unit(c - b));
@@ -1003,7 +1031,9 @@ fn grow_hole(
         // Room for a round hole's points (one mitre a corner), a small allocation's
         // size for a 64-gon; a sharper hole's arcs grow it. (The ring is kept open: the
         // polygons, if asked, are made afresh.)
-        let mut out = Vec::with_capacity(n);
+        // (A list kept between layers where a region with holes gave one back.)
+        let mut out = super::scratch::take(&KEPT_HOLE);
+        out.reserve_exact(n);
         // Counter-clockwise, as `convex_ring` turns it (a repeated point adds nothing).
         let verdict = if signed_area(open) < 0.0 {
             grow::<true>(n, |i| open[n - 1 - i], d, arc, corners, &mut out)

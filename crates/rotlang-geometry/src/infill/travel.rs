@@ -16,6 +16,7 @@ thread_local! {
     static CUTS: std::cell::Cell<Vec<(f64, Cut)>> = const { std::cell::Cell::new(Vec::new()) };
     static PATH: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
     static LENGTHS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
+    static AT: std::cell::Cell<Vec<(usize, usize)>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// Edges per chunk: each ring's edges are taken in runs of this many consecutive ones,
@@ -211,7 +212,11 @@ impl<'a> Router<'a> {
         // The router's lists are kept from one layer to the next (`scratch`).
         let mut chunks = scratch::take(&BOXES);
         chunks.reserve(vertices / chunk + 2 * rings.len());
-        let mut at = Vec::with_capacity(if rings.len() > 1 { rings.len() } else { 0 });
+        let mut at = Vec::new();
+        if rings.len() > 1 {
+            at = scratch::take(&AT);
+            at.reserve(rings.len());
+        }
         let mut largest: f64 = 0.0;
         let mut lengths_at = 0;
         for r in rings {
@@ -1427,6 +1432,7 @@ impl Drop for Router<'_> {
     /// The lists go back to the pool for the next layer's router.
     fn drop(&mut self) {
         scratch::give(&BOXES, std::mem::take(&mut self.boxes));
+        scratch::give(&AT, std::mem::take(&mut self.at));
         scratch::give(&CUTS, self.cuts.take());
         scratch::give(&PATH, self.path.take());
         if let Some(lengths) = self.lengths.take() {

@@ -357,10 +357,11 @@ impl<'a> Router<'a> {
             }
         }
         let (from, count) = self.deep;
-        count > 0
-            && self.boxes[from..from + count]
-                .iter()
-                .all(|&(a, e)| cross(e, p - a) > 1.0 && cross(e, q - a) > 1.0)
+        count > 0 && {
+            let edges = &self.boxes[from..from + count];
+            edges.iter().all(|&(a, e)| cross(e, p - a) > 1.0)
+                && edges.iter().all(|&(a, e)| cross(e, q - a) > 1.0)
+        }
     }
 
     /// The router over `rings` with its `boxes` (each ring's, then its chunks' of `chunk`
@@ -973,7 +974,8 @@ impl<'a> Router<'a> {
         // crossing, nothing touched, no point in a hole): inside all along, what the
         // even-odd test of its middle finds once the crossings are searched. Its end is
         // then a point inside and on no edge, for the next move (`interior`).
-        if self.deep.1 > 0 && self.misses_holes(p, q) && self.deep_inside(p, q) {
+        let deep = self.deep_inside(p, q);
+        if deep && self.misses_holes(p, q) {
             if self.chain {
                 self.interior.set(Some(q));
             }
@@ -994,7 +996,7 @@ impl<'a> Router<'a> {
                 continue;
             }
             // Clear inside a convex first ring: no crossing of it, no edge touched.
-            if r == 0 && self.deep_inside(p, q) {
+            if r == 0 && deep {
                 continue;
             }
             clear &= if track {

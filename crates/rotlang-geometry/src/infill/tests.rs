@@ -1881,7 +1881,7 @@ fn lightning_by_two_trees(region: &Region, params: &Params) -> Toolpaths {
     } else {
         region.rings()
     };
-    order::order(paths, None, rings)
+    order::order(paths, Vec::new(), None, rings)
 }
 
 proptest! {

@@ -974,7 +974,7 @@ impl<'a> Router<'a> {
         // crossing, nothing touched, no point in a hole): inside all along, what the
         // even-odd test of its middle finds once the crossings are searched. Its end is
         // then a point inside and on no edge, for the next move (`interior`).
-        let deep = self.deep_inside(p, q);
+        let deep = self.deep.1 > 0 && self.deep_inside(p, q);
         if deep && self.misses_holes(p, q) {
             if self.chain {
                 self.interior.set(Some(q));

@@ -145,7 +145,9 @@ fn lay_out<const MEASURED: bool>(
     toolpaths: &mut Toolpaths,
 ) {
     let mut last: Option<Coord> = None;
-    for (k, path) in ordered.drain(..).enumerate() {
+    // (Counted only where `MEASURED`: no counter in the lines' copy.)
+    let mut k = 0;
+    for path in ordered.drain(..) {
         if let (Some(l), Some(&first)) = (last, path.first()) {
             // A closed path (a loop) ends where it starts: the next move starts there.
             let route = router.route_on(l, first, path.last() == Some(&first));
@@ -154,9 +156,16 @@ fn lay_out<const MEASURED: bool>(
         }
         // The sum worked out while simplifying, where the path is as it was then (not
         // turned round): the same bits.
-        toolpaths.length += match MEASURED.then(|| lengths[k]) {
-            Some(known) if !known.is_nan() => known,
-            _ => path.windows(2).map(|w| dist(w[0], w[1])).sum::<f64>(),
+        let known = if MEASURED {
+            k += 1;
+            lengths[k - 1]
+        } else {
+            f64::NAN
+        };
+        toolpaths.length += if known.is_nan() {
+            path.windows(2).map(|w| dist(w[0], w[1])).sum::<f64>()
+        } else {
+            known
         };
         last = path.last().copied();
         toolpaths.polylines.push(LineString::new(path));

@@ -509,6 +509,7 @@ pub(crate) fn convex_rings(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Opti
 /// [`convex_rings`] with the first outline's signed area known (`Survey::first_area`).
 /// [`convex_rings_known`] for a region being built, whose rings (where it has holes)
 /// are taken from the lists its drop gives back.
+#[inline(always)]
 fn convex_rings_built(
     region: &MultiPolygon<f64>,
     d: f64,

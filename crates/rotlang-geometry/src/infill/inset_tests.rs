@@ -788,3 +788,48 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Regions with holes built one after another on a thread, each dropped before the
+    /// next (their rings' lists then come from the ones given back), have the rings of
+    /// the same regions built each on a new thread (nothing given back yet): squares of
+    /// random sizes with round holes of random radii and vertex counts, holed squares.
+    #[test]
+    fn regions_built_from_the_lists_given_back_are_the_same(
+        regions in prop::collection::vec((8.0f64..40.0, 0.1f64..0.4, 3usize..70, any::<bool>()), 1..6),
+    ) {
+        let shape = |&(side, hole, sides, named): &(f64, f64, usize, bool)| {
+            if named {
+                shapes::holed_square(40.0, 10.0)
+            } else {
+                let h = side / 2.0;
+                let ring = |points: Vec<(f64, f64)>| {
+                    geo::LineString::from(points)
+                };
+                let hole = (0..sides)
+                    .map(|i| {
+                        let a = TAU * i as f64 / sides as f64;
+                        (hole * side * a.cos(), -hole * side * a.sin())
+                    })
+                    .collect();
+                geo::MultiPolygon::new(vec![geo::Polygon::new(
+                    ring(vec![(-h, -h), (h, -h), (h, h), (-h, h)]),
+                    vec![ring(hole)],
+                )])
+            }
+        };
+        let rings_of = |r: &(f64, f64, usize, bool)| {
+            super::Region::new(&shape(r), 0.4).map(|region| region.rings().to_vec())
+        };
+        for r in &regions {
+            let fresh = std::thread::scope(|s| s.spawn(|| rings_of(r)).join().unwrap());
+            let reused = rings_of(r);
+            prop_assert_eq!(reused.is_ok(), fresh.is_ok());
+            if let (Ok(a), Ok(b)) = (reused, fresh) {
+                prop_assert_eq!(a, b);
+            }
+        }
+    }
+}

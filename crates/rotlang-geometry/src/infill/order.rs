@@ -98,23 +98,55 @@ pub(crate) fn simplify_each(path: &mut Vec<Coord>, min: f64) -> bool {
 /// Puts the paths in print order and measures them; travel between them is routed
 /// inside `rings` (the inset's outlines and holes). `monotonic`: the pattern's frame
 /// for a monotonic order (made only then: its sine and cosine), else nearest first.
+/// `lengths`: each path's length as this would sum it, where known (NaN where not, or
+/// none at all; `simplify_measured`'s), given back emptied.
 pub(crate) fn order(
     paths: Vec<Vec<Coord>>,
+    mut lengths: Vec<f64>,
     monotonic: Option<Frame>,
     rings: &[Vec<Coord>],
 ) -> Toolpaths {
     let ordered = match monotonic {
-        Some(frame) => monotonic_order(paths, &frame),
-        None => nearest(paths),
+        Some(frame) => {
+            // (Paths turned round: their lengths summed again.)
+            lengths.clear();
+            monotonic_order(paths, &frame)
+        }
+        None => nearest_measured(paths, &mut lengths),
     };
+    // A length for each path, or none.
+    let measured = lengths.len() == ordered.len();
     let mut toolpaths = Toolpaths {
         polylines: Vec::with_capacity(ordered.len()),
         travels: Vec::with_capacity(ordered.len().saturating_sub(1)),
         ..Toolpaths::default()
     };
     let router = super::travel::Router::new(rings);
-    let mut last: Option<Coord> = None;
     let mut ordered = ordered;
+    // (Two copies: the lines' paths, with no lengths, laid out as they were without.)
+    if measured {
+        lay_out::<true>(&mut ordered, &lengths, &router, &mut toolpaths);
+    } else {
+        lay_out::<false>(&mut ordered, &lengths, &router, &mut toolpaths);
+    }
+    // The emptied lists serve the next layer's paths.
+    super::scratch::give(&PATHS, ordered);
+    super::scratch::give(&LENGTHS, lengths);
+    toolpaths
+}
+
+/// The paths in order into `toolpaths`, each measured (where `MEASURED`, by its known
+/// length if it has one) and the travel to it routed.
+#[inline(always)]
+fn lay_out<const MEASURED: bool>(
+    ordered: &mut Vec<Vec<Coord>>,
+    lengths: &[f64],
+    router: &super::travel::Router,
+    toolpaths: &mut Toolpaths,
+) {
+    let mut last: Option<Coord> = None;
+    // (Counted only where `MEASURED`: no counter in the lines' copy.)
+    let mut k = 0;
     for path in ordered.drain(..) {
         if let (Some(l), Some(&first)) = (last, path.first()) {
             // A closed path (a loop) ends where it starts: the next move starts there.
@@ -122,16 +154,28 @@ pub(crate) fn order(
             toolpaths.travel += super::travel::length(&route);
             toolpaths.travels.push(LineString::new(route));
         }
-        toolpaths.length += path.windows(2).map(|w| dist(w[0], w[1])).sum::<f64>();
+        // The sum worked out while simplifying, where the path is as it was then (not
+        // turned round): the same bits.
+        let known = if MEASURED {
+            k += 1;
+            lengths[k - 1]
+        } else {
+            f64::NAN
+        };
+        toolpaths.length += if known.is_nan() {
+            path.windows(2).map(|w| dist(w[0], w[1])).sum::<f64>()
+        } else {
+            known
+        };
         last = path.last().copied();
         toolpaths.polylines.push(LineString::new(path));
     }
-    // The emptied list serves the next layer's paths.
-    super::scratch::give(&PATHS, ordered);
-    toolpaths
 }
 
 thread_local! {
+    /// A layer's paths' lengths where simplifying measured them (`Region::fill` takes
+    /// it), kept between layers.
+    pub(crate) static LENGTHS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
     /// A layer's paths before they are ordered (`Region::fill` takes it), kept between
     /// layers.
     pub(crate) static PATHS: std::cell::Cell<Vec<Vec<Coord>>> = const { std::cell::Cell::new(Vec::new()) };
@@ -164,7 +208,29 @@ fn monotonic_order(mut paths: Vec<Vec<Coord>>, frame: &Frame) -> Vec<Vec<Coord>>
 /// Greedy nearest neighbour with reversal, starting with the first path as generated.
 /// Path ends are kept in a grid of about one end per cell, rebuilt coarser as paths are
 /// used up, so that a layer of many thousand short walls orders in O(n) rather than O(n²).
+#[cfg(test)]
 pub(crate) fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
+    nearest_measured(paths, &mut Vec::new())
+}
+
+/// [`nearest`], each path's known length (`lengths`, one a path, or none) moved with it,
+/// made NaN (not known) where the path is turned round (its sum would be made the other
+/// way); none kept where the paths are many (the grid search's order).
+pub(crate) fn nearest_measured(paths: Vec<Vec<Coord>>, lengths: &mut Vec<f64>) -> Vec<Vec<Coord>> {
+    // (Two copies: the lines' paths, with no list, ordered as they were without one.)
+    if lengths.len() == paths.len() {
+        nearest_in::<true>(paths, lengths)
+    } else {
+        lengths.clear();
+        nearest_in::<false>(paths, lengths)
+    }
+}
+
+/// [`nearest_measured`], the lengths moved with the paths where `MEASURED`.
+fn nearest_in<const MEASURED: bool>(
+    paths: Vec<Vec<Coord>>,
+    lengths: &mut Vec<f64>,
+) -> Vec<Vec<Coord>> {
     let n = paths.len();
     // One path has no order to choose; two still may need the second reversed.
     if n <= 1 {
@@ -196,17 +262,27 @@ pub(crate) fn nearest(paths: Vec<Vec<Coord>>) -> Vec<Vec<Coord>> {
             if j - i <= 8 {
                 for k in (i..j).rev() {
                     paths.swap(k, k + 1);
+                    if MEASURED {
+                        lengths.swap(k, k + 1);
+                    }
                 }
             } else {
                 paths[i..=j].rotate_right(1);
+                if MEASURED {
+                    lengths[i..=j].rotate_right(1);
+                }
             }
             if reversed {
                 paths[i].reverse();
+                if MEASURED {
+                    lengths[i] = f64::NAN;
+                }
             }
             at = paths[i][paths[i].len() - 1];
         }
         return paths;
     }
+    lengths.clear();
     let ends: Vec<[Coord; 2]> = paths.iter().map(|p| [p[0], p[p.len() - 1]]).collect();
     let mut used = vec![false; n];
     let mut order: Vec<(usize, bool)> = Vec::with_capacity(n);

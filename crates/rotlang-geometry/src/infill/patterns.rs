@@ -131,10 +131,31 @@ impl Region {
             }
         }
         let min_segment = w / 10.0;
-        paths.retain_mut(|p| simplify(p, min_segment));
+        // The curves' paths (long: many segments each) kept with their lengths where
+        // simplifying left them as they were (measured with the test of their segments:
+        // `order` sums them again only for the others). The lines' (a segment or a few
+        // each) are measured by `order` (keeping the list would cost more).
+        let curves = matches!(
+            params.pattern,
+            Pattern::Concentric | Pattern::Gyroid | Pattern::Spiral
+        );
+        let mut lengths = Vec::new();
+        if curves {
+            lengths = super::scratch::take(&order::LENGTHS);
+            paths.retain_mut(|p| {
+                let (kept, length) = simplify_measured(p, min_segment);
+                if kept {
+                    lengths.push(length);
+                }
+                kept
+            });
+        } else {
+            paths.retain_mut(|p| simplify(p, min_segment));
+        }
         let monotonic = params.order == Order::Monotonic;
         Ok(order::order(
             paths,
+            lengths,
             monotonic.then(|| Frame::new(centre, theta)),
             if self.convex { &[] } else { &self.rings },
         ))
@@ -175,28 +196,55 @@ pub(crate) fn turned(angle: f64) -> f64 {
 /// `order::simplify`, told without a write where it would change nothing (every
 /// segment at least `min` long: most of a loop's or a line's), so it is not run.
 pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
+    simplify_with::<false>(path, min).0
+}
+
+/// [`simplify`], with the path's length where it is left as it was (NaN otherwise): the
+/// sum `order` makes of its segments' lengths, in its order (each a square root of the
+/// squared length the test of the segment works out, the same bits), so that `order`
+/// need not make it again.
+pub(crate) fn simplify_measured(path: &mut Vec<Coord>, min: f64) -> (bool, f64) {
+    simplify_with::<true>(path, min)
+}
+
+/// [`simplify_measured`], the length summed only where `MEASURE` (else 0 where kept as
+/// it was).
+#[inline(always)]
+fn simplify_with<const MEASURE: bool>(path: &mut Vec<Coord>, min: f64) -> (bool, f64) {
     let min2 = min * min;
     // `simplify`'s distances: each point from the one before (all kept); the last
-    // segment first (a clipped curve's short one is there most often).
+    // segment first (a clipped curve's short one is there most often). The lengths'
+    // sum from the first segment on, the last added last (as `order` sums them: from
+    // zero, every term a square root, never −0).
     let long = |path: &[Coord]| {
-        let short = |a: Coord, b: Coord| {
+        let squared = |a: Coord, b: Coord| {
             let d = b - a;
-            d.x * d.x + d.y * d.y < min2
+            d.x * d.x + d.y * d.y
         };
         let n = path.len();
-        if short(path[n - 2], path[n - 1]) {
-            return false;
+        let last = squared(path[n - 2], path[n - 1]);
+        if last < min2 {
+            return None;
         }
-        let mut a = path[0];
+        let (mut a, mut length) = (path[0], 0.0);
         for &b in &path[1..n - 1] {
-            if short(a, b) {
-                return false;
+            let segment = squared(a, b);
+            if segment < min2 {
+                return None;
+            }
+            if MEASURE {
+                length += segment.sqrt();
             }
             a = b;
         }
-        true
+        Some(if MEASURE { length + last.sqrt() } else { 0.0 })
     };
-    (path.len() >= 2 && long(path)) || order::simplify(path, min)
+    if path.len() >= 2
+        && let Some(length) = long(path)
+    {
+        return (true, length);
+    }
+    (order::simplify(path, min), f64::NAN)
 }
 
 #[cfg(test)]
@@ -271,6 +319,89 @@ mod tests {
             let kept = super::simplify(&mut fast, min);
             prop_assert_eq!(kept, super::order::simplify(&mut general, min));
             prop_assert_eq!(fast, general);
+        }
+
+        /// Simplifying with the length measured keeps and leaves the paths as
+        /// `simplify` does, and gives the length `order` sums (its bits) where the path
+        /// is left as it was, NaN where it is not: random paths (short segments, none
+        /// or one point, repeated points, closed) at random lengths.
+        #[test]
+        fn simplify_measured_is_simplify_with_order_s_length(
+            points in prop::collection::vec((-5.0f64..5.0, -5.0f64..5.0), 0..12),
+            closed in any::<bool>(),
+            min in prop_oneof![Just(0.0), 0.0f64..3.0],
+        ) {
+            let mut path: Vec<Coord> = points.into_iter().map(|(x, y)| Coord { x, y }).collect();
+            if closed && !path.is_empty() {
+                path.push(path[0]);
+            }
+            let (mut measured, mut plain) = (path.clone(), path.clone());
+            let (kept, length) = super::simplify_measured(&mut measured, min);
+            prop_assert_eq!(kept, super::simplify(&mut plain, min));
+            prop_assert_eq!(&measured, &plain);
+            let summed = measured
+                .windows(2)
+                .map(|w| {
+                    let d = w[1] - w[0];
+                    (d.x * d.x + d.y * d.y).sqrt()
+                })
+                .sum::<f64>();
+            if kept && measured == path {
+                prop_assert_eq!(length.to_bits(), summed.to_bits());
+            } else {
+                prop_assert!(length.is_nan());
+            }
+        }
+
+        /// Ordering paths with the lengths simplifying measured gives the toolpaths
+        /// (paths, travel, length to the bit) ordering them without: random open and
+        /// closed paths (some turned round by the nearest-first order, some lengths not
+        /// known), up to the scan's 64 and past them, in a convex region and a holed
+        /// one, nearest first and monotonic.
+        #[test]
+        fn ordering_with_measured_lengths_is_ordering_without(
+            paths in prop::collection::vec(
+                (prop::collection::vec((-9.0f64..9.0, -9.0f64..9.0), 2..8), any::<bool>()),
+                1..80,
+            ),
+            min in prop_oneof![Just(0.0), 0.0f64..1.0],
+            holed in any::<bool>(),
+            monotonic in any::<bool>(),
+        ) {
+            let mut paths: Vec<Vec<Coord>> = paths
+                .into_iter()
+                .map(|(points, closed)| {
+                    let mut p: Vec<Coord> = points.into_iter().map(|(x, y)| Coord { x, y }).collect();
+                    if closed {
+                        p.push(p[0]);
+                    }
+                    p
+                })
+                .collect();
+            let mut lengths = Vec::new();
+            paths.retain_mut(|p| {
+                let (kept, length) = super::simplify_measured(p, min);
+                if kept {
+                    lengths.push(length);
+                }
+                kept
+            });
+            let region = crate::infill::Region::new(
+                &if holed {
+                    crate::infill::shapes::holed_square(20.0, 5.0)
+                } else {
+                    crate::infill::shapes::square(20.0)
+                },
+                0.4,
+            )
+            .unwrap();
+            let frame = monotonic.then(|| super::Frame::new(Coord { x: 1.0, y: -2.0 }, 0.7));
+            let with = super::order::order(paths.clone(), lengths, frame, region.rings());
+            let without = super::order::order(paths, Vec::new(), frame, region.rings());
+            prop_assert_eq!(with.length.to_bits(), without.length.to_bits());
+            prop_assert_eq!(with.travel.to_bits(), without.travel.to_bits());
+            prop_assert_eq!(with.polylines, without.polylines);
+            prop_assert_eq!(with.travels, without.travels);
         }
     }
 }

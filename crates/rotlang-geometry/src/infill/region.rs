@@ -33,6 +33,9 @@ pub struct Region {
     pub(super) convex: bool,
     /// Whether `rings` (one ring) goes back to the raw offset's pools when dropped.
     pooled: bool,
+    /// Whether `rings` (made by the convex offset, with holes) goes back to its pools
+    /// when dropped: the list, the outline and the first hole.
+    pooled_convex: bool,
 }
 
 impl Region {
@@ -80,7 +83,7 @@ impl Region {
             area,
             made_by,
         } = if let Some(convex) = (!first_turns_both_ways)
-            .then(|| convex_rings_known(&cleaned, nozzle / 2.0, arc, first_area))
+            .then(|| convex_rings_built(&cleaned, nozzle / 2.0, arc, first_area))
             .flatten()
         {
             match convex {
@@ -133,9 +136,14 @@ impl Region {
         // pool, where no offset takes it, it would only keep the allocator from reusing
         // its memory for the next layer's).
         let pooled = made_by == Offset::Raw && rings.len() == 1;
+        // The convex offset's rings with holes (a holed plate's) came from its pools
+        // (`KEPT_EXTERIOR`, `KEPT_HOLE`, `offset::RINGS`): given back too. (One convex
+        // ring alone is freed as made, as above.)
+        let pooled_convex = made_by == Offset::Convex && rings.len() > 1;
         Ok(Region {
             convex,
             pooled,
+            pooled_convex,
             inset,
             holes,
             outline: if keep_outline {
@@ -202,6 +210,15 @@ impl Drop for Region {
             let ring = self.rings.pop().unwrap_or_default();
             super::scratch::give(&super::offset::RING, ring);
             super::scratch::give(&super::offset::RINGS, std::mem::take(&mut self.rings));
+        }
+        if self.pooled_convex {
+            let mut rings = std::mem::take(&mut self.rings);
+            let mut each = rings.drain(..rings.len().min(2));
+            let (outline, hole) = (each.next(), each.next());
+            drop(each);
+            super::scratch::give(&KEPT_EXTERIOR, outline.unwrap_or_default());
+            super::scratch::give(&KEPT_HOLE, hole.unwrap_or_default());
+            super::scratch::give(&super::offset::RINGS, rings);
         }
     }
 }
@@ -490,6 +507,27 @@ pub(crate) fn convex_rings(region: &MultiPolygon<f64>, d: f64, arc: f64) -> Opti
 }
 
 /// [`convex_rings`] with the first outline's signed area known (`Survey::first_area`).
+/// [`convex_rings_known`] for a region being built, whose rings (where it has holes)
+/// are taken from the lists its drop gives back.
+#[inline(always)]
+fn convex_rings_built(
+    region: &MultiPolygon<f64>,
+    d: f64,
+    arc: f64,
+    first_area: Option<f64>,
+) -> Option<ConvexInset> {
+    let holed = region.0.len() > 1 || region.0.first().is_some_and(|p| !p.interiors().is_empty());
+    let mut kept = super::scratch::take(&KEPT_POLYGONS);
+    // (Two copies: an offset's without the pools compiles as it did without them.)
+    let inset = if holed {
+        convex_rings_in::<true>(region, d, arc, first_area, &mut kept)
+    } else {
+        convex_rings_in::<false>(region, d, arc, first_area, &mut kept)
+    };
+    super::scratch::give(&KEPT_POLYGONS, kept);
+    inset
+}
+
 pub(crate) fn convex_rings_known(
     region: &MultiPolygon<f64>,
     d: f64,
@@ -498,13 +536,16 @@ pub(crate) fn convex_rings_known(
 ) -> Option<ConvexInset> {
     // Per polygon kept its holes and whether they lie apart: a list kept between layers.
     let mut kept = super::scratch::take(&KEPT_POLYGONS);
-    let inset = convex_rings_in(region, d, arc, first_area, &mut kept);
+    let inset = convex_rings_in::<false>(region, d, arc, first_area, &mut kept);
     super::scratch::give(&KEPT_POLYGONS, kept);
     inset
 }
 
-/// [`convex_rings_known`] with its list of the polygons kept.
-fn convex_rings_in(
+/// [`convex_rings_known`] with its list of the polygons kept; `POOLS`: whether its
+/// list of rings, its first outline and its first hole are taken from the lists a
+/// region with holes gives back when dropped (a region's being built: one kept by an
+/// offset that is not given back would be taken from the pool for nothing).
+fn convex_rings_in<const POOLS: bool>(
     region: &MultiPolygon<f64>,
     d: f64,
     arc: f64,
@@ -520,9 +561,18 @@ fn convex_rings_in(
     let result = (|| {
         let mut known = first_area;
         for polygon in &region.0 {
-            let exterior = convex_ring_inset(&polygon.exterior().0, d, &mut buffer, known.take())?;
+            let exterior = if POOLS && rings.is_empty() {
+                convex_ring_inset::<true>(&polygon.exterior().0, d, &mut buffer, known.take())?
+            } else {
+                convex_ring_inset::<false>(&polygon.exterior().0, d, &mut buffer, known.take())?
+            };
             if rings.capacity() == 0 {
                 let count = region.0.iter().map(|p| 1 + p.interiors().len()).sum();
+                // The list kept between layers where one of a region with holes was
+                // given back (`Region`'s drop).
+                if POOLS {
+                    rings = super::scratch::take(&super::offset::RINGS);
+                }
                 rings.reserve_exact(count);
                 kept.reserve(region.0.len());
             }
@@ -533,7 +583,11 @@ fn convex_rings_in(
             let corners = Corners::of(arc);
             let mut inside = true;
             for hole in polygon.interiors() {
-                let (grown, lo, hi) = grow_hole(&hole.0, d, arc, corners)?;
+                let (grown, lo, hi) = if POOLS && rings.len() == 1 {
+                    grow_hole::<true>(&hole.0, d, arc, corners)?
+                } else {
+                    grow_hole::<false>(&hole.0, d, arc, corners)?
+                };
                 inside = inside && inside_convex_all(&rings[first], &grown, lo, hi);
                 rings.push(grown);
             }
@@ -625,6 +679,10 @@ thread_local! {
         const { std::cell::Cell::new(Vec::new()) };
     /// `convex_view`'s reversed copy of a ring, kept between layers.
     static KEPT: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    /// A convex outline's inset and a first grown hole of a region with holes, given
+    /// back by the region when dropped, for the next layer's.
+    static KEPT_EXTERIOR: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    static KEPT_HOLE: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// A ring's points without the closing repeat, counter-clockwise, collinear and repeated
@@ -787,6 +845,12 @@ enum Kept {
     Unsure,
 }
 
+/// Whether an open ring turns left clearly at every corner and winds once (a convex
+/// ring, counter-clockwise): `every_corner_kept`'s verdict that it keeps every corner.
+pub(crate) fn turns_left_once(ring: &[Coord]) -> bool {
+    ring.len() >= 3 && matches!(every_corner_kept(ring), Kept::All)
+}
+
 /// `convex_ring_copied`'s corner tests on an open ring turned counter-clockwise, with
 /// nothing copied: what it keeps when no corner is dropped.
 fn every_corner_kept(pts: &[Coord]) -> Kept {
@@ -832,20 +896,28 @@ fn left_corner(u: Coord, u2: f64, v: Coord, v2: f64) -> Result<bool, Kept> {
 }
 
 /// The exact inward offset of one convex ring: empty when it is thinner than `2d`.
-fn convex_ring_inset(
+/// (`POOLED`: its list taken from the one a region with holes gives back.)
+fn convex_ring_inset<const POOLED: bool>(
     ring: &[Coord],
     d: f64,
     buffer: &mut Vec<Coord>,
     area: Option<f64>,
 ) -> Option<Vec<Coord>> {
     let kept = convex_view(ring, buffer, area)?;
-    Some(inset_kept(kept, d))
+    Some(inset_kept_in::<POOLED>(kept, d))
 }
 
 /// The exact inward offset of a ring as `convex_ring` keeps it.
+#[cfg(test)]
 pub(crate) fn inset_kept(kept: &[Coord], d: f64) -> Vec<Coord> {
+    inset_kept_in::<false>(kept, d)
+}
+
+/// [`inset_kept`], its mitred list taken from the one a region with holes gives back
+/// where `POOLED`.
+fn inset_kept_in<const POOLED: bool>(kept: &[Coord], d: f64) -> Vec<Coord> {
     let n = kept.len();
-    if let Some(mitred) = mitred_inset(kept, d) {
+    if let Some(mitred) = mitred_inset::<POOLED>(kept, d) {
         return mitred;
     }
     // Some edge vanishes: the intersection of the edges' half-planes, each moved inward by
@@ -883,11 +955,18 @@ pub(crate) fn inset_kept(kept: &[Coord], d: f64) -> Vec<Coord> {
 /// The inset of a counter-clockwise convex ring by `d` where no edge vanishes: each vertex
 /// moves along its bisector to the point `d` from both its edges (O(n), where clipping by
 /// every half-plane is O(n²)); `None` when some edge would turn around.
-fn mitred_inset(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
+fn mitred_inset<const POOLED: bool>(ring: &[Coord], d: f64) -> Option<Vec<Coord>> {
     let n = ring.len();
     let unit = |e: Coord| e / (e.x * e.x + e.y * e.y).sqrt();
-    // Room for the closing point the polygon adds.
-    let mut out = Vec::with_capacity(n + 1);
+    // Room for the closing point the polygon adds (a list kept between layers where a
+    // region with holes gave one back).
+    let mut out = if POOLED {
+        let mut out = super::scratch::take(&KEPT_EXTERIOR);
+        out.reserve_exact(n + 1);
+        out
+    } else {
+        Vec::with_capacity(n + 1)
+    };
     for i in 0..n {
         let (a, b, c) = (ring[(i + n - 1) % n], ring[i], ring[next(i, n)]);
         let (u, v) = (unit(b - a), unit(c - b));
@@ -982,7 +1061,8 @@ fn grow_kept(kept: &[Coord], d: f64, arc: f64, corners: Corners) -> Vec<Coord> {
 /// A hole grown outward by `d` (as `grow_kept` of `convex_ring`), read where it is,
 /// either way round, its corners tested as it grows; with its box. `None` when it has a
 /// reflex vertex.
-fn grow_hole(
+/// (`POOLED`: its list taken from the one a region with holes gives back.)
+fn grow_hole<const POOLED: bool>(
     ring: &[Coord],
     d: f64,
     arc: f64,
@@ -997,7 +1077,14 @@ fn grow_hole(
         // Room for a round hole's points (one mitre a corner), a small allocation's
         // size for a 64-gon; a sharper hole's arcs grow it. (The ring is kept open: the
         // polygons, if asked, are made afresh.)
-        let mut out = Vec::with_capacity(n);
+        // (A list kept between layers where a region with holes gave one back.)
+        let mut out = if POOLED {
+            let mut out = super::scratch::take(&KEPT_HOLE);
+            out.reserve_exact(n);
+            out
+        } else {
+            Vec::with_capacity(n)
+        };
         // Counter-clockwise, as `convex_ring` turns it (a repeated point adds nothing).
         let verdict = if signed_area(open) < 0.0 {
             grow::<true>(n, |i| open[n - 1 - i], d, arc, corners, &mut out)

@@ -1881,7 +1881,7 @@ fn lightning_by_two_trees(region: &Region, params: &Params) -> Toolpaths {
     } else {
         region.rings()
     };
-    order::order(paths, None, rings)
+    order::order(paths, Vec::new(), None, rings)
 }
 
 proptest! {
@@ -2208,4 +2208,102 @@ fn the_stars_travels_take_the_small_router() {
         let (p, q) = (ends.point((i, 0.3), 0), ends.point((i * 7 + 5, 0.6), 0));
         assert_eq!(small.route(p, q), general.route(p, q));
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// A router that tells moves clear inside a small convex first ring (a convex outline
+    /// with holes) by its edges' half-planes, without searching that ring, routes every
+    /// move as the one that searches it: regular outlines of 3 to 8 edges with random
+    /// holes and the holed square, moves in chains (as loops' travel) and not, between
+    /// points on edges, vertices, of the box, of the box's diagonal, and points moved
+    /// into the outline from its edges by a tenth of a nanometre to half a millimetre
+    /// (either side of the test's margin, about 10⁻⁵ mm here).
+    #[test]
+    fn moves_clear_inside_a_convex_outline_are_the_searched_routes(
+        sides in 3usize..=8,
+        radius in 6.0f64..15.0,
+        holes in prop::collection::vec(prop::collection::vec(0.5f64..1.5, 3..30), 1..3),
+        turn in 0.0f64..TAU,
+        named in 0usize..4,
+        points in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), 0u8..5, 0usize..7, any::<bool>()), 2..40),
+    ) {
+        let shape = match named {
+            0 => shapes::holed_square(40.0, 10.0),
+            _ => holed_radial(&vec![radius; sides], &holes, turn, 2.2),
+        };
+        let Ok(region) = Region::new(&shape, W) else {
+            return Ok(());
+        };
+        let rings = region.rings();
+        prop_assume!(rings.len() > 1);
+        let outline = &rings[0];
+        let ends = MoveEnds::new(rings);
+        let point = |((at, t), kind, off): ((usize, f64), u8, usize)| match kind {
+            3 => {
+                let (lo, hi) = (ends.point((0, 0.0), 2), ends.point((1000, 1.0), 2));
+                lo + (hi - lo) * t
+            }
+            4 => {
+                // Into the outline from a point of one of its edges (it turns left).
+                let n = outline.len();
+                let (a, b) = (outline[at % n], outline[(at + 1) % n]);
+                let e = b - a;
+                let inward = Coord { x: -e.y, y: e.x } / (e.x * e.x + e.y * e.y).sqrt();
+                let by = [1e-7, 8e-7, 5e-6, 1.6e-5, 3e-5, 1e-3, 0.5][off];
+                a + e * t + inward * by
+            }
+            _ => ends.point((at, t), kind),
+        };
+        let deep = travel::Router::new(rings);
+        let searched = travel::Router::new(rings).searching_every_ring();
+        // The fast path is on for these outlines (convex, counter-clockwise, small), its
+        // box for the square's (a rectangle).
+        prop_assert!(deep.tells_deep_moves());
+        prop_assert!(!searched.tells_deep_moves());
+        if named == 0 {
+            prop_assert!(deep.has_deep_box());
+        }
+        let edges_only = travel::Router::new(rings).without_deep_box();
+        for pair in points.windows(2) {
+            let (p, q) = (point((pair[0].0, pair[0].1, pair[0].2)), point((pair[1].0, pair[1].1, pair[1].2)));
+            let looped = pair[1].3;
+            let route = searched.route_on(p, q, looped);
+            prop_assert_eq!(&deep.route_on(p, q, looped), &route);
+            prop_assert_eq!(&edges_only.route_on(p, q, looped), &route);
+        }
+    }
+}
+
+/// The holed square's concentric loops' travel is told clear of the outline (each
+/// move's ends well inside it; those missing the hole's box straight at once) and routed
+/// as before: every move straight, the same with the outline searched; a move across the
+/// hole is walked round it; and a move from outside the outline to inside, or out
+/// beyond it, is not told clear (it is routed as the searching router routes it).
+#[test]
+fn the_holed_squares_travel_is_told_clear_of_its_outline() {
+    let region = Region::new(&shapes::holed_square(40.0, 10.0), W).unwrap();
+    let rings = region.rings();
+    let deep = travel::Router::new(rings);
+    assert!(deep.tells_deep_moves());
+    let searched = travel::Router::new(rings).searching_every_ring();
+    let moves = [
+        (Coord { x: 18.8, y: 18.8 }, Coord { x: 16.8, y: 16.8 }),
+        (Coord { x: -13.0, y: 9.6 }, Coord { x: -13.0, y: -9.6 }),
+        // Across the hole: walked round it.
+        (Coord { x: -13.0, y: 0.5 }, Coord { x: 13.0, y: 0.5 }),
+        // From beyond the outline, and out beyond it: not clear of it.
+        (Coord { x: 25.0, y: 0.0 }, Coord { x: 15.0, y: 0.0 }),
+        (Coord { x: 15.0, y: 0.0 }, Coord { x: 25.0, y: 0.0 }),
+    ];
+    for (p, q) in moves {
+        assert_eq!(deep.route_on(p, q, true), searched.route_on(p, q, true));
+    }
+    assert_eq!(
+        deep.route(moves[0].0, moves[0].1),
+        vec![moves[0].0, moves[0].1]
+    );
+    assert!(deep.route(moves[2].0, moves[2].1).len() > 2);
 }

@@ -16,6 +16,7 @@ thread_local! {
     static CUTS: std::cell::Cell<Vec<(f64, Cut)>> = const { std::cell::Cell::new(Vec::new()) };
     static PATH: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
     static LENGTHS: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
+    static AT: std::cell::Cell<Vec<(usize, usize)>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// Edges per chunk: each ring's edges are taken in runs of this many consecutive ones,
@@ -30,7 +31,12 @@ const SMALL: usize = 32;
 /// (`shorter_way`): below, measuring the whole ring costs about as much.
 const MEASURED: usize = 16;
 
-/// Where a move crosses a ring.
+/// The most edges a first ring (a convex outline) may have for its moves to be told
+/// clear of it by its edges' half-planes (`Router::deep`): about a box's test per edge,
+/// where its chunks' boxes would all meet a move inside (the ring's box holds every move).
+const DEEP_EDGES: usize = 8;
+
+/// Where a move crosses a ring./// Where a move crosses a ring.
 #[derive(Clone, Copy, Debug)]
 struct Cut {
     ring: usize,
@@ -95,6 +101,15 @@ pub(crate) struct Router<'a> {
     /// move from there (a closed loop's, which ends where it starts) touching no edge is
     /// inside too.
     interior: std::cell::Cell<Option<Coord>>,
+    /// Where a small convex first ring with other rings (a convex outline with holes)
+    /// has its edges in `boxes` and how many (none otherwise): each as its start and its
+    /// direction scaled to the margin (`deep_edges`). A move clear inside all of them
+    /// crosses and touches none of them, and that ring's `hits` are not searched.
+    deep: (usize, usize),
+    /// A box inside which every point is clear inside all of those edges (its corners
+    /// are): ring 0's box shrunk by two margins, where its corners are (a rectangle's,
+    /// the holed square's outline); a point in it is told without the edges.
+    deep_box: Option<(Coord, Coord)>,
 }
 
 /// Where `locate` finds a point.
@@ -197,7 +212,11 @@ impl<'a> Router<'a> {
         // The router's lists are kept from one layer to the next (`scratch`).
         let mut chunks = scratch::take(&BOXES);
         chunks.reserve(vertices / chunk + 2 * rings.len());
-        let mut at = Vec::with_capacity(if rings.len() > 1 { rings.len() } else { 0 });
+        let mut at = Vec::new();
+        if rings.len() > 1 {
+            at = scratch::take(&AT);
+            at.reserve(rings.len());
+        }
         let mut largest: f64 = 0.0;
         let mut lengths_at = 0;
         for r in rings {
@@ -251,7 +270,98 @@ impl<'a> Router<'a> {
             }
             ring_at += 1 + count;
         }
-        Router::assembled(rings, chunks, at, chunk, std::cell::OnceCell::new(), slack)
+        let mut router =
+            Router::assembled(rings, chunks, at, chunk, std::cell::OnceCell::new(), slack);
+        // (A single ring convex is a convex region, where nothing is routed.)
+        if rings.len() > 1 {
+            router.deep_edges(1e3 * slack);
+        }
+        router
+    }
+
+    /// Ring 0's edges appended to `boxes` where it is convex and counter-clockwise
+    /// (`region::turns_left_once`) with at most `DEEP_EDGES` edges: each edge's start
+    /// and its direction divided by `margin` times its length, so that a point's cross
+    /// product with it is its distance from the edge's line in margins (within a few
+    /// units in the last place). A move both of whose ends are more than a margin inside
+    /// every edge's half-plane stays that far from every edge's line (the half-planes'
+    /// distances are affine along it). `margin`: a millionth of a millimetre per
+    /// millimetre of the largest coordinate (a thousand times the chunks' slack), above
+    /// a nanometre (`on_edge`'s tolerance), above a billionth of any move's length (how
+    /// far `hits` keeps a crossing beyond the move's ends) and far above the roundings
+    /// of its fractions (about 10⁻¹⁵ of the coordinates): there `hits` would find no
+    /// crossing of the ring, no edge it keeps as one the move may run along whose middle
+    /// is on it, and no edge the move touches. The holed square's outline: every move of
+    /// its loops is well inside it.
+    fn deep_edges(&mut self, margin: f64) {
+        let ring = &self.rings[0];
+        let n = ring.len();
+        if !(3..=DEEP_EDGES).contains(&n) || !super::region::turns_left_once(ring) {
+            return;
+        }
+        let from = self.boxes.len();
+        for (i, &a) in ring.iter().enumerate() {
+            let e = ring[next(i, n)] - a;
+            self.boxes
+                .push((a, e / (margin * (e.x * e.x + e.y * e.y).sqrt())));
+        }
+        self.deep = (from, n);
+        // Each point of a box is inside each edge's half-plane by at least the least of
+        // its corners' distances (an affine function over the box): the corners tested.
+        let (lo, hi) = self.ring_box(0);
+        let shrink = Coord {
+            x: 2.0 * margin,
+            y: 2.0 * margin,
+        };
+        let (lo, hi) = (lo + shrink, hi - shrink);
+        let corners = [
+            lo,
+            Coord { x: hi.x, y: lo.y },
+            hi,
+            Coord { x: lo.x, y: hi.y },
+        ];
+        if lo.x < hi.x && lo.y < hi.y && corners.iter().all(|&c| self.deep_edges_clear(c)) {
+            self.deep_box = Some((lo, hi));
+        }
+    }
+
+    /// Whether `p` is more than a margin inside each of ring 0's edges kept by
+    /// `deep_edges` (by each edge: none kept, true).
+    #[inline]
+    fn deep_edges_clear(&self, p: Coord) -> bool {
+        let (from, count) = self.deep;
+        self.boxes[from..from + count]
+            .iter()
+            .all(|&(a, e)| cross(e, p - a) > 1.0)
+    }
+
+    /// Whether the box of the move from `p` to `q` misses the box of every ring but the
+    /// first.
+    #[inline]
+    fn misses_holes(&self, p: Coord, q: Coord) -> bool {
+        let (lo, hi) = move_box(p, q);
+        (1..self.rings.len()).all(|r| {
+            let (a, b) = self.ring_box(r);
+            hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y
+        })
+    }
+
+    /// Whether `p` and `q` are both more than a margin inside each of ring 0's edges
+    /// kept by `deep_edges` (false where none is).
+    #[inline]
+    fn deep_inside(&self, p: Coord, q: Coord) -> bool {
+        if let Some((lo, hi)) = self.deep_box {
+            let within = |c: Coord| lo.x < c.x && c.x < hi.x && lo.y < c.y && c.y < hi.y;
+            if within(p) && within(q) {
+                return true;
+            }
+        }
+        let (from, count) = self.deep;
+        count > 0 && {
+            let edges = &self.boxes[from..from + count];
+            edges.iter().all(|&(a, e)| cross(e, p - a) > 1.0)
+                && edges.iter().all(|&(a, e)| cross(e, q - a) > 1.0)
+        }
     }
 
     /// The router over `rings` with its `boxes` (each ring's, then its chunks' of `chunk`
@@ -285,6 +395,8 @@ impl<'a> Router<'a> {
             bound_ways: true,
             chain: true,
             interior: std::cell::Cell::new(None),
+            deep: (0, 0),
+            deep_box: None,
         }
     }
 
@@ -308,6 +420,33 @@ impl<'a> Router<'a> {
     #[cfg(test)]
     pub(crate) fn testing_every_middle(mut self) -> Router<'a> {
         self.reuse = false;
+        self
+    }
+
+    /// The same router searching a convex first ring's edges for every move.
+    #[cfg(test)]
+    pub(crate) fn searching_every_ring(mut self) -> Router<'a> {
+        self.deep = (0, 0);
+        self.deep_box = None;
+        self
+    }
+
+    /// Whether the first ring's moves may be told clear of it by its half-planes (tests).
+    #[cfg(test)]
+    pub(crate) fn tells_deep_moves(&self) -> bool {
+        self.deep.1 > 0
+    }
+
+    /// Whether some of those are told by a box inside the first ring (tests).
+    #[cfg(test)]
+    pub(crate) fn has_deep_box(&self) -> bool {
+        self.deep_box.is_some()
+    }
+
+    /// The same router telling moves clear of the first ring by its edges only.
+    #[cfg(test)]
+    pub(crate) fn without_deep_box(mut self) -> Router<'a> {
+        self.deep_box = None;
         self
     }
 
@@ -830,6 +969,18 @@ impl<'a> Router<'a> {
         if self.rings.iter().any(|r| r.len() < 3) || self.rings.is_empty() {
             return vec![p, q];
         }
+        // Clear inside a convex outline (`deep_inside`: no crossing of it, no edge of it
+        // touched or within a nanometre) and missing every other ring's box (no
+        // crossing, nothing touched, no point in a hole): inside all along, what the
+        // even-odd test of its middle finds once the crossings are searched. Its end is
+        // then a point inside and on no edge, for the next move (`interior`).
+        let deep = self.deep.1 > 0 && self.deep_inside(p, q);
+        if deep && self.misses_holes(p, q) {
+            if self.chain {
+                self.interior.set(Some(q));
+            }
+            return vec![p, q];
+        }
         let mut cuts = self.cuts.take();
         cuts.clear();
         // Room for a few crossings at once (not grown from nothing, one at a time).
@@ -842,6 +993,10 @@ impl<'a> Router<'a> {
         for r in 0..self.rings.len() {
             let (a, b) = self.ring_box(r);
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
+                continue;
+            }
+            // Clear inside a convex first ring: no crossing of it, no edge touched.
+            if r == 0 && deep {
                 continue;
             }
             clear &= if track {
@@ -1279,6 +1434,7 @@ impl Drop for Router<'_> {
     /// The lists go back to the pool for the next layer's router.
     fn drop(&mut self) {
         scratch::give(&BOXES, std::mem::take(&mut self.boxes));
+        scratch::give(&AT, std::mem::take(&mut self.at));
         scratch::give(&CUTS, self.cuts.take());
         scratch::give(&PATH, self.path.take());
         if let Some(lengths) = self.lengths.take() {

@@ -713,6 +713,9 @@ pub(super) fn runs_kept(
                 (&pts[from..n], &pts[..=to - n])
             };
             if keep(a, b) {
+                // Its size known: one allocation (a run through the ring's end grew it
+                // twice).
+                piece.reserve_exact(a.len() + b.len());
                 piece.extend_from_slice(a);
                 piece.extend_from_slice(b);
                 out.push(std::mem::take(&mut piece));

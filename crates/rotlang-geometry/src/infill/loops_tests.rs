@@ -85,16 +85,24 @@ proptest! {
         size in 1.0f64..200.0,
         depth in 0.001f64..0.8,
         picks in proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0), 1..12),
-        arc in proptest::option::of((0.0f64..1.0, 0.0f64..1.0)),
+        arc in proptest::collection::vec((0.0f64..1.0, 0.9f64..1.0), 0..12),
     ) {
         let region = region(&radii, size, &hole);
         let eroder = Eroder::new(&region, 0.5);
         let d = depth * size;
-        let centre = arc.map(|(x, y)| Coord { x: (x - 0.5) * size, y: (y - 0.5) * size });
-        for p in probes(&eroder.boundary, d, &picks, size) {
+        let mut points = probes(&eroder.boundary, d, &picks, size);
+        // About the arcs' vertices, between their chords and the exact arc.
+        for (i, &(turn, r)) in arc.iter().enumerate() {
+            let fans = &eroder.boundary.arcs.fans;
+            if let Some((b, _)) = fans.get(i % fans.len().max(1)) {
+                let a = std::f64::consts::TAU * turn;
+                points.push(*b + Coord { x: math::cos(a), y: math::sin(a) } * (r * d));
+            }
+        }
+        for p in points {
             prop_assert_eq!(
-                keep(p, centre, &eroder.boundary, d),
-                keep_edge_by_edge(p, centre, &eroder.boundary, d),
+                keep(p, &eroder.boundary, d),
+                keep_edge_by_edge(p, &eroder.boundary, d),
                 "at {:?}, d {}", p, d
             );
         }
@@ -211,12 +219,10 @@ fn runs_cover_each_ring_end_to_start() {
 fn raw_ring(pts: Vec<Coord>) -> Raw {
     Raw {
         along: vec![None; pts.len()],
-        centres: vec![None; pts.len()],
         check: true,
         pts,
         tips: Vec::new(),
-        shape: (Vec::new(), Vec::new()),
-        shaped: true,
+        shape: Vec::new(),
         mitres: Vec::new(),
     }
 }

@@ -903,3 +903,133 @@ fn a_rectangle_with_a_pentagonal_hole_goes_on_past_loop_13() {
         );
     }
 }
+
+/// The area between the chords of every reflex corner drawn as an arc (turning more than
+/// `arc`: `arc` or less is a mitre) and its exact arc of radius `d`: `steps` chords each
+/// spanning `θ` leave `d²/2·(θ − sin θ)` each. (Outline rings counter-clockwise, holes
+/// too, as `ring` makes them: a reflex corner turns right on the outline, left on a
+/// hole.)
+fn sliver_area(shape: &MultiPolygon<f64>, d: f64, arc: f64) -> f64 {
+    let mut total = 0.0;
+    for polygon in &shape.0 {
+        for (k, ring) in std::iter::once(polygon.exterior())
+            .chain(polygon.interiors())
+            .enumerate()
+        {
+            let pts = &ring.0[..ring.0.len() - 1];
+            let n = pts.len();
+            for i in 0..n {
+                let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
+                let (u, v) = (b - a, c - b);
+                let turn = math::atan2(u.x * v.y - u.y * v.x, u.x * v.x + u.y * v.y);
+                let reflex = if k == 0 { -turn } else { turn };
+                if reflex > arc {
+                    let steps = (reflex / arc).ceil();
+                    let theta = reflex / steps;
+                    total += steps * d * d / 2.0 * (theta - math::sin(theta));
+                }
+            }
+        }
+    }
+    total
+}
+
+/// The check of `every_piece_of_the_exact_erosion_is_found_about_arcs` on one region: an
+/// outline of `radii` with `holes` (as `blunt_with_holes`), eroded so that the outline's
+/// offset runs `within` (0 to 1) of the way into the first hole's nearest chord sliver,
+/// arcs in steps of `arc`. `Err` says what is amiss.
+fn pieces_found_about_arcs(
+    radii: &[f64],
+    size: f64,
+    holes: &[(f64, f64, f64, usize)],
+    within: f64,
+    arc: f64,
+) -> Result<(), String> {
+    use geo::algorithm::buffer::{BufferStyle, LineJoin};
+    use geo::{Area, BooleanOps, Buffer, Intersects};
+    let shape = blunt_with_holes(radii, None, size, holes);
+    // Holes that meet the outline or each other make no region to test.
+    let outline = Polygon::new(shape.0[0].exterior().clone(), vec![]);
+    let hole_polygons: Vec<Polygon<f64>> = shape.0[0]
+        .interiors()
+        .iter()
+        .map(|h| Polygon::new(h.clone(), vec![]))
+        .collect();
+    if hole_polygons
+        .iter()
+        .any(|h| !geo::Contains::contains(&outline, h))
+        || (hole_polygons.len() == 2 && hole_polygons[0].intersects(&hole_polygons[1]))
+    {
+        return Ok(());
+    }
+    // Where the outline's offset runs through the sliver between the chords of the first
+    // hole's nearest corner and its exact arc: a corner `gap` from the outline is `gap −
+    // d` from its offset, and its chords (each spanning `θ`) lie `d·cos(θ/2)` to `d` from
+    // it.
+    let only = |ring: &LineString<f64>| MultiPolygon::new(vec![Polygon::new(ring.clone(), vec![])]);
+    let (rim, hole) = (shape.0[0].exterior(), &shape.0[0].interiors()[0]);
+    let gap = hole
+        .0
+        .iter()
+        .map(|&p| distance_to_rings(p, &only(rim)))
+        .fold(f64::INFINITY, f64::min);
+    let turn = std::f64::consts::TAU / holes[0].3 as f64;
+    let theta = if turn > arc {
+        turn / (turn / arc).ceil()
+    } else {
+        turn
+    };
+    let d = gap / (2.0 - within * (1.0 - math::cos(theta / 2.0)));
+    let Some(rings) = Eroder::new(&shape, arc).rings(d) else {
+        return Ok(());
+    };
+    // A reflex corner's mitre lies beyond its arc by `stray` at most.
+    let stray = d * ((2.0 / (1.0 + math::cos(arc))).sqrt() - 1.0);
+    let least = d * d / 50.0 + 4.0 * stray * stray;
+    for (at, area, overlap) in pieces_against_buffer(&shape, &rings, d, 0.05, least) {
+        if overlap < 0.5 * area {
+            return Err(format!("exact piece at {at:?}: {overlap} of {area} found"));
+        }
+    }
+    // Nor is a piece kept that is not on it (inside another ring's raw offset, or nearer
+    // the boundary than `d`): what the rings hold off the erosion is at most the slivers
+    // between the arcs' chords and their exact arcs.
+    let exact = shape.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.05)));
+    let ours = MultiPolygon::new(ring_polygons(&rings));
+    let off = ours.unsigned_area() - ours.intersection(&exact).unsigned_area();
+    let slivers = sliver_area(&shape, d, arc);
+    if off > 1.01 * slivers + 1e-6 * ours.unsigned_area() + 1e-9 {
+        return Err(format!(
+            "{off} of the rings off the erosion, slivers {slivers}"
+        ));
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Random outlines (star-like: some reflex corners arcs, some mitres) with one or two
+    /// polygonal holes of 3 to 8 corners (every reflex corner of theirs an arc of chords),
+    /// eroded where the outline's offset runs through the sliver between a hole corner's
+    /// chords and its exact arc, arcs in steps of 0.5 to 1 rad: wherever the eroder
+    /// answers, every piece of geo's exact erosion (arcs of 0.05 rad) but a sliver (under
+    /// `d²/50`, or what a reflex mitre's stray past its arc may cut off) is mostly covered
+    /// by the eroder's rings, and the rings hold no more off it than the slivers between
+    /// the arcs' chords and the exact arcs (a piece inside another ring's raw offset, or
+    /// nearer the boundary than `d`, is still cut away). The former `keep` failed on about
+    /// one case in a hundred (a piece found nowhere).
+    #[test]
+    fn every_piece_of_the_exact_erosion_is_found_about_arcs(
+        radii in prop::collection::vec(0.55f64..1.0, 3..12),
+        size in 5.0f64..25.0,
+        first in (0.08f64..0.25, -0.3f64..0.3, -0.3f64..0.3, 3usize..=8),
+        second in prop::option::of((0.05f64..0.15, -0.35f64..0.35, -0.35f64..0.35, 3usize..=8)),
+        within in 0.0f64..1.0,
+        arc in 0.5f64..1.0,
+    ) {
+        let holes: Vec<_> = std::iter::once(first).chain(second).collect();
+        let checked = pieces_found_about_arcs(&radii, size, &holes, within, arc);
+        prop_assert!(checked.is_ok(), "{}", checked.unwrap_err());
+    }
+}

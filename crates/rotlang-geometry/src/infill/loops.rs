@@ -47,8 +47,6 @@ pub(crate) struct Eroder {
     units: Vec<Coord>,
     /// Whether the raw rings' buffers were sized for these corners.
     sized: bool,
-    /// The unit directions of every reflex corner's inner arc points.
-    directions: Vec<Coord>,
     /// Reused: the raw offsets, the crossing sweep's edges, each ring's cuts.
     raws: Vec<Raw>,
     sweep: Sweep,
@@ -118,7 +116,6 @@ impl Eroder {
             corners: Vec::new(),
             safes: Vec::new(),
             units: Vec::new(),
-            directions: Vec::new(),
             sized: false,
             raws: Vec::new(),
             sweep: Sweep::default(),
@@ -150,7 +147,6 @@ impl Eroder {
         boundary.arcs.fans.clear();
         boundary.arcs.directions.clear();
         self.safes.clear();
-        self.directions.clear();
         self.mitre_stray = 0.0;
         self.bluntest = f64::INFINITY;
         self.arcs = false;
@@ -189,30 +185,14 @@ impl Eroder {
                     &ring.0,
                     arc,
                     i == 0,
-                    &mut self.directions,
+                    &mut boundary.arcs.directions,
                     corners,
                     &mut self.units,
                     (&mut self.mitre_stray, &mut self.bluntest, &mut self.arcs),
                 ) {
                     used += 1;
                     self.safes.push(safe);
-                    let arcs = &mut boundary.arcs;
-                    for corner in corners.iter() {
-                        if let Corner::Arc {
-                            b,
-                            nu,
-                            nv,
-                            ref inner,
-                        } = *corner
-                        {
-                            let first = arcs.directions.len();
-                            arcs.directions.push(nu);
-                            arcs.directions
-                                .extend_from_slice(&self.directions[inner.clone()]);
-                            arcs.directions.push(nv);
-                            arcs.fans.push((b, first..arcs.directions.len()));
-                        }
-                    }
+                    boundary.arcs.add(corners);
                 } else {
                     // A ring left out: the cutting says nothing of the region's.
                     self.bluntest = 0.0;
@@ -220,10 +200,15 @@ impl Eroder {
             }
         }
         self.corners.truncate(used);
-        self.boundary
-            .arcs
-            .fans
-            .sort_unstable_by(|(a, _), (b, _)| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        let arcs = &mut self.boundary.arcs;
+        if !arcs.fans.is_empty() {
+            arcs.deep = math::cos(arc / 2.0);
+        }
+        arcs.sorted = arcs.fans.len() > FEW_ARCS;
+        if arcs.sorted {
+            arcs.fans
+                .sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x).then(a.0.y.total_cmp(&b.0.y)));
+        }
     }
 
     /// A list of rings emptied, kept for the next erosion's (one allocation and free
@@ -302,7 +287,13 @@ impl Eroder {
         }
         for ((raw, corners), &(safe, _)) in self.raws.iter_mut().zip(&self.corners).zip(&self.safes)
         {
-            raw.fill(corners, &self.directions, d, self.close, d >= safe);
+            raw.fill(
+                corners,
+                &self.boundary.arcs.directions,
+                d,
+                self.close,
+                d >= safe,
+            );
         }
         if self.raws.iter().map(|r| r.pts.len()).sum::<usize>() > MAX_SEGMENTS {
             return None;
@@ -360,7 +351,7 @@ impl Eroder {
                 // The whole ring, closed: its point m and m + 1 (n is the first again).
                 let m = (n + 1 - 2) / 2;
                 let mid = (raw.pts[m] + raw.pts[(m + 1) % n]) / 2.0;
-                let kept = keep(mid, boundary, d);
+                let kept = keep(mid, raw.own(m), boundary, d);
                 // A region's one ring, uncut, run round the wrong way (inside on its
                 // right): a simple curve turned inside out where edges ran backwards; no
                 // point of it is on the erosion (the L's arms gone, its corner too small).
@@ -415,7 +406,8 @@ impl Eroder {
                 };
                 let m = count / 2;
                 let mid = (point(m) + point(m + 1)) / 2.0;
-                let kept = keep(mid, boundary, d);
+                // Segment m of the piece is raw segment s0 + m (it starts inside s0).
+                let kept = keep(mid, raw.own((s0 + m) % n), boundary, d);
                 if undecided(raw, s0, count, point, kept, boundary, d) {
                     return None;
                 }
@@ -443,6 +435,9 @@ impl Eroder {
 #[derive(Default)]
 struct Raw {
     pts: Vec<Coord>,
+    /// Each arc of chords: its first point, how many chords follow, and its vertex (a
+    /// piece's middle on a chord is not inside that arc's chords: `keep` need not ask).
+    arcs: Vec<(usize, usize, Coord)>,
     /// For the segment from each point that runs along an edge of the ring (from a
     /// corner's last point to the next corner's first), that edge's direction: the
     /// segment is reversed (an edge event passed) where it points against it.
@@ -487,6 +482,7 @@ impl Raw {
     fn fill(&mut self, corners: &[Corner], directions: &[Coord], d: f64, close: bool, check: bool) {
         self.pts.clear();
         self.tips.clear();
+        self.arcs.clear();
         self.check = check;
         self.along.clear();
         if !self.mitres.is_empty() && self.mitres.len() == corners.len() {
@@ -513,6 +509,7 @@ impl Raw {
                     nv,
                     ref inner,
                 } => {
+                    self.arcs.push((self.pts.len(), inner.len() + 1, b));
                     self.pts.push(b + nu * d);
                     for &w in &directions[inner.clone()] {
                         self.pts.push(b + w * d);
@@ -541,6 +538,13 @@ impl Raw {
         if close && !self.tips.is_empty() {
             self.close_tips();
         }
+    }
+
+    /// The vertex of the arc whose chord is the segment from point `i`, if it is one.
+    fn own(&self, i: usize) -> Option<Coord> {
+        let k = self.arcs.partition_point(|a| a.0 <= i);
+        let &(first, count, b) = self.arcs.get(k.checked_sub(1)?)?;
+        (i < first + count).then_some(b)
     }
 
     /// Whether the segment from point `i` runs against the edge it was moved from.
@@ -629,6 +633,19 @@ impl Raw {
         pts.truncate(to);
         if check {
             along.truncate(to);
+        }
+        // Each arc moved up two points for each tip closed before it.
+        let mut closed = 0;
+        let mut tips = self.tips.iter().peekable();
+        for arc in self.arcs.iter_mut() {
+            while let Some(&&(at, x)) = tips.peek() {
+                if at > arc.0 {
+                    break;
+                }
+                closed += usize::from(x.is_some());
+                tips.next();
+            }
+            arc.0 -= 2 * closed;
         }
     }
 }
@@ -903,15 +920,40 @@ pub(super) struct Boundary {
     arcs: Arcs,
 }
 
-/// Every reflex corner drawn as an arc of chords: its vertex and the directions of its
-/// chords' ends from it (`nu`, the inner ones, `nv`: clockwise), by vertex.
+/// Every reflex corner drawn as an arc of chords (`Corner::Arc`): its vertex, the
+/// directions of its first and last points from it and the range of its inner ones in
+/// `directions` (the unit directions of every arc's inner points, which its raw offset
+/// is drawn with).
 #[derive(Default)]
 struct Arcs {
-    fans: Vec<(Coord, std::ops::Range<usize>)>,
+    fans: Vec<(Coord, Coord, Coord, std::ops::Range<usize>)>,
     directions: Vec<Coord>,
+    /// Whether `fans` is sorted by vertex (more than [`FEW_ARCS`]: looked up by halves).
+    sorted: bool,
+    /// The cosine of half the arc step (no chord spans more): within `deep·d` of its
+    /// vertex a point is inside an arc's chords if it lies in the arc's wedge.
+    deep: f64,
 }
 
+/// Arcs up to this many are looked up one after another.
+const FEW_ARCS: usize = 16;
+
 impl Arcs {
+    /// The arcs of these corners (a ring's) added.
+    fn add(&mut self, corners: &[Corner]) {
+        for corner in corners {
+            if let Corner::Arc {
+                b,
+                nu,
+                nv,
+                ref inner,
+            } = *corner
+            {
+                self.fans.push((b, nu, nv, inner.clone()));
+            }
+        }
+    }
+
     /// Where `v` is the vertex of an arc of chords: whether `p` lies inside the polygon
     /// its chords make with it (the vertex, `v + nu·d`, `v + w·d`…, `v + nv·d`), by more
     /// than a rounding. `None` at any other vertex.
@@ -926,41 +968,46 @@ impl Arcs {
     /// nearer the other edge at the vertex than the vertex itself, which decides.
     #[inline(never)]
     fn covers(&self, v: Coord, p: Coord, d: f64) -> Option<bool> {
-        let key = |c: &Coord| (c.x, c.y);
-        let from = self.fans.partition_point(|(b, _)| {
-            key(b)
-                .0
-                .total_cmp(&v.x)
-                .then(key(b).1.total_cmp(&v.y))
-                .is_lt()
-        });
+        let from = if self.sorted {
+            self.fans
+                .partition_point(|(b, ..)| b.x.total_cmp(&v.x).then(b.y.total_cmp(&v.y)).is_lt())
+        } else {
+            0
+        };
         let mut found = None;
-        for (b, dirs) in &self.fans[from..] {
-            if *b != v {
-                break;
+        for &(b, nu, nv, ref inner) in &self.fans[from..] {
+            if b != v {
+                if self.sorted {
+                    break;
+                }
+                continue;
             }
-            let inside = chords_cover(&self.directions[dirs.clone()], p - v, d);
-            found = Some(found.unwrap_or(false) || inside);
+            let inside = self.chords_cover(nu, &self.directions[inner.clone()], nv, p - v, d);
+            found = Some(found == Some(true) || inside);
         }
         found
     }
-}
 
-/// Whether `x` (from an arc's vertex) lies inside the polygon of the vertex and the
-/// chords between the ends `w·d` of these directions (turning clockwise), by more than
-/// `1e-9·d` (a point on a chord is not: a chord's own piece is measured on it).
-fn chords_cover(directions: &[Coord], x: Coord, d: f64) -> bool {
-    for w in directions.windows(2) {
-        let (u, v) = (w[0], w[1]);
-        // The sector between `u` and `v` (each at most half a radian: both tests hold
-        // only inside it).
-        if cross(u, x) <= 0.0 && cross(x, v) <= 0.0 {
-            let (a, e) = (u * d, (v - u) * d);
-            // The vertex is on the chord's right: inside where `x` is too.
-            return cross(e, x - a) < -1e-9 * d * math::hypot(e.x, e.y);
+    /// Whether `x` (from an arc's vertex) lies inside the polygon of the vertex and the
+    /// chords between the ends `w·d` of the directions `nu`, `inner`…, `nv` (turning
+    /// clockwise), by more than `1e-9·d` (a point on a chord is not: a chord's own piece
+    /// is measured on it).
+    fn chords_cover(&self, nu: Coord, inner: &[Coord], nv: Coord, x: Coord, d: f64) -> bool {
+        let mut u = nu;
+        for &v in inner.iter().chain(std::iter::once(&nv)) {
+            // The sector between `u` and `v` (at most half a turn: both tests hold only
+            // inside it).
+            if cross(u, x) <= 0.0 && cross(x, v) <= 0.0 {
+                let (a, e) = (u * d, (v - u) * d);
+                // The vertex is on the chord's right: inside where `x` is too.
+                let side = cross(e, x - a);
+                let margin = 1e-9 * d;
+                return side < 0.0 && side * side > margin * margin * (e.x * e.x + e.y * e.y);
+            }
+            u = v;
         }
+        false
     }
-    false
 }
 
 /// A run of consecutive edges of a ring: its bounds, the height where it starts and
@@ -1583,7 +1630,13 @@ fn undecided(
     (0..=count).any(|j| raw.reversed(seg(j)))
         && (kept
             || (0..=count).any(|j| {
-                !raw.reversed(seg(j)) && keep((point(j) + point(j + 1)) / 2.0, boundary, d)
+                !raw.reversed(seg(j))
+                    && keep(
+                        (point(j) + point(j + 1)) / 2.0,
+                        raw.own(seg(j)),
+                        boundary,
+                        d,
+                    )
             }))
 }
 
@@ -1599,7 +1652,7 @@ fn undecided(
 /// point's height crosses the ray where the run lies wholly east of it, none where it
 /// lies west, above or below); only the runs about the point are tested edge by edge, as
 /// before (a holed square's 68 edges were all tested for every piece).
-fn keep(p: Coord, boundary: &Boundary, d: f64) -> bool {
+fn keep(p: Coord, own: Option<Coord>, boundary: &Boundary, d: f64) -> bool {
     let limit = d * (1.0 - 1e-9);
     // An edge whose bounds, grown by `limit` (and a margin for rounding), miss `p` is
     // farther than `limit`: only its crossing of the ray is counted.
@@ -1613,7 +1666,7 @@ fn keep(p: Coord, boundary: &Boundary, d: f64) -> bool {
             match near(
                 p,
                 &boundary.sides[run.sides.clone()],
-                &boundary.arcs,
+                (&boundary.arcs, own),
                 d,
                 reach,
                 limit,
@@ -1630,9 +1683,17 @@ fn keep(p: Coord, boundary: &Boundary, d: f64) -> bool {
 
 /// Whether `p` is farther than `limit` from every one of these sides (`None` if not),
 /// and then whether the ray east of it crosses an odd number of them: [`keep`]'s test of
-/// one edge after another, for the runs about `p`.
+/// one edge after another, for the runs about `p`. A side within `limit` whose foot is an
+/// arc's vertex is near only where `p` lies inside that arc's chords (`clear_of_arc`).
 #[inline]
-fn near(p: Coord, sides: &[Side], arcs: &Arcs, d: f64, reach: f64, limit: f64) -> Option<bool> {
+fn near(
+    p: Coord,
+    sides: &[Side],
+    arcs: (&Arcs, Option<Coord>),
+    d: f64,
+    reach: f64,
+    limit: f64,
+) -> Option<bool> {
     // An edge that misses the band `p.y ± reach` is neither near `p` nor crosses the ray
     // (a crossing edge spans `p.y`): most edges are passed on two comparisons.
     let band = reach.max(0.0);
@@ -1650,15 +1711,13 @@ fn near(p: Coord, sides: &[Side], arcs: &Arcs, d: f64, reach: f64, limit: f64) -
             } else {
                 0.0
             };
-            let t = s.clamp(0.0, 1.0);
-            let q = a + e * t - p;
+            let q = a + e * s.clamp(0.0, 1.0) - p;
             if q.x * q.x + q.y * q.y < limit * limit {
-                // Its foot an end that is an arc's vertex: near only inside the chords.
-                let end = if s >= 1.0 { b } else { a };
-                if arcs.fans.is_empty()
-                    || (s > 0.0 && s < 1.0)
-                    || arcs.covers(end, p, d) != Some(false)
-                {
+                // Its foot the vertex of the arc `p` is on a chord of: clear of it.
+                let own = arcs
+                    .1
+                    .is_some_and(|v| (s <= 0.0 && v == a) || (s >= 1.0 && v == b));
+                if arcs.0.fans.is_empty() || !(own || clear_of_arc(p, (a, b), s, arcs.0, d)) {
                     return None;
                 }
             }
@@ -1670,11 +1729,35 @@ fn near(p: Coord, sides: &[Side], arcs: &Arcs, d: f64, reach: f64, limit: f64) -
     Some(inside)
 }
 
+/// Whether `p`, within `d` of the side `a`–`b` at its parameter `s`, is not near it
+/// after all: its foot an end that is an arc's vertex, and `p` not inside that arc's
+/// chords (certainly inside within `deep·d` of the vertex: in the arc's wedge, and
+/// nearer another edge than the vertex outside it).
+#[cold]
+#[inline(never)]
+fn clear_of_arc(p: Coord, (a, b): (Coord, Coord), s: f64, arcs: &Arcs, d: f64) -> bool {
+    if s > 0.0 && s < 1.0 {
+        return false;
+    }
+    let end = if s >= 1.0 { b } else { a };
+    let q = end - p;
+    let deep = arcs.deep * d * (1.0 - 1e-6);
+    q.x * q.x + q.y * q.y >= deep * deep && arcs.covers(end, p, d) == Some(false)
+}
+
 /// [`keep`] as it was, every edge tested one after another (the tests compare the two).
 #[cfg(test)]
-pub(super) fn keep_edge_by_edge(p: Coord, boundary: &Boundary, d: f64) -> bool {
+pub(super) fn keep_edge_by_edge(p: Coord, own: Option<Coord>, boundary: &Boundary, d: f64) -> bool {
     let limit = d * (1.0 - 1e-9);
-    near(p, &boundary.sides, &boundary.arcs, d, limit + 1e-9, limit).unwrap_or(false)
+    near(
+        p,
+        &boundary.sides,
+        (&boundary.arcs, own),
+        d,
+        limit + 1e-9,
+        limit,
+    )
+    .unwrap_or(false)
 }
 
 /// The kept pieces joined end to start at their cuts into closed rings; `None` where a
@@ -1758,6 +1841,7 @@ mod tests {
             check: true,
             pts,
             tips: Vec::new(),
+            arcs: Vec::new(),
             shape: Vec::new(),
             mitres: Vec::new(),
         }

@@ -351,7 +351,7 @@ impl Eroder {
                 // The whole ring, closed: its point m and m + 1 (n is the first again).
                 let m = (n + 1 - 2) / 2;
                 let mid = (raw.pts[m] + raw.pts[(m + 1) % n]) / 2.0;
-                let kept = keep(mid, raw.own(m), boundary, d);
+                let kept = keep(mid, || raw.own(m), boundary, d);
                 // A region's one ring, uncut, run round the wrong way (inside on its
                 // right): a simple curve turned inside out where edges ran backwards; no
                 // point of it is on the erosion (the L's arms gone, its corner too small).
@@ -407,7 +407,7 @@ impl Eroder {
                 let m = count / 2;
                 let mid = (point(m) + point(m + 1)) / 2.0;
                 // Segment m of the piece is raw segment s0 + m (it starts inside s0).
-                let kept = keep(mid, raw.own((s0 + m) % n), boundary, d);
+                let kept = keep(mid, || raw.own((s0 + m) % n), boundary, d);
                 if undecided(raw, s0, count, point, kept, boundary, d) {
                     return None;
                 }
@@ -542,9 +542,14 @@ impl Raw {
 
     /// The vertex of the arc whose chord is the segment from point `i`, if it is one.
     fn own(&self, i: usize) -> Option<Coord> {
-        let k = self.arcs.partition_point(|a| a.0 <= i);
-        let &(first, count, b) = self.arcs.get(k.checked_sub(1)?)?;
-        (i < first + count).then_some(b)
+        // The first arc ending past `i` (one after another where there are few).
+        let k = if self.arcs.len() <= FEW_ARCS {
+            self.arcs.iter().position(|a| i < a.0 + a.1)?
+        } else {
+            self.arcs.partition_point(|a| a.0 + a.1 <= i)
+        };
+        let &(first, _, b) = self.arcs.get(k)?;
+        (first <= i).then_some(b)
     }
 
     /// Whether the segment from point `i` runs against the edge it was moved from.
@@ -1633,7 +1638,7 @@ fn undecided(
                 !raw.reversed(seg(j))
                     && keep(
                         (point(j) + point(j + 1)) / 2.0,
-                        raw.own(seg(j)),
+                        || raw.own(seg(j)),
                         boundary,
                         d,
                     )
@@ -1652,7 +1657,7 @@ fn undecided(
 /// point's height crosses the ray where the run lies wholly east of it, none where it
 /// lies west, above or below); only the runs about the point are tested edge by edge, as
 /// before (a holed square's 68 edges were all tested for every piece).
-fn keep(p: Coord, own: Option<Coord>, boundary: &Boundary, d: f64) -> bool {
+fn keep(p: Coord, own: impl Fn() -> Option<Coord>, boundary: &Boundary, d: f64) -> bool {
     let limit = d * (1.0 - 1e-9);
     // An edge whose bounds, grown by `limit` (and a margin for rounding), miss `p` is
     // farther than `limit`: only its crossing of the ray is counted.
@@ -1666,7 +1671,7 @@ fn keep(p: Coord, own: Option<Coord>, boundary: &Boundary, d: f64) -> bool {
             match near(
                 p,
                 &boundary.sides[run.sides.clone()],
-                (&boundary.arcs, own),
+                (&boundary.arcs, &own),
                 d,
                 reach,
                 limit,
@@ -1689,7 +1694,7 @@ fn keep(p: Coord, own: Option<Coord>, boundary: &Boundary, d: f64) -> bool {
 fn near(
     p: Coord,
     sides: &[Side],
-    arcs: (&Arcs, Option<Coord>),
+    (arcs, own): (&Arcs, &impl Fn() -> Option<Coord>),
     d: f64,
     reach: f64,
     limit: f64,
@@ -1713,11 +1718,13 @@ fn near(
             };
             let q = a + e * s.clamp(0.0, 1.0) - p;
             if q.x * q.x + q.y * q.y < limit * limit {
+                if arcs.fans.is_empty() {
+                    return None;
+                }
                 // Its foot the vertex of the arc `p` is on a chord of: clear of it.
-                let own = arcs
-                    .1
-                    .is_some_and(|v| (s <= 0.0 && v == a) || (s >= 1.0 && v == b));
-                if arcs.0.fans.is_empty() || !(own || clear_of_arc(p, (a, b), s, arcs.0, d)) {
+                let on_own = (s <= 0.0 || s >= 1.0)
+                    && own().is_some_and(|v| v == if s >= 1.0 { b } else { a });
+                if !(on_own || clear_of_arc(p, (a, b), s, arcs, d)) {
                     return None;
                 }
             }
@@ -1752,7 +1759,7 @@ pub(super) fn keep_edge_by_edge(p: Coord, own: Option<Coord>, boundary: &Boundar
     near(
         p,
         &boundary.sides,
-        (&boundary.arcs, own),
+        (&boundary.arcs, &|| own),
         d,
         limit + 1e-9,
         limit,

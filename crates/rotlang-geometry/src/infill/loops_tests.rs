@@ -104,7 +104,7 @@ proptest! {
         }
         for (p, own) in points {
             prop_assert_eq!(
-                keep(p, own, &eroder.boundary, d),
+                keep(p, || own, &eroder.boundary, d),
                 keep_edge_by_edge(p, own, &eroder.boundary, d),
                 "at {:?}, d {}", p, d
             );

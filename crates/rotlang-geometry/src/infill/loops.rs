@@ -2,8 +2,11 @@
 //! parts pinch off or a grown hole meets the outline: the raw offset of every ring (edges
 //! moved by `d`, convex corners mitred, reflex corners an arc about the vertex) is cut
 //! where it crosses itself or another ring's, and the pieces that stay `d` from the
-//! boundary are chained back into rings. The erosion's boundary is made of exactly those
-//! pieces; no polygon is rebuilt, which is what made geo's buffer and boolean difference
+//! boundary are chained back into rings. "`d` from the boundary" is measured as the raw
+//! offsets are drawn (`keep`): about a reflex corner drawn as an arc of chords, a point is
+//! near only inside the chords, not inside the exact arc, or a piece of another ring with
+//! its middle between the two was dropped though no raw offset crossed it. The erosion's
+//! boundary is made of exactly those pieces; no polygon is rebuilt, which is what made geo's buffer and boolean difference
 //! cost 10–40 µs a loop. `None` where the offset touches itself without crossing (a
 //! tangency), a chain does not close, or a stretch run backwards (an edge event) is not
 //! cut off as a whole swallowtail: the buffer decides then.

@@ -324,6 +324,11 @@ pub(super) fn eroded_rings(
         return None;
     }
     let cuts = crossings(&raws)?;
+    let fans = fans(&raws);
+    let boundary = Boundary {
+        rings: boundary,
+        fans,
+    };
     // Cut every raw ring at its crossings into pieces; keep those `d` from the boundary.
     let mut pieces: Vec<Piece> = Vec::new();
     for (r, raw) in raws.iter().enumerate() {
@@ -345,7 +350,7 @@ pub(super) fn eroded_rings(
         if here.is_empty() {
             let mut pts = raw.pts.clone();
             pts.push(pts[0]);
-            let kept = keep(&pts, &raw.centres, 0, &boundary, d);
+            let kept = keep(&pts, &boundary, d);
             // The region's one ring, uncut, with an edge run backwards and turned the
             // wrong way round: inside out, none of it on the erosion.
             let area: f64 = pts.windows(2).map(|w| cross(w[0], w[1])).sum();
@@ -367,7 +372,7 @@ pub(super) fn eroded_rings(
             let (s0, t0, id0) = here[k];
             let (s1, t1, id1) = here[(k + 1) % here.len()];
             let mut pts = vec![cuts[id0].at];
-            // The segments the piece runs along, for the arc centre of its test point.
+            // The segments the piece runs along.
             let first = s0;
             let mut s = s0;
             let wraps = k + 1 == here.len();
@@ -381,7 +386,7 @@ pub(super) fn eroded_rings(
                 }
             }
             pts.push(cuts[id1].at);
-            let kept = keep(&pts, &raw.centres, first, &boundary, d);
+            let kept = keep(&pts, &boundary, d);
             if undecided(raw, &pts, first, kept, &boundary, d) {
                 return None;
             }
@@ -571,15 +576,13 @@ fn undecided(
     pts: &[Coord],
     first: usize,
     kept: bool,
-    boundary: &[&[Coord]],
+    boundary: &Boundary,
     d: f64,
 ) -> bool {
     (0..pts.len() - 1).any(|j| raw.reversed(first + j))
         && (kept
-            || (0..pts.len() - 1).any(|j| {
-                !raw.reversed(first + j)
-                    && keep(&pts[j..=j + 1], &raw.centres, first + j, boundary, d)
-            }))
+            || (0..pts.len() - 1)
+                .any(|j| !raw.reversed(first + j) && keep(&pts[j..=j + 1], boundary, d)))
 }
 
 /// Every proper crossing between the raw rings' segments (neighbours excepted); `None`
@@ -661,41 +664,79 @@ fn crossings(raws: &[Raw]) -> Option<Vec<Cut>> {
     Some(cuts)
 }
 
-/// Whether a piece lies on the erosion's boundary: a point in its middle (on the arc, for
-/// a chord) at least `d` from every boundary edge and inside the region.
-fn keep(
-    pts: &[Coord],
-    centres: &[Option<Coord>],
-    first: usize,
-    boundary: &[&[Coord]],
-    d: f64,
-) -> bool {
-    let m = (pts.len() - 2) / 2;
-    let mut p = (pts[m] + pts[m + 1]) / 2.0;
-    // Segment m of the piece is raw segment first + m (the piece starts inside `first`).
-    let n = centres.len();
-    if let Some(c) = centres[(first + m) % n] {
-        let r = p - c;
-        let len = math::hypot(r.x, r.y);
-        if len > 0.0 {
-            p = c + r * (d / len);
+/// The region's rings as given, and each reflex corner drawn as an arc of chords: its
+/// vertex and the chords' ends (the raw points).
+struct Boundary<'a> {
+    rings: Vec<&'a [Coord]>,
+    fans: Vec<(Coord, Vec<Coord>)>,
+}
+
+/// Every arc of chords of the raw rings: a run of segments whose centre is one vertex.
+fn fans(raws: &[Raw]) -> Vec<(Coord, Vec<Coord>)> {
+    let mut out: Vec<(Coord, Vec<Coord>)> = Vec::new();
+    for raw in raws {
+        let n = raw.pts.len();
+        let mut i = 0;
+        while i < n {
+            let Some(b) = raw.centres[i] else {
+                i += 1;
+                continue;
+            };
+            let mut ends = vec![raw.pts[i]];
+            while i < n && raw.centres[i] == Some(b) {
+                ends.push(raw.pts[(i + 1) % n]);
+                i += 1;
+            }
+            out.push((b, ends));
         }
     }
+    out
+}
+
+/// Whether a piece lies on the erosion's boundary: the point in its middle inside the
+/// region and not near it as the raw offsets are drawn: at least `d` from every boundary
+/// edge, except where its foot on an edge is a vertex whose reflex corner is an arc of
+/// chords: there near only inside the polygon of the vertex and the chords.
+fn keep(pts: &[Coord], boundary: &Boundary, d: f64) -> bool {
+    let m = (pts.len() - 2) / 2;
+    let p = (pts[m] + pts[m + 1]) / 2.0;
     let limit = d * (1.0 - 1e-9);
+    // Inside some arc's chords at the vertex `v` (`None`: no arc there).
+    let in_chords = |v: Coord| -> Option<bool> {
+        let mut found = None;
+        for (b, ends) in &boundary.fans {
+            if *b != v {
+                continue;
+            }
+            let x = p - v;
+            let inside = ends.windows(2).any(|w| {
+                let (a, c) = (w[0] - v, w[1] - v);
+                let e = c - a;
+                cross(a, x) <= 0.0
+                    && cross(x, c) <= 0.0
+                    && cross(e, x - a) < -1e-9 * d * math::hypot(e.x, e.y)
+            });
+            found = Some(found == Some(true) || inside);
+        }
+        found
+    };
     let mut inside = false;
-    for ring in boundary {
+    for ring in &boundary.rings {
         for w in ring.windows(2) {
             let (a, b) = (w[0], w[1]);
             let e = b - a;
             let len2 = e.x * e.x + e.y * e.y;
-            let t = if len2 > 0.0 {
-                (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+            let s = if len2 > 0.0 {
+                ((p - a).x * e.x + (p - a).y * e.y) / len2
             } else {
                 0.0
             };
-            let q = a + e * t - p;
+            let q = a + e * s.clamp(0.0, 1.0) - p;
             if q.x * q.x + q.y * q.y < limit * limit {
-                return false;
+                let end = (s <= 0.0 || s >= 1.0).then_some(if s >= 1.0 { b } else { a });
+                if end.and_then(in_chords) != Some(false) {
+                    return false;
+                }
             }
             if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
                 inside = !inside;

@@ -774,3 +774,288 @@ proptest! {
         }
     }
 }
+
+// The eroder's rings against geo's exact erosion where a reflex corner is an arc of
+// chords (`loops::keep` measures a point against another ring's chords, not the exact
+// arc: its raw offset is drawn there).
+
+/// The eroder's rings as polygons: each outline ring (counter-clockwise) with the hole
+/// rings (clockwise) whose first point lies inside it.
+fn ring_polygons(rings: &[Vec<Coord>]) -> Vec<Polygon<f64>> {
+    let signed = |r: &[Coord]| {
+        r.windows(2)
+            .map(|w| w[0].x * w[1].y - w[1].x * w[0].y)
+            .sum::<f64>()
+    };
+    let (outlines, holes): (Vec<&Vec<Coord>>, Vec<&Vec<Coord>>) =
+        rings.iter().partition(|r| signed(r) > 0.0);
+    outlines
+        .into_iter()
+        .map(|o| {
+            let outline = LineString::new(o.clone());
+            let within = holes
+                .iter()
+                .filter(|h| {
+                    geo::Contains::contains(
+                        &Polygon::new(outline.clone(), vec![]),
+                        &geo::Point::from(h[0]),
+                    )
+                })
+                .map(|h| LineString::new(h.to_vec()))
+                .collect();
+            Polygon::new(outline, within)
+        })
+        .collect()
+}
+
+/// The pieces of geo's erosion of `shape` by `d` (arcs in steps of `step` radians) above
+/// `least` in area: where each is, its area and the area of the eroder's rings over it.
+fn pieces_against_buffer(
+    shape: &MultiPolygon<f64>,
+    rings: &[Vec<Coord>],
+    d: f64,
+    step: f64,
+    least: f64,
+) -> Vec<(Coord, f64, f64)> {
+    use geo::algorithm::buffer::{BufferStyle, LineJoin};
+    use geo::{Area, BooleanOps, Buffer, Centroid};
+    let exact = shape.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(step)));
+    let ours = MultiPolygon::new(ring_polygons(rings));
+    exact
+        .0
+        .iter()
+        .filter(|p| p.unsigned_area() > least)
+        .map(|p| {
+            let at = p.centroid().map_or(Coord { x: 0.0, y: 0.0 }, |c| c.0);
+            let overlap = ours
+                .intersection(&MultiPolygon::new(vec![p.clone()]))
+                .unsigned_area();
+            (at, p.unsigned_area(), overlap)
+        })
+        .collect()
+}
+
+/// A pentagon with an octagonal hole, eroded by 4.448. The outline's raw offset between
+/// its cuts at (0.08, −4.47) and (4.765, 1.76) has its middle on an edge in the sliver
+/// between the hole's chords and its exact arc: it was dropped (one ring left, of 0.66
+/// mm² where the erosion has 3.5). Now every piece of geo's exact erosion (arcs of 0.05
+/// rad: three, of 1.49, 0.60 and 1.12 mm²) is found. Its pieces near (1.7, −4.3) and
+/// (4.9, 0.05) meet where the outline's edge passes between the hole's chords and arc:
+/// one ring here, as in geo's erosion with the eroder's arcs of 0.5 rad (two pieces,
+/// their areas the rings').
+#[test]
+fn a_pentagon_with_an_octagonal_hole_keeps_its_pieces() {
+    let shape = blunt_with_holes(
+        &[0.826, 0.990, 0.950, 0.8, 0.832],
+        None,
+        13.09,
+        &[(0.1027, -0.0688, 0.0858, 8)],
+    );
+    let region = Region::new(&shape, W).expect("region");
+    let d = 4.448;
+    let rings = crate::infill::loops::eroded_rings(region.outline(), d, 0.5).expect("rings");
+    let exact = pieces_against_buffer(region.outline(), &rings, d, 0.05, 0.01);
+    assert_eq!(exact.len(), 3, "{exact:?}");
+    for (at, area, overlap) in exact {
+        assert!(overlap >= 0.97 * area, "at {at:?}: {overlap} of {area}");
+    }
+    let drawn = pieces_against_buffer(region.outline(), &rings, d, 0.5, 0.01);
+    let ours = ring_polygons(&rings);
+    assert_eq!((drawn.len(), ours.len()), (2, 2), "{drawn:?}");
+    for (at, area, overlap) in drawn {
+        use geo::Area;
+        let same = ours
+            .iter()
+            .any(|p| (p.unsigned_area() - area).abs() <= 1e-3 * area);
+        assert!(
+            same && overlap >= 0.999 * area,
+            "at {at:?}: {overlap} of {area}"
+        );
+    }
+}
+
+/// A rectangle with a pentagonal hole at 49%: the eroder kept one tiny piece (0.031
+/// mm²) of loop 13 and dropped the real ones, so the loops stopped there (40 polylines)
+/// where the reference went on (45). Now every erosion the loops ask finds each piece of
+/// geo's exact one, the loops go on past loop 13, and they are the reference's.
+#[test]
+fn a_rectangle_with_a_pentagonal_hole_goes_on_past_loop_13() {
+    use geo::{Area, BoundingRect, Buffer};
+    let w = 24.0446;
+    let shape = blunt_with_holes(&[], Some(0.8813), w, &[(0.16895, -0.09099, 0.03309, 5)]);
+    let region = Region::new(&shape, W).expect("region");
+    let spacing = W / 0.49397;
+    let (mut fast, mut slow) = (Vec::new(), Vec::new());
+    concentric(&region, 0.0, spacing, &mut fast);
+    concentric_reference::concentric(&region, 0.0, spacing, &mut slow);
+    assert_eq!(fast, slow);
+    // Loop 14's pieces near (12, ±9) are printed.
+    let near = |x: f64, y: f64| {
+        fast.iter().any(|l| {
+            l.iter()
+                .any(|p| (p.x - x).abs() < 1.5 && (p.y - y).abs() < 1.5)
+        })
+    };
+    assert!(near(12.0, 9.0) && near(12.0, -9.0), "{fast:?}");
+    let mut eroder = Eroder::new(region.outline(), 0.5);
+    for k in 1..=20 {
+        let d = k as f64 * spacing;
+        let Some(rings) = eroder.rings(d) else {
+            continue;
+        };
+        for (at, area, overlap) in pieces_against_buffer(region.outline(), &rings, d, 0.05, 0.05) {
+            assert!(
+                overlap >= 0.9 * area,
+                "loop {k} at {at:?}: {overlap} of {area}"
+            );
+        }
+        // Nor more than the erosion: the rings' area is the exact one's within the
+        // chords' sagitta along their length.
+        let ours: f64 = ring_polygons(&rings)
+            .iter()
+            .map(|p| p.unsigned_area())
+            .sum();
+        let exact = region.outline().buffer_with_style(
+            geo::algorithm::buffer::BufferStyle::new(-d)
+                .line_join(geo::algorithm::buffer::LineJoin::Round(0.05)),
+        );
+        let size = exact
+            .bounding_rect()
+            .map_or(0.0, |r| r.width() + r.height());
+        assert!(
+            (ours - exact.unsigned_area()).abs() <= 0.02 * d * size + 0.05,
+            "loop {k}: {ours} here, {} exact",
+            exact.unsigned_area()
+        );
+    }
+}
+
+/// The area between the chords of every reflex corner drawn as an arc (turning more than
+/// `arc`: `arc` or less is a mitre) and its exact arc of radius `d`: `steps` chords each
+/// spanning `θ` leave `d²/2·(θ − sin θ)` each. (Outline rings counter-clockwise, holes
+/// too, as `ring` makes them: a reflex corner turns right on the outline, left on a
+/// hole.)
+fn sliver_area(shape: &MultiPolygon<f64>, d: f64, arc: f64) -> f64 {
+    let mut total = 0.0;
+    for polygon in &shape.0 {
+        for (k, ring) in std::iter::once(polygon.exterior())
+            .chain(polygon.interiors())
+            .enumerate()
+        {
+            let pts = &ring.0[..ring.0.len() - 1];
+            let n = pts.len();
+            for i in 0..n {
+                let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
+                let (u, v) = (b - a, c - b);
+                let turn = math::atan2(u.x * v.y - u.y * v.x, u.x * v.x + u.y * v.y);
+                let reflex = if k == 0 { -turn } else { turn };
+                if reflex > arc {
+                    let steps = (reflex / arc).ceil();
+                    let theta = reflex / steps;
+                    total += steps * d * d / 2.0 * (theta - math::sin(theta));
+                }
+            }
+        }
+    }
+    total
+}
+
+/// The check of `every_piece_of_the_exact_erosion_is_found_about_arcs` on one region: an
+/// outline of `radii` with `holes` (as `blunt_with_holes`), eroded so that the outline's
+/// offset runs `within` (0 to 1) of the way into the first hole's nearest chord sliver,
+/// arcs in steps of `arc`. `Err` says what is amiss.
+fn pieces_found_about_arcs(
+    radii: &[f64],
+    size: f64,
+    holes: &[(f64, f64, f64, usize)],
+    within: f64,
+    arc: f64,
+) -> Result<(), String> {
+    use geo::algorithm::buffer::{BufferStyle, LineJoin};
+    use geo::{Area, BooleanOps, Buffer, Intersects};
+    let shape = blunt_with_holes(radii, None, size, holes);
+    // Holes that meet the outline or each other make no region to test.
+    let outline = Polygon::new(shape.0[0].exterior().clone(), vec![]);
+    let hole_polygons: Vec<Polygon<f64>> = shape.0[0]
+        .interiors()
+        .iter()
+        .map(|h| Polygon::new(h.clone(), vec![]))
+        .collect();
+    if hole_polygons
+        .iter()
+        .any(|h| !geo::Contains::contains(&outline, h))
+        || (hole_polygons.len() == 2 && hole_polygons[0].intersects(&hole_polygons[1]))
+    {
+        return Ok(());
+    }
+    // Where the outline's offset runs through the sliver between the chords of the first
+    // hole's nearest corner and its exact arc: a corner `gap` from the outline is `gap −
+    // d` from its offset, and its chords (each spanning `θ`) lie `d·cos(θ/2)` to `d` from
+    // it.
+    let only = |ring: &LineString<f64>| MultiPolygon::new(vec![Polygon::new(ring.clone(), vec![])]);
+    let (rim, hole) = (shape.0[0].exterior(), &shape.0[0].interiors()[0]);
+    let gap = hole
+        .0
+        .iter()
+        .map(|&p| distance_to_rings(p, &only(rim)))
+        .fold(f64::INFINITY, f64::min);
+    let turn = std::f64::consts::TAU / holes[0].3 as f64;
+    let theta = if turn > arc {
+        turn / (turn / arc).ceil()
+    } else {
+        turn
+    };
+    let d = gap / (2.0 - within * (1.0 - math::cos(theta / 2.0)));
+    let Some(rings) = Eroder::new(&shape, arc).rings(d) else {
+        return Ok(());
+    };
+    // A reflex corner's mitre lies beyond its arc by `stray` at most.
+    let stray = d * ((2.0 / (1.0 + math::cos(arc))).sqrt() - 1.0);
+    let least = d * d / 50.0 + 4.0 * stray * stray;
+    for (at, area, overlap) in pieces_against_buffer(&shape, &rings, d, 0.05, least) {
+        if overlap < 0.5 * area {
+            return Err(format!("exact piece at {at:?}: {overlap} of {area} found"));
+        }
+    }
+    // Nor is a piece kept that is not on it (inside another ring's raw offset, or nearer
+    // the boundary than `d`): what the rings hold off the erosion is at most the slivers
+    // between the arcs' chords and their exact arcs.
+    let exact = shape.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.05)));
+    let ours = MultiPolygon::new(ring_polygons(&rings));
+    let off = ours.unsigned_area() - ours.intersection(&exact).unsigned_area();
+    let slivers = sliver_area(&shape, d, arc);
+    if off > 1.01 * slivers + 1e-6 * ours.unsigned_area() + 1e-9 {
+        return Err(format!(
+            "{off} of the rings off the erosion, slivers {slivers}"
+        ));
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Random outlines (star-like: some reflex corners arcs, some mitres) with one or two
+    /// polygonal holes of 3 to 8 corners (every reflex corner of theirs an arc of chords),
+    /// eroded where the outline's offset runs through the sliver between a hole corner's
+    /// chords and its exact arc, arcs in steps of 0.5 to 1 rad: wherever the eroder
+    /// answers, every piece of geo's exact erosion (arcs of 0.05 rad) but a sliver (under
+    /// `d²/50`, or what a reflex mitre's stray past its arc may cut off) is mostly covered
+    /// by the eroder's rings, and the rings hold no more off it than the slivers between
+    /// the arcs' chords and the exact arcs (a piece inside another ring's raw offset, or
+    /// nearer the boundary than `d`, is still cut away). The former `keep` failed on about
+    /// one case in a hundred (a piece found nowhere).
+    #[test]
+    fn every_piece_of_the_exact_erosion_is_found_about_arcs(
+        radii in prop::collection::vec(0.55f64..1.0, 3..12),
+        size in 5.0f64..25.0,
+        first in (0.08f64..0.25, -0.3f64..0.3, -0.3f64..0.3, 3usize..=8),
+        second in prop::option::of((0.05f64..0.15, -0.35f64..0.35, -0.35f64..0.35, 3usize..=8)),
+        within in 0.0f64..1.0,
+        arc in 0.5f64..1.0,
+    ) {
+        let holes: Vec<_> = std::iter::once(first).chain(second).collect();
+        let checked = pieces_found_about_arcs(&radii, size, &holes, within, arc);
+        prop_assert!(checked.is_ok(), "{}", checked.unwrap_err());
+    }
+}

@@ -2,8 +2,11 @@
 //! parts pinch off or a grown hole meets the outline: the raw offset of every ring (edges
 //! moved by `d`, convex corners mitred, reflex corners an arc about the vertex) is cut
 //! where it crosses itself or another ring's, and the pieces that stay `d` from the
-//! boundary are chained back into rings. The erosion's boundary is made of exactly those
-//! pieces; no polygon is rebuilt, which is what made geo's buffer and boolean difference
+//! boundary are chained back into rings. "`d` from the boundary" is measured as the raw
+//! offsets are drawn (`keep`): about a reflex corner drawn as an arc of chords, a point is
+//! near only inside the chords, not inside the exact arc, or a piece of another ring with
+//! its middle between the two was dropped though no raw offset crossed it. The erosion's
+//! boundary is made of exactly those pieces; no polygon is rebuilt, which is what made geo's buffer and boolean difference
 //! cost 10–40 µs a loop. `None` where the offset touches itself without crossing (a
 //! tangency), a chain does not close, or a stretch run backwards (an edge event) is not
 //! cut off as a whole swallowtail: the buffer decides then.
@@ -47,8 +50,6 @@ pub(crate) struct Eroder {
     units: Vec<Coord>,
     /// Whether the raw rings' buffers were sized for these corners.
     sized: bool,
-    /// The unit directions of every reflex corner's inner arc points.
-    directions: Vec<Coord>,
     /// Reused: the raw offsets, the crossing sweep's edges, each ring's cuts.
     raws: Vec<Raw>,
     sweep: Sweep,
@@ -118,7 +119,6 @@ impl Eroder {
             corners: Vec::new(),
             safes: Vec::new(),
             units: Vec::new(),
-            directions: Vec::new(),
             sized: false,
             raws: Vec::new(),
             sweep: Sweep::default(),
@@ -147,8 +147,9 @@ impl Eroder {
         let boundary = &mut self.boundary;
         boundary.sides.clear();
         boundary.runs.clear();
+        boundary.arcs.fans.clear();
+        boundary.arcs.directions.clear();
         self.safes.clear();
-        self.directions.clear();
         self.mitre_stray = 0.0;
         self.bluntest = f64::INFINITY;
         self.arcs = false;
@@ -187,13 +188,14 @@ impl Eroder {
                     &ring.0,
                     arc,
                     i == 0,
-                    &mut self.directions,
+                    &mut boundary.arcs.directions,
                     corners,
                     &mut self.units,
                     (&mut self.mitre_stray, &mut self.bluntest, &mut self.arcs),
                 ) {
                     used += 1;
                     self.safes.push(safe);
+                    boundary.arcs.add(corners);
                 } else {
                     // A ring left out: the cutting says nothing of the region's.
                     self.bluntest = 0.0;
@@ -201,6 +203,15 @@ impl Eroder {
             }
         }
         self.corners.truncate(used);
+        let arcs = &mut self.boundary.arcs;
+        if !arcs.fans.is_empty() {
+            arcs.deep = math::cos(arc / 2.0);
+        }
+        arcs.sorted = arcs.fans.len() > FEW_ARCS;
+        if arcs.sorted {
+            arcs.fans
+                .sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x).then(a.0.y.total_cmp(&b.0.y)));
+        }
     }
 
     /// A list of rings emptied, kept for the next erosion's (one allocation and free
@@ -262,10 +273,8 @@ impl Eroder {
                 // (`reserve` counts from the length: the vectors are emptied first.)
                 raw.pts.clear();
                 raw.pts.reserve(n);
-                for v in [&mut raw.centres, &mut raw.along] {
-                    v.clear();
-                    v.reserve(n);
-                }
+                raw.along.clear();
+                raw.along.reserve(n);
             }
             for (raw, corners) in self.raws.iter_mut().zip(&self.corners) {
                 raw.shape(corners);
@@ -281,7 +290,13 @@ impl Eroder {
         }
         for ((raw, corners), &(safe, _)) in self.raws.iter_mut().zip(&self.corners).zip(&self.safes)
         {
-            raw.fill(corners, &self.directions, d, self.close, d >= safe);
+            raw.fill(
+                corners,
+                &self.boundary.arcs.directions,
+                d,
+                self.close,
+                d >= safe,
+            );
         }
         if self.raws.iter().map(|r| r.pts.len()).sum::<usize>() > MAX_SEGMENTS {
             return None;
@@ -339,7 +354,7 @@ impl Eroder {
                 // The whole ring, closed: its point m and m + 1 (n is the first again).
                 let m = (n + 1 - 2) / 2;
                 let mid = (raw.pts[m] + raw.pts[(m + 1) % n]) / 2.0;
-                let kept = keep(mid, raw.centres[m % n], boundary, d);
+                let kept = keep(mid, || raw.own(m), boundary, d);
                 // A region's one ring, uncut, run round the wrong way (inside on its
                 // right): a simple curve turned inside out where edges ran backwards; no
                 // point of it is on the erosion (the L's arms gone, its corner too small).
@@ -353,9 +368,8 @@ impl Eroder {
                 if !inverted && undecided(raw, 0, n - 1, |i| raw.pts[i % n], kept, boundary, d) {
                     return None;
                 }
-                // A whole ring left out (its middle nearer another ring than `d`, though
-                // their raw offsets do not cross: an arc's chords cut in): not a cutting
-                // `Cutting` vouches for.
+                // A whole ring left out (inside another ring's raw offset though the two
+                // do not cross): not a cutting `Cutting` vouches for.
                 if !kept {
                     cutting = Cutting::Other;
                 }
@@ -396,7 +410,7 @@ impl Eroder {
                 let m = count / 2;
                 let mid = (point(m) + point(m + 1)) / 2.0;
                 // Segment m of the piece is raw segment s0 + m (it starts inside s0).
-                let kept = keep(mid, raw.centres[(s0 + m) % n], boundary, d);
+                let kept = keep(mid, || raw.own((s0 + m) % n), boundary, d);
                 if undecided(raw, s0, count, point, kept, boundary, d) {
                     return None;
                 }
@@ -420,12 +434,13 @@ impl Eroder {
     }
 }
 
-/// One ring's raw offset: its points (not closed) and, for the segment from each point,
-/// the arc's centre where it is a chord of a reflex corner's arc.
+/// One ring's raw offset: its points (not closed), and what its segments run along.
 #[derive(Default)]
 struct Raw {
     pts: Vec<Coord>,
-    centres: Vec<Option<Coord>>,
+    /// Each arc of chords: its first point, how many chords follow, and its vertex (a
+    /// piece's middle on a chord is not inside that arc's chords: `keep` need not ask).
+    arcs: Vec<(usize, usize, Coord)>,
     /// For the segment from each point that runs along an edge of the ring (from a
     /// corner's last point to the next corner's first), that edge's direction: the
     /// segment is reversed (an edge event passed) where it points against it.
@@ -436,23 +451,20 @@ struct Raw {
     /// (where its two moved edges cross).
     tips: Vec<(usize, Option<Coord>)>,
     /// Where every corner is a mitre (a holed square's rings): each one's vertex, mitre
-    /// direction and its length's divisor, read in one tight pass, and its `centres` and
-    /// `along`, which do not depend on the distance (made once for the corners by
-    /// `shape`, copied by `fill`), and whether `centres` is still the first.
+    /// direction and its length's divisor, read in one tight pass, and its `along`,
+    /// which does not depend on the distance (made once for the corners by `shape`,
+    /// copied by `fill`).
     mitres: Vec<(Coord, Coord, f64)>,
-    shape: (Vec<Option<Coord>>, Vec<Option<Coord>>),
-    shaped: bool,
+    shape: Vec<Option<Coord>>,
 }
 
 impl Raw {
-    /// For a ring whose corners are all mitres, the mitres and its `centres` and `along`
-    /// (`shape`: none, and the direction of each edge from its corner to the next), which
-    /// do not depend on the distance; nothing for another ring.
+    /// For a ring whose corners are all mitres, the mitres and its `along` (`shape`: the
+    /// direction of each edge from its corner to the next), which do not depend on the
+    /// distance; nothing for another ring.
     fn shape(&mut self, corners: &[Corner]) {
-        self.shaped = false;
         self.mitres.clear();
-        let (centres, along) = &mut self.shape;
-        centres.clear();
+        let along = &mut self.shape;
         along.clear();
         for corner in corners {
             match *corner {
@@ -465,7 +477,6 @@ impl Raw {
         }
         for (i, &(b, ..)) in self.mitres.iter().enumerate() {
             let next = self.mitres[if i + 1 == self.mitres.len() { 0 } else { i + 1 }].0;
-            centres.push(None);
             along.push(Some(next - b));
         }
     }
@@ -474,35 +485,26 @@ impl Raw {
     fn fill(&mut self, corners: &[Corner], directions: &[Coord], d: f64, close: bool, check: bool) {
         self.pts.clear();
         self.tips.clear();
+        self.arcs.clear();
         self.check = check;
         self.along.clear();
         if !self.mitres.is_empty() && self.mitres.len() == corners.len() {
-            // Its points in one tight pass, its `centres` kept from the last distance
-            // (copied again only after a tip was closed in them).
-            if !self.shaped {
-                self.centres.clear();
-                self.centres.extend_from_slice(&self.shape.0);
-                self.shaped = true;
-            }
+            // Its points in one tight pass.
             if check {
-                self.along.extend_from_slice(&self.shape.1);
+                self.along.extend_from_slice(&self.shape);
             }
             self.pts
                 .extend(self.mitres.iter().map(|&(b, m, k)| b + m * (d / k)));
             return;
         }
-        self.shaped = false;
-        self.centres.clear();
         for corner in corners {
             match *corner {
                 Corner::Mitre { b, m, k } => {
                     self.pts.push(b + m * (d / k));
-                    self.centres.push(None);
                 }
                 Corner::Tip { b, nu, nv } => {
                     self.tips.push((self.pts.len(), None));
                     self.pts.extend([b + nu * d, b, b + nv * d]);
-                    self.centres.extend([None, None, None]);
                 }
                 Corner::Arc {
                     b,
@@ -510,14 +512,12 @@ impl Raw {
                     nv,
                     ref inner,
                 } => {
+                    self.arcs.push((self.pts.len(), inner.len() + 1, b));
                     self.pts.push(b + nu * d);
-                    self.centres.push(Some(b));
                     for &w in &directions[inner.clone()] {
                         self.pts.push(b + w * d);
-                        self.centres.push(Some(b));
                     }
                     self.pts.push(b + nv * d);
-                    self.centres.push(None);
                 }
             }
         }
@@ -541,6 +541,18 @@ impl Raw {
         if close && !self.tips.is_empty() {
             self.close_tips();
         }
+    }
+
+    /// The vertex of the arc whose chord is the segment from point `i`, if it is one.
+    fn own(&self, i: usize) -> Option<Coord> {
+        // The first arc ending past `i` (one after another where there are few).
+        let k = if self.arcs.len() <= FEW_ARCS {
+            self.arcs.iter().position(|a| i < a.0 + a.1)?
+        } else {
+            self.arcs.partition_point(|a| a.0 + a.1 <= i)
+        };
+        let &(first, _, b) = self.arcs.get(k)?;
+        (first <= i).then_some(b)
     }
 
     /// Whether the segment from point `i` runs against the edge it was moved from.
@@ -590,14 +602,12 @@ impl Raw {
             }
         }
         // In place: each closed tip's three points become its mitre, the rest move up.
-        self.shaped = false;
         let check = self.check;
-        let (pts, centres, along) = (&mut self.pts, &mut self.centres, &mut self.along);
+        let (pts, along) = (&mut self.pts, &mut self.along);
         let (mut to, mut from) = (0, 0);
         for &(at, x) in &self.tips {
             for i in from..at {
                 pts[to] = pts[i];
-                centres[to] = centres[i];
                 if check {
                     along[to] = along[i];
                 }
@@ -606,7 +616,6 @@ impl Raw {
             if let Some(x) = x {
                 // On along the edge out of the tip, as the tip's last point was.
                 pts[to] = x;
-                centres[to] = None;
                 if check {
                     along[to] = along[at + 2];
                 }
@@ -614,7 +623,6 @@ impl Raw {
             } else {
                 for i in at..at + 3 {
                     pts[to] = pts[i];
-                    centres[to] = centres[i];
                     if check {
                         along[to] = along[i];
                     }
@@ -625,16 +633,27 @@ impl Raw {
         }
         for i in from..n {
             pts[to] = pts[i];
-            centres[to] = centres[i];
             if check {
                 along[to] = along[i];
             }
             to += 1;
         }
         pts.truncate(to);
-        centres.truncate(to);
         if check {
             along.truncate(to);
+        }
+        // Each arc moved up two points for each tip closed before it.
+        let mut closed = 0;
+        let mut tips = self.tips.iter().peekable();
+        for arc in self.arcs.iter_mut() {
+            while let Some(&&(at, x)) = tips.peek() {
+                if at > arc.0 {
+                    break;
+                }
+                closed += usize::from(x.is_some());
+                tips.next();
+            }
+            arc.0 -= 2 * closed;
         }
     }
 }
@@ -904,6 +923,99 @@ const RUN: usize = 8;
 pub(super) struct Boundary {
     sides: Vec<Side>,
     runs: Vec<Run>,
+    /// The reflex corners drawn as arcs of chords, where a point is near the boundary
+    /// only inside the chords (`Arcs::covers`).
+    arcs: Arcs,
+}
+
+/// Every reflex corner drawn as an arc of chords (`Corner::Arc`): its vertex, the
+/// directions of its first and last points from it and the range of its inner ones in
+/// `directions` (the unit directions of every arc's inner points, which its raw offset
+/// is drawn with).
+#[derive(Default)]
+struct Arcs {
+    fans: Vec<(Coord, Coord, Coord, std::ops::Range<usize>)>,
+    directions: Vec<Coord>,
+    /// Whether `fans` is sorted by vertex (more than [`FEW_ARCS`]: looked up by halves).
+    sorted: bool,
+    /// The cosine of half the arc step (no chord spans more): within `deep·d` of its
+    /// vertex a point is inside an arc's chords if it lies in the arc's wedge.
+    deep: f64,
+}
+
+/// Arcs up to this many are looked up one after another.
+const FEW_ARCS: usize = 16;
+
+impl Arcs {
+    /// The arcs of these corners (a ring's) added.
+    fn add(&mut self, corners: &[Corner]) {
+        for corner in corners {
+            if let Corner::Arc {
+                b,
+                nu,
+                nv,
+                ref inner,
+            } = *corner
+            {
+                self.fans.push((b, nu, nv, inner.clone()));
+            }
+        }
+    }
+
+    /// Where `v` is the vertex of an arc of chords: whether `p` lies inside the polygon
+    /// its chords make with it (the vertex, `v + nu·d`, `v + w·d`…, `v + nv·d`), by more
+    /// than a rounding. `None` at any other vertex.
+    ///
+    /// This is the rule [`keep`] measures a point by at such a vertex, not the exact
+    /// distance `d` about it: the raw offsets are drawn with the chords, and their
+    /// crossings are found on the chords, so a point between the chords and the exact arc
+    /// is on the far side of the raw offset drawn there. Measured by the exact arc, a
+    /// piece of another ring with its middle in that sliver was dropped whole though no
+    /// raw offset crossed it (most of it on the erosion). Only a point whose foot on an
+    /// edge is that vertex asks: a point past the vertex but outside its arc's wedge is
+    /// nearer the other edge at the vertex than the vertex itself, which decides.
+    #[inline(never)]
+    fn covers(&self, v: Coord, p: Coord, d: f64) -> Option<bool> {
+        let from = if self.sorted {
+            self.fans
+                .partition_point(|(b, ..)| b.x.total_cmp(&v.x).then(b.y.total_cmp(&v.y)).is_lt())
+        } else {
+            0
+        };
+        let mut found = None;
+        for &(b, nu, nv, ref inner) in &self.fans[from..] {
+            if b != v {
+                if self.sorted {
+                    break;
+                }
+                continue;
+            }
+            let inside = self.chords_cover(nu, &self.directions[inner.clone()], nv, p - v, d);
+            found = Some(found == Some(true) || inside);
+        }
+        found
+    }
+
+    /// Whether `x` (from an arc's vertex) lies inside the polygon of the vertex and the
+    /// chords between the ends `w·d` of the directions `nu`, `inner`…, `nv` (turning
+    /// clockwise), by more than `1e-9·d` (a point on a chord is not: a chord's own piece
+    /// is measured on it).
+    fn chords_cover(&self, nu: Coord, inner: &[Coord], nv: Coord, x: Coord, d: f64) -> bool {
+        let mut u = nu;
+        for &v in inner.iter().chain(std::iter::once(&nv)) {
+            // The sector between `u` and `v` (at most half a turn: both tests hold only
+            // inside it).
+            if cross(u, x) <= 0.0 && cross(x, v) <= 0.0 {
+                let (a, e) = (u * d, (v - u) * d);
+                // The vertex is on the chord's right: inside where `x` is too.
+                let side = cross(e, x - a);
+                let margin = 1e-9 * d;
+                return side < 0.0 && side * side > margin * margin * (e.x * e.x + e.y * e.y);
+            }
+            u = v;
+        }
+        false
+    }
 }
 
 /// A run of consecutive edges of a ring: its bounds, the height where it starts and
@@ -1529,30 +1641,26 @@ fn undecided(
                 !raw.reversed(seg(j))
                     && keep(
                         (point(j) + point(j + 1)) / 2.0,
-                        raw.centres[seg(j)],
+                        || raw.own(seg(j)),
                         boundary,
                         d,
                     )
             }))
 }
 
-/// Whether a piece lies on the erosion's boundary: the point `mid` in its middle (moved
-/// onto the arc about `centre`, for a chord) at least `d` from every boundary edge and
-/// inside the region. The edges are looked at run by run (`Boundary`): a run whose
+/// Whether a piece lies on the erosion's boundary: the point `p` in its middle inside the
+/// region and not near it, as the raw offsets are drawn: at least `d` from every boundary
+/// edge, except where its foot on an edge is a reflex corner drawn as an arc of chords,
+/// where only a point inside those chords is near ([`Arcs::covers`]: a chord's own middle
+/// is measured where it is, on the chord, not moved onto the exact arc). The pieces were
+/// cut where the raw offsets cross, so each lies wholly on one side of every other ring's
+/// raw offset: its middle point decides for all of it. The edges are looked at run by run (`Boundary`): a run whose
 /// bounds, grown by `reach`, miss the point has no edge near it, and its edges' crossings
 /// of the ray east of the point are counted from its ends alone (every edge spanning the
 /// point's height crosses the ray where the run lies wholly east of it, none where it
 /// lies west, above or below); only the runs about the point are tested edge by edge, as
 /// before (a holed square's 68 edges were all tested for every piece).
-fn keep(mid: Coord, centre: Option<Coord>, boundary: &Boundary, d: f64) -> bool {
-    let mut p = mid;
-    if let Some(c) = centre {
-        let r = p - c;
-        let len = math::hypot(r.x, r.y);
-        if len > 0.0 {
-            p = c + r * (d / len);
-        }
-    }
+fn keep(p: Coord, own: impl Fn() -> Option<Coord>, boundary: &Boundary, d: f64) -> bool {
     let limit = d * (1.0 - 1e-9);
     // An edge whose bounds, grown by `limit` (and a margin for rounding), miss `p` is
     // farther than `limit`: only its crossing of the ray is counted.
@@ -1563,7 +1671,14 @@ fn keep(mid: Coord, centre: Option<Coord>, boundary: &Boundary, d: f64) -> bool 
         let grow = band + run.slack;
         let (lo, hi) = (run.lo, run.hi);
         if p.x >= lo.x - grow && p.x <= hi.x + grow && p.y >= lo.y - grow && p.y <= hi.y + grow {
-            match near(p, &boundary.sides[run.sides.clone()], reach, limit) {
+            match near(
+                p,
+                &boundary.sides[run.sides.clone()],
+                (&boundary.arcs, &own),
+                d,
+                reach,
+                limit,
+            ) {
                 Some(flips) => inside ^= flips,
                 None => return false,
             }
@@ -1576,9 +1691,17 @@ fn keep(mid: Coord, centre: Option<Coord>, boundary: &Boundary, d: f64) -> bool 
 
 /// Whether `p` is farther than `limit` from every one of these sides (`None` if not),
 /// and then whether the ray east of it crosses an odd number of them: [`keep`]'s test of
-/// one edge after another, for the runs about `p`.
+/// one edge after another, for the runs about `p`. A side within `limit` whose foot is an
+/// arc's vertex is near only where `p` lies inside that arc's chords (`clear_of_arc`).
 #[inline]
-fn near(p: Coord, sides: &[Side], reach: f64, limit: f64) -> Option<bool> {
+fn near(
+    p: Coord,
+    sides: &[Side],
+    (arcs, own): (&Arcs, &impl Fn() -> Option<Coord>),
+    d: f64,
+    reach: f64,
+    limit: f64,
+) -> Option<bool> {
     // An edge that misses the band `p.y ± reach` is neither near `p` nor crosses the ray
     // (a crossing edge spans `p.y`): most edges are passed on two comparisons.
     let band = reach.max(0.0);
@@ -1591,14 +1714,22 @@ fn near(p: Coord, sides: &[Side], reach: f64, limit: f64) -> Option<bool> {
         {
             let e = b - a;
             let len2 = e.x * e.x + e.y * e.y;
-            let t = if len2 > 0.0 {
-                (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+            let s = if len2 > 0.0 {
+                ((p - a).x * e.x + (p - a).y * e.y) / len2
             } else {
                 0.0
             };
-            let q = a + e * t - p;
+            let q = a + e * s.clamp(0.0, 1.0) - p;
             if q.x * q.x + q.y * q.y < limit * limit {
-                return None;
+                if arcs.fans.is_empty() {
+                    return None;
+                }
+                // Its foot the vertex of the arc `p` is on a chord of: clear of it.
+                let on_own = (s <= 0.0 || s >= 1.0)
+                    && own().is_some_and(|v| v == if s >= 1.0 { b } else { a });
+                if !(on_own || clear_of_arc(p, (a, b), s, arcs, d)) {
+                    return None;
+                }
             }
         }
         if (a.y <= p.y) != (b.y <= p.y) && a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y) > p.x {
@@ -1608,24 +1739,35 @@ fn near(p: Coord, sides: &[Side], reach: f64, limit: f64) -> Option<bool> {
     Some(inside)
 }
 
+/// Whether `p`, within `d` of the side `a`–`b` at its parameter `s`, is not near it
+/// after all: its foot an end that is an arc's vertex, and `p` not inside that arc's
+/// chords (certainly inside within `deep·d` of the vertex: in the arc's wedge, and
+/// nearer another edge than the vertex outside it).
+#[cold]
+#[inline(never)]
+fn clear_of_arc(p: Coord, (a, b): (Coord, Coord), s: f64, arcs: &Arcs, d: f64) -> bool {
+    if s > 0.0 && s < 1.0 {
+        return false;
+    }
+    let end = if s >= 1.0 { b } else { a };
+    let q = end - p;
+    let deep = arcs.deep * d * (1.0 - 1e-6);
+    q.x * q.x + q.y * q.y >= deep * deep && arcs.covers(end, p, d) == Some(false)
+}
+
 /// [`keep`] as it was, every edge tested one after another (the tests compare the two).
 #[cfg(test)]
-pub(super) fn keep_edge_by_edge(
-    mid: Coord,
-    centre: Option<Coord>,
-    boundary: &Boundary,
-    d: f64,
-) -> bool {
-    let mut p = mid;
-    if let Some(c) = centre {
-        let r = p - c;
-        let len = math::hypot(r.x, r.y);
-        if len > 0.0 {
-            p = c + r * (d / len);
-        }
-    }
+pub(super) fn keep_edge_by_edge(p: Coord, own: Option<Coord>, boundary: &Boundary, d: f64) -> bool {
     let limit = d * (1.0 - 1e-9);
-    near(p, &boundary.sides, limit + 1e-9, limit).unwrap_or(false)
+    near(
+        p,
+        &boundary.sides,
+        (&boundary.arcs, &|| own),
+        d,
+        limit + 1e-9,
+        limit,
+    )
+    .unwrap_or(false)
 }
 
 /// The kept pieces joined end to start at their cuts into closed rings; `None` where a
@@ -1704,15 +1846,13 @@ mod tests {
     }
 
     fn raw(pts: Vec<Coord>) -> Raw {
-        let centres = vec![None; pts.len()];
         Raw {
             along: vec![None; pts.len()],
             check: true,
             pts,
-            centres,
             tips: Vec::new(),
-            shape: (Vec::new(), Vec::new()),
-            shaped: true,
+            arcs: Vec::new(),
+            shape: Vec::new(),
             mitres: Vec::new(),
         }
     }

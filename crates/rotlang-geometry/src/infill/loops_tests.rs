@@ -85,16 +85,27 @@ proptest! {
         size in 1.0f64..200.0,
         depth in 0.001f64..0.8,
         picks in proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0), 1..12),
-        arc in proptest::option::of((0.0f64..1.0, 0.0f64..1.0)),
+        arc in proptest::collection::vec((0.0f64..1.0, 0.9f64..1.0), 0..12),
     ) {
         let region = region(&radii, size, &hole);
         let eroder = Eroder::new(&region, 0.5);
         let d = depth * size;
-        let centre = arc.map(|(x, y)| Coord { x: (x - 0.5) * size, y: (y - 0.5) * size });
-        for p in probes(&eroder.boundary, d, &picks, size) {
+        let mut points: Vec<(Coord, Option<Coord>)> =
+            probes(&eroder.boundary, d, &picks, size).into_iter().map(|p| (p, None)).collect();
+        // About the arcs' vertices, between their chords and the exact arc, some as the
+        // middle of a chord of the arc (that arc not asked).
+        for (i, &(turn, r)) in arc.iter().enumerate() {
+            let fans = &eroder.boundary.arcs.fans;
+            if let Some(&(b, ..)) = fans.get(i % fans.len().max(1)) {
+                let a = std::f64::consts::TAU * turn;
+                let p = b + Coord { x: math::cos(a), y: math::sin(a) } * (r * d);
+                points.push((p, if i % 2 == 0 { Some(b) } else { None }));
+            }
+        }
+        for (p, own) in points {
             prop_assert_eq!(
-                keep(p, centre, &eroder.boundary, d),
-                keep_edge_by_edge(p, centre, &eroder.boundary, d),
+                keep(p, || own, &eroder.boundary, d),
+                keep_edge_by_edge(p, own, &eroder.boundary, d),
                 "at {:?}, d {}", p, d
             );
         }
@@ -211,12 +222,11 @@ fn runs_cover_each_ring_end_to_start() {
 fn raw_ring(pts: Vec<Coord>) -> Raw {
     Raw {
         along: vec![None; pts.len()],
-        centres: vec![None; pts.len()],
         check: true,
         pts,
         tips: Vec::new(),
-        shape: (Vec::new(), Vec::new()),
-        shaped: true,
+        arcs: Vec::new(),
+        shape: Vec::new(),
         mitres: Vec::new(),
     }
 }
@@ -401,6 +411,40 @@ proptest! {
                 h.iter().map(|&(r, s, t, id)| (r, s, t.to_bits(), id)).collect()
             };
             prop_assert_eq!(bits(&placed), bits(&sorted));
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// `Raw::own` names the arc of every chord, after sharp tips are closed too (their
+    /// points move up): each segment it names is a chord `d` from that vertex at both
+    /// ends, and it names as many as the arcs have chords.
+    #[test]
+    fn each_chord_is_known_by_its_arc(
+        radii in proptest::collection::vec(0.2f64..1.0, 3..16),
+        hole in proptest::collection::vec(0.8f64..1.0, 0..12),
+        size in 4.0f64..25.0,
+        depth in 0.01f64..0.6,
+    ) {
+        let region = region(&radii, size, &hole);
+        let mut eroder = Eroder::new(&region, 0.5);
+        let d = depth * size;
+        let _ = eroder.rings(d);
+        for raw in &eroder.raws {
+            let n = raw.pts.len();
+            let mut named = 0;
+            for i in 0..n {
+                if let Some(b) = raw.own(i) {
+                    named += 1;
+                    for p in [raw.pts[i], raw.pts[(i + 1) % n]] {
+                        let r = math::hypot((p - b).x, (p - b).y);
+                        prop_assert!((r - d).abs() <= 1e-9 * (d + size), "{} from {:?}, not {}", r, b, d);
+                    }
+                }
+            }
+            prop_assert_eq!(named, raw.arcs.iter().map(|a| a.1).sum::<usize>());
         }
     }
 }

@@ -1189,12 +1189,13 @@ pub(super) fn known_concave(region: &Region) -> bool {
 /// way none is far. Uncut both (no part ended, no ring met another), the same without the
 /// second case.
 ///
-/// Not where a reflex corner is an arc of chords: the chords cut inside the exact arc, so
-/// two rings' raw offsets may miss each other where a piece's middle lies nearer the
-/// other ring than the distance, and the eroder leaves out a piece whose corner is kept
-/// in the exact erosion (a pentagon with an octagonal hole: the random shapes found it).
-/// A reflex mitre lies outside its arc: a point outside another ring's raw offset is as
-/// far from that ring as the distance, and a piece kept is on the erosion.
+/// Not where a reflex corner is an arc of chords. The first random shapes that found
+/// stretches past this bound with arcs (a pentagon with an octagonal hole) were the
+/// eroder leaving out real pieces (its keep test measured the exact arc, not the chords
+/// drawn; it measures the chords now), but with that fixed, random outlines with square
+/// holes still find middle stretches here: the bound is not shown for chords, and is not
+/// taken. A reflex mitre lies outside its arc: a point outside another ring's raw offset
+/// is as far from that ring as the distance, and a piece kept is on the erosion.
 /// (The holed square's meeting steps at 10, 20 and 40%: a third of its layer at 10%.)
 fn nothing_far(
     (before, now): (Cutting, Cutting),

@@ -260,10 +260,11 @@ fn blunt_with_holes(
     MultiPolygon::new(vec![Polygon::new(outline, holes)])
 }
 
-/// The shapes that showed a middle ring may not be left out where a reflex corner is an
-/// arc (a hole of 4 or 5 corners): the eroder left out a piece of the next loops (the
-/// chords cut inside the exact arc), and the middle ring printed stretches there. Not
-/// left out now (`nothing_far` declines arcs), the same loops as the former code.
+/// The shapes that first showed a middle ring may not be left out where a reflex corner
+/// is an arc (a hole of 4 or 8 corners): the eroder left out a piece of the next loops
+/// there (fixed since: `keep` measures the chords drawn), and the middle ring printed
+/// stretches. Not left out (`nothing_far` declines arcs: square holes still find
+/// stretches past its bound), the same loops as the former code.
 #[test]
 fn middle_rings_stay_where_a_hole_has_arcs() {
     let cases = [

@@ -8,8 +8,8 @@ use super::{Region, scratch};
 thread_local! {
     /// `families`' crossings, kept between layers.
     static CROSSINGS: std::cell::Cell<Vec<(i64, f64)>> = const { std::cell::Cell::new(Vec::new()) };
-    /// The rings turned into a family's frame (`scan_lines`), kept between layers.
-    static LOCAL: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+    /// The rings' heights in a family's frame (`scan_lines`), kept between layers.
+    static LOCAL: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// One family of lines per offset (degrees from θ), `spacing` apart, every family with a
@@ -115,11 +115,16 @@ pub(crate) fn families_by(
     scratch::give(&LOCAL, local);
 }
 
-/// The crossings of every line across the rings (turned into `frame`, in `local`) with
-/// every edge, by the half-open rule, each edge from the vertex before to the vertex (as
+/// The crossings of every line across the rings (turned into `frame`) with every edge,
+/// by the half-open rule, each edge from the vertex before to the vertex (as
 /// `crossings_of` takes them). The lines run from the first line above the lowest
 /// vertex to the last below the highest, by `Vertex`'s margins: every line the rule can
 /// take on some edge.
+///
+/// Only the vertices' heights in the frame are kept (`local`): the rule reads nothing
+/// else. A crossed edge's two ends are turned whole where it is crossed (`to_local`:
+/// the same products as their heights, so the same bits), a few edges a line against
+/// every vertex's other coordinate made and stored.
 ///
 /// Not inlined into `families_by`: inlined, its loops cost about 170 instructions a
 /// layer more (star triangles 10%, callgrind), the registers of the caller's loop over
@@ -131,21 +136,21 @@ fn scan_lines(
     spacing: f64,
     shift: f64,
     inv: f64,
-    local: &mut Vec<Coord>,
+    local: &mut Vec<f64>,
     out: &mut Vec<(i64, f64)>,
 ) {
     local.clear();
     for ring in rings {
-        local.extend(ring.iter().map(|&p| frame.to_local(p)));
+        local.extend(ring.iter().map(|&p| frame.to_local(p).y));
     }
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for q in local.iter() {
+    for &q in local.iter() {
         // By comparisons, not `min`/`max` (which handle NaN): coordinates are finite.
-        if q.y < lo {
-            lo = q.y;
+        if q < lo {
+            lo = q;
         }
-        if q.y > hi {
-            hi = q.y;
+        if q > hi {
+            hi = q;
         }
     }
     if local.is_empty() {
@@ -163,8 +168,11 @@ fn scan_lines(
                 continue;
             };
             let mut a = last;
-            for &b in r {
-                if (a.y <= y) != (b.y <= y) {
+            for (i, &b) in r.iter().enumerate() {
+                if (a <= y) != (b <= y) {
+                    // The edge's ends turned whole: the same products as their heights.
+                    let before = if i == 0 { ring.len() - 1 } else { i - 1 };
+                    let (a, b) = (frame.to_local(ring[before]), frame.to_local(ring[i]));
                     out.push((k, a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y)));
                 }
                 a = b;

@@ -99,7 +99,7 @@ pub(crate) fn families_by(
                 }
             }
         }
-        crossings.sort_unstable_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
+        sort_crossings(&mut crossings);
         out.reserve(crossings.len() / 2);
         for line in crossings.chunk_by(|p, q| p.0 == q.0) {
             let y = line[0].0 as f64 * spacing + shift;
@@ -113,6 +113,20 @@ pub(crate) fn families_by(
     }
     scratch::give(&CROSSINGS, crossings);
     scratch::give(&LOCAL, local);
+}
+
+/// `crossings` by line, then x (`total_cmp`). A small layer's family has a pair, in
+/// order as often as not: told by one comparison, not the library's sort's setting up
+/// (the same order: elements comparing equal are the same bits).
+pub(crate) fn sort_crossings(crossings: &mut [(i64, f64)]) {
+    let by_line = |p: &(i64, f64), q: &(i64, f64)| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1));
+    if let [a, b] = crossings {
+        if by_line(a, b).is_gt() {
+            std::mem::swap(a, b);
+        }
+    } else {
+        crossings.sort_unstable_by(by_line);
+    }
 }
 
 /// The crossings of every line across the rings (turned into `frame`) with every edge,

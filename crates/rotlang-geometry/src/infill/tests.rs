@@ -2227,6 +2227,25 @@ proptest! {
     }
 }
 
+proptest! {
+    /// The crossings sorted by `sort_crossings` (a pair by one comparison) are those the
+    /// library's sort by line then x gives, to the bit: any count, lines and x repeated,
+    /// zeros of both signs.
+    #[test]
+    fn crossings_sorted_as_the_librarys_sort(
+        crossings in prop::collection::vec(
+            (0i64..3, prop_oneof![Just(0.0f64), Just(-0.0), Just(1.5), -5.0f64..5.0]),
+            0..6),
+    ) {
+        let mut fast = crossings.clone();
+        straight::sort_crossings(&mut fast);
+        let mut slow = crossings;
+        slow.sort_unstable_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
+        let bits = |v: &[(i64, f64)]| v.iter().map(|&(k, x)| (k, x.to_bits())).collect::<Vec<_>>();
+        prop_assert_eq!(bits(&fast), bits(&slow));
+    }
+}
+
 /// A region whose inset is one ring of at most 32 edges (the star's) gets the small
 /// ring's router, which routes its layer's travels as the general router does.
 #[test]

@@ -181,15 +181,18 @@ fn scan_lines(
             let Some(&last) = r.last() else {
                 continue;
             };
-            let mut a = last;
+            // Which side of the line the edge's start is on, carried from the edge
+            // before (one comparison an edge, not two).
+            let mut below = last <= y;
             for (i, &b) in r.iter().enumerate() {
-                if (a <= y) != (b <= y) {
+                let b_below = b <= y;
+                if below != b_below {
                     // The edge's ends turned whole: the same products as their heights.
                     let before = if i == 0 { ring.len() - 1 } else { i - 1 };
                     let (a, b) = (frame.to_local(ring[before]), frame.to_local(ring[i]));
                     out.push((k, a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y)));
                 }
-                a = b;
+                below = b_below;
             }
         }
     }

@@ -99,12 +99,14 @@ pub(crate) fn simplify_each(path: &mut Vec<Coord>, min: f64) -> bool {
 /// inside `rings` (the inset's outlines and holes). `monotonic`: the pattern's frame
 /// for a monotonic order (made only then: its sine and cosine), else nearest first.
 /// `lengths`: each path's length as this would sum it, where known (NaN where not, or
-/// none at all; `simplify_measured`'s), given back emptied.
+/// none at all; `simplify_measured`'s), given back emptied. `left`: `rings` is one ring
+/// known counter-clockwise (`Region::one_ring_left`; `Router::told`).
 pub(crate) fn order(
     paths: Vec<Vec<Coord>>,
     mut lengths: Vec<f64>,
     monotonic: Option<Frame>,
     rings: &[Vec<Coord>],
+    left: bool,
 ) -> Toolpaths {
     let ordered = match monotonic {
         Some(frame) => {
@@ -121,7 +123,7 @@ pub(crate) fn order(
         travels: Vec::with_capacity(ordered.len().saturating_sub(1)),
         ..Toolpaths::default()
     };
-    let router = super::travel::Router::new(rings);
+    let router = super::travel::Router::told(rings, left);
     let mut ordered = ordered;
     // (Two copies: the lines' paths, with no lengths, laid out as they were without.)
     if measured {

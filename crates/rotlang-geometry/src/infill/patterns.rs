@@ -158,6 +158,7 @@ impl Region {
             lengths,
             monotonic.then(|| Frame::new(centre, theta)),
             if self.convex { &[] } else { &self.rings },
+            !self.convex && self.one_ring_left(),
         ))
     }
 }
@@ -396,8 +397,8 @@ mod tests {
             )
             .unwrap();
             let frame = monotonic.then(|| super::Frame::new(Coord { x: 1.0, y: -2.0 }, 0.7));
-            let with = super::order::order(paths.clone(), lengths, frame, region.rings());
-            let without = super::order::order(paths, Vec::new(), frame, region.rings());
+            let with = super::order::order(paths.clone(), lengths, frame, region.rings(), false);
+            let without = super::order::order(paths, Vec::new(), frame, region.rings(), false);
             prop_assert_eq!(with.length.to_bits(), without.length.to_bits());
             prop_assert_eq!(with.travel.to_bits(), without.travel.to_bits());
             prop_assert_eq!(with.polylines, without.polylines);

@@ -191,6 +191,13 @@ impl Region {
         self.convex
     }
 
+    /// Whether the inset is one ring that the raw offset proved counter-clockwise by
+    /// `signed_area`'s own sum (`offset_read` keeps a ring only where that sum is
+    /// positive): the side a router over it finds, known without summing it again.
+    pub(crate) fn one_ring_left(&self) -> bool {
+        self.pooled && self.rings.len() == 1
+    }
+
     /// The rings of the inset: outlines first, then holes.
     pub(crate) fn rings(&self) -> &[Vec<Coord>] {
         &self.rings

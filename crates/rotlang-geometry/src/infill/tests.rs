@@ -1881,7 +1881,7 @@ fn lightning_by_two_trees(region: &Region, params: &Params) -> Toolpaths {
     } else {
         region.rings()
     };
-    order::order(paths, Vec::new(), None, rings)
+    order::order(paths, Vec::new(), None, rings, false)
 }
 
 proptest! {
@@ -2189,6 +2189,60 @@ proptest! {
             let from_edge = ends.point(a, 0);
             prop_assert_eq!(small.route(from_edge, q), general.route(from_edge, q));
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// A region whose one ring the raw offset made (`Region::one_ring_left`) is
+    /// counter-clockwise by `signed_area`, and the router told so (`Router::told`, its
+    /// area not summed) has the layout (boxes, scale, side) of the one that sums it and
+    /// routes every move as it does: random radial outlines of 3 to 24 vertices (reflex
+    /// corners, arcs), moves between points on edges, vertices and points of the box.
+    #[test]
+    fn a_router_told_the_rings_side_is_the_router_that_sums_it(
+        outer in prop::collection::vec(2.0f64..12.0, 3..24),
+        turn in 0.0f64..TAU,
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0), (0usize..1000, 0.0f64..1.0), 0u8..3), 1..12),
+    ) {
+        let shape = holed_radial(&outer, &[], turn, 2.5);
+        let Ok(region) = Region::new(&shape, W) else {
+            return Ok(());
+        };
+        prop_assume!(region.one_ring_left());
+        let rings = region.rings();
+        prop_assert!(super::offset::signed_area(&rings[0]) > 0.0);
+        let told = travel::Router::told(rings, true);
+        let summed = travel::Router::new(rings);
+        prop_assert_eq!(told.layout(), summed.layout());
+        let ends = MoveEnds::new(rings);
+        for (a, b, kind) in moves {
+            let (p, q) = (ends.point(a, kind), ends.point(b, kind));
+            prop_assert_eq!(told.route(p, q), summed.route(p, q));
+            let from_edge = ends.point(a, 0);
+            prop_assert_eq!(told.route(from_edge, q), summed.route(from_edge, q));
+        }
+    }
+}
+
+proptest! {
+    /// The crossings sorted by `sort_crossings` (a pair by one comparison) are those the
+    /// library's sort by line then x gives, to the bit: any count, lines and x repeated,
+    /// zeros of both signs.
+    #[test]
+    fn crossings_sorted_as_the_librarys_sort(
+        crossings in prop::collection::vec(
+            (0i64..3, prop_oneof![Just(0.0f64), Just(-0.0), Just(1.5), -5.0f64..5.0]),
+            0..6),
+    ) {
+        let mut fast = crossings.clone();
+        straight::sort_crossings(&mut fast);
+        let mut slow = crossings;
+        slow.sort_unstable_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
+        let bits = |v: &[(i64, f64)]| v.iter().map(|&(k, x)| (k, x.to_bits())).collect::<Vec<_>>();
+        prop_assert_eq!(bits(&fast), bits(&slow));
     }
 }
 

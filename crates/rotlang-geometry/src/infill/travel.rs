@@ -142,11 +142,23 @@ fn slack(largest: f64) -> f64 {
 
 impl<'a> Router<'a> {
     pub(crate) fn new(rings: &'a [Vec<Coord>]) -> Router<'a> {
+        Router::told(rings, false)
+    }
+
+    /// [`Router::new`], told (`left`) that `rings` is one ring whose `signed_area` is
+    /// known positive (`Region::one_ring_left`): a small one's area is then not summed
+    /// (the answer that sum would give, to the bit: `offset_read` tested the same terms
+    /// in the same order).
+    pub(crate) fn told(rings: &'a [Vec<Coord>], left: bool) -> Router<'a> {
         // A small region (a star's or an L's inset, a few dozen edges, whose runs of 8
         // span most of it) in runs of 4: more of them missed by a move's box.
         let vertices: usize = rings.iter().map(Vec::len).sum();
         if rings.len() == 1 && (3..=SMALL).contains(&vertices) {
-            return Router::small(rings);
+            return if left {
+                Router::small_of::<false>(rings)
+            } else {
+                Router::small_of::<true>(rings)
+            };
         }
         Router::with_chunk(rings, if vertices <= SMALL { CHUNK / 2 } else { CHUNK })
     }
@@ -156,7 +168,14 @@ impl<'a> Router<'a> {
     /// ring that also sums its signed area in `signed_area`'s order (edge by edge, the
     /// closing edge last: the same sum to the bit), so that which side the region lies
     /// on (`region_left`) is known without a second pass.
+    #[cfg(test)]
     pub(crate) fn small(rings: &'a [Vec<Coord>]) -> Router<'a> {
+        Router::small_of::<true>(rings)
+    }
+
+    /// [`Router::small`], the area summed only where `SUM` (else the ring is known
+    /// counter-clockwise: `Router::told`).
+    fn small_of<const SUM: bool>(rings: &'a [Vec<Coord>]) -> Router<'a> {
         const STEP: usize = CHUNK / 2;
         let r = &rings[0];
         // The ring's box first (set once its chunks are measured), as in `with_chunk`.
@@ -176,7 +195,9 @@ impl<'a> Router<'a> {
             let (mut lo, mut hi) = (a, a);
             for &b in next {
                 crate::math::widen(&mut lo, &mut hi, b);
-                twice += super::offset::cross(a, b);
+                if SUM {
+                    twice += super::offset::cross(a, b);
+                }
                 a = b;
             }
             count += 1;
@@ -188,7 +209,9 @@ impl<'a> Router<'a> {
         let (mut lo, mut hi) = (a, a);
         for &b in rest.iter().chain(std::iter::once(&r[0])) {
             crate::math::widen(&mut lo, &mut hi, b);
-            twice += super::offset::cross(a, b);
+            if SUM {
+                twice += super::offset::cross(a, b);
+            }
             a = b;
         }
         count += 1;
@@ -202,7 +225,7 @@ impl<'a> Router<'a> {
         }
         boxes[0] = ring_box;
         // Counter-clockwise (a positive area) is an outline, as `region_left` finds.
-        let left_one = std::cell::OnceCell::from(twice / 2.0 > 0.0);
+        let left_one = std::cell::OnceCell::from(!SUM || twice / 2.0 > 0.0);
         Router::assembled(rings, boxes, Vec::new(), STEP, left_one, slack)
     }
 

@@ -74,6 +74,23 @@ pub(crate) fn widen(lo: &mut geo::Coord, hi: &mut geo::Coord, c: geo::Coord) {
     }
 }
 
+/// The squared distance from `p` to the segment `a`–`b` (its nearest point by the
+/// clamped projection; a point-like segment's is `a`). One expression for the infill's
+/// tests that compare it (concentric's spacing tests, the router's distance to an edge),
+/// so that they agree to the bit.
+#[inline(always)]
+pub(crate) fn segment_distance2(p: geo::Coord, a: geo::Coord, b: geo::Coord) -> f64 {
+    let e = b - a;
+    let len2 = e.x * e.x + e.y * e.y;
+    let t = if len2 > 0.0 {
+        (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let q = p - (a + e * t);
+    q.x * q.x + q.y * q.y
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -650,15 +650,7 @@ pub(super) fn in_bounds((lo, hi): (Coord, Coord), p: Coord, r: f64) -> bool {
 
 /// Whether `p` is within `r` of the segment `a`–`b`.
 pub(super) fn segment_within(a: Coord, b: Coord, p: Coord, r: f64) -> bool {
-    let e = b - a;
-    let len2 = e.x * e.x + e.y * e.y;
-    let t = if len2 > 0.0 {
-        (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let q = a + e * t;
-    (p - q).x * (p - q).x + (p - q).y * (p - q).y <= r * r
+    math::segment_distance2(p, a, b) <= r * r
 }
 
 /// The runs of a closed ring's vertices whose flag is set (the whole ring when all are),
@@ -1012,16 +1004,7 @@ impl Disc {
 
     /// The distance from the centre to the segment `a`–`b`.
     fn distance_to(&self, a: Coord, b: Coord) -> f64 {
-        let centre = self.centre;
-        let e = b - a;
-        let len2 = e.x * e.x + e.y * e.y;
-        let t = if len2 > 0.0 {
-            (((centre - a).x * e.x + (centre - a).y * e.y) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let q = centre - (a + e * t);
-        (q.x * q.x + q.y * q.y).sqrt()
+        math::segment_distance2(self.centre, a, b).sqrt()
     }
 
     /// Within `r − rho` (inner) and `r + rho` (outer), with the margin.
@@ -1058,18 +1041,7 @@ impl Disc {
                 continue;
             }
             let n = ring.len() - 1;
-            let at = |k: usize| {
-                let (a, b) = (ring[k], ring[k + 1]);
-                let e = b - a;
-                let len2 = e.x * e.x + e.y * e.y;
-                let t = if len2 > 0.0 {
-                    (((c - a).x * e.x + (c - a).y * e.y) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                let q = c - (a + e * t);
-                q.x * q.x + q.y * q.y
-            };
+            let at = |k: usize| math::segment_distance2(c, ring[k], ring[k + 1]);
             let (mut k, mut d) = (seg as usize, at(seg as usize));
             if d >= within {
                 // Forward while nearer, else backward while nearer (a few segments).
@@ -1244,6 +1216,20 @@ struct Loops {
     cutting: Cutting,
 }
 
+impl Loops {
+    /// Rings the eroder did not make (a convex inset's, the buffer's): nothing measured
+    /// as they were made, their cutting not known.
+    fn unmeasured(turns: f64, rings: Vec<Vec<Coord>>) -> Loops {
+        Loops {
+            rings,
+            turns,
+            largest: None,
+            stray: None,
+            cutting: Cutting::Other,
+        }
+    }
+}
+
 /// Twice a closed ring's signed area (counter-clockwise positive).
 fn twice_area(ring: &[Coord]) -> f64 {
     ring.windows(2)
@@ -1330,13 +1316,7 @@ impl<'a> Shrink<'a> {
                             ring.push(first);
                         }
                     }
-                    return Loops {
-                        turns: rings.len() as f64,
-                        rings,
-                        largest: None,
-                        stray: None,
-                        cutting: Cutting::Other,
-                    };
+                    return Loops::unmeasured(rings.len() as f64, rings);
                 }
                 Some(ConvexInset::Rings(raw)) => Some(raw.into_polygons()),
                 Some(ConvexInset::Polygons(polygons)) => Some(polygons),
@@ -1371,21 +1351,18 @@ impl<'a> Shrink<'a> {
             }
             area.buffer_with_style(BufferStyle::new(-d).line_join(LineJoin::Round(0.5)))
         });
-        Loops {
-            largest: None,
-            stray: None,
-            cutting: Cutting::Other,
-            turns: polygons
+        Loops::unmeasured(
+            polygons
                 .0
                 .iter()
                 .map(|p| 1.0 - p.interiors().len() as f64)
                 .sum(),
-            rings: polygons
+            polygons
                 .0
                 .iter()
                 .flat_map(|p| std::iter::once(p.exterior()).chain(p.interiors()))
                 .map(|r| r.0.clone())
                 .collect(),
-        }
+        )
     }
 }

@@ -6,8 +6,8 @@
 //! offsets are drawn (`keep`): about a reflex corner drawn as an arc of chords, a point is
 //! near only inside the chords, not inside the exact arc, or a piece of another ring with
 //! its middle between the two was dropped though no raw offset crossed it. The erosion's
-//! boundary is made of exactly those pieces; no polygon is rebuilt, which is what made geo's buffer and boolean difference
-//! cost 10–40 µs a loop. `None` where the offset touches itself without crossing (a
+//! boundary is made of exactly those pieces; no polygon is rebuilt, which is what made
+//! geo's buffer and boolean difference cost 10–40 µs a loop. `None` where the offset touches itself without crossing (a
 //! tangency), a chain does not close, or a stretch run backwards (an edge event) is not
 //! cut off as a whole swallowtail: the buffer decides then.
 
@@ -1654,12 +1654,13 @@ fn undecided(
 /// where only a point inside those chords is near ([`Arcs::covers`]: a chord's own middle
 /// is measured where it is, on the chord, not moved onto the exact arc). The pieces were
 /// cut where the raw offsets cross, so each lies wholly on one side of every other ring's
-/// raw offset: its middle point decides for all of it. The edges are looked at run by run (`Boundary`): a run whose
-/// bounds, grown by `reach`, miss the point has no edge near it, and its edges' crossings
-/// of the ray east of the point are counted from its ends alone (every edge spanning the
-/// point's height crosses the ray where the run lies wholly east of it, none where it
-/// lies west, above or below); only the runs about the point are tested edge by edge, as
-/// before (a holed square's 68 edges were all tested for every piece).
+/// raw offset: its middle point decides for all of it. The edges are looked at run by
+/// run (`Boundary`): a run whose bounds, grown by `reach`, miss the point has no edge
+/// near it, and its edges' crossings of the ray east of the point are counted from its
+/// ends alone (every edge spanning the point's height crosses the ray where the run lies
+/// wholly east of it, none where it lies west, above or below); only the runs about the
+/// point are tested edge by edge, as before (a holed square's 68 edges were all tested
+/// for every piece).
 fn keep(p: Coord, own: impl Fn() -> Option<Coord>, boundary: &Boundary, d: f64) -> bool {
     let limit = d * (1.0 - 1e-9);
     // An edge whose bounds, grown by `limit` (and a margin for rounding), miss `p` is
@@ -1845,17 +1846,7 @@ mod tests {
         apart(raws, &mut Vec::new()) == Layout::Apart
     }
 
-    fn raw(pts: Vec<Coord>) -> Raw {
-        Raw {
-            along: vec![None; pts.len()],
-            check: true,
-            pts,
-            tips: Vec::new(),
-            arcs: Vec::new(),
-            shape: Vec::new(),
-            mitres: Vec::new(),
-        }
-    }
+    use super::loops_tests::raw_ring as raw;
 
     fn polygon(n: usize, r: f64, at: (f64, f64), turns: usize, clockwise: bool) -> Vec<Coord> {
         (0..n * turns)

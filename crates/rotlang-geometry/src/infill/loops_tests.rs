@@ -219,7 +219,7 @@ fn runs_cover_each_ring_end_to_start() {
 }
 
 /// A raw ring of these points, as `fill` leaves one (no arcs, every segment checked).
-fn raw_ring(pts: Vec<Coord>) -> Raw {
+pub(super) fn raw_ring(pts: Vec<Coord>) -> Raw {
     Raw {
         along: vec![None; pts.len()],
         check: true,

@@ -379,12 +379,7 @@ impl<'a> Router<'a> {
                 return true;
             }
         }
-        let (from, count) = self.deep;
-        count > 0 && {
-            let edges = &self.boxes[from..from + count];
-            edges.iter().all(|&(a, e)| cross(e, p - a) > 1.0)
-                && edges.iter().all(|&(a, e)| cross(e, q - a) > 1.0)
-        }
+        self.deep.1 > 0 && self.deep_edges_clear(p) && self.deep_edges_clear(q)
     }
 
     /// The router over `rings` with its `boxes` (each ring's, then its chunks' of `chunk`
@@ -897,10 +892,7 @@ impl<'a> Router<'a> {
             if hi.x < a.x || lo.x > b.x || hi.y < a.y || lo.y > b.y {
                 continue;
             }
-            // Chunk c starts at edge c·chunk (below n: a later chunk exists only where
-            // `chunk` is less than n), and ends `chunk` edges on or at the ring's end.
-            let start = c * chunk;
-            let edges = start..if n - start > chunk { start + chunk } else { n };
+            let edges = self.edges(n, c);
             // Each edge's end is the next one's start: carried, not read again.
             let mut b = ring[edges.start];
             let mut side_b = side(b);
@@ -1522,15 +1514,7 @@ fn cross(a: Coord, b: Coord) -> f64 {
 }
 
 fn segment_distance(p: Coord, a: Coord, b: Coord) -> f64 {
-    let e = b - a;
-    let len2 = e.x * e.x + e.y * e.y;
-    let u = if len2 > 0.0 {
-        (((p - a).x * e.x + (p - a).y * e.y) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let c = a + e * u;
-    ((p - c).x * (p - c).x + (p - c).y * (p - c).y).sqrt()
+    crate::math::segment_distance2(p, a, b).sqrt()
 }
 
 pub(crate) fn length(path: &[Coord]) -> f64 {

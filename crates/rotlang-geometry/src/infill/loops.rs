@@ -459,6 +459,21 @@ struct Raw {
 }
 
 impl Raw {
+    /// A raw ring of these points, as `fill` leaves one (no arcs, every segment checked;
+    /// for the tests).
+    #[cfg(test)]
+    fn of(pts: Vec<Coord>) -> Raw {
+        Raw {
+            along: vec![None; pts.len()],
+            check: true,
+            pts,
+            tips: Vec::new(),
+            arcs: Vec::new(),
+            shape: Vec::new(),
+            mitres: Vec::new(),
+        }
+    }
+
     /// For a ring whose corners are all mitres, the mitres and its `along` (`shape`: the
     /// direction of each edge from its corner to the next), which do not depend on the
     /// distance; nothing for another ring.
@@ -1846,8 +1861,6 @@ mod tests {
         apart(raws, &mut Vec::new()) == Layout::Apart
     }
 
-    use super::loops_tests::raw_ring as raw;
-
     fn polygon(n: usize, r: f64, at: (f64, f64), turns: usize, clockwise: bool) -> Vec<Coord> {
         (0..n * turns)
             .map(|i| {
@@ -2006,25 +2019,25 @@ mod tests {
             Coord { x: 0.0, y: 4.0 },
         ];
         assert_eq!(convex(&notched), 0.0);
-        let hole = |r: f64, at: (f64, f64)| raw(polygon(12, r, at, 1, true));
+        let hole = |r: f64, at: (f64, f64)| Raw::of(polygon(12, r, at, 1, true));
         // A hole well inside the outline, and two holes apart.
-        assert!(apart_(&[raw(square.clone()), hole(2.0, (0.0, 0.0))]));
+        assert!(apart_(&[Raw::of(square.clone()), hole(2.0, (0.0, 0.0))]));
         assert!(apart_(&[
-            raw(square.clone()),
+            Raw::of(square.clone()),
             hole(1.0, (-3.0, 0.0)),
             hole(1.0, (3.0, 0.0))
         ]));
         // A hole whose bounds' corners leave the diamond (|x| + |y| up to 12) though
         // its points stay inside (up to 8.5): the corners do not decide, the points do.
-        assert!(apart_(&[raw(square.clone()), hole(6.0, (0.0, 0.0))]));
+        assert!(apart_(&[Raw::of(square.clone()), hole(6.0, (0.0, 0.0))]));
         // A hole reaching out of the outline, and two holes overlapping.
-        assert!(!apart_(&[raw(square.clone()), hole(2.0, (9.0, 0.0))]));
+        assert!(!apart_(&[Raw::of(square.clone()), hole(2.0, (9.0, 0.0))]));
         assert!(!apart_(&[
-            raw(square.clone()),
+            Raw::of(square.clone()),
             hole(2.0, (-1.0, 0.0)),
             hole(2.0, (1.0, 0.0))
         ]));
-        assert!(!apart_(&[raw(notched)]));
+        assert!(!apart_(&[Raw::of(notched)]));
     }
 }
 

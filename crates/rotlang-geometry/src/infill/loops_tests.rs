@@ -218,19 +218,6 @@ fn runs_cover_each_ring_end_to_start() {
     assert_eq!(star.boundary.runs.len(), 1);
 }
 
-/// A raw ring of these points, as `fill` leaves one (no arcs, every segment checked).
-pub(super) fn raw_ring(pts: Vec<Coord>) -> Raw {
-    Raw {
-        along: vec![None; pts.len()],
-        check: true,
-        pts,
-        tips: Vec::new(),
-        arcs: Vec::new(),
-        shape: Vec::new(),
-        mitres: Vec::new(),
-    }
-}
-
 /// A convex ring: `radii` (near 1, so that it stays convex) times `size` about `at`,
 /// starting at `phase` of a turn.
 fn convex_ring(
@@ -292,14 +279,14 @@ proptest! {
         phase in 0.0f64..1.0,
         snap in proptest::bool::ANY,
     ) {
-        let mut raws = vec![raw_ring(convex_ring(&outline, size, (0.0, 0.0), phase, false))];
+        let mut raws = vec![Raw::of(convex_ring(&outline, size, (0.0, 0.0), phase, false))];
         for (radii, r, (x, y), phase) in &holes {
             let mut pts = convex_ring(radii, size * r, (x * size, y * size), *phase, true);
             if snap {
                 // A hole's point on the outline's first point's height: touching boxes.
                 pts[0].y = raws[0].pts[0].y;
             }
-            raws.push(raw_ring(pts));
+            raws.push(Raw::of(pts));
         }
         let mut turns = Vec::new();
         if apart(&raws, &mut turns) == Layout::Convex {
@@ -385,7 +372,7 @@ proptest! {
     ) {
         let raws: Vec<Raw> = sizes
             .iter()
-            .map(|&n| raw_ring(vec![Coord { x: 0.0, y: 0.0 }; n]))
+            .map(|&n| Raw::of(vec![Coord { x: 0.0, y: 0.0 }; n]))
             .collect();
         let side = |(r, s, t): (usize, usize, i32)| {
             let r = r % sizes.len();

@@ -49,6 +49,7 @@ use geo::algorithm::buffer::{BufferStyle, LineJoin};
 use geo::{Buffer, Coord, MultiPolygon};
 
 use crate::infill::Region;
+use crate::infill::curves::mitres;
 use crate::infill::loops::{Cutting, Eroder};
 use crate::infill::region::ConvexInset;
 use crate::infill::travel::bounds;
@@ -69,6 +70,7 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         eroder: spare,
         scratch,
         last: last_loops,
+        mitres: corners,
     } = &mut *pool;
     let mut eroder = Shrink::new(outline, spare, known_concave(region));
     // Each loop offset from the inset itself, not from the previous loop: offsets of
@@ -76,6 +78,12 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     // The previous loops' distance, (perimeter, outline rings − hole rings), and how
     // they were cut.
     let mut previous: Option<(f64, f64, f64, Cutting)> = None;
+    // The region's convex corners, listed where a drop is first asked of them.
+    let mut mitres = Mitres {
+        region,
+        corners,
+        listed: false,
+    };
     // The previous loops themselves (closed rings).
     last_loops.clear();
     for k in 0.. {
@@ -92,8 +100,9 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
         // a band up to two spacings wide would stay empty: its middle gets the pieces of
         // a loop half a spacing further in that no loop here is near. (Not where the
         // whole region ends: a last loop there costs more density than the gap.)
-        // Offsets shrink each outline's perimeter by 2π per unit (and grow each hole's):
-        // a larger drop says a part ended.
+        // Offsets shrink each outline's perimeter by 2π per unit (and grow each hole's),
+        // and by more at each convex corner still there, which stays sharp
+        // (`mitres::excess`: a star's tips): a larger drop says a part ended.
         if let Some((d0, length, turns, before)) = previous {
             let expected = TAU * spacing * turns;
             if !current.rings.is_empty()
@@ -104,7 +113,12 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
                     d - d0,
                     spacing,
                 ))
+                // (Asked last: the corners are listed only here, and a round hole has
+                // many.)
+                && length - shape.0 > expected + (d - d0) * mitres.excess(d0) + 4.0 * spacing
             {
+                #[cfg(test)]
+                MADE.with(|n| n.set(n.get() + 1));
                 let middle = eroder.shrink(region.nozzle() / 2.0 + d0 + spacing / 2.0);
                 uncovered(&middle, &current, last_loops, spacing, scratch, out);
             }
@@ -173,6 +187,25 @@ pub(crate) fn concentric(region: &Region, theta: f64, spacing: f64, out: &mut Ve
     }
 }
 
+/// The region's convex corners for the drop test (`mitres::excess_at`), listed where
+/// it first asks (most layers never do: no drop passes 2π's first).
+struct Mitres<'a> {
+    region: &'a Region,
+    corners: &'a mut Vec<(f64, f64)>,
+    listed: bool,
+}
+
+impl Mitres<'_> {
+    /// What the corners still there at the loops `d` in add to a drop, per unit.
+    fn excess(&mut self, d: f64) -> f64 {
+        if !self.listed {
+            mitres::corners(self.region.outline(), self.corners);
+            self.listed = true;
+        }
+        mitres::excess_at(self.corners, self.region.nozzle() / 2.0 + d)
+    }
+}
+
 /// The buffers of one layer's loops, kept for the next layer on the same thread: a
 /// layer's loops allocated some forty vectors and grew most of them by doubling (a tenth
 /// of the L's layer). Never anything computed: each layer's region is prepared afresh.
@@ -181,6 +214,8 @@ struct Pool {
     eroder: Option<Eroder>,
     scratch: Scratch,
     last: Vec<Vec<Coord>>,
+    /// The region's convex corners (`mitres::corners`).
+    mitres: Vec<(f64, f64)>,
 }
 
 /// Buffers with room for more points than this are let go rather than kept (a few MB
@@ -1201,6 +1236,8 @@ fn skipped(yes: bool) -> bool {
 thread_local! {
     /// How many middle rings `nothing_far` left out on this thread.
     pub(super) static SKIPPED: Cell<usize> = const { Cell::new(0) };
+    /// How many middle rings were made on this thread.
+    pub(super) static MADE: Cell<usize> = const { Cell::new(0) };
 }
 
 /// A region's rings (closed), and its outline rings less its hole rings.

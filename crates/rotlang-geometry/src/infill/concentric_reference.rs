@@ -11,6 +11,7 @@ use geo::algorithm::buffer::{BufferStyle, LineJoin};
 use geo::{Buffer, Coord, MultiPolygon};
 
 use crate::infill::Region;
+use crate::infill::curves::mitres;
 use crate::infill::offset::{cross, inside_left};
 use crate::math;
 
@@ -53,10 +54,12 @@ pub(crate) fn with_middle_step(
         // a band up to two spacings wide would stay empty: its middle gets the pieces of
         // a loop half a spacing further in that no loop here is near. (Not where the
         // whole region ends: a last loop there costs more density than the gap.)
-        // Offsets shrink each outline's perimeter by 2π per unit (and grow each hole's):
-        // a larger drop says a part ended.
+        // Offsets shrink each outline's perimeter by 2π per unit (and grow each hole's),
+        // and by more at each convex corner still there (`mitres::excess`): a larger
+        // drop says a part ended.
         if let Some((d0, length, turns)) = previous {
-            let expected = TAU * spacing * turns;
+            let expected = TAU * spacing * turns
+                + (d - d0) * mitres::excess(region.outline(), region.nozzle() / 2.0 + d0);
             if !current.rings.is_empty() && length - shape.0 > expected + 4.0 * spacing {
                 let middle = shrink(region.outline(), region.nozzle() / 2.0 + d0 + spacing / 2.0);
                 uncovered(&middle, &current, &last_loops, spacing, step, out);

@@ -7,7 +7,7 @@
 use geo::{Coord, LineString, MultiPolygon, Polygon};
 use proptest::prelude::*;
 
-use super::concentric::{SKIPPED, concentric, known_concave, room_at};
+use super::concentric::{MADE, SKIPPED, concentric, known_concave, room_at};
 use super::concentric_reference;
 use crate::infill::loops::Eroder;
 use crate::infill::region::convex_inset;
@@ -221,10 +221,61 @@ fn the_holed_squares_meeting_steps_make_no_middle_ring() {
         assert_eq!(left_out, 1, "at {density}");
         assert_eq!(fast, slow, "at {density}");
     }
-    // The star's tips are sharp: its middle rings are made.
+    // The star's tips are sharp: `nothing_far` does not take them (nor is a middle ring
+    // asked for there: `a_stars_tips_make_no_middle_ring`).
     let ((fast, slow), left_out) = middles_left_out(|| loops(&shapes::star(10.0, 4.5), 0.4, 0.0));
     assert_eq!(left_out, 0);
     assert_eq!(fast, slow);
+}
+
+/// How many middle rings were made while `f` ran (on this thread).
+fn middles_made<T>(f: impl FnOnce() -> T) -> (T, usize) {
+    let before = MADE.with(|n| n.get());
+    let value = f();
+    (value, MADE.with(|n| n.get()) - before)
+}
+
+/// A star's 45° tips drop its loops' perimeter by 2·tan(67.5°) a unit each, not by the
+/// turn 2π counts: taken for a part ending, every step made a middle ring, which printed
+/// nothing (85k of 157k instructions a layer at 40%). The drop test counts the tips now
+/// (`mitres`): no middle ring from 10 to 60% at any seam direction, and the same loops
+/// as the reference, which has the same test. (At 80%, past the step where the tips are
+/// eaten, the corners where the valleys' arcs cross still drop faster than 2π: one is
+/// made there, and prints nothing, as before.) An L's arm still ends between two loops
+/// at 20 and 40%, and a middle ring is made there (`concentric_leaves_no_wide_band`).
+#[test]
+fn a_stars_tips_make_no_middle_ring() {
+    let star = shapes::star(10.0, 4.5);
+    for density in [0.1, 0.15, 0.2, 0.3, 0.4, 0.6] {
+        for theta in [0.0, 45f64.to_radians(), 2.0] {
+            let ((fast, slow), made) = middles_made(|| loops(&star, density, theta));
+            assert_eq!(made, 0, "at {density}, θ {theta}");
+            assert_eq!(fast, slow, "at {density}, θ {theta}");
+        }
+    }
+    for density in [0.2, 0.4] {
+        let ((fast, slow), made) = middles_made(|| loops(&shapes::l_shape(20.0), density, 0.0));
+        assert_eq!(made, 1, "the L at {density}");
+        assert_eq!(fast, slow);
+    }
+}
+
+/// A tip sharper than 41.8° leaves a middle stretch worth a line (a 30° tip's is 2.6
+/// spacings): it is not counted in the drop, its middle rings are made, and print.
+#[test]
+fn a_sharp_tips_middle_stretch_is_printed() {
+    let h = 20.0;
+    let half = h * 15f64.to_radians().tan();
+    let triangle = MultiPolygon::new(vec![Polygon::new(
+        LineString::from(vec![(0.0, 0.0), (h, -half), (h, half), (0.0, 0.0)]),
+        vec![],
+    )]);
+    let ((fast, slow), made) = middles_made(|| loops(&triangle, 0.4, 0.0));
+    assert!(made > 0);
+    assert_eq!(fast, slow);
+    // Closed loops, and the middle stretches: open.
+    let open = fast.iter().filter(|p| p.first() != p.last()).count();
+    assert!(open > 0, "{} paths, none open", fast.len());
 }
 
 /// A blunt outline (a polygon of 4 to 12 corners at random radii, or a rectangle) with

@@ -8,6 +8,8 @@ mod concentric_reference;
 #[cfg(test)]
 #[path = "concentric_tests.rs"]
 mod concentric_tests;
+#[path = "mitres.rs"]
+mod mitres;
 
 pub(crate) use concentric::concentric;
 

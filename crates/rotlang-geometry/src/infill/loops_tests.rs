@@ -575,3 +575,119 @@ fn the_stars_pinched_loop_is_cut_on_the_grid() {
     }
     assert!(seen);
 }
+
+/// A raw offset with its sharp tips closed as before: filled through each tip's vertex,
+/// then each tip's three points replaced by its mitre afterwards (`Raw::close_tips`).
+fn closed_afterwards(eroder: &Eroder, r: usize, d: f64) -> Raw {
+    let corners = &eroder.corners[r];
+    let mut raw = Raw::default();
+    let check = d >= eroder.safes[r].0;
+    raw.fill(corners, &eroder.boundary.arcs.directions, d, false, check);
+    raw.tips.clear();
+    let mut at = 0;
+    for corner in corners {
+        match corner {
+            Corner::Mitre { .. } => at += 1,
+            Corner::Tip { .. } => {
+                raw.tips.push((at, None));
+                at += 3;
+            }
+            Corner::Arc { inner, .. } => at += 2 + inner.len(),
+        }
+    }
+    if !raw.tips.is_empty() {
+        raw.close_tips();
+    }
+    raw
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Sharp tips closed from the corners as the raw offset is filled are the tips
+    /// closed afterwards: the same points to the bit, the same arcs and the same
+    /// directions along, on star-like outlines (sharp tips, some two in a row) with and
+    /// without a hole, at depths where the tips close, where they do not and where two
+    /// tips' mitres come out of order.
+    #[test]
+    fn tips_closed_while_filling_are_tips_closed_after(
+        radii in proptest::collection::vec(0.1f64..1.0, 3..12),
+        hole in proptest::collection::vec(0.8f64..1.0, 0..8),
+        scattered in proptest::option::of(proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0), 3..8)),
+        size in 1.0f64..50.0,
+        depths in proptest::collection::vec(0.001f64..0.8, 1..6),
+    ) {
+        // Or an outline of points anywhere in a square (crossing itself, sharp tips in a
+        // row: their mitres come out of order).
+        let region = match scattered {
+            Some(points) => {
+                let mut ring: Vec<Coord> =
+                    points.iter().map(|&(x, y)| Coord { x: x * size, y: y * size }).collect();
+                ring.push(ring[0]);
+                MultiPolygon::new(vec![Polygon::new(LineString::new(ring), Vec::new())])
+            }
+            None => region(&radii, size, &hole),
+        };
+        let mut eroder = Eroder::new(&region, 0.5);
+        for depth in depths {
+            let d = depth * size;
+            let _ = eroder.rings(d);
+            fills_as_closed_afterwards(&eroder, d)?;
+        }
+    }
+}
+
+/// Each of the eroder's raw offsets as filled for `d` is the one filled through its tips
+/// and closed afterwards, to the bit.
+fn fills_as_closed_afterwards(eroder: &Eroder, d: f64) -> Result<(), TestCaseError> {
+    let bits = |pts: &[Coord]| -> Vec<(u64, u64)> {
+        pts.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect()
+    };
+    let along = |a: &[Option<Coord>]| -> Vec<Option<(u64, u64)>> {
+        a.iter()
+            .map(|c| c.map(|c| (c.x.to_bits(), c.y.to_bits())))
+            .collect()
+    };
+    for r in 0..eroder.corners.len() {
+        let before = closed_afterwards(eroder, r, d);
+        let now = &eroder.raws[r];
+        prop_assert_eq!(bits(&now.pts), bits(&before.pts), "by {}", d);
+        prop_assert_eq!(along(&now.along), along(&before.along));
+        prop_assert_eq!(&now.arcs, &before.arcs);
+    }
+    Ok(())
+}
+
+/// An outline crossing itself whose two sharp tips in a row have mitres out of order
+/// along the edge between them at some depths, and in order at others: no tip closed
+/// there, as before.
+#[test]
+fn tips_whose_mitres_come_out_of_order_stay_open() {
+    let ring: Vec<Coord> = [
+        (19.328, 10.66),
+        (34.42, 25.184),
+        (30.556, 17.996),
+        (15.52, 26.66),
+        (37.104, 7.652),
+        (19.328, 10.66),
+    ]
+    .iter()
+    .map(|&(x, y)| Coord { x, y })
+    .collect();
+    let region = MultiPolygon::new(vec![Polygon::new(LineString::new(ring), Vec::new())]);
+    let mut eroder = Eroder::new(&region, 0.5);
+    let (mut open, mut closed) = (0, 0);
+    for k in 1..60 {
+        let d = 0.25 * k as f64;
+        let _ = eroder.rings(d);
+        fills_as_closed_afterwards(&eroder, d).unwrap();
+        let mut raw = Raw::default();
+        let closing = raw.tip_mitres(&eroder.corners[0], d);
+        if closing {
+            closed += 1;
+        } else if raw.tips.iter().any(|t| t.1.is_some()) {
+            open += 1;
+        }
+    }
+    assert!(open > 0 && closed > 0, "{open} {closed}");
+}

@@ -1764,26 +1764,21 @@ fn ring_crossings(
         let ((xlo, xhi), (ylo, yhi)) = (extent(a.x, b.x, true), extent(a.y, b.y, true));
         [xlo, xhi, ylo, yhi]
     };
-    for (g, span) in spans.iter().enumerate().take(n) {
+    for (g, span) in spans[..n].iter().enumerate() {
         let [c0, c1, r0, r1] = span.map(usize::from);
         // Those before it whose columns and rows meet its own, but its neighbours (the
         // one before, and the first where it is the last), which meet it without
         // crossing: bits 0 to g − 2, not 0 for the last.
+        let last = g + 1 == n;
         let mut near = sets[c1 & 63][0]
             & sets[(grid - c0) & 63][1]
             & sets[r1 & 63][2]
             & sets[(grid - r0) & 63][3];
-        near &= ((1u64 << g) - 1) >> 1;
-        let next = if g + 1 == n {
-            near &= !1;
-            0
-        } else {
-            g + 1
-        };
+        near &= (((1u64 << g) - 1) >> 1) & !u64::from(last);
         if near == 0 {
             continue;
         }
-        let (a, b) = (pts[g], pts[next]);
+        let (a, b) = (pts[g], pts[if last { 0 } else { g + 1 }]);
         let [xlo, xhi, ylo, yhi] = bounds(a, b);
         while near != 0 {
             let j = near.trailing_zeros() as usize;
@@ -1794,31 +1789,8 @@ fn ring_crossings(
             if cxhi < xlo || cxlo > xhi || cyhi < ylo || cylo > yhi {
                 continue;
             }
-            // The test gives the same answer either way round (its four cross products
-            // are the same, in pairs swapped): a cut is worked out again with the segment
-            // first in the sweep's order as `e` where that is the other.
-            match meet((a, b), (c, e)) {
-                Meet::Cut(mut t, mut u, mut at) => {
-                    let mine = (sort_key(a.x.min(b.x)), g as u32);
-                    let theirs = (sort_key(c.x.min(e.x)), j as u32);
-                    let (rank, seg) = if theirs < mine {
-                        if let Meet::Cut(t1, u1, at1) = meet((c, e), (a, b)) {
-                            (t, u, at) = (t1, u1, at1);
-                        }
-                        ((theirs, mine), [j, g])
-                    } else {
-                        ((mine, theirs), [g, j])
-                    };
-                    ranked.push((rank, found.len() as u32));
-                    found.push(Cut {
-                        ring: [0, 0],
-                        seg,
-                        t: [t, u],
-                        at,
-                    });
-                }
-                Meet::Touch => return Some(false),
-                Meet::Not => {}
+            if !ring_pair((a, b, g), (c, e, j), ranked, found) {
+                return Some(false);
             }
         }
     }
@@ -1835,6 +1807,45 @@ fn ring_crossings(
     }
     cuts.extend(ranked.iter().map(|r| found[r.1 as usize]));
     Some(true)
+}
+
+/// [`ring_crossings`]' test of segments `g` (from `a` to `b`) and `j` whose boxes meet,
+/// as the sweep tests them: a cut into `found` with its place in the sweep's order into
+/// `ranked`; `false` where they touch. The test gives the same answer either way round
+/// (its four cross products are the same, in pairs swapped): a cut is worked out again
+/// with the segment first in the sweep's order as `e` where that is `j`. (Not inlined:
+/// the loop about it kept this one's values in its registers, spilling its own.)
+#[inline(never)]
+fn ring_pair(
+    (a, b, g): (Coord, Coord, usize),
+    (c, e, j): (Coord, Coord, usize),
+    ranked: &mut Vec<(Rank, u32)>,
+    found: &mut Vec<Cut>,
+) -> bool {
+    match meet((a, b), (c, e)) {
+        Meet::Cut(mut t, mut u, mut at) => {
+            let mine = (sort_key(a.x.min(b.x)), g as u32);
+            let theirs = (sort_key(c.x.min(e.x)), j as u32);
+            let (rank, seg) = if theirs < mine {
+                if let Meet::Cut(t1, u1, at1) = meet((c, e), (a, b)) {
+                    (t, u, at) = (t1, u1, at1);
+                }
+                ((theirs, mine), [j, g])
+            } else {
+                ((mine, theirs), [g, j])
+            };
+            ranked.push((rank, found.len() as u32));
+            found.push(Cut {
+                ring: [0, 0],
+                seg,
+                t: [t, u],
+                at,
+            });
+            true
+        }
+        Meet::Touch => false,
+        Meet::Not => true,
+    }
 }
 
 /// Sorts `order` by insertion, moving elements at most `budget` places in all; `false`

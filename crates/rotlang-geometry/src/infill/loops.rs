@@ -1708,10 +1708,10 @@ fn ring_crossings(
     if finite.x != 0.0 || finite.y != 0.0 || size.x * size.y * 0.0 != 0.0 {
         return None;
     }
-    // Columns (and rows): about one for two segments, 8 to 32 (16 made a star's loop
-    // test more pairs, 32 an L's gather more sets). A point on the greatest bound may
-    // round to `grid`: `grid + 1` of them in all.
-    let grid = (n / 2).next_power_of_two().clamp(8, 32);
+    // Columns (and rows): 32 for more than 16 segments (16 made a star's loop of 35 test
+    // more pairs), else 8 (an L's loop of 10: fewer sets to gather). A point on the
+    // greatest bound may round to `grid`: `grid + 1` of them in all.
+    let grid = if n > 16 { 32 } else { 8 };
     // Cells per unit (0 where the ring has no width, or too little: one column).
     let scale = |w: f64| {
         let s = grid as f64 / w;

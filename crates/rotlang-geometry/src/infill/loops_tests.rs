@@ -613,7 +613,9 @@ proptest! {
     fn tips_closed_while_filling_are_tips_closed_after(
         radii in proptest::collection::vec(0.1f64..1.0, 3..12),
         hole in proptest::collection::vec(0.8f64..1.0, 0..8),
-        scattered in proptest::option::of(proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0), 3..8)),
+        scattered in proptest::option::of(
+            proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0), 3..8),
+        ),
         size in 1.0f64..50.0,
         depths in proptest::collection::vec(0.001f64..0.8, 1..6),
     ) {

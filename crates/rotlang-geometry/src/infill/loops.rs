@@ -1285,7 +1285,15 @@ fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
         } else {
             prev.y > 0.0 && e.y <= 0.0
         };
-        east += usize::from(passes);
+        // Past east a second time, it goes round more than once: not convex, told there,
+        // not at the end (a star's loop drawn as a pentagram turned inside out, halfway
+        // round).
+        if passes {
+            if east == 1 {
+                return false;
+            }
+            east = 1;
+        }
         // The same extremes as `f64::min`/`max` (a zero's sign aside, which no test of
         // the bounds tells apart), as `math::widen` finds them, but by selects: a
         // comparison and a move each (a NaN never taken), no branch.

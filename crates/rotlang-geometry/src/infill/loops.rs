@@ -317,9 +317,11 @@ impl Eroder {
         let uncut = layout == Layout::Apart;
         if !uncut {
             // Rings each convex (a hole's grown offset meeting the outline's) cross only
-            // one another: their pairs alone are looked at, not the sweep's every edge.
+            // one another: their pairs alone are looked at, not the sweep's every edge. One
+            // ring of a few dozen segments (a star's loops where they pinch) is laid on a grid.
             let found = match layout {
                 Layout::Convex => convex_crossings(raws, &self.turns, &mut self.ranked, cuts),
+                _ if raws.len() == 1 => ring_crossings(&raws[0].pts, &mut self.ranked, cuts),
                 _ => None,
             };
             if !found.unwrap_or_else(|| crossings(raws, &mut self.sweep, cuts)) {
@@ -456,6 +458,8 @@ struct Raw {
     /// copied by `fill`).
     mitres: Vec<(Coord, Coord, f64)>,
     shape: Vec<Option<Coord>>,
+    /// Whether a corner is a sharp tip (made once for the corners by `shape`).
+    tipped: bool,
 }
 
 impl Raw {
@@ -471,21 +475,24 @@ impl Raw {
             arcs: Vec::new(),
             shape: Vec::new(),
             mitres: Vec::new(),
+            tipped: false,
         }
     }
 
     /// For a ring whose corners are all mitres, the mitres and its `along` (`shape`: the
     /// direction of each edge from its corner to the next), which do not depend on the
-    /// distance; nothing for another ring.
+    /// distance; nothing for another ring. And whether any corner is a sharp tip.
     fn shape(&mut self, corners: &[Corner]) {
+        self.tipped = false;
         self.mitres.clear();
         let along = &mut self.shape;
         along.clear();
-        for corner in corners {
+        for (i, corner) in corners.iter().enumerate() {
             match *corner {
                 Corner::Mitre { b, m, k } => self.mitres.push((b, m, k)),
                 _ => {
                     self.mitres.clear();
+                    self.tipped = corners[i..].iter().any(|c| matches!(c, Corner::Tip { .. }));
                     return;
                 }
             }
@@ -512,14 +519,22 @@ impl Raw {
                 .extend(self.mitres.iter().map(|&(b, m, k)| b + m * (d / k)));
             return;
         }
+        // Sharp tips closed at their mitres (`tip_mitres`), known from the corners before
+        // any point is written: each closed tip one point, not three moved up later.
+        let closing = close && self.tipped && self.tip_mitres(corners, d);
+        let mut tips = 0;
         for corner in corners {
             match *corner {
                 Corner::Mitre { b, m, k } => {
                     self.pts.push(b + m * (d / k));
                 }
                 Corner::Tip { b, nu, nv } => {
-                    self.tips.push((self.pts.len(), None));
-                    self.pts.extend([b + nu * d, b, b + nv * d]);
+                    let mitre = if closing { self.tips[tips].1 } else { None };
+                    tips += 1;
+                    match mitre {
+                        Some(x) => self.pts.push(x),
+                        None => self.pts.extend([b + nu * d, b, b + nv * d]),
+                    }
                 }
                 Corner::Arc {
                     b,
@@ -537,15 +552,21 @@ impl Raw {
             }
         }
         // Only where an edge may have run backwards (past the ring's safe distance): the
-        // segment from each corner's last point runs along the edge to the next corner.
+        // segment from each corner's last point runs along the edge to the next corner
+        // (a closed tip's one point too).
         if check {
             let vertex = |c: &Corner| match *c {
                 Corner::Mitre { b, .. } | Corner::Tip { b, .. } | Corner::Arc { b, .. } => b,
             };
+            let mut tips = 0;
             for (i, corner) in corners.iter().enumerate() {
                 let points = match corner {
                     Corner::Mitre { .. } => 1,
-                    Corner::Tip { .. } => 3,
+                    Corner::Tip { .. } => {
+                        let closed = closing && self.tips[tips].1.is_some();
+                        tips += 1;
+                        if closed { 1 } else { 3 }
+                    }
                     Corner::Arc { inner, .. } => 2 + inner.len(),
                 };
                 let next = vertex(&corners[if i + 1 == corners.len() { 0 } else { i + 1 }]);
@@ -553,9 +574,56 @@ impl Raw {
                 self.along.push(Some(next - vertex(corner)));
             }
         }
-        if close && !self.tips.is_empty() {
-            self.close_tips();
+    }
+
+    /// Each sharp tip's mitre (into `tips`: its corner and where the moved edges on
+    /// either side cross, where they cross properly), and whether the tips are closed
+    /// there: each tip's three points (through the vertex) replaced by its mitre, where
+    /// it has one: the stretch through the vertex between them is nearer the boundary
+    /// than `d` and would be cut away there. A ring whose only crossings were its tips'
+    /// then needs no cutting and chaining (a star's loops until its tips close up: a
+    /// third of its layer at 10%). None is closed where no tip's edges cross, or two
+    /// tips' mitres come out of order along the edge between them (an edge event: the
+    /// general cutting decides). The moved edges' ends are worked out from the corners
+    /// as `fill` writes them (the same points to the bit).
+    fn tip_mitres(&mut self, corners: &[Corner], d: f64) -> bool {
+        self.tips.clear();
+        let n = corners.len();
+        let first = |c: &Corner| match *c {
+            Corner::Mitre { b, m, k } => b + m * (d / k),
+            Corner::Tip { b, nu, .. } | Corner::Arc { b, nu, .. } => b + nu * d,
+        };
+        let last = |c: &Corner| match *c {
+            Corner::Mitre { b, m, k } => b + m * (d / k),
+            Corner::Tip { b, nv, .. } | Corner::Arc { b, nv, .. } => b + nv * d,
+        };
+        for (j, corner) in corners.iter().enumerate() {
+            if let Corner::Tip { b, nu, nv } = *corner {
+                let p = last(&corners[if j == 0 { n - 1 } else { j - 1 }]);
+                let q = first(&corners[if j + 1 == n { 0 } else { j + 1 }]);
+                self.tips
+                    .push((j, proper_crossing((p, b + nu * d), (b + nv * d, q))));
+            }
         }
+        if self.tips.iter().all(|t| t.1.is_none()) {
+            return false;
+        }
+        // Two tips in a row: their mitres in order along the edge between them.
+        let count = self.tips.len();
+        for i in 0..count {
+            let (j, x) = self.tips[i];
+            let (k, y) = self.tips[if i + 1 == count { 0 } else { i + 1 }];
+            if let (Some(x), Some(y)) = (x, y)
+                && k == if j + 1 == n { 0 } else { j + 1 }
+            {
+                let e = first(&corners[k]) - last(&corners[j]);
+                let m = y - x;
+                if m.x * e.x + m.y * e.y <= 0.0 {
+                    return false;
+                }
+            }
+        }
+        true
     }
 
     /// The vertex of the arc whose chord is the segment from point `i`, if it is one.
@@ -580,13 +648,11 @@ impl Raw {
             })
     }
 
-    /// Each sharp tip's three points (through the vertex) replaced by the one point where
-    /// the moved edges on either side cross, where they cross properly: the stretch
-    /// through the vertex between them is nearer the boundary than `d` and would be cut
-    /// away there. A ring whose only crossings were its tips' then needs no cutting and
-    /// chaining (a star's loops until its tips close up: a third of its layer at 10%).
-    /// Left as it is where a tip's edges do not cross, or two tips' mitres come out of
-    /// order along the edge between them (an edge event: the general cutting decides).
+    /// The tips of a ring filled without closing them closed afterwards, as `fill` did
+    /// before it closed them from the corners (the tests compare the two): each tip's
+    /// three points become its mitre, the points after it moved up. `tips` as `fill`
+    /// left them before: each tip's first point, and its mitre unknown.
+    #[cfg(test)]
     fn close_tips(&mut self) {
         let n = self.pts.len();
         let pts = &self.pts;
@@ -1219,7 +1285,15 @@ fn turning<const CCW: bool>(pts: &[Coord]) -> Option<(Coord, Coord)> {
         } else {
             prev.y > 0.0 && e.y <= 0.0
         };
-        east += usize::from(passes);
+        // Past east a second time, it goes round more than once: not convex, told there,
+        // not at the end (a star's loop drawn as a pentagram turned inside out, halfway
+        // round).
+        if passes {
+            if east == 1 {
+                return false;
+            }
+            east = 1;
+        }
         // The same extremes as `f64::min`/`max` (a zero's sign aside, which no test of
         // the bounds tells apart), as `math::widen` finds them, but by selects: a
         // comparison and a move each (a NaN never taken), no branch.
@@ -1603,6 +1677,183 @@ fn convex_crossings(
     }
     cuts.extend(ranked.iter().map(|r| found[r.1 as usize]));
     Some(true)
+}
+
+/// [`crossings`] for one ring of at most 64 segments (a star's or an L's loops where they
+/// pinch), each segment a bit of a set. The ring's bounds are cut into columns and rows,
+/// and each segment's box covers a range of each. A point's column is its `x` less the
+/// bounds' least, times the columns per unit, rounded: each step keeps the order of
+/// coordinates, so a segment's first and last columns are its ends' least and greatest,
+/// and two boxes that meet (closed) cover columns that meet, and rows that meet. The
+/// segments whose columns meet a segment's are those starting at or before its last
+/// column and ending at or after its first: each column's set of those starting there
+/// `or`ed from the left, of those ending there from the right, and the same in rows.
+/// Each of those before it is tested as the sweep tests it (the same box test, its
+/// neighbours left out, the segment first in the sweep's order as `e`), so every pair
+/// the sweep tests is tested, and the cuts are put in the order the sweep finds them. No
+/// list of edges and no sort (the sweep's setup was most of its cost on a star's pinched
+/// loop of 35 segments; its ~120 pairs meeting in `x` are ~20 here). `None` (the sweep
+/// decides) for more segments or fewer than 3, or where a coordinate or the bounds' size
+/// is not finite.
+#[inline(never)]
+fn ring_crossings(
+    pts: &[Coord],
+    (ranked, found, _): &mut Pairs,
+    cuts: &mut Vec<Cut>,
+) -> Option<bool> {
+    let n = pts.len();
+    if !(3..=64).contains(&n) {
+        return None;
+    }
+    let (mut lo, mut hi) = super::travel::bounds(&[]);
+    // 0 where every coordinate is finite, else NaN.
+    let mut finite = Coord { x: 0.0, y: 0.0 };
+    for &c in pts {
+        finite = finite + c * 0.0;
+        math::widen(&mut lo, &mut hi, c);
+    }
+    let size = hi - lo;
+    if finite.x != 0.0 || finite.y != 0.0 || size.x * size.y * 0.0 != 0.0 {
+        return None;
+    }
+    // Columns (and rows): 32 for more than 16 segments (16 made a star's loop of 35 test
+    // more pairs), else 8 (an L's loop of 10: fewer sets to gather). A point on the
+    // greatest bound may round to `grid`: `grid + 1` of them in all.
+    let grid = if n > 16 { 32 } else { 8 };
+    // Cells per unit (0 where the ring has no width, or too little: one column).
+    let scale = |w: f64| {
+        let s = grid as f64 / w;
+        if s.is_finite() { s } else { 0.0 }
+    };
+    let s = Coord {
+        x: scale(size.x),
+        y: scale(size.y),
+    };
+    // A point's column and row: from 0 to about `grid` rounded to a whole number by
+    // adding 1.5·2⁵² (`as usize` costs a range check), `grid` at most.
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let at = |c: Coord| {
+        let t = c - lo;
+        let t = Coord {
+            x: t.x * s.x + ROUND,
+            y: t.y * s.y + ROUND,
+        };
+        let cell = |v: f64| (v.to_bits().wrapping_sub(ROUND.to_bits()) as usize) & 63;
+        (cell(t.x), cell(t.y))
+    };
+    // For each column and row `k`, the segments whose first column is `k` and those whose
+    // last column is `grid − k`, the same in rows; then each `or`ed with those before it:
+    // the segments whose first column is at most `k` (ending at least at `grid − k`).
+    let mut sets = [[0u64; 4]; 64];
+    let mut spans = [[0u8; 4]; 64];
+    let (mut x0, mut y0) = at(pts[0]);
+    for (i, span) in spans.iter_mut().enumerate().take(n) {
+        let (x1, y1) = at(pts[if i + 1 == n { 0 } else { i + 1 }]);
+        let bit = 1u64 << i;
+        let (c0, c1) = (x0.min(x1), x0.max(x1));
+        let (r0, r1) = (y0.min(y1), y0.max(y1));
+        sets[c0][0] |= bit;
+        sets[(grid - c1) & 63][1] |= bit;
+        sets[r0][2] |= bit;
+        sets[(grid - r1) & 63][3] |= bit;
+        *span = [c0 as u8, c1 as u8, r0 as u8, r1 as u8];
+        (x0, y0) = (x1, y1);
+    }
+    let mut before = [0u64; 4];
+    for set in &mut sets[..=grid] {
+        for (s, b) in set.iter_mut().zip(&mut before) {
+            *s |= *b;
+            *b = *s;
+        }
+    }
+    ranked.clear();
+    found.clear();
+    let bounds = |a: Coord, b: Coord| {
+        let ((xlo, xhi), (ylo, yhi)) = (extent(a.x, b.x, true), extent(a.y, b.y, true));
+        [xlo, xhi, ylo, yhi]
+    };
+    for (g, span) in spans[..n].iter().enumerate() {
+        let [c0, c1, r0, r1] = span.map(usize::from);
+        // Those before it whose columns and rows meet its own, but its neighbours (the
+        // one before, and the first where it is the last), which meet it without
+        // crossing: bits 0 to g − 2, not 0 for the last.
+        let last = g + 1 == n;
+        let mut near = sets[c1 & 63][0]
+            & sets[(grid - c0) & 63][1]
+            & sets[r1 & 63][2]
+            & sets[(grid - r0) & 63][3];
+        near &= (((1u64 << g) - 1) >> 1) & !u64::from(last);
+        if near == 0 {
+            continue;
+        }
+        let (a, b) = (pts[g], pts[if last { 0 } else { g + 1 }]);
+        let [xlo, xhi, ylo, yhi] = bounds(a, b);
+        while near != 0 {
+            let j = near.trailing_zeros() as usize;
+            near &= near - 1;
+            // (j < g: its next point is j + 1.)
+            let (c, e) = (pts[j], pts[j + 1]);
+            let [cxlo, cxhi, cylo, cyhi] = bounds(c, e);
+            if cxhi < xlo || cxlo > xhi || cyhi < ylo || cylo > yhi {
+                continue;
+            }
+            if !ring_pair((a, b, g), (c, e, j), ranked, found) {
+                return Some(false);
+            }
+        }
+    }
+    // The sweep's order: by the first segment's place, then the second's (the ranks are
+    // distinct: by insertion, a few small pairs).
+    for i in 1..ranked.len() {
+        let x = ranked[i];
+        let mut j = i;
+        while j > 0 && ranked[j - 1].0 > x.0 {
+            ranked[j] = ranked[j - 1];
+            j -= 1;
+        }
+        ranked[j] = x;
+    }
+    cuts.extend(ranked.iter().map(|r| found[r.1 as usize]));
+    Some(true)
+}
+
+/// [`ring_crossings`]' test of segments `g` (from `a` to `b`) and `j` whose boxes meet,
+/// as the sweep tests them: a cut into `found` with its place in the sweep's order into
+/// `ranked`; `false` where they touch. The test gives the same answer either way round
+/// (its four cross products are the same, in pairs swapped): a cut is worked out again
+/// with the segment first in the sweep's order as `e` where that is `j`. (Not inlined:
+/// the loop about it kept this one's values in its registers, spilling its own.)
+#[inline(never)]
+fn ring_pair(
+    (a, b, g): (Coord, Coord, usize),
+    (c, e, j): (Coord, Coord, usize),
+    ranked: &mut Vec<(Rank, u32)>,
+    found: &mut Vec<Cut>,
+) -> bool {
+    match meet((a, b), (c, e)) {
+        Meet::Cut(mut t, mut u, mut at) => {
+            let mine = (sort_key(a.x.min(b.x)), g as u32);
+            let theirs = (sort_key(c.x.min(e.x)), j as u32);
+            let (rank, seg) = if theirs < mine {
+                if let Meet::Cut(t1, u1, at1) = meet((c, e), (a, b)) {
+                    (t, u, at) = (t1, u1, at1);
+                }
+                ((theirs, mine), [j, g])
+            } else {
+                ((mine, theirs), [g, j])
+            };
+            ranked.push((rank, found.len() as u32));
+            found.push(Cut {
+                ring: [0, 0],
+                seg,
+                t: [t, u],
+                at,
+            });
+            true
+        }
+        Meet::Touch => false,
+        Meet::Not => true,
+    }
 }
 
 /// Sorts `order` by insertion, moving elements at most `budget` places in all; `false`

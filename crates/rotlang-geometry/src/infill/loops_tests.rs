@@ -435,3 +435,261 @@ proptest! {
         }
     }
 }
+
+/// The grid's cuts of one ring against the sweep's: the same answer (a tangency found by
+/// both), and the same cuts to the bit in the same order.
+fn ring_as_the_sweep(pts: Vec<Coord>) -> Result<(), TestCaseError> {
+    let raws = vec![Raw::of(pts)];
+    let (mut fast, mut swept) = (Vec::new(), Vec::new());
+    let mut scratch = (Vec::new(), Vec::new(), Vec::new());
+    let found = ring_crossings(&raws[0].pts, &mut scratch, &mut fast);
+    let sweep = crossings(&raws, &mut Sweep::default(), &mut swept);
+    prop_assert_eq!(found, Some(sweep));
+    if sweep {
+        prop_assert_eq!(cut_bits(&fast), cut_bits(&swept));
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2048))]
+
+    /// One ring of 3 to 64 segments laid on the grid is cut as the sweep cuts it: rings
+    /// about a centre with radii and angles jittered (crossing themselves where a radius
+    /// is small or an angle runs back, some wound twice), or points anywhere in a box
+    /// (crossing everywhere); some snapped to a coarse lattice (points repeated, segments
+    /// touching, overlapping along a line, sharing a least `x`: the sweep's ties).
+    #[test]
+    fn one_ring_on_a_grid_is_cut_as_the_sweep(
+        points in proptest::collection::vec(
+            (0.05f64..1.0, -0.7f64..0.7, 0.0f64..1.0, 0.0f64..1.0),
+            3..65,
+        ),
+        scattered in proptest::bool::ANY,
+        twice in proptest::bool::ANY,
+        size in 0.001f64..1000.0,
+        at in (-100.0f64..100.0, -100.0f64..100.0),
+        snap in proptest::option::of(2.0f64..12.0),
+    ) {
+        let n = points.len();
+        let turns = if twice { 2.0 } else { 1.0 };
+        let pts: Vec<Coord> = points
+            .iter()
+            .enumerate()
+            .map(|(i, &(r, jitter, x, y))| {
+                let (x, y) = if scattered {
+                    (x - 0.5, y - 0.5)
+                } else {
+                    let a = std::f64::consts::TAU * turns * (i as f64 + jitter) / n as f64;
+                    (r * math::cos(a), r * math::sin(a))
+                };
+                let (x, y) = match snap {
+                    Some(k) => ((x * k).round() / k, (y * k).round() / k),
+                    None => (x, y),
+                };
+                Coord { x: at.0 + size * x, y: at.1 + size * y }
+            })
+            .collect();
+        ring_as_the_sweep(pts)?;
+    }
+
+    /// The raw rings of random star-like outlines' erosions (a star's loops pinching and
+    /// their tips' swallowtails), each alone, are cut on the grid as by the sweep.
+    #[test]
+    fn eroded_rings_on_a_grid_are_cut_as_the_sweep(
+        radii in proptest::collection::vec(0.2f64..1.0, 3..14),
+        size in 1.0f64..50.0,
+        depths in proptest::collection::vec(0.01f64..0.6, 1..6),
+    ) {
+        let region = region(&radii, size, &[]);
+        let mut eroder = Eroder::new(&region, 0.5);
+        for depth in depths {
+            let _ = eroder.rings(depth * size);
+            let pts = eroder.raws[0].pts.clone();
+            if (3..=64).contains(&pts.len()) {
+                ring_as_the_sweep(pts)?;
+            }
+        }
+    }
+}
+
+/// The grid is asked only for one ring of 3 to 64 finite points; the sweep decides the
+/// rest.
+#[test]
+fn the_grid_declines_what_it_is_not_for() {
+    let ring = |n: usize| -> Vec<Coord> {
+        (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * 3.0 * i as f64 / n as f64;
+                Coord {
+                    x: math::cos(a),
+                    y: math::sin(a),
+                }
+            })
+            .collect()
+    };
+    let mut scratch = (Vec::new(), Vec::new(), Vec::new());
+    let mut cuts = Vec::new();
+    assert_eq!(ring_crossings(&ring(65), &mut scratch, &mut cuts), None);
+    assert_eq!(ring_crossings(&ring(2), &mut scratch, &mut cuts), None);
+    for bad in [f64::NAN, f64::INFINITY] {
+        let mut pts = ring(20);
+        pts[7].y = bad;
+        assert_eq!(ring_crossings(&pts, &mut scratch, &mut cuts), None);
+    }
+    // Bounds too wide to measure.
+    let mut pts = ring(20);
+    pts[3].x = -f64::MAX;
+    pts[9].x = f64::MAX;
+    assert_eq!(ring_crossings(&pts, &mut scratch, &mut cuts), None);
+    // A ring wound three times crosses itself at every turn: found.
+    assert_eq!(
+        ring_crossings(&ring(64), &mut scratch, &mut cuts),
+        Some(true)
+    );
+    assert!(!cuts.is_empty());
+}
+
+/// A star's loop where its arms pinch (one ring of 35 segments, 5 cuts at 20%) goes to
+/// the grid, with the sweep's cuts.
+#[test]
+fn the_stars_pinched_loop_is_cut_on_the_grid() {
+    let region = crate::infill::shapes::star(10.0, 4.5);
+    let mut eroder = Eroder::new(&region, 0.5);
+    let mut seen = false;
+    for k in 1..40 {
+        let d = 0.1 * k as f64;
+        let _ = eroder.rings(d);
+        let raws = &eroder.raws;
+        if raws.len() == 1 && !star_shaped(&raws[0].pts) {
+            let mut scratch = (Vec::new(), Vec::new(), Vec::new());
+            let (mut fast, mut swept) = (Vec::new(), Vec::new());
+            let found = ring_crossings(&raws[0].pts, &mut scratch, &mut fast);
+            assert_eq!(
+                found,
+                Some(crossings(raws, &mut Sweep::default(), &mut swept))
+            );
+            assert_eq!(cut_bits(&fast), cut_bits(&swept));
+            seen |= !fast.is_empty();
+        }
+    }
+    assert!(seen);
+}
+
+/// A raw offset with its sharp tips closed as before: filled through each tip's vertex,
+/// then each tip's three points replaced by its mitre afterwards (`Raw::close_tips`).
+fn closed_afterwards(eroder: &Eroder, r: usize, d: f64) -> Raw {
+    let corners = &eroder.corners[r];
+    let mut raw = Raw::default();
+    let check = d >= eroder.safes[r].0;
+    raw.fill(corners, &eroder.boundary.arcs.directions, d, false, check);
+    raw.tips.clear();
+    let mut at = 0;
+    for corner in corners {
+        match corner {
+            Corner::Mitre { .. } => at += 1,
+            Corner::Tip { .. } => {
+                raw.tips.push((at, None));
+                at += 3;
+            }
+            Corner::Arc { inner, .. } => at += 2 + inner.len(),
+        }
+    }
+    if !raw.tips.is_empty() {
+        raw.close_tips();
+    }
+    raw
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1024))]
+
+    /// Sharp tips closed from the corners as the raw offset is filled are the tips
+    /// closed afterwards: the same points to the bit, the same arcs and the same
+    /// directions along, on star-like outlines (sharp tips, some two in a row) with and
+    /// without a hole, at depths where the tips close, where they do not and where two
+    /// tips' mitres come out of order.
+    #[test]
+    fn tips_closed_while_filling_are_tips_closed_after(
+        radii in proptest::collection::vec(0.1f64..1.0, 3..12),
+        hole in proptest::collection::vec(0.8f64..1.0, 0..8),
+        scattered in proptest::option::of(
+            proptest::collection::vec((0.0f64..1.0, 0.0f64..1.0), 3..8),
+        ),
+        size in 1.0f64..50.0,
+        depths in proptest::collection::vec(0.001f64..0.8, 1..6),
+    ) {
+        // Or an outline of points anywhere in a square (crossing itself, sharp tips in a
+        // row: their mitres come out of order).
+        let region = match scattered {
+            Some(points) => {
+                let mut ring: Vec<Coord> =
+                    points.iter().map(|&(x, y)| Coord { x: x * size, y: y * size }).collect();
+                ring.push(ring[0]);
+                MultiPolygon::new(vec![Polygon::new(LineString::new(ring), Vec::new())])
+            }
+            None => region(&radii, size, &hole),
+        };
+        let mut eroder = Eroder::new(&region, 0.5);
+        for depth in depths {
+            let d = depth * size;
+            let _ = eroder.rings(d);
+            fills_as_closed_afterwards(&eroder, d)?;
+        }
+    }
+}
+
+/// Each of the eroder's raw offsets as filled for `d` is the one filled through its tips
+/// and closed afterwards, to the bit.
+fn fills_as_closed_afterwards(eroder: &Eroder, d: f64) -> Result<(), TestCaseError> {
+    let bits = |pts: &[Coord]| -> Vec<(u64, u64)> {
+        pts.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect()
+    };
+    let along = |a: &[Option<Coord>]| -> Vec<Option<(u64, u64)>> {
+        a.iter()
+            .map(|c| c.map(|c| (c.x.to_bits(), c.y.to_bits())))
+            .collect()
+    };
+    for r in 0..eroder.corners.len() {
+        let before = closed_afterwards(eroder, r, d);
+        let now = &eroder.raws[r];
+        prop_assert_eq!(bits(&now.pts), bits(&before.pts), "by {}", d);
+        prop_assert_eq!(along(&now.along), along(&before.along));
+        prop_assert_eq!(&now.arcs, &before.arcs);
+    }
+    Ok(())
+}
+
+/// An outline crossing itself whose two sharp tips in a row have mitres out of order
+/// along the edge between them at some depths, and in order at others: no tip closed
+/// there, as before.
+#[test]
+fn tips_whose_mitres_come_out_of_order_stay_open() {
+    let ring: Vec<Coord> = [
+        (19.328, 10.66),
+        (34.42, 25.184),
+        (30.556, 17.996),
+        (15.52, 26.66),
+        (37.104, 7.652),
+        (19.328, 10.66),
+    ]
+    .iter()
+    .map(|&(x, y)| Coord { x, y })
+    .collect();
+    let region = MultiPolygon::new(vec![Polygon::new(LineString::new(ring), Vec::new())]);
+    let mut eroder = Eroder::new(&region, 0.5);
+    let (mut open, mut closed) = (0, 0);
+    for k in 1..60 {
+        let d = 0.25 * k as f64;
+        let _ = eroder.rings(d);
+        fills_as_closed_afterwards(&eroder, d).unwrap();
+        let mut raw = Raw::default();
+        let closing = raw.tip_mitres(&eroder.corners[0], d);
+        if closing {
+            closed += 1;
+        } else if raw.tips.iter().any(|t| t.1.is_some()) {
+            open += 1;
+        }
+    }
+    assert!(open > 0 && closed > 0, "{open} {closed}");
+}

@@ -103,10 +103,23 @@ pub(crate) fn simplify_each(path: &mut Vec<Coord>, min: f64) -> bool {
 /// known counter-clockwise (`Region::one_ring_left`; `Router::told`).
 pub(crate) fn order(
     paths: Vec<Vec<Coord>>,
+    lengths: Vec<f64>,
+    monotonic: Option<Frame>,
+    rings: &[Vec<Coord>],
+    left: bool,
+) -> Toolpaths {
+    order_with(paths, lengths, monotonic, rings, left, false)
+}
+
+/// [`order`], the router made even for a single path (no move to route) where
+/// `always_route` (tests compare the two).
+pub(crate) fn order_with(
+    paths: Vec<Vec<Coord>>,
     mut lengths: Vec<f64>,
     monotonic: Option<Frame>,
     rings: &[Vec<Coord>],
     left: bool,
+    always_route: bool,
 ) -> Toolpaths {
     let ordered = match monotonic {
         Some(frame) => {
@@ -123,13 +136,24 @@ pub(crate) fn order(
         travels: Vec::with_capacity(ordered.len().saturating_sub(1)),
         ..Toolpaths::default()
     };
-    let router = super::travel::Router::told(rings, left);
     let mut ordered = ordered;
-    // (Two copies: the lines' paths, with no lengths, laid out as they were without.)
-    if measured {
-        lay_out::<true>(&mut ordered, &lengths, &router, &mut toolpaths);
+    if ordered.len() < 2 && !always_route {
+        // A single path (a star's one concentric loop), or none: no move, no router.
+        for path in ordered.drain(..) {
+            toolpaths.length += match lengths.first() {
+                Some(&known) if measured && !known.is_nan() => known,
+                _ => path.windows(2).map(|w| dist(w[0], w[1])).sum::<f64>(),
+            };
+            toolpaths.polylines.push(LineString::new(path));
+        }
     } else {
-        lay_out::<false>(&mut ordered, &lengths, &router, &mut toolpaths);
+        let router = super::travel::Router::told(rings, left);
+        // (Two copies: the lines' paths, with no lengths, laid out as they were without.)
+        if measured {
+            lay_out::<true>(&mut ordered, &lengths, &router, &mut toolpaths);
+        } else {
+            lay_out::<false>(&mut ordered, &lengths, &router, &mut toolpaths);
+        }
     }
     // The emptied lists serve the next layer's paths.
     super::scratch::give(&PATHS, ordered);

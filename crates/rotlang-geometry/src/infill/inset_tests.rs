@@ -832,4 +832,61 @@ proptest! {
             }
         }
     }
+
+    /// The outline a region keeps (for concentric loops) is the region as given, to
+    /// the bit, where its one polygon without holes is copied into the lists an earlier
+    /// region gave back: random star-like outlines of 3 to 80 points one after another
+    /// (each taking the last one's lists, longer or shorter), some with a point repeated
+    /// (cleaned: then what a region built on a new thread keeps), some with a hole, some
+    /// two polygons (cloned).
+    #[test]
+    fn outlines_kept_in_the_lists_given_back_are_the_regions(
+        outlines in prop::collection::vec(
+            (prop::collection::vec(4.0f64..15.0, 3..80), 0.0f64..TAU, 0u8..4),
+            1..8,
+        ),
+    ) {
+        for (radii, turn, kind) in &outlines {
+            let mut points = radial(radii, *turn, Coord::zero());
+            if *kind == 1 {
+                points.insert(1, points[1]);
+            }
+            let polygon = |points: Vec<Coord>, holes| geo::Polygon::new(geo::LineString::new(points), holes);
+            let hole = || {
+                let mut h = radial(&[1.0, 1.0, 1.0, 1.0], 0.3, Coord::zero());
+                h.reverse();
+                geo::LineString::new(h)
+            };
+            let region = geo::MultiPolygon::new(match kind {
+                2 => vec![polygon(points, vec![hole()])],
+                3 => vec![
+                    polygon(points, vec![]),
+                    polygon(radial(&[1.0, 1.0, 1.0], 0.0, Coord { x: 40.0, y: 0.0 }), vec![]),
+                ],
+                _ => vec![polygon(points, vec![])],
+            });
+            let kept = |region: &geo::MultiPolygon<f64>| {
+                super::Region::build(region, 0.4, true).map(|r| r.outline().clone())
+            };
+            let fresh = std::thread::scope(|s| s.spawn(|| kept(&region)).join().unwrap());
+            let reused = kept(&region);
+            prop_assert_eq!(reused.is_ok(), fresh.is_ok());
+            if let (Ok(a), Ok(b)) = (reused, fresh) {
+                let bits = |m: &geo::MultiPolygon<f64>| {
+                    m.0.iter()
+                        .map(|p| {
+                            std::iter::once(p.exterior())
+                                .chain(p.interiors())
+                                .map(|r| r.0.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect::<Vec<_>>())
+                                .collect::<Vec<_>>()
+                        })
+                        .collect::<Vec<_>>()
+                };
+                prop_assert_eq!(bits(&a), bits(&b));
+                if *kind != 1 {
+                    prop_assert_eq!(bits(&a), bits(&region));
+                }
+            }
+        }
+    }
 }

@@ -38,6 +38,31 @@ pub struct Region {
     pooled_convex: bool,
 }
 
+/// A copy of `region` (the outline concentric loops are offset from), the same to the
+/// bit: one polygon without holes (a star's, an L's) in the lists `OUTLINE_POLYGONS` and
+/// `OUTLINE_RING` a dropped region gave back (`Region::drop`), no allocation; any other
+/// region cloned.
+fn copied(region: &MultiPolygon<f64>) -> MultiPolygon<f64> {
+    match &region.0[..] {
+        [polygon] if polygon.interiors().is_empty() => {
+            let mut ring = super::scratch::take(&OUTLINE_RING);
+            ring.extend_from_slice(&polygon.exterior().0);
+            let mut polygons = super::scratch::take(&OUTLINE_POLYGONS);
+            polygons.push(Polygon::new(LineString::new(ring), Vec::new()));
+            MultiPolygon::new(polygons)
+        }
+        _ => region.clone(),
+    }
+}
+
+thread_local! {
+    /// A region's copy of its one polygon (`copied`), given back when it is dropped,
+    /// for the next layer's.
+    static OUTLINE_POLYGONS: std::cell::Cell<Vec<Polygon<f64>>> =
+        const { std::cell::Cell::new(Vec::new()) };
+    static OUTLINE_RING: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+}
+
 impl Region {
     /// Insets `region` by half of `nozzle`. Coordinates must be finite and within
     /// ±[`MAX_COORDINATE`] mm; rings with fewer than three points or no area are ignored.
@@ -68,7 +93,7 @@ impl Region {
         // its first outline's area known.
         let cleaned = match (keep_outline, as_is) {
             (false, true) => std::borrow::Cow::Borrowed(region),
-            (true, true) => std::borrow::Cow::Owned(region.clone()),
+            (true, true) => std::borrow::Cow::Owned(copied(region)),
             _ => std::borrow::Cow::Owned(clean(region)),
         };
         let (arc, step) = arc_and_step(nozzle / 2.0);
@@ -217,6 +242,17 @@ impl Drop for Region {
             let ring = self.rings.pop().unwrap_or_default();
             super::scratch::give(&super::offset::RING, ring);
             super::scratch::give(&super::offset::RINGS, std::mem::take(&mut self.rings));
+        }
+        // The outline kept as `copied` made it (one polygon without holes): its lists
+        // back to their pools (any other outline's are freed).
+        if let [polygon] = &self.outline.0[..]
+            && polygon.interiors().is_empty()
+        {
+            let mut polygons = std::mem::take(&mut self.outline.0);
+            if let Some(polygon) = polygons.pop() {
+                super::scratch::give(&OUTLINE_RING, polygon.into_inner().0.0);
+            }
+            super::scratch::give(&OUTLINE_POLYGONS, polygons);
         }
         if self.pooled_convex {
             let mut rings = std::mem::take(&mut self.rings);

@@ -152,14 +152,18 @@ impl Region {
         } else {
             paths.retain_mut(|p| simplify(p, min_segment));
         }
-        let monotonic = params.order == Order::Monotonic;
-        Ok(order::order(
-            paths,
-            lengths,
-            monotonic.then(|| Frame::new(centre, theta)),
-            if self.convex { &[] } else { &self.rings },
-            !self.convex && self.one_ring_left(),
-        ))
+        let monotonic = (params.order == Order::Monotonic).then(|| Frame::new(centre, theta));
+        let rings: &[Vec<Coord>] = if self.convex { &[] } else { &self.rings };
+        let left = !self.convex && self.one_ring_left();
+        // Concentric loops lie well inside the region: their moves are asked of the
+        // region's outline first (`Region::clear_inside`).
+        Ok(
+            if params.pattern == Pattern::Concentric && self.proves_inside() {
+                order::order_inside(paths, lengths, monotonic, rings, left, self)
+            } else {
+                order::order(paths, lengths, monotonic, rings, left)
+            },
+        )
     }
 }
 
@@ -409,7 +413,7 @@ mod tests {
             let left = region.one_ring_left();
             let frame = monotonic.then(|| super::Frame::new(Coord { x: 1.0, y: -2.0 }, 0.7));
             let routed = super::order::order_with(
-                paths.clone(), lengths.clone(), frame, region.rings(), left, true,
+                paths.clone(), lengths.clone(), frame, region.rings(), left, true, None,
             );
             let plain = super::order::order(paths, lengths, frame, region.rings(), left);
             prop_assert_eq!(plain.length.to_bits(), routed.length.to_bits());

@@ -216,6 +216,78 @@ impl Region {
         self.convex
     }
 
+    /// Whether `clear_inside` may prove a move inside: the inset made by the raw offset
+    /// as one ring (`pooled`: a star's, an L's) from the outline kept.
+    pub(crate) fn proves_inside(&self) -> bool {
+        self.pooled && !self.outline.0.is_empty()
+    }
+
+    /// Whether the straight move from `p` to `q` is sure to stay inside the inset, proved
+    /// from the outline kept (the region as given, a few edges) rather than by the
+    /// router over the inset's rings: it passes farther than half a nozzle (and a
+    /// margin) from every edge of the outline, so it crosses none and lies inside or
+    /// outside it all along, and its middle is inside (even-odd). Then every point of
+    /// it is in the erosion of the region by half a nozzle, which the raw offset holds
+    /// (its moved edges and mitres are the erosion's, its round corners' chords cut
+    /// inside their arcs, towards the vertex: the inset takes in more than the erosion,
+    /// never less), and farther than the margin from each of the inset's edges (every
+    /// point of those lies within half a nozzle of the outline): the router would find
+    /// no crossing, no edge within the nanometre it tests, and its middle inside, and
+    /// answer the straight move. The margin (a tenth of a micrometre, and a billionth of
+    /// the coordinates' and the move's size) is far above the roundings of the offset
+    /// and of the router's tests, and far below a concentric loop's distance from the
+    /// inset. `false` where `proves_inside` does not hold, or nothing proves it.
+    pub(crate) fn clear_inside(&self, p: Coord, q: Coord) -> bool {
+        if !self.proves_inside() {
+            return false;
+        }
+        let mut largest: f64 = 1.0;
+        for v in [
+            self.min.x, self.min.y, self.max.x, self.max.y, p.x, p.y, q.x, q.y,
+        ] {
+            if v.abs() > largest {
+                largest = v.abs();
+            }
+        }
+        let reach = self.nozzle / 2.0 + 1e-4 + 1e-9 * largest;
+        let reach2 = reach * reach;
+        let (lo, hi) = (
+            Coord {
+                x: if p.x < q.x { p.x } else { q.x } - reach,
+                y: if p.y < q.y { p.y } else { q.y } - reach,
+            },
+            Coord {
+                x: if p.x < q.x { q.x } else { p.x } + reach,
+                y: if p.y < q.y { q.y } else { p.y } + reach,
+            },
+        );
+        let m = (p + q) / 2.0;
+        let mut inside = false;
+        for polygon in &self.outline.0 {
+            for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
+                for w in ring.0.windows(2) {
+                    let (a, b) = (w[0], w[1]);
+                    // The ray to the right of the middle (the half-open rule).
+                    if (a.y <= m.y) != (b.y <= m.y)
+                        && a.x + (m.y - a.y) * (b.x - a.x) / (b.y - a.y) > m.x
+                    {
+                        inside = !inside;
+                    }
+                    // An edge whose box is farther than the reach from the move's in x or
+                    // y is farther from the move; else its distance is measured.
+                    let beside = (a.x < lo.x && b.x < lo.x)
+                        || (a.x > hi.x && b.x > hi.x)
+                        || (a.y < lo.y && b.y < lo.y)
+                        || (a.y > hi.y && b.y > hi.y);
+                    if !beside && !super::offset::apart(p, q, a, b, reach2) {
+                        return false;
+                    }
+                }
+            }
+        }
+        inside
+    }
+
     /// Whether the inset is one ring that the raw offset proved counter-clockwise by
     /// `signed_area`'s own sum (`offset_read` keeps a ring only where that sum is
     /// positive): the side a router over it finds, known without summing it again.

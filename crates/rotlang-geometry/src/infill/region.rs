@@ -231,12 +231,16 @@ impl Region {
     /// (its moved edges and mitres are the erosion's, its round corners' chords cut
     /// inside their arcs, towards the vertex: the inset takes in more than the erosion,
     /// never less), and farther than the margin from each of the inset's edges (every
-    /// point of those lies within half a nozzle of the outline): the router would find
+    /// point of those lies within half a nozzle of the outline: a moved edge's points
+    /// half a nozzle from their edge, between its ends, the offset declining an edge
+    /// that turns around; a round corner's within it of its vertex): the router would find
     /// no crossing, no edge within the nanometre it tests, and its middle inside, and
-    /// answer the straight move. The margin (a tenth of a micrometre, and a billionth of
-    /// the coordinates' and the move's size) is far above the roundings of the offset
-    /// and of the router's tests, and far below a concentric loop's distance from the
-    /// inset. `false` where `proves_inside` does not hold, or nothing proves it.
+    /// answer the straight move. The margin (a tenth of a micrometre, and a hundred
+    /// millionth of the largest coordinate, the move's ends' included) is far above the
+    /// roundings of the offset and of the router's tests and above how far beyond the
+    /// move's ends the router takes an edge's crossing as the end's (a billionth of the
+    /// move's length), and far below a concentric loop's distance from the inset.
+    /// `false` where `proves_inside` does not hold, or nothing proves it.
     pub(crate) fn clear_inside(&self, p: Coord, q: Coord) -> bool {
         if !self.proves_inside() {
             return false;
@@ -249,7 +253,7 @@ impl Region {
                 largest = v.abs();
             }
         }
-        let reach = self.nozzle / 2.0 + 1e-4 + 1e-9 * largest;
+        let reach = self.nozzle / 2.0 + 1e-4 + 1e-8 * largest;
         let reach2 = reach * reach;
         let (lo, hi) = (
             Coord {

@@ -504,7 +504,7 @@ thread_local! {
 /// Whether `r` and `s` are both on the same side of the line through `p` and `q` (`len2`
 /// its squared length), farther than `√reach2` from it.
 #[inline]
-fn beyond(p: Coord, q: Coord, len2: f64, r: Coord, s: Coord, reach2: f64) -> bool {
+pub(crate) fn beyond(p: Coord, q: Coord, len2: f64, r: Coord, s: Coord, reach2: f64) -> bool {
     let e = q - p;
     let (cr, cs) = (cross(e, r - p), cross(e, s - p));
     let bound = reach2 * len2;

@@ -38,6 +38,12 @@ pub struct Region {
     pooled_convex: bool,
 }
 
+/// The squared length of the edge from `a` to `b`.
+fn edge_len2(a: Coord, b: Coord) -> f64 {
+    let e = b - a;
+    e.x * e.x + e.y * e.y
+}
+
 /// A copy of `region` (the outline concentric loops are offset from), the same to the
 /// bit: one polygon without holes (a star's, an L's) in the lists `OUTLINE_POLYGONS` and
 /// `OUTLINE_RING` a dropped region gave back (`Region::drop`), no allocation; any other
@@ -266,6 +272,7 @@ impl Region {
             },
         );
         let m = (p + q) / 2.0;
+        let len2 = edge_len2(p, q);
         let mut inside = false;
         for polygon in &self.outline.0 {
             for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
@@ -283,7 +290,14 @@ impl Region {
                         || (a.x > hi.x && b.x > hi.x)
                         || (a.y < lo.y && b.y < lo.y)
                         || (a.y > hi.y && b.y > hi.y);
-                    if !beside && !super::offset::apart(p, q, a, b, reach2) {
+                    // Most edges near the move's box are told far by the sides of the
+                    // move's line (both ends beyond the reach on one side), or of
+                    // theirs; the others by the distance between the two segments.
+                    let far = beside
+                        || super::offset::beyond(p, q, len2, a, b, reach2)
+                        || super::offset::beyond(a, b, edge_len2(a, b), p, q, reach2)
+                        || super::offset::apart(p, q, a, b, reach2);
+                    if !far {
                         return false;
                     }
                 }

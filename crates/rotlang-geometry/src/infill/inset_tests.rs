@@ -832,4 +832,117 @@ proptest! {
             }
         }
     }
+
+    /// The outline a region keeps (for concentric loops) is the region as given, to
+    /// the bit, where its one polygon without holes is copied into the lists an earlier
+    /// region gave back: random star-like outlines of 3 to 80 points one after another
+    /// (each taking the last one's lists, longer or shorter), some with a point repeated
+    /// (cleaned: then what a region built on a new thread keeps), some with a hole, some
+    /// two polygons (cloned).
+    #[test]
+    fn outlines_kept_in_the_lists_given_back_are_the_regions(
+        outlines in prop::collection::vec(
+            (prop::collection::vec(4.0f64..15.0, 3..80), 0.0f64..TAU, 0u8..4),
+            1..8,
+        ),
+    ) {
+        for (radii, turn, kind) in &outlines {
+            let mut points = radial(radii, *turn, Coord::zero());
+            if *kind == 1 {
+                points.insert(1, points[1]);
+            }
+            let polygon = |points: Vec<Coord>, holes| geo::Polygon::new(geo::LineString::new(points), holes);
+            let hole = || {
+                let mut h = radial(&[1.0, 1.0, 1.0, 1.0], 0.3, Coord::zero());
+                h.reverse();
+                geo::LineString::new(h)
+            };
+            let region = geo::MultiPolygon::new(match kind {
+                2 => vec![polygon(points, vec![hole()])],
+                3 => vec![
+                    polygon(points, vec![]),
+                    polygon(radial(&[1.0, 1.0, 1.0], 0.0, Coord { x: 40.0, y: 0.0 }), vec![]),
+                ],
+                _ => vec![polygon(points, vec![])],
+            });
+            let kept = |region: &geo::MultiPolygon<f64>| {
+                super::Region::build(region, 0.4, true).map(|r| r.outline().clone())
+            };
+            let fresh = std::thread::scope(|s| s.spawn(|| kept(&region)).join().unwrap());
+            let reused = kept(&region);
+            prop_assert_eq!(reused.is_ok(), fresh.is_ok());
+            if let (Ok(a), Ok(b)) = (reused, fresh) {
+                let bits = |m: &geo::MultiPolygon<f64>| {
+                    m.0.iter()
+                        .map(|p| {
+                            std::iter::once(p.exterior())
+                                .chain(p.interiors())
+                                .map(|r| r.0.iter().map(|c| (c.x.to_bits(), c.y.to_bits())).collect::<Vec<_>>())
+                                .collect::<Vec<_>>()
+                        })
+                        .collect::<Vec<_>>()
+                };
+                prop_assert_eq!(bits(&a), bits(&b));
+                if *kind != 1 {
+                    prop_assert_eq!(bits(&a), bits(&region));
+                }
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// A move `Region::clear_inside` proves inside is the straight move the router
+    /// over the inset's rings gives (the fast router and the general one): random
+    /// star-like outlines (the raw offset's one ring), moves between random points of
+    /// the region's box and points of the inset a little (0 to 1.5 mm) in from it, many
+    /// of them passing within half a nozzle of the outline.
+    #[test]
+    fn moves_proved_inside_from_the_outline_are_the_routers_straight_moves(
+        radii in prop::collection::vec(4.0f64..15.0, 5..30),
+        turn in 0.0f64..TAU,
+        moves in prop::collection::vec(
+            ((0usize..1000, 0.0f64..1.0, 0.0f64..1.5, any::<bool>()),
+             (0usize..1000, 0.0f64..1.0, 0.0f64..1.5, any::<bool>())),
+            1..24,
+        ),
+    ) {
+        let shape = geo::MultiPolygon::new(vec![geo::Polygon::new(
+            geo::LineString::new(radial(&radii, turn, Coord::zero())),
+            vec![],
+        )]);
+        let Ok(region) = super::Region::build(&shape, 0.4, true) else {
+            return Ok(());
+        };
+        let rings = region.rings();
+        prop_assume!(rings.len() == 1 && region.one_ring_left());
+        let ring = &rings[0];
+        let n = ring.len();
+        let centre = offset::mean(ring);
+        // A point of the inset's edge `at` moved `inward` towards the centre, or a point
+        // of the box.
+        let point = |(at, along, inward, boxed): (usize, f64, f64, bool)| {
+            if boxed {
+                let (lo, hi) = (region.min, region.max);
+                Coord { x: lo.x + (hi.x - lo.x) * along, y: lo.y + (hi.y - lo.y) * inward / 1.5 }
+            } else {
+                let (a, b) = (ring[at % n], ring[(at + 1) % n]);
+                let p = a + (b - a) * along;
+                let to = centre - p;
+                let length = (to.x * to.x + to.y * to.y).sqrt();
+                if length > 0.0 { p + to * (inward / length) } else { p }
+            }
+        };
+        let fast = super::travel::Router::told(rings, true);
+        let general = super::travel::Router::new(rings).general();
+        for (a, b) in moves {
+            let (p, q) = (point(a), point(b));
+            if region.clear_inside(p, q) {
+                prop_assert_eq!(fast.route(p, q), vec![p, q]);
+                prop_assert_eq!(general.route(p, q), vec![p, q]);
+            }
+        }
+    }
 }

@@ -504,7 +504,7 @@ thread_local! {
 /// Whether `r` and `s` are both on the same side of the line through `p` and `q` (`len2`
 /// its squared length), farther than `√reach2` from it.
 #[inline]
-fn beyond(p: Coord, q: Coord, len2: f64, r: Coord, s: Coord, reach2: f64) -> bool {
+pub(crate) fn beyond(p: Coord, q: Coord, len2: f64, r: Coord, s: Coord, reach2: f64) -> bool {
     let e = q - p;
     let (cr, cs) = (cross(e, r - p), cross(e, s - p));
     let bound = reach2 * len2;
@@ -514,7 +514,7 @@ fn beyond(p: Coord, q: Coord, len2: f64, r: Coord, s: Coord, reach2: f64) -> boo
 /// Whether the segments `pq` and `rs` are farther apart than `√reach2`: no crossing, and
 /// every end far from the other segment.
 #[inline]
-fn apart(p: Coord, q: Coord, r: Coord, s: Coord, reach2: f64) -> bool {
+pub(crate) fn apart(p: Coord, q: Coord, r: Coord, s: Coord, reach2: f64) -> bool {
     !segments_meet(p, q, r, s)
         && farther(p, r, s, reach2)
         && farther(q, r, s, reach2)

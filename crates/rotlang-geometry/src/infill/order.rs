@@ -103,10 +103,39 @@ pub(crate) fn simplify_each(path: &mut Vec<Coord>, min: f64) -> bool {
 /// known counter-clockwise (`Region::one_ring_left`; `Router::told`).
 pub(crate) fn order(
     paths: Vec<Vec<Coord>>,
+    lengths: Vec<f64>,
+    monotonic: Option<Frame>,
+    rings: &[Vec<Coord>],
+    left: bool,
+) -> Toolpaths {
+    order_with(paths, lengths, monotonic, rings, left, false, None)
+}
+
+/// [`order`] of paths whose ends lie well inside `region` (concentric loops): each move
+/// asked of `Region::clear_inside` first, straight where it proves it inside, the
+/// router made only for one it does not.
+pub(crate) fn order_inside(
+    paths: Vec<Vec<Coord>>,
+    lengths: Vec<f64>,
+    monotonic: Option<Frame>,
+    rings: &[Vec<Coord>],
+    left: bool,
+    region: &super::Region,
+) -> Toolpaths {
+    order_with(paths, lengths, monotonic, rings, left, false, Some(region))
+}
+
+/// [`order`], the router made even for a single path (no move to route) where
+/// `always_route` (tests compare the two), each move asked of `inside` first where
+/// given ([`order_inside`]).
+pub(crate) fn order_with(
+    paths: Vec<Vec<Coord>>,
     mut lengths: Vec<f64>,
     monotonic: Option<Frame>,
     rings: &[Vec<Coord>],
     left: bool,
+    always_route: bool,
+    inside: Option<&super::Region>,
 ) -> Toolpaths {
     let ordered = match monotonic {
         Some(frame) => {
@@ -123,13 +152,37 @@ pub(crate) fn order(
         travels: Vec::with_capacity(ordered.len().saturating_sub(1)),
         ..Toolpaths::default()
     };
-    let router = super::travel::Router::told(rings, left);
     let mut ordered = ordered;
-    // (Two copies: the lines' paths, with no lengths, laid out as they were without.)
-    if measured {
-        lay_out::<true>(&mut ordered, &lengths, &router, &mut toolpaths);
+    if ordered.len() < 2 && !always_route {
+        // A single path (a star's one concentric loop), or none: no move, no router.
+        for path in ordered.drain(..) {
+            toolpaths.length += match lengths.first() {
+                Some(&known) if measured && !known.is_nan() => known,
+                _ => path.windows(2).map(|w| dist(w[0], w[1])).sum::<f64>(),
+            };
+            toolpaths.polylines.push(LineString::new(path));
+        }
+    } else if let Some(region) = inside {
+        // Moves proved inside are straight; the router is made for the first that is not.
+        let mut route = Inside {
+            region,
+            rings,
+            left,
+            router: None,
+        };
+        if measured {
+            lay_out::<true, _>(&mut ordered, &lengths, &mut route, &mut toolpaths);
+        } else {
+            lay_out::<false, _>(&mut ordered, &lengths, &mut route, &mut toolpaths);
+        }
     } else {
-        lay_out::<false>(&mut ordered, &lengths, &router, &mut toolpaths);
+        let router = super::travel::Router::told(rings, left);
+        // (Two copies: the lines' paths, with no lengths, laid out as they were without.)
+        if measured {
+            lay_out::<true, _>(&mut ordered, &lengths, &mut &router, &mut toolpaths);
+        } else {
+            lay_out::<false, _>(&mut ordered, &lengths, &mut &router, &mut toolpaths);
+        }
     }
     // The emptied lists serve the next layer's paths.
     super::scratch::give(&PATHS, ordered);
@@ -138,12 +191,13 @@ pub(crate) fn order(
 }
 
 /// The paths in order into `toolpaths`, each measured (where `MEASURED`, by its known
-/// length if it has one) and the travel to it routed.
+/// length if it has one) and the travel to it routed (`route`: a move's ends, and
+/// whether the path it leads to is closed, `Router::route_on`'s).
 #[inline(always)]
-fn lay_out<const MEASURED: bool>(
+fn lay_out<const MEASURED: bool, R: Route>(
     ordered: &mut Vec<Vec<Coord>>,
     lengths: &[f64],
-    router: &super::travel::Router,
+    router: &mut R,
     toolpaths: &mut Toolpaths,
 ) {
     let mut last: Option<Coord> = None;
@@ -152,7 +206,7 @@ fn lay_out<const MEASURED: bool>(
     for path in ordered.drain(..) {
         if let (Some(l), Some(&first)) = (last, path.first()) {
             // A closed path (a loop) ends where it starts: the next move starts there.
-            let route = router.route_on(l, first, path.last() == Some(&first));
+            let route = router.route(l, first, path.last() == Some(&first));
             toolpaths.travel += super::travel::length(&route);
             toolpaths.travels.push(LineString::new(route));
         }
@@ -171,6 +225,41 @@ fn lay_out<const MEASURED: bool>(
         };
         last = path.last().copied();
         toolpaths.polylines.push(LineString::new(path));
+    }
+}
+
+/// What routes a layer's moves: a move's ends, and whether the path it leads to is
+/// closed (`Router::route_on`'s).
+trait Route {
+    fn route(&mut self, p: Coord, q: Coord, looped: bool) -> Vec<Coord>;
+}
+
+impl Route for &super::travel::Router<'_> {
+    #[inline(always)]
+    fn route(&mut self, p: Coord, q: Coord, looped: bool) -> Vec<Coord> {
+        self.route_on(p, q, looped)
+    }
+}
+
+/// Moves between paths that lie well inside `region` (concentric loops): each asked of
+/// `Region::clear_inside` first, straight where it proves them inside; the router over
+/// `rings` made for the first it does not.
+struct Inside<'a> {
+    region: &'a super::Region,
+    rings: &'a [Vec<Coord>],
+    left: bool,
+    router: Option<super::travel::Router<'a>>,
+}
+
+impl Route for Inside<'_> {
+    fn route(&mut self, p: Coord, q: Coord, looped: bool) -> Vec<Coord> {
+        if self.region.clear_inside(p, q) {
+            return vec![p, q];
+        }
+        let (rings, left) = (self.rings, self.left);
+        self.router
+            .get_or_insert_with(|| super::travel::Router::told(rings, left))
+            .route_on(p, q, looped)
     }
 }
 

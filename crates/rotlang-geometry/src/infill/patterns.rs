@@ -152,14 +152,18 @@ impl Region {
         } else {
             paths.retain_mut(|p| simplify(p, min_segment));
         }
-        let monotonic = params.order == Order::Monotonic;
-        Ok(order::order(
-            paths,
-            lengths,
-            monotonic.then(|| Frame::new(centre, theta)),
-            if self.convex { &[] } else { &self.rings },
-            !self.convex && self.one_ring_left(),
-        ))
+        let monotonic = (params.order == Order::Monotonic).then(|| Frame::new(centre, theta));
+        let rings: &[Vec<Coord>] = if self.convex { &[] } else { &self.rings };
+        let left = !self.convex && self.one_ring_left();
+        // Concentric loops lie well inside the region: their moves are asked of the
+        // region's outline first (`Region::clear_inside`).
+        Ok(
+            if params.pattern == Pattern::Concentric && self.proves_inside() {
+                order::order_inside(paths, lengths, monotonic, rings, left, self)
+            } else {
+                order::order(paths, lengths, monotonic, rings, left)
+            },
+        )
     }
 }
 
@@ -352,6 +356,70 @@ mod tests {
             } else {
                 prop_assert!(length.is_nan());
             }
+        }
+
+        /// A layer of one path (or none) laid out without a router gives the toolpaths
+        /// (path, length to the bit, no travel) that laying it out with one gives: random
+        /// open and closed paths, none to three of them, measured or not, nearest first
+        /// and monotonic, in a star (one ring known counter-clockwise) and a holed square.
+        #[test]
+        fn a_single_path_laid_out_without_a_router_is_laid_out_with_one(
+            paths in prop::collection::vec(
+                (
+                    prop::collection::vec((-4.0f64..4.0, -4.0f64..4.0, any::<bool>()), 2..8),
+                    any::<bool>(),
+                ),
+                0..4,
+            ),
+            measure in any::<bool>(),
+            holed in any::<bool>(),
+            monotonic in any::<bool>(),
+        ) {
+            // Some points a hundredth of a millimetre from the one before: simplified
+            // away, the path's measured length not known (NaN).
+            let mut paths: Vec<Vec<Coord>> = paths
+                .into_iter()
+                .map(|(points, closed)| {
+                    let mut p: Vec<Coord> = Vec::new();
+                    for (x, y, near) in points {
+                        p.push(match p.last() {
+                            Some(&c) if near => c + Coord { x: 0.01, y: 0.0 },
+                            _ => Coord { x, y },
+                        });
+                    }
+                    if closed {
+                        p.push(p[0]);
+                    }
+                    p
+                })
+                .collect();
+            let mut lengths = Vec::new();
+            paths.retain_mut(|p| {
+                let (kept, length) = super::simplify_measured(p, 0.04);
+                if kept && measure {
+                    lengths.push(length);
+                }
+                kept
+            });
+            let region = crate::infill::Region::new(
+                &if holed {
+                    crate::infill::shapes::holed_square(20.0, 5.0)
+                } else {
+                    crate::infill::shapes::star(10.0, 4.5)
+                },
+                0.4,
+            )
+            .unwrap();
+            let left = region.one_ring_left();
+            let frame = monotonic.then(|| super::Frame::new(Coord { x: 1.0, y: -2.0 }, 0.7));
+            let routed = super::order::order_with(
+                paths.clone(), lengths.clone(), frame, region.rings(), left, true, None,
+            );
+            let plain = super::order::order(paths, lengths, frame, region.rings(), left);
+            prop_assert_eq!(plain.length.to_bits(), routed.length.to_bits());
+            prop_assert_eq!(plain.travel.to_bits(), routed.travel.to_bits());
+            prop_assert_eq!(plain.polylines, routed.polylines);
+            prop_assert_eq!(plain.travels, routed.travels);
         }
 
         /// Ordering paths with the lengths simplifying measured gives the toolpaths

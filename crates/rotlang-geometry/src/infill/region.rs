@@ -38,6 +38,37 @@ pub struct Region {
     pooled_convex: bool,
 }
 
+/// The squared length of the edge from `a` to `b`.
+fn edge_len2(a: Coord, b: Coord) -> f64 {
+    let e = b - a;
+    e.x * e.x + e.y * e.y
+}
+
+/// A copy of `region` (the outline concentric loops are offset from), the same to the
+/// bit: one polygon without holes (a star's, an L's) in the lists `OUTLINE_POLYGONS` and
+/// `OUTLINE_RING` a dropped region gave back (`Region::drop`), no allocation; any other
+/// region cloned.
+fn copied(region: &MultiPolygon<f64>) -> MultiPolygon<f64> {
+    match &region.0[..] {
+        [polygon] if polygon.interiors().is_empty() => {
+            let mut ring = super::scratch::take(&OUTLINE_RING);
+            ring.extend_from_slice(&polygon.exterior().0);
+            let mut polygons = super::scratch::take(&OUTLINE_POLYGONS);
+            polygons.push(Polygon::new(LineString::new(ring), Vec::new()));
+            MultiPolygon::new(polygons)
+        }
+        _ => region.clone(),
+    }
+}
+
+thread_local! {
+    /// A region's copy of its one polygon (`copied`), given back when it is dropped,
+    /// for the next layer's.
+    static OUTLINE_POLYGONS: std::cell::Cell<Vec<Polygon<f64>>> =
+        const { std::cell::Cell::new(Vec::new()) };
+    static OUTLINE_RING: std::cell::Cell<Vec<Coord>> = const { std::cell::Cell::new(Vec::new()) };
+}
+
 impl Region {
     /// Insets `region` by half of `nozzle`. Coordinates must be finite and within
     /// ±[`MAX_COORDINATE`] mm; rings with fewer than three points or no area are ignored.
@@ -68,7 +99,7 @@ impl Region {
         // its first outline's area known.
         let cleaned = match (keep_outline, as_is) {
             (false, true) => std::borrow::Cow::Borrowed(region),
-            (true, true) => std::borrow::Cow::Owned(region.clone()),
+            (true, true) => std::borrow::Cow::Owned(copied(region)),
             _ => std::borrow::Cow::Owned(clean(region)),
         };
         let (arc, step) = arc_and_step(nozzle / 2.0);
@@ -191,6 +222,90 @@ impl Region {
         self.convex
     }
 
+    /// Whether `clear_inside` may prove a move inside: the inset made by the raw offset
+    /// as one ring (`pooled`: a star's, an L's) from the outline kept.
+    pub(crate) fn proves_inside(&self) -> bool {
+        self.pooled && !self.outline.0.is_empty()
+    }
+
+    /// Whether the straight move from `p` to `q` is sure to stay inside the inset, proved
+    /// from the outline kept (the region as given, a few edges) rather than by the
+    /// router over the inset's rings: it passes farther than half a nozzle (and a
+    /// margin) from every edge of the outline, so it crosses none and lies inside or
+    /// outside it all along, and its middle is inside (even-odd). Then every point of
+    /// it is in the erosion of the region by half a nozzle, which the raw offset holds
+    /// (its moved edges and mitres are the erosion's, its round corners' chords cut
+    /// inside their arcs, towards the vertex: the inset takes in more than the erosion,
+    /// never less), and farther than the margin from each of the inset's edges (every
+    /// point of those lies within half a nozzle of the outline: a moved edge's points
+    /// half a nozzle from their edge, between its ends, the offset declining an edge
+    /// that turns around; a round corner's within it of its vertex): the router would find
+    /// no crossing, no edge within the nanometre it tests, and its middle inside, and
+    /// answer the straight move. The margin (a tenth of a micrometre, and a hundred
+    /// millionth of the largest coordinate, the move's ends' included) is far above the
+    /// roundings of the offset and of the router's tests and above how far beyond the
+    /// move's ends the router takes an edge's crossing as the end's (a billionth of the
+    /// move's length), and far below a concentric loop's distance from the inset.
+    /// `false` where `proves_inside` does not hold, or nothing proves it.
+    pub(crate) fn clear_inside(&self, p: Coord, q: Coord) -> bool {
+        if !self.proves_inside() {
+            return false;
+        }
+        let mut largest: f64 = 1.0;
+        for v in [
+            self.min.x, self.min.y, self.max.x, self.max.y, p.x, p.y, q.x, q.y,
+        ] {
+            if v.abs() > largest {
+                largest = v.abs();
+            }
+        }
+        let reach = self.nozzle / 2.0 + 1e-4 + 1e-8 * largest;
+        let reach2 = reach * reach;
+        let (lo, hi) = (
+            Coord {
+                x: if p.x < q.x { p.x } else { q.x } - reach,
+                y: if p.y < q.y { p.y } else { q.y } - reach,
+            },
+            Coord {
+                x: if p.x < q.x { q.x } else { p.x } + reach,
+                y: if p.y < q.y { q.y } else { p.y } + reach,
+            },
+        );
+        let m = (p + q) / 2.0;
+        let len2 = edge_len2(p, q);
+        let mut inside = false;
+        for polygon in &self.outline.0 {
+            for ring in std::iter::once(polygon.exterior()).chain(polygon.interiors()) {
+                for w in ring.0.windows(2) {
+                    let (a, b) = (w[0], w[1]);
+                    // The ray to the right of the middle (the half-open rule).
+                    if (a.y <= m.y) != (b.y <= m.y)
+                        && a.x + (m.y - a.y) * (b.x - a.x) / (b.y - a.y) > m.x
+                    {
+                        inside = !inside;
+                    }
+                    // An edge whose box is farther than the reach from the move's in x or
+                    // y is farther from the move; else its distance is measured.
+                    let beside = (a.x < lo.x && b.x < lo.x)
+                        || (a.x > hi.x && b.x > hi.x)
+                        || (a.y < lo.y && b.y < lo.y)
+                        || (a.y > hi.y && b.y > hi.y);
+                    // Most edges near the move's box are told far by the sides of the
+                    // move's line (both ends beyond the reach on one side), or of
+                    // theirs; the others by the distance between the two segments.
+                    let far = beside
+                        || super::offset::beyond(p, q, len2, a, b, reach2)
+                        || super::offset::beyond(a, b, edge_len2(a, b), p, q, reach2)
+                        || super::offset::apart(p, q, a, b, reach2);
+                    if !far {
+                        return false;
+                    }
+                }
+            }
+        }
+        inside
+    }
+
     /// Whether the inset is one ring that the raw offset proved counter-clockwise by
     /// `signed_area`'s own sum (`offset_read` keeps a ring only where that sum is
     /// positive): the side a router over it finds, known without summing it again.
@@ -217,6 +332,17 @@ impl Drop for Region {
             let ring = self.rings.pop().unwrap_or_default();
             super::scratch::give(&super::offset::RING, ring);
             super::scratch::give(&super::offset::RINGS, std::mem::take(&mut self.rings));
+        }
+        // The outline kept as `copied` made it (one polygon without holes): its lists
+        // back to their pools (any other outline's are freed).
+        if let [polygon] = &self.outline.0[..]
+            && polygon.interiors().is_empty()
+        {
+            let mut polygons = std::mem::take(&mut self.outline.0);
+            if let Some(polygon) = polygons.pop() {
+                super::scratch::give(&OUTLINE_RING, polygon.into_inner().0.0);
+            }
+            super::scratch::give(&OUTLINE_POLYGONS, polygons);
         }
         if self.pooled_convex {
             let mut rings = std::mem::take(&mut self.rings);

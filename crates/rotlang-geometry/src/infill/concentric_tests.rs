@@ -202,11 +202,19 @@ proptest! {
     }
 }
 
+/// How much a thread's counter went up while `f` ran.
+fn counted<T>(
+    counter: &'static std::thread::LocalKey<std::cell::Cell<usize>>,
+    f: impl FnOnce() -> T,
+) -> (T, usize) {
+    let before = counter.with(|n| n.get());
+    let value = f();
+    (value, counter.with(|n| n.get()) - before)
+}
+
 /// How many middle rings `nothing_far` left out while `f` ran (on this thread).
 fn middles_left_out<T>(f: impl FnOnce() -> T) -> (T, usize) {
-    let before = SKIPPED.with(|n| n.get());
-    let value = f();
-    (value, SKIPPED.with(|n| n.get()) - before)
+    counted(&SKIPPED, f)
 }
 
 /// The holed square's meeting steps (the hole's loop meets the outline's: the middle ring
@@ -230,9 +238,7 @@ fn the_holed_squares_meeting_steps_make_no_middle_ring() {
 
 /// How many middle rings were made while `f` ran (on this thread).
 fn middles_made<T>(f: impl FnOnce() -> T) -> (T, usize) {
-    let before = MADE.with(|n| n.get());
-    let value = f();
-    (value, MADE.with(|n| n.get()) - before)
+    counted(&MADE, f)
 }
 
 /// A star's 45° tips drop its loops' perimeter by 2·tan(67.5°) a unit each, not by the

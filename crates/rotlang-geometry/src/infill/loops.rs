@@ -1664,18 +1664,7 @@ fn convex_crossings(
             }
         }
     }
-    // The sweep's order: by the first segment's place, then the second's (the ranks are
-    // distinct: by insertion, a few small pairs).
-    for i in 1..ranked.len() {
-        let x = ranked[i];
-        let mut j = i;
-        while j > 0 && ranked[j - 1].0 > x.0 {
-            ranked[j] = ranked[j - 1];
-            j -= 1;
-        }
-        ranked[j] = x;
-    }
-    cuts.extend(ranked.iter().map(|r| found[r.1 as usize]));
+    in_sweep_order(ranked, found, cuts);
     Some(true)
 }
 
@@ -1802,8 +1791,14 @@ fn ring_crossings(
             }
         }
     }
-    // The sweep's order: by the first segment's place, then the second's (the ranks are
-    // distinct: by insertion, a few small pairs).
+    in_sweep_order(ranked, found, cuts);
+    Some(true)
+}
+
+/// The cuts `found` into `cuts` in the order the sweep finds them: by the first segment's
+/// place, then the second's (`ranked`; the ranks are distinct: by insertion, a few small
+/// pairs). For [`convex_crossings`] and [`ring_crossings`].
+fn in_sweep_order(ranked: &mut [(Rank, u32)], found: &[Cut], cuts: &mut Vec<Cut>) {
     for i in 1..ranked.len() {
         let x = ranked[i];
         let mut j = i;
@@ -1814,7 +1809,6 @@ fn ring_crossings(
         ranked[j] = x;
     }
     cuts.extend(ranked.iter().map(|r| found[r.1 as usize]));
-    Some(true)
 }
 
 /// [`ring_crossings`]' test of segments `g` (from `a` to `b`) and `j` whose boxes meet,

@@ -142,13 +142,7 @@ impl Region {
         let mut lengths = Vec::new();
         if curves {
             lengths = super::scratch::take(&order::LENGTHS);
-            paths.retain_mut(|p| {
-                let (kept, length) = simplify_measured(p, min_segment);
-                if kept {
-                    lengths.push(length);
-                }
-                kept
-            });
+            simplify_all_measured(&mut paths, min_segment, &mut lengths);
         } else {
             paths.retain_mut(|p| simplify(p, min_segment));
         }
@@ -202,6 +196,18 @@ pub(crate) fn turned(angle: f64) -> f64 {
 /// segment at least `min` long: most of a loop's or a line's), so it is not run.
 pub(crate) fn simplify(path: &mut Vec<Coord>, min: f64) -> bool {
     simplify_with::<false>(path, min).0
+}
+
+/// Every path simplified (`simplify_measured`), those left out dropped, and each kept
+/// one's measured length pushed onto `lengths` (NaN where not known), in order.
+pub(crate) fn simplify_all_measured(paths: &mut Vec<Vec<Coord>>, min: f64, lengths: &mut Vec<f64>) {
+    paths.retain_mut(|p| {
+        let (kept, length) = simplify_measured(p, min);
+        if kept {
+            lengths.push(length);
+        }
+        kept
+    });
 }
 
 /// [`simplify`], with the path's length where it is left as it was (NaN otherwise): the
@@ -394,13 +400,10 @@ mod tests {
                 })
                 .collect();
             let mut lengths = Vec::new();
-            paths.retain_mut(|p| {
-                let (kept, length) = super::simplify_measured(p, 0.04);
-                if kept && measure {
-                    lengths.push(length);
-                }
-                kept
-            });
+            super::simplify_all_measured(&mut paths, 0.04, &mut lengths);
+            if !measure {
+                lengths.clear();
+            }
             let region = crate::infill::Region::new(
                 &if holed {
                     crate::infill::shapes::holed_square(20.0, 5.0)
@@ -448,13 +451,7 @@ mod tests {
                 })
                 .collect();
             let mut lengths = Vec::new();
-            paths.retain_mut(|p| {
-                let (kept, length) = super::simplify_measured(p, min);
-                if kept {
-                    lengths.push(length);
-                }
-                kept
-            });
+            super::simplify_all_measured(&mut paths, min, &mut lengths);
             let region = crate::infill::Region::new(
                 &if holed {
                     crate::infill::shapes::holed_square(20.0, 5.0)
